@@ -1,0 +1,27 @@
+// sandtin bench: measurements printed as JSON (see tests/bench/).
+
+#include <iostream>
+
+#include "arguments.hpp"
+#include "bench_tin.hpp"
+#include "commands.hpp"
+
+namespace sandtin::cli {
+
+int run_bench(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
+    args.require_positionals(1, "sandtin bench tin [--quick] [--json]");
+    bench::BenchConfig config;
+    config.quick = args.has("--quick");
+    const std::string which = args.positionals()[0];
+    nlohmann::json result;
+    if (which == "tin") {
+        result = bench::bench_tin(config);
+    } else {
+        throw UsageError("unknown benchmark '" + which + "' (available: tin)");
+    }
+    std::cout << result.dump(2) << "\n";
+    return 0;
+}
+
+}  // namespace sandtin::cli

@@ -1,0 +1,35 @@
+// sandtin info: load a session and describe its terrain.
+
+#include <iostream>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "io/session_file.hpp"
+#include "terrain_report.hpp"
+
+namespace sandtin::cli {
+
+int run_info(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"--json", 0}});
+    args.require_positionals(1, "sandtin info scene.sandtin [--json]");
+    const std::string path = args.positionals()[0];
+    const Session session = load_session(path);
+    TinOptions options;
+    options.track_changes = false;
+    const Tin tin = Tin::from_snapshot(session.terrain, options);
+    const nlohmann::json j = describe_terrain(tin);
+    if (args.has("--json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::cout << path << "\n"
+                  << "  vertices          " << j["vertices"] << "\n"
+                  << "  triangles         " << j["triangles"] << "\n"
+                  << "  constrained edges " << j["constrained_edges"] << "\n"
+                  << "  volume            " << j["volume"] << " m^3 above z = 0\n"
+                  << "  bbox              " << j["bbox"].dump() << "\n"
+                  << "  valid             " << (j["valid"].get<bool>() ? "yes" : "NO") << "\n";
+    }
+    return j["valid"].get<bool>() ? 0 : 1;
+}
+
+}  // namespace sandtin::cli

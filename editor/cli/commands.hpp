@@ -1,0 +1,15 @@
+#pragma once
+// The sandtin sub-commands. Each takes the arguments after its name and returns the process
+// exit code; user errors are thrown as UsageError or std::runtime_error and reported by main.
+
+#include <string>
+#include <vector>
+
+namespace sandtin::cli {
+
+int run_new(const std::vector<std::string>& args);
+int run_info(const std::vector<std::string>& args);
+int run_bench(const std::vector<std::string>& args);
+int run_demo(const std::vector<std::string>& args);
+
+}  // namespace sandtin::cli

@@ -1,0 +1,54 @@
+// sandtin: the command-line front end (new, info, run, export, bench, stress, demo).
+
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+
+namespace {
+
+constexpr const char* kHelp = R"(sandtin - interactive sand terrain on a TIN
+
+usage: sandtin <command> [options]
+
+commands:
+  new     create a terrain:   sandtin new --flat W H [--points N] [--seed S] -o scene.sandtin
+  info    describe a session: sandtin info scene.sandtin [--json]
+  bench   benchmarks (JSON):  sandtin bench tin [--quick]
+  demo    the default batch job: build the default scene, run a stroke, print its stats
+
+Errors go to stderr and the exit code is non-zero.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        std::cerr << kHelp;
+        return 2;
+    }
+    const std::string command = args.front();
+    args.erase(args.begin());
+    try {
+        if (command == "new") return sandtin::cli::run_new(args);
+        if (command == "info") return sandtin::cli::run_info(args);
+        if (command == "bench") return sandtin::cli::run_bench(args);
+        if (command == "demo") return sandtin::cli::run_demo(args);
+        if (command == "help" || command == "--help" || command == "-h") {
+            std::cout << kHelp;
+            return 0;
+        }
+        std::cerr << "sandtin: error: unknown command '" << command << "'\n\n" << kHelp;
+        return 2;
+    } catch (const sandtin::cli::UsageError& e) {
+        std::cerr << "sandtin " << command << ": error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "sandtin " << command << ": error: " << e.what() << "\n";
+        return 1;
+    }
+}

@@ -1,0 +1,33 @@
+#include "terrain_report.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace sandtin::cli {
+
+nlohmann::json describe_terrain(const Tin& tin, bool validate) {
+    const VertexArrays& va = tin.vertices();
+    double zmin = std::numeric_limits<double>::infinity();
+    double zmax = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (!va.alive[i]) continue;
+        zmin = std::min(zmin, va.height[i]);
+        zmax = std::max(zmax, va.height[i]);
+    }
+    const Rect d = tin.domain();
+    nlohmann::json j;
+    j["vertices"] = tin.vertex_count();
+    j["triangles"] = tin.triangle_count();
+    j["constrained_edges"] = tin.constrained_edge_count();
+    j["constraints"] = tin.constraint_count();
+    j["volume"] = tin.volume();
+    j["bbox"] = {{"min", {d.min.x, d.min.y, zmin}}, {"max", {d.max.x, d.max.y, zmax}}};
+    if (validate) {
+        const ValidationReport report = tin.check_valid();
+        j["valid"] = report.ok();
+        if (!report.ok()) j["problems"] = report.problems;
+    }
+    return j;
+}
+
+}  // namespace sandtin::cli

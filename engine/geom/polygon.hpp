@@ -1,0 +1,37 @@
+#pragma once
+// Simple-polygon predicates in double precision. They decide which old constraints a tool
+// releases and which vertices a footprint covers, where a rounding-level misjudgement on the
+// boundary is harmless; the triangulation itself uses CGAL's exact predicates.
+
+#include <span>
+
+#include "geom/rect.hpp"
+#include "geom/vec2.hpp"
+
+namespace sandtin {
+
+/// Signed area in m²: positive for counter-clockwise vertex order.
+double signed_area(std::span<const Vec2> polygon);
+
+/// Bounding box of the points.
+Rect bounding_box(std::span<const Vec2> points);
+
+/// True when p is inside the closed polygon (crossing-number rule; border counts as inside
+/// within rounding). Works for non-convex polygons; the polygon is implicitly closed.
+bool point_in_polygon(Vec2 p, std::span<const Vec2> polygon);
+
+/// True when the closed segments [a,b] and [c,d] share a point.
+bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+/// True when the segment [a,b] touches the closed polygon region: an endpoint inside or a
+/// crossing of the border.
+bool segment_touches_polygon(Vec2 a, Vec2 b, std::span<const Vec2> polygon);
+
+/// True when no two non-adjacent edges of the closed polygon intersect and it has >= 3
+/// vertices with non-zero area.
+bool is_simple_polygon(std::span<const Vec2> polygon);
+
+/// Distance from p to the closed segment [a,b].
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+
+}  // namespace sandtin

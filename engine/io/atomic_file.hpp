@@ -1,0 +1,29 @@
+#pragma once
+// Crash-safe file replacement: the data goes to a temporary file in the same directory, is
+// flushed to disk, and then renamed over the target. A crash at any point leaves either the
+// old file or the new one, never a mixture.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <span>
+#include <vector>
+
+namespace sandtin {
+
+/// Test hook: called after this many bytes of the temporary file were written; returning
+/// false aborts the save as if the process had died there (the temporary is left behind, the
+/// target is untouched).
+using WriteInterruption = std::function<bool(std::size_t bytes_written)>;
+
+/// Writes `data` to `path` atomically. Throws std::runtime_error naming the path and the
+/// system error on failure; the previous file (if any) is then unchanged.
+void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
+                           const WriteInterruption& interruption = {});
+
+/// Reads a whole file. Throws std::runtime_error naming the path when it cannot be read or is
+/// larger than `max_bytes`.
+std::vector<std::uint8_t> read_file(const std::filesystem::path& path,
+                                    std::uint64_t max_bytes = 1ull << 34);
+
+}  // namespace sandtin

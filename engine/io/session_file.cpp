@@ -1,0 +1,191 @@
+#include "io/session_file.hpp"
+
+#include <zlib.h>
+
+#include <array>
+#include <cstring>
+#include <stdexcept>
+
+#include "io/byte_stream.hpp"
+
+namespace sandtin {
+
+namespace {
+
+constexpr std::array<std::uint8_t, 8> kMagic = {'S', 'A', 'N', 'D', 'T', 'I', 'N', 0x1a};
+constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 4 + 4;
+
+constexpr std::uint32_t tag(char a, char b, char c, char d) {
+    return static_cast<std::uint32_t>(static_cast<unsigned char>(a)) |
+           (static_cast<std::uint32_t>(static_cast<unsigned char>(b)) << 8) |
+           (static_cast<std::uint32_t>(static_cast<unsigned char>(c)) << 16) |
+           (static_cast<std::uint32_t>(static_cast<unsigned char>(d)) << 24);
+}
+constexpr std::uint32_t kTagTin = tag('T', 'I', 'N', '1');
+constexpr std::uint32_t kTagMeta = tag('M', 'E', 'T', 'A');
+constexpr std::uint32_t kTagGeneration = tag('G', 'E', 'N', '1');
+
+std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    std::size_t offset = 0;
+    while (offset < bytes.size()) {
+        const auto n = static_cast<uInt>(std::min<std::size_t>(bytes.size() - offset, 1u << 30));
+        crc = crc32(crc, bytes.data() + offset, n);
+        offset += n;
+    }
+    return static_cast<std::uint32_t>(crc);
+}
+
+void encode_terrain(ByteWriter& w, const TinSnapshot& t) {
+    w.put(t.domain.min.x);
+    w.put(t.domain.min.y);
+    w.put(t.domain.max.x);
+    w.put(t.domain.max.y);
+    const VertexArrays& v = t.vertices;
+    w.put_array<Vec2>(v.position);
+    w.put_array<double>(v.height);
+    w.put_array<double>(v.bedrock);
+    w.put_array<std::uint16_t>(v.material);
+    w.put_array<float>(v.moisture);
+    w.put_array<Vec2f>(v.slide);
+    w.put_array<std::uint8_t>(v.alive);
+    w.put_array<std::uint32_t>(t.vertex_free_list);
+    w.put_array<std::array<std::uint32_t, 3>>(t.slots);
+    w.put_array<std::uint32_t>(t.slot_free_list);
+    w.put<std::uint32_t>(t.constraint_capacity);
+    w.put<std::uint64_t>(t.constraints.size());
+    for (const ConstraintRecord& c : t.constraints) {
+        w.put(c.id);
+        w.put(c.generation);
+        w.put_array<std::uint32_t>(c.vertices);
+    }
+    w.put_array<std::uint32_t>(t.constraint_free_list);
+}
+
+TinSnapshot decode_terrain(ByteReader& r) {
+    TinSnapshot t;
+    t.domain.min.x = r.get<double>();
+    t.domain.min.y = r.get<double>();
+    t.domain.max.x = r.get<double>();
+    t.domain.max.y = r.get<double>();
+    VertexArrays& v = t.vertices;
+    v.position = r.get_array<Vec2>();
+    v.height = r.get_array<double>();
+    v.bedrock = r.get_array<double>();
+    v.material = r.get_array<std::uint16_t>();
+    v.moisture = r.get_array<float>();
+    v.slide = r.get_array<Vec2f>();
+    v.alive = r.get_array<std::uint8_t>();
+    v.lumped_area.assign(v.height.size(), 0.0);
+    t.vertex_free_list = r.get_array<std::uint32_t>();
+    t.slots = r.get_array<std::array<std::uint32_t, 3>>();
+    t.slot_free_list = r.get_array<std::uint32_t>();
+    t.constraint_capacity = r.get<std::uint32_t>();
+    const auto count = r.get<std::uint64_t>();
+    // Each constraint takes at least 20 bytes, which bounds a crafted count.
+    if (count > r.remaining() / 20) r.fail("constraint count exceeds the file size");
+    t.constraints.resize(count);
+    for (ConstraintRecord& c : t.constraints) {
+        c.id = r.get<std::uint32_t>();
+        c.generation = r.get<Generation>();
+        c.vertices = r.get_array<std::uint32_t>();
+    }
+    t.constraint_free_list = r.get_array<std::uint32_t>();
+    return t;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_session(const Session& session) {
+    ByteWriter payload;
+    auto chunk = [&](std::uint32_t id, const std::vector<std::uint8_t>& body) {
+        payload.put(id);
+        payload.put<std::uint64_t>(body.size());
+        payload.put_bytes(body);
+    };
+    {
+        ByteWriter w;
+        encode_terrain(w, session.terrain);
+        chunk(kTagTin, w.bytes());
+    }
+    {
+        ByteWriter w;
+        w.put<std::uint64_t>(session.next_generation);
+        chunk(kTagGeneration, w.bytes());
+    }
+    chunk(kTagMeta, std::vector<std::uint8_t>(session.metadata_json.begin(), session.metadata_json.end()));
+    for (const auto& [id, body] : session.unknown_chunks) chunk(id, body);
+
+    ByteWriter file;
+    file.put_bytes(kMagic);
+    file.put<std::uint32_t>(kSessionFormatVersion);
+    file.put<std::uint32_t>(0);
+    file.put<std::uint64_t>(payload.bytes().size());
+    file.put<std::uint32_t>(crc32_of(payload.bytes()));
+    file.put<std::uint32_t>(0);
+    file.put_bytes(payload.bytes());
+    return std::move(file.bytes());
+}
+
+Session decode_session(std::span<const std::uint8_t> bytes, const std::string& name) {
+    ByteReader header(bytes, name);
+    if (bytes.size() < kMagic.size() || std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
+        header.fail("not a sandtin session file (bad magic bytes)");
+    }
+    if (bytes.size() < kHeaderSize) header.fail("file is truncated: the header is incomplete");
+    header.get_bytes(kMagic.size());
+    const auto version = header.get<std::uint32_t>();
+    if (version == 0 || version > kSessionFormatVersion) {
+        header.fail("format version " + std::to_string(version) +
+                    " is newer than this build supports (" + std::to_string(kSessionFormatVersion) +
+                    "); update sandtin to open it");
+    }
+    header.get<std::uint32_t>();
+    const auto length = header.get<std::uint64_t>();
+    const auto crc = header.get<std::uint32_t>();
+    header.get<std::uint32_t>();
+    if (length != header.remaining()) {
+        header.fail(length > header.remaining() ? "file is truncated: payload is incomplete"
+                                                : "file has trailing bytes after the payload");
+    }
+    const auto payload = header.get_bytes(length);
+    if (crc32_of(payload) != crc) header.fail("checksum mismatch: the file is corrupted");
+
+    Session session;
+    bool have_terrain = false;
+    ByteReader r(payload, name);
+    while (!r.at_end()) {
+        const auto id = r.get<std::uint32_t>();
+        const auto size = r.get<std::uint64_t>();
+        const auto body = r.get_bytes(size);
+        ByteReader c(body, name);
+        if (id == kTagTin) {
+            session.terrain = decode_terrain(c);
+            have_terrain = true;
+        } else if (id == kTagGeneration) {
+            session.next_generation = c.get<std::uint64_t>();
+        } else if (id == kTagMeta) {
+            session.metadata_json.assign(body.begin(), body.end());
+            continue;
+        } else {
+            session.unknown_chunks[id] = std::vector<std::uint8_t>(body.begin(), body.end());
+            continue;
+        }
+        if (!c.at_end()) c.fail("chunk has unexpected trailing bytes");
+    }
+    if (!have_terrain) r.fail("file holds no terrain");
+    return session;
+}
+
+void save_session(const std::filesystem::path& path, const Session& session,
+                  const WriteInterruption& interruption) {
+    const std::vector<std::uint8_t> bytes = encode_session(session);
+    write_file_atomically(path, bytes, interruption);
+}
+
+Session load_session(const std::filesystem::path& path) {
+    const std::vector<std::uint8_t> bytes = read_file(path);
+    return decode_session(bytes, path.string());
+}
+
+}  // namespace sandtin

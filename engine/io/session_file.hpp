@@ -1,0 +1,41 @@
+#pragma once
+// Native session files (.sandtin): the terrain and the editing state around it.
+//
+// Layout (little-endian):
+//   header:  magic "SANDTIN\x1a", u32 format version, u32 reserved (0),
+//            u64 payload length, u32 CRC-32 of the payload, u32 reserved (0)
+//   payload: chunks of {u32 tag, u64 length, bytes}. Readers skip unknown tags and keep
+//            them, so a newer minor addition survives a round trip through an older build.
+//   chunks:  'TIN1' the TinSnapshot, 'META' a JSON object of session metadata.
+// Files are written atomically (io/atomic_file.hpp).
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/atomic_file.hpp"
+#include "tin/tin_snapshot.hpp"
+
+namespace sandtin {
+
+inline constexpr std::uint32_t kSessionFormatVersion = 1;
+
+struct Session {
+    TinSnapshot terrain;
+    Generation next_generation = 1;  ///< generation the next tool stamp will use
+    std::string metadata_json = "{}";  ///< free-form JSON object (scene name, tool settings, ...)
+    std::map<std::uint32_t, std::vector<std::uint8_t>> unknown_chunks;  ///< kept verbatim
+};
+
+std::vector<std::uint8_t> encode_session(const Session& session);
+/// Throws std::runtime_error with a message naming the problem (not a session, corrupted,
+/// truncated, from a newer version, or structurally invalid terrain).
+Session decode_session(std::span<const std::uint8_t> bytes, const std::string& name = "session");
+
+void save_session(const std::filesystem::path& path, const Session& session,
+                  const WriteInterruption& interruption = {});
+Session load_session(const std::filesystem::path& path);
+
+}  // namespace sandtin

@@ -1,0 +1,275 @@
+#pragma once
+// Private to engine/tin: the CGAL types behind Tin and its implementation state. Only the
+// tin_*.cpp translation units include this header, which keeps CGAL's compile cost in them.
+//
+// Change tracking works through CGAL's own object lifetimes. Our vertex and face bases hook
+// their constructors, destructors and the TDS mutators (set_vertex, set_constraint, reorient,
+// ...). While an edit runs, a thread-local pointer names the TdsEvents of the Tin being edited,
+// and the hooks record which ids and slots were born, died or changed. CGAL calls these
+// mutators on the most-derived face type, so nothing escapes; check_valid() verifies the cached
+// slot contents against CGAL's faces to prove it.
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_data_structure_2.h>
+#include <CGAL/Triangulation_vertex_base_2.h>
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "tin/change_journal.hpp"
+#include "tin/id_allocator.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin::detail {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_2;
+
+inline constexpr std::uint32_t kNoId = std::numeric_limits<std::uint32_t>::max();
+
+/// Receives lifetime events from the CGAL objects of one Tin during an edit.
+struct TdsEvents {
+    IdAllocator vertex_ids;
+    std::vector<void*> vertex_of_id;  ///< VertexId -> CGAL vertex (nullptr when dead)
+    std::vector<std::uint32_t> born_vertices;
+    std::vector<std::uint32_t> died_vertices;
+
+    IdAllocator slots;
+    std::vector<void*> face_of_slot;  ///< slot -> CGAL face (nullptr when free)
+    DirtySet op_slots;                ///< slots touched by the current edit
+
+    std::uint32_t vertex_born(void* vertex) {
+        const std::uint32_t id = vertex_ids.allocate();
+        if (id >= vertex_of_id.size()) vertex_of_id.resize(static_cast<std::size_t>(id) + 1, nullptr);
+        vertex_of_id[id] = vertex;
+        born_vertices.push_back(id);
+        return id;
+    }
+    void vertex_died(std::uint32_t id) {
+        vertex_of_id[id] = nullptr;
+        died_vertices.push_back(id);
+        vertex_ids.release(id);
+    }
+    std::uint32_t face_born(void* face) {
+        const std::uint32_t slot = slots.allocate();
+        if (slot >= face_of_slot.size()) face_of_slot.resize(static_cast<std::size_t>(slot) + 1, nullptr);
+        face_of_slot[slot] = face;
+        op_slots.mark(slot);
+        return slot;
+    }
+    void face_died(std::uint32_t slot) {
+        face_of_slot[slot] = nullptr;
+        op_slots.mark(slot);
+        slots.release(slot);
+    }
+    void face_touched(std::uint32_t slot) { op_slots.mark(slot); }
+};
+
+/// The Tin being edited on this thread, or nullptr outside edits (bulk builds, destruction).
+inline thread_local TdsEvents* t_events = nullptr;
+
+/// Scope of one edit: routes CGAL lifetime events to `events`.
+class EventScope {
+public:
+    explicit EventScope(TdsEvents& events) : previous_(t_events) { t_events = &events; }
+    ~EventScope() { t_events = previous_; }
+    EventScope(const EventScope&) = delete;
+    EventScope& operator=(const EventScope&) = delete;
+
+private:
+    TdsEvents* previous_;
+};
+
+template <class Gt, class Vb = CGAL::Triangulation_vertex_base_2<Gt>>
+class TinVertexBase : public Vb {
+public:
+    using Face_handle = typename Vb::Face_handle;
+    using Point = typename Vb::Point;
+
+    template <class Tds2>
+    struct Rebind_TDS {
+        using Vb2 = typename Vb::template Rebind_TDS<Tds2>::Other;
+        using Other = TinVertexBase<Gt, Vb2>;
+    };
+
+    TinVertexBase() : Vb() { born(); }
+    explicit TinVertexBase(const Point& p) : Vb(p) { born(); }
+    TinVertexBase(const Point& p, Face_handle f) : Vb(p, f) { born(); }
+    explicit TinVertexBase(Face_handle f) : Vb(f) { born(); }
+    // A copy is a new vertex with its own id.
+    TinVertexBase(const TinVertexBase& other) : Vb(other) { born(); }
+    TinVertexBase& operator=(const TinVertexBase& other) {
+        Vb::operator=(other);
+        return *this;
+    }
+    ~TinVertexBase() {
+        if (t_events != nullptr && id != kNoId) t_events->vertex_died(id);
+    }
+
+    std::uint32_t id = kNoId;  ///< VertexId value; kNoId for the vertex at infinity
+
+private:
+    void born() {
+        if (t_events != nullptr) id = t_events->vertex_born(this);
+    }
+};
+
+template <class Gt, class Fb = CGAL::Constrained_triangulation_face_base_2<Gt>>
+class TinFaceBase : public Fb {
+public:
+    using Vertex_handle = typename Fb::Vertex_handle;
+    using Face_handle = typename Fb::Face_handle;
+
+    template <class Tds2>
+    struct Rebind_TDS {
+        using Fb2 = typename Fb::template Rebind_TDS<Tds2>::Other;
+        using Other = TinFaceBase<Gt, Fb2>;
+    };
+
+    TinFaceBase() : Fb() { born(); }
+    TinFaceBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2) : Fb(v0, v1, v2) { born(); }
+    TinFaceBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Face_handle n0,
+                Face_handle n1, Face_handle n2)
+        : Fb(v0, v1, v2, n0, n1, n2) {
+        born();
+    }
+    TinFaceBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Face_handle n0,
+                Face_handle n1, Face_handle n2, bool c0, bool c1, bool c2)
+        : Fb(v0, v1, v2, n0, n1, n2, c0, c1, c2) {
+        born();
+    }
+    // A copy is a new face with its own slot.
+    TinFaceBase(const TinFaceBase& other) : Fb(other) { born(); }
+    TinFaceBase& operator=(const TinFaceBase& other) {
+        Fb::operator=(other);
+        touched();
+        return *this;
+    }
+    ~TinFaceBase() {
+        if (t_events != nullptr && slot != kNoId) t_events->face_died(slot);
+    }
+
+    // The TDS mutators that change what the slot holds.
+    void set_vertex(int i, Vertex_handle v) {
+        Fb::set_vertex(i, v);
+        touched();
+    }
+    void set_vertices() {
+        Fb::set_vertices();
+        touched();
+    }
+    void set_vertices(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2) {
+        Fb::set_vertices(v0, v1, v2);
+        touched();
+    }
+    void set_constraint(int i, bool b) {
+        Fb::set_constraint(i, b);
+        touched();
+    }
+    void set_constraints(bool c0, bool c1, bool c2) {
+        Fb::set_constraints(c0, c1, c2);
+        touched();
+    }
+    void reorient() {
+        Fb::reorient();
+        touched();
+    }
+    void ccw_permute() {
+        Fb::ccw_permute();
+        touched();
+    }
+    void cw_permute() {
+        Fb::cw_permute();
+        touched();
+    }
+
+    std::uint32_t slot = kNoId;  ///< TriangleSlot
+
+private:
+    void born() {
+        if (t_events != nullptr) slot = t_events->face_born(this);
+    }
+    void touched() {
+        if (t_events != nullptr && slot != kNoId) t_events->face_touched(slot);
+    }
+};
+
+using VertexBase = TinVertexBase<Kernel>;
+using FaceBase = TinFaceBase<Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+using CdtPlus = CGAL::Constrained_triangulation_plus_2<Cdt>;
+using VertexHandle = CdtPlus::Vertex_handle;
+using FaceHandle = CdtPlus::Face_handle;
+using Vertex = Tds::Vertex;
+using Face = Tds::Face;
+using CgalConstraintId = CdtPlus::Constraint_id;
+
+/// Cached content of a slot: the CPU mirror of the GPU triangle buffer.
+struct SlotRecord {
+    std::array<std::uint32_t, 3> corners{kNoId, kNoId, kNoId};  ///< kOutsideCorner at infinity
+    std::uint8_t constraint_mask = 0;
+    bool finite() const {
+        return corners[0] < kOutsideCorner && corners[1] < kOutsideCorner &&
+               corners[2] < kOutsideCorner;
+    }
+    friend bool operator==(const SlotRecord&, const SlotRecord&) = default;
+};
+
+struct ConstraintEntry {
+    CgalConstraintId cgal_id;
+    Generation generation = 0;
+    bool alive = false;
+};
+
+}  // namespace sandtin::detail
+
+namespace sandtin {
+
+struct Tin::Impl {
+    using Vh = detail::VertexHandle;
+    using Fh = detail::FaceHandle;
+
+    Rect domain;
+    TinOptions options;
+    detail::CdtPlus cdt;
+    detail::TdsEvents events;
+    VertexArrays va;
+    std::vector<detail::SlotRecord> slot_cache;
+    std::uint32_t live_triangles = 0;
+    DirtySet journal_vertices;
+    DirtySet journal_slots;
+
+    std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
+    IdAllocator constraint_ids{false};
+    std::unordered_map<const void*, std::uint32_t> constraint_of_cgal;  ///< Vertex_list* -> id
+
+    // ---- helpers shared by the translation units ----
+    Vh handle(std::uint32_t id) const {
+        return detail::Tds::Vertex_range::s_iterator_to(
+            *static_cast<detail::Vertex*>(events.vertex_of_id[id]));
+    }
+    Vh handle(VertexId v) const { return handle(v.value); }
+    bool alive(VertexId v) const {
+        return v.valid() && v.value < events.vertex_of_id.size() &&
+               events.vertex_of_id[v.value] != nullptr;
+    }
+    std::uint32_t corner_id(Vh v) const {
+        return cdt.is_infinite(v) ? kOutsideCorner : v->id;
+    }
+    detail::SlotRecord read_face(const detail::Face& f) const;
+    double recompute_lumped_area(std::uint32_t id) const;
+    void ensure_vertex_capacity();
+    void ensure_slot_capacity();
+    /// After a build without events: gives every face a slot, every vertex its lumped area,
+    /// and marks everything dirty for the first take_changes().
+    void finish_bulk_build();
+};
+
+}  // namespace sandtin

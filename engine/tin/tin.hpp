@@ -1,0 +1,239 @@
+#pragma once
+// The terrain: a constrained Delaunay triangulation of points in the plane, with a height per
+// vertex (a TIN). CGAL keeps the triangulation; this class keeps everything else.
+//
+// Units: metres for positions and heights, m² for areas, m³ for volumes.
+//
+// Invariants (checked by check_valid()):
+//  - The triangulated region is exactly the domain rectangle; every vertex lies inside it.
+//  - Each live vertex has a unique VertexId; per-vertex data lives in vertices() at that index.
+//  - Each finite triangle has a unique TriangleSlot; slot_triangle(s) gives its corners in
+//    counter-clockwise order.
+//  - Every edge that is not constrained is locally Delaunay (exact predicates).
+//  - lumped_area[v] = (sum of the areas of the triangles around v) / 3, so the exact volume
+//    under the piecewise-linear surface is sum(lumped_area[v] * height[v]).
+//  - All attributes are finite.
+//
+// Not thread-safe: one thread edits and queries; other threads read copies (GPU mirror,
+// haptic snapshots).
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geom/rect.hpp"
+#include "geom/vec2.hpp"
+#include "tin/change_journal.hpp"
+#include "tin/ids.hpp"
+#include "tin/tin_snapshot.hpp"
+#include "tin/vertex_arrays.hpp"
+
+namespace sandtin {
+
+struct TinOptions {
+    /// Record changes for take_changes(). While tracking is on, freed ids and slots are only
+    /// recycled after take_changes(), so turn it off when nothing consumes the journal.
+    bool track_changes = true;
+};
+
+/// Where a point lies in the triangulation.
+struct Location {
+    enum class Kind : std::uint8_t { Outside, OnVertex, OnEdge, InTriangle };
+    Kind kind = Kind::Outside;
+    TriangleSlot slot = kNoSlot;          ///< a finite triangle containing the point
+    std::array<VertexId, 3> corners{};    ///< that triangle's corners, counter-clockwise
+    std::array<double, 3> barycentric{};  ///< weights of the corners; they sum to 1
+    bool inside() const { return kind != Kind::Outside; }
+};
+
+/// A vertex near the last query. Point location walks from it, so successive queries along a
+/// tool path cost a few steps each. Vertices, unlike CGAL faces, survive edits; a dead hint is
+/// ignored.
+struct LocateHint {
+    VertexId vertex;
+};
+
+/// What a topology change does to the volume under the surface. Delaunay flips, vertex removal
+/// and constraint changes re-triangulate the surface, which changes its volume slightly.
+enum class VolumePolicy : std::uint8_t {
+    /// Shift the heights of the re-triangulated vertices so the total volume is unchanged.
+    Conserve,
+    /// Leave heights alone; only report the change.
+    Report,
+};
+
+/// What a topology-changing edit did.
+struct EditReport {
+    double volume_change = 0.0;  ///< m³ changed by re-triangulation, before any compensation
+    std::uint32_t vertices_created = 0;  ///< includes vertices CGAL created at constraint crossings
+    std::uint32_t vertices_removed = 0;
+    std::uint32_t triangles_changed = 0;  ///< slots whose triangle changed
+
+    void accumulate(const EditReport& o) {
+        volume_change += o.volume_change;
+        vertices_created += o.vertices_created;
+        vertices_removed += o.vertices_removed;
+        triangles_changed += o.triangles_changed;
+    }
+};
+
+/// A constrained polyline: the vertices it passes through in order, including vertices
+/// inserted where it crossed other constraints.
+struct ConstraintInfo {
+    ConstraintId id;
+    Generation generation = 0;
+    std::vector<VertexId> vertices;
+};
+
+struct ValidationReport {
+    std::vector<std::string> problems;
+    bool ok() const { return problems.empty(); }
+    /// The problems joined into one line each (empty when ok).
+    std::string summary() const;
+};
+
+/// Which constraints release_constraints() removes. All given conditions must hold.
+struct ReleaseFilter {
+    std::optional<Generation> generation;    ///< exactly this generation
+    std::optional<Generation> older_than;    ///< generation < older_than
+    std::span<const Vec2> touching_polygon;  ///< some segment touches this closed polygon
+};
+
+class Tin {
+public:
+    using HeightFunction = std::function<double(Vec2)>;
+
+    /// Two triangles covering `domain` at a constant height.
+    static Tin flat_rectangle(Rect domain, double height = 0.0, TinOptions options = {});
+    /// A regular grid of (cells_x + 1) x (cells_y + 1) vertices. Without a height function the
+    /// terrain is flat at 0.
+    static Tin regular_grid(Rect domain, int cells_x, int cells_y,
+                            const HeightFunction& height = {}, TinOptions options = {});
+    /// The domain corners plus `count` uniformly random points (deterministic for a seed).
+    static Tin random_points(Rect domain, std::size_t count, std::uint64_t seed,
+                             const HeightFunction& height = {}, TinOptions options = {});
+    /// The given points (positions in metres, heights in metres). Domain corners that are not
+    /// among them are added at the height of the nearest given point. Duplicate positions keep
+    /// the first height. Throws std::invalid_argument for points outside the domain or
+    /// non-finite values.
+    static Tin from_points(Rect domain, std::span<const Vec2> positions,
+                           std::span<const double> heights, TinOptions options = {});
+    /// Rebuilds exactly the saved triangulation, ids and slots. Throws std::runtime_error with a
+    /// description when the snapshot is inconsistent (corrupted or crafted input).
+    static Tin from_snapshot(const TinSnapshot& snapshot, TinOptions options = {});
+
+    Tin(Tin&&) noexcept;
+    Tin& operator=(Tin&&) noexcept;
+    Tin(const Tin&) = delete;
+    Tin& operator=(const Tin&) = delete;
+    ~Tin();
+
+    // ---- Queries -------------------------------------------------------------------------
+    Rect domain() const;
+    std::size_t vertex_count() const;    ///< live vertices
+    std::size_t triangle_count() const;  ///< finite triangles
+    std::size_t constrained_edge_count() const;
+    std::size_t constraint_count() const;  ///< registered constrained polylines
+    std::uint32_t vertex_capacity() const;  ///< one past the largest VertexId ever used
+    std::uint32_t slot_capacity() const;    ///< one past the largest TriangleSlot ever used
+
+    bool is_alive(VertexId v) const;
+    const VertexArrays& vertices() const;
+    Vec2 position(VertexId v) const;
+    double height(VertexId v) const;
+
+    /// Corners (counter-clockwise) of the triangle in a slot; all invalid when the slot is free
+    /// or holds no finite triangle.
+    std::array<VertexId, 3> slot_triangle(TriangleSlot slot) const;
+    /// Bit i set: the edge opposite corner i is constrained.
+    std::uint8_t slot_constraint_mask(TriangleSlot slot) const;
+    /// All finite triangles, for export.
+    std::vector<std::array<VertexId, 3>> triangles() const;
+
+    /// Locates p, walking from the hint when given and updating it to a nearby vertex.
+    Location locate(Vec2 p, LocateHint* hint = nullptr) const;
+    /// Height of the piecewise-linear surface at p, or nullopt outside the domain.
+    std::optional<double> height_at(Vec2 p, LocateHint* hint = nullptr) const;
+
+    /// The finite neighbours of v in counter-clockwise order (replaces the contents of out).
+    void neighbours(VertexId v, std::vector<VertexId>& out) const;
+    bool is_boundary(VertexId v) const;       ///< on the domain border
+    bool is_on_constraint(VertexId v) const;  ///< incident to a constrained edge
+    /// True when the edge (a, b) exists and is constrained.
+    bool is_constrained_edge(VertexId a, VertexId b) const;
+
+    /// Exact volume between the surface and the plane z = datum, sum(A_i (h_i - datum)), in m³
+    /// (compensated summation).
+    double volume(double datum = 0.0) const;
+
+    std::vector<ConstraintInfo> constraints() const;
+    std::optional<ConstraintInfo> constraint(ConstraintId id) const;
+
+    ValidationReport check_valid() const;
+
+    // ---- Edits ---------------------------------------------------------------------------
+    /// Inserts a vertex at p with the given height. If a vertex already sits exactly at p its
+    /// height is set and its id returned. Throws std::invalid_argument when p is outside the
+    /// domain or a value is not finite.
+    VertexId insert_point(Vec2 p, double height, LocateHint* hint = nullptr,
+                          EditReport* report = nullptr);
+    /// Inserts a vertex at p on the current surface. With VolumePolicy::Conserve the new
+    /// vertex's height absorbs the volume change of the Delaunay flips, so refinement never
+    /// creates or destroys material.
+    VertexId insert_point_on_surface(Vec2 p, LocateHint* hint = nullptr,
+                                     VolumePolicy policy = VolumePolicy::Conserve,
+                                     EditReport* report = nullptr);
+    /// Removes v. Returns false (and changes nothing) for border vertices and vertices on a
+    /// constraint. With VolumePolicy::Conserve the ring around the hole absorbs the volume change.
+    bool remove_vertex(VertexId v, VolumePolicy policy = VolumePolicy::Conserve,
+                       EditReport* report = nullptr);
+
+    /// Constrains the segment a-b. Crossings with existing constraints become new vertices at
+    /// the height of the crossed constraint. Re-inserting an existing constraint refreshes its
+    /// generation and returns its id.
+    ConstraintId insert_constraint(VertexId a, VertexId b, Generation generation,
+                                   VolumePolicy policy = VolumePolicy::Conserve,
+                                   EditReport* report = nullptr);
+    /// Constrains a polyline through the vertices (closed: last joins first).
+    ConstraintId insert_constraint(std::span<const VertexId> polyline, bool closed,
+                                   Generation generation,
+                                   VolumePolicy policy = VolumePolicy::Conserve,
+                                   EditReport* report = nullptr);
+    /// Unconstrains every constraint that matches the filter; Delaunay flips follow. Returns how
+    /// many constraints were released.
+    std::size_t release_constraints(const ReleaseFilter& filter,
+                                    VolumePolicy policy = VolumePolicy::Conserve,
+                                    EditReport* report = nullptr);
+    bool release_constraint(ConstraintId id, VolumePolicy policy = VolumePolicy::Conserve,
+                            EditReport* report = nullptr);
+
+    /// Attribute setters record the vertex in the change journal when the value changes.
+    /// They throw std::invalid_argument for dead ids and non-finite values.
+    void set_height(VertexId v, double height);
+    void set_bedrock(VertexId v, double bedrock);
+    void set_material(VertexId v, std::uint16_t material);
+    void set_moisture(VertexId v, float moisture);
+    void set_slide(VertexId v, Vec2f slide);
+
+    // ---- Change journal and snapshots ----------------------------------------------------
+    /// Dirty vertex and slot ranges since the last call (everything, the first time), then
+    /// recycles the ids and slots whose death it reported.
+    ChangeSet take_changes();
+    bool tracks_changes() const;
+
+    /// A complete copy: vertices by id, triangles by slot, constraints and free lists.
+    TinSnapshot snapshot() const;
+
+    struct Impl;
+
+private:
+    explicit Tin(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sandtin

@@ -1,0 +1,480 @@
+// Tin: snapshots, exact restore from a snapshot, and the validity check.
+//
+// Restoring rebuilds CGAL's triangulation data structure face by face instead of re-inserting
+// the points: on cocircular input (grids, imported rasters) re-insertion may choose other
+// diagonals, and a loaded session must equal the saved one. Because snapshots come from files,
+// every structural property is verified before CGAL sees the data.
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "tin/detail/cgal_tin.hpp"
+#include "util/compensated_sum.hpp"
+
+namespace sandtin {
+
+using detail::CdtPlus;
+using detail::kNoId;
+using detail::SlotRecord;
+using Vh = Tin::Impl::Vh;
+using Fh = Tin::Impl::Fh;
+
+namespace {
+
+class NoEvents {
+public:
+    NoEvents() : previous_(detail::t_events) { detail::t_events = nullptr; }
+    ~NoEvents() { detail::t_events = previous_; }
+    NoEvents(const NoEvents&) = delete;
+    NoEvents& operator=(const NoEvents&) = delete;
+
+private:
+    detail::TdsEvents* previous_;
+};
+
+[[noreturn]] void corrupt(const std::string& what) {
+    throw std::runtime_error("invalid terrain data: " + what);
+}
+
+std::vector<std::uint32_t> handout_order(const IdAllocator& a) {
+    // The order in which the allocator will hand ids out after the pending ones are flushed.
+    std::vector<std::uint32_t> out = a.free_list();
+    const auto& pending = a.pending_list();
+    out.insert(out.end(), pending.rbegin(), pending.rend());
+    return out;
+}
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+double triangle_area(Vec2 a, Vec2 b, Vec2 c) { return 0.5 * cross(b - a, c - a); }
+
+}  // namespace
+
+TinSnapshot Tin::snapshot() const {
+    const Impl& m = *impl_;
+    TinSnapshot s;
+    s.domain = m.domain;
+    s.vertices = m.va;
+    s.vertices.resize(m.events.vertex_ids.capacity());
+    s.vertex_free_list = handout_order(m.events.vertex_ids);
+    s.slots.resize(m.events.slots.capacity(), {kNoSlot, kNoSlot, kNoSlot});
+    for (std::uint32_t slot = 0; slot < s.slots.size(); ++slot) {
+        if (m.events.face_of_slot[slot] != nullptr) s.slots[slot] = m.slot_cache[slot].corners;
+    }
+    s.slot_free_list = handout_order(m.events.slots);
+    for (const ConstraintInfo& c : constraints()) {
+        ConstraintRecord r;
+        r.id = c.id.value;
+        r.generation = c.generation;
+        for (VertexId v : c.vertices) r.vertices.push_back(v.value);
+        s.constraints.push_back(std::move(r));
+    }
+    s.constraint_capacity = m.constraint_ids.capacity();
+    s.constraint_free_list = handout_order(m.constraint_ids);
+    return s;
+}
+
+namespace {
+
+void check_free_list(const std::vector<std::uint32_t>& free_list, std::uint32_t capacity,
+                     const std::vector<std::uint8_t>& in_use, const char* what) {
+    std::vector<std::uint8_t> seen(capacity, 0);
+    std::size_t free_count = 0;
+    for (std::uint32_t i = 0; i < capacity; ++i) free_count += in_use[i] ? 0 : 1;
+    if (free_list.size() != free_count) corrupt(std::string(what) + " free list has the wrong size");
+    for (std::uint32_t id : free_list) {
+        if (id >= capacity || in_use[id] || seen[id]) {
+            corrupt(std::string(what) + " free list names a used, repeated or out-of-range id");
+        }
+        seen[id] = 1;
+    }
+}
+
+}  // namespace
+
+Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
+    NoEvents quiet;
+    const Rect& d = s.domain;
+    if (!(is_finite(d.min) && is_finite(d.max) && d.width() > 0.0 && d.height() > 0.0)) {
+        corrupt("domain is not a finite rectangle with positive size");
+    }
+    const VertexArrays& sv = s.vertices;
+    const std::size_t n = sv.height.size();
+    if (n >= (1u << 31)) corrupt("too many vertices");
+    if (sv.position.size() != n || sv.bedrock.size() != n || sv.material.size() != n ||
+        sv.moisture.size() != n || sv.slide.size() != n || sv.alive.size() != n) {
+        corrupt("vertex arrays differ in length");
+    }
+    const auto vertex_capacity = static_cast<std::uint32_t>(n);
+    std::vector<std::uint8_t> vertex_used(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (sv.alive[i] > 1) corrupt("vertex alive flag is neither 0 nor 1");
+        if (!sv.alive[i]) continue;
+        vertex_used[i] = 1;
+        const Vec2 p = sv.position[i];
+        if (!is_finite(p) || !d.contains(p)) corrupt("vertex " + std::to_string(i) + " lies outside the domain");
+        if (!std::isfinite(sv.height[i]) || !std::isfinite(sv.bedrock[i])) {
+            corrupt("vertex " + std::to_string(i) + " has a non-finite height or bedrock");
+        }
+        if (!(sv.moisture[i] >= 0.0f && sv.moisture[i] <= 1.0f)) {
+            corrupt("vertex " + std::to_string(i) + " has moisture outside [0, 1]");
+        }
+        if (!std::isfinite(sv.slide[i].x) || !std::isfinite(sv.slide[i].y)) {
+            corrupt("vertex " + std::to_string(i) + " has a non-finite texture offset");
+        }
+    }
+    check_free_list(s.vertex_free_list, vertex_capacity, vertex_used, "vertex");
+
+    const std::size_t slot_count = s.slots.size();
+    if (slot_count >= (1u << 31)) corrupt("too many triangle slots");
+    std::vector<std::uint8_t> slot_used(slot_count, 0);
+    for (std::size_t t = 0; t < slot_count; ++t) {
+        const auto& c = s.slots[t];
+        if (c[0] == kNoSlot && c[1] == kNoSlot && c[2] == kNoSlot) continue;
+        slot_used[t] = 1;
+        int outside = 0;
+        for (std::uint32_t v : c) {
+            if (v == kOutsideCorner) {
+                ++outside;
+            } else if (v >= n || !sv.alive[v]) {
+                corrupt("triangle slot " + std::to_string(t) + " names a dead or unknown vertex");
+            }
+        }
+        if (outside > 1) corrupt("triangle slot " + std::to_string(t) + " has two corners at infinity");
+        if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
+            corrupt("triangle slot " + std::to_string(t) + " repeats a corner");
+        }
+    }
+    check_free_list(s.slot_free_list, static_cast<std::uint32_t>(slot_count), slot_used, "slot");
+
+    auto impl = std::make_unique<Impl>();
+    Impl& m = *impl;
+    m.domain = d;
+    m.options = options;
+    m.events.vertex_ids.restore(vertex_capacity, s.vertex_free_list);
+    m.events.slots.restore(static_cast<std::uint32_t>(slot_count), s.slot_free_list);
+    m.va = sv;
+    m.va.lumped_area.assign(n, 0.0);
+    m.events.vertex_of_id.assign(n, nullptr);
+    m.slot_cache.assign(slot_count, SlotRecord{});
+    m.events.face_of_slot.assign(slot_count, nullptr);
+
+    // Build the triangulation data structure directly.
+    detail::Tds& tds = m.cdt.tds();
+    tds.clear();
+    tds.set_dimension(2);
+    const Vh infinite = tds.create_vertex();
+    m.cdt.set_infinite_vertex(infinite);
+    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
+        if (!sv.alive[i]) continue;
+        const Vh v = tds.create_vertex();
+        v->set_point(detail::Point(sv.position[i].x, sv.position[i].y));
+        v->id = i;
+        m.events.vertex_of_id[i] = &*v;
+    }
+    auto vertex_handle = [&](std::uint32_t c) { return c == kOutsideCorner ? infinite : m.handle(c); };
+    std::unordered_map<std::uint64_t, std::pair<Fh, int>> half_edges;
+    half_edges.reserve(slot_count * 3);
+    std::vector<Fh> faces;
+    faces.reserve(slot_count);
+    auto key_of = [](std::uint32_t c) { return c == kOutsideCorner ? 0xFFFFFFFEu : c; };
+    for (std::uint32_t t = 0; t < slot_count; ++t) {
+        if (!slot_used[t]) continue;
+        const auto& c = s.slots[t];
+        const Fh f = tds.create_face(vertex_handle(c[0]), vertex_handle(c[1]), vertex_handle(c[2]));
+        f->slot = t;
+        m.events.face_of_slot[t] = &*f;
+        faces.push_back(f);
+        for (int i = 0; i < 3; ++i) {
+            // Half-edge opposite corner i, oriented counter-clockwise in this face.
+            const std::uint32_t a = key_of(c[static_cast<std::size_t>(CdtPlus::ccw(i))]);
+            const std::uint32_t b = key_of(c[static_cast<std::size_t>(CdtPlus::cw(i))]);
+            if (!half_edges.emplace(edge_key(a, b), std::make_pair(f, i)).second) {
+                corrupt("two triangles share the same oriented edge");
+            }
+            f->vertex(i)->set_face(f);
+        }
+    }
+    for (const Fh f : faces) {
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = key_of(f->vertex(CdtPlus::ccw(i)) == infinite
+                                               ? kOutsideCorner
+                                               : f->vertex(CdtPlus::ccw(i))->id);
+            const std::uint32_t b = key_of(f->vertex(CdtPlus::cw(i)) == infinite
+                                               ? kOutsideCorner
+                                               : f->vertex(CdtPlus::cw(i))->id);
+            const auto twin = half_edges.find(edge_key(b, a));
+            if (twin == half_edges.end()) corrupt("the triangles do not close up (an edge has no twin)");
+            f->set_neighbor(i, twin->second.first);
+        }
+    }
+    if (faces.empty()) corrupt("no triangles");
+    // Every vertex's star must be one cycle of faces (a manifold), else CGAL's circulators
+    // would loop or skip.
+    {
+        std::vector<std::uint32_t> references(n, 0);
+        std::uint32_t infinite_references = 0;
+        for (const Fh f : faces) {
+            for (int i = 0; i < 3; ++i) {
+                if (f->vertex(i) == infinite) {
+                    ++infinite_references;
+                } else {
+                    ++references[f->vertex(i)->id];
+                }
+            }
+        }
+        auto star_size = [&](Vh v) {
+            const Fh start = v->face();
+            Fh f = start;
+            std::uint32_t count = 0;
+            do {
+                ++count;
+                if (count > faces.size()) return count;
+                f = f->neighbor(CdtPlus::ccw(f->index(v)));
+            } while (f != start);
+            return count;
+        };
+        for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
+            if (!sv.alive[i]) continue;
+            if (references[i] == 0) corrupt("vertex " + std::to_string(i) + " is in no triangle");
+            if (star_size(m.handle(i)) != references[i]) {
+                corrupt("the triangles around vertex " + std::to_string(i) + " do not form one fan");
+            }
+        }
+        if (infinite_references < 3 || star_size(infinite) != infinite_references) {
+            corrupt("the terrain border is not a single closed loop");
+        }
+    }
+    // Geometry: finite triangles counter-clockwise, the border on the domain rectangle, and the
+    // triangles exactly tiling it.
+    CompensatedSum area;
+    const auto orientation = detail::Kernel().orientation_2_object();
+    for (const Fh f : faces) {
+        const int inf = f->has_vertex(infinite) ? f->index(infinite) : -1;
+        if (inf < 0) {
+            if (orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) !=
+                CGAL::LEFT_TURN) {
+                corrupt("triangle in slot " + std::to_string(f->slot) + " is not counter-clockwise");
+            }
+            area.add(triangle_area(sv.position[f->vertex(0)->id], sv.position[f->vertex(1)->id],
+                                   sv.position[f->vertex(2)->id]));
+        } else {
+            const Vec2 a = sv.position[f->vertex(CdtPlus::ccw(inf))->id];
+            const Vec2 b = sv.position[f->vertex(CdtPlus::cw(inf))->id];
+            const bool on_border = (a.x == d.min.x && b.x == d.min.x) || (a.x == d.max.x && b.x == d.max.x) ||
+                                   (a.y == d.min.y && b.y == d.min.y) || (a.y == d.max.y && b.y == d.max.y);
+            if (!on_border) corrupt("a border edge does not lie on the domain rectangle");
+        }
+    }
+    const double domain_area = d.width() * d.height();
+    if (std::abs(area.value() - domain_area) > 1e-9 * domain_area) {
+        corrupt("the triangles do not tile the domain (overlaps or holes)");
+    }
+
+    // Constraints: every segment must already be an edge, so inserting them changes nothing.
+    if (s.constraint_capacity >= (1u << 31)) corrupt("too many constraints");
+    std::vector<std::uint8_t> constraint_used(s.constraint_capacity, 0);
+    m.constraints.assign(s.constraint_capacity, {});
+    for (const ConstraintRecord& r : s.constraints) {
+        if (r.id >= s.constraint_capacity || constraint_used[r.id]) {
+            corrupt("constraint id " + std::to_string(r.id) + " is repeated or out of range");
+        }
+        constraint_used[r.id] = 1;
+        if (r.vertices.size() < 2) corrupt("constraint " + std::to_string(r.id) + " has fewer than two vertices");
+        std::vector<detail::Point> pts;
+        for (std::size_t i = 0; i < r.vertices.size(); ++i) {
+            const std::uint32_t v = r.vertices[i];
+            if (v >= n || !sv.alive[v]) corrupt("constraint " + std::to_string(r.id) + " names a dead vertex");
+            if (i > 0) {
+                Fh f;
+                int li = 0;
+                if (r.vertices[i - 1] == v ||
+                    !m.cdt.is_edge(m.handle(r.vertices[i - 1]), m.handle(v), f, li)) {
+                    corrupt("constraint " + std::to_string(r.id) + " follows no triangle edge");
+                }
+            }
+            pts.push_back(m.handle(v)->point());
+        }
+        const detail::CgalConstraintId cid = m.cdt.insert_constraint(pts.begin(), pts.end());
+        if (cid == detail::CgalConstraintId(nullptr)) {
+            corrupt("constraint " + std::to_string(r.id) + " duplicates another");
+        }
+        m.constraints[r.id] = {cid, r.generation, true};
+        m.constraint_of_cgal[cid.vl_ptr()] = r.id;
+    }
+    check_free_list(s.constraint_free_list, s.constraint_capacity, constraint_used, "constraint");
+    m.constraint_ids.restore(s.constraint_capacity, s.constraint_free_list);
+    if (m.cdt.number_of_vertices() != m.events.vertex_ids.live()) {
+        corrupt("constraints created vertices that the triangulation lacks");
+    }
+
+    // Slot cache and lumped areas.
+    for (const Fh f : faces) {
+        const SlotRecord r = m.read_face(*f);
+        m.slot_cache[f->slot] = r;
+        if (r.finite()) ++m.live_triangles;
+    }
+    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
+        if (sv.alive[i]) m.va.lumped_area[i] = m.recompute_lumped_area(i);
+    }
+    if (options.track_changes) {
+        for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
+            if (sv.alive[i]) m.journal_vertices.mark(i);
+        }
+        for (std::uint32_t t = 0; t < slot_count; ++t) m.journal_slots.mark(t);
+    }
+
+    Tin tin(std::move(impl));
+    const ValidationReport report = tin.check_valid();
+    if (!report.ok()) corrupt(report.problems.front());
+    return tin;
+}
+
+ValidationReport Tin::check_valid() const {
+    const Impl& m = *impl_;
+    ValidationReport r;
+    auto problem = [&](const std::string& what) {
+        if (r.problems.size() < 20) r.problems.push_back(what);
+    };
+    if (!m.cdt.is_valid()) problem("CGAL reports an invalid triangulation");
+    if (m.cdt.dimension() != 2) {
+        problem("triangulation is not two-dimensional");
+        return r;
+    }
+    const VertexArrays& va = m.va;
+    const std::uint32_t capacity = m.events.vertex_ids.capacity();
+    if (va.size() != capacity || m.events.vertex_of_id.size() != capacity) {
+        problem("vertex arrays do not match the id capacity");
+        return r;
+    }
+
+    // Vertices and ids.
+    std::size_t finite_vertices = 0;
+    for (auto v = m.cdt.finite_vertices_begin(); v != m.cdt.finite_vertices_end(); ++v) {
+        ++finite_vertices;
+        const std::uint32_t id = v->id;
+        if (id >= capacity || m.events.vertex_of_id[id] != &*v || !va.alive[id]) {
+            problem("a CGAL vertex has no valid id");
+            continue;
+        }
+        const Vec2 p{v->point().x(), v->point().y()};
+        if (!(p == va.position[id])) problem("vertex " + std::to_string(id) + " position differs from CGAL's");
+        if (!m.domain.contains(p)) problem("vertex " + std::to_string(id) + " lies outside the domain");
+    }
+    std::size_t alive = 0;
+    CompensatedSum total_area;
+    for (std::uint32_t id = 0; id < capacity; ++id) {
+        if (!va.alive[id]) {
+            if (m.events.vertex_of_id[id] != nullptr) problem("dead id " + std::to_string(id) + " still maps to a vertex");
+            continue;
+        }
+        ++alive;
+        if (m.events.vertex_of_id[id] == nullptr) {
+            problem("live id " + std::to_string(id) + " maps to no vertex");
+            continue;
+        }
+        if (!std::isfinite(va.height[id]) || !std::isfinite(va.bedrock[id]) ||
+            !std::isfinite(va.slide[id].x) || !std::isfinite(va.slide[id].y) ||
+            !(va.moisture[id] >= 0.0f && va.moisture[id] <= 1.0f) || !std::isfinite(va.lumped_area[id])) {
+            problem("vertex " + std::to_string(id) + " has a non-finite or out-of-range attribute");
+        }
+        if (va.bedrock[id] > va.height[id]) problem("vertex " + std::to_string(id) + " has bedrock above its surface");
+        const double recomputed = m.recompute_lumped_area(id);
+        if (!(std::abs(recomputed - va.lumped_area[id]) <= 1e-9 * std::max(recomputed, 1e-300)) ||
+            !(recomputed > 0.0)) {
+            problem("vertex " + std::to_string(id) + " has a stale lumped area");
+        }
+        total_area.add(va.lumped_area[id]);
+    }
+    if (alive != finite_vertices || alive != m.events.vertex_ids.live()) {
+        problem("live id count " + std::to_string(alive) + " differs from CGAL's " +
+                std::to_string(finite_vertices) + " vertices");
+    }
+    const double domain_area = m.domain.width() * m.domain.height();
+    if (std::abs(total_area.value() - domain_area) > 1e-9 * domain_area) {
+        problem("lumped areas do not sum to the domain area");
+    }
+
+    // Slots.
+    const std::uint32_t slots = m.events.slots.capacity();
+    if (m.slot_cache.size() != slots || m.events.face_of_slot.size() != slots) {
+        problem("slot arrays do not match the slot capacity");
+        return r;
+    }
+    std::vector<std::uint8_t> slot_seen(slots, 0);
+    std::uint32_t finite_faces = 0;
+    for (auto f = m.cdt.all_faces_begin(); f != m.cdt.all_faces_end(); ++f) {
+        const std::uint32_t s = f->slot;
+        if (s >= slots || slot_seen[s] || m.events.face_of_slot[s] != &*f) {
+            problem("a face has a missing, repeated or stale slot");
+            continue;
+        }
+        slot_seen[s] = 1;
+        const SlotRecord now = m.read_face(*f);
+        if (!(now == m.slot_cache[s])) problem("slot " + std::to_string(s) + " cache differs from its face");
+        if (now.finite()) ++finite_faces;
+    }
+    for (std::uint32_t s = 0; s < slots; ++s) {
+        if (!slot_seen[s] && (m.events.face_of_slot[s] != nullptr || m.slot_cache[s].finite())) {
+            problem("free slot " + std::to_string(s) + " still holds a triangle");
+        }
+    }
+    if (finite_faces != m.live_triangles || finite_faces != m.cdt.number_of_faces()) {
+        problem("live triangle count is inconsistent");
+    }
+
+    // Delaunay property of unconstrained edges, and constraint bookkeeping.
+    const auto in_circle = detail::Kernel().side_of_oriented_circle_2_object();
+    std::size_t constrained_edges = 0;
+    for (auto e = m.cdt.finite_edges_begin(); e != m.cdt.finite_edges_end(); ++e) {
+        const Fh f = e->first;
+        const int i = e->second;
+        const Fh g = f->neighbor(i);
+        const Vh a = f->vertex(CdtPlus::cw(i));
+        const Vh b = f->vertex(CdtPlus::ccw(i));
+        if (f->is_constrained(i)) {
+            ++constrained_edges;
+            // The hierarchy queries are not declared const but do not modify anything.
+            auto& cdt = const_cast<CdtPlus&>(m.cdt);
+            if (!cdt.is_subconstraint(a, b)) problem("a constrained edge belongs to no constraint");
+            for (auto ctx : cdt.contexts(a, b)) {
+                if (m.constraint_of_cgal.find(ctx.id().vl_ptr()) == m.constraint_of_cgal.end()) {
+                    problem("a constrained edge belongs to an unregistered constraint");
+                }
+            }
+            continue;
+        }
+        if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g)) continue;
+        const Vh opposite = g->vertex(g->index(f));
+        if (in_circle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(),
+                      opposite->point()) == CGAL::ON_POSITIVE_SIDE) {
+            problem("edge " + std::to_string(a->id) + "-" + std::to_string(b->id) +
+                    " is not locally Delaunay");
+        }
+    }
+    if (constrained_edges != const_cast<CdtPlus&>(m.cdt).number_of_subconstraints()) {
+        problem("constrained edge count differs from the constraint hierarchy");
+    }
+    std::size_t registered = 0;
+    for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
+        const detail::ConstraintEntry& e = m.constraints[id];
+        if (!e.alive) continue;
+        ++registered;
+        const auto it = m.constraint_of_cgal.find(e.cgal_id.vl_ptr());
+        if (it == m.constraint_of_cgal.end() || it->second != id) problem("constraint registry is inconsistent");
+    }
+    if (registered != m.constraint_of_cgal.size() ||
+        registered != const_cast<CdtPlus&>(m.cdt).number_of_constraints() ||
+        registered != m.constraint_ids.live()) {
+        problem("constraint count differs between the registry and CGAL");
+    }
+    return r;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,45 @@
+#pragma once
+// Per-vertex attributes as structure-of-arrays, indexed by VertexId. The layout maps 1:1 onto
+// the GPU vertex buffers. Entries of dead ids keep their last values and alive == 0.
+
+#include <cstdint>
+#include <vector>
+
+#include "geom/vec2.hpp"
+
+namespace sandtin {
+
+struct Vec2f {
+    float x = 0.0f;
+    float y = 0.0f;
+    friend constexpr bool operator==(Vec2f, Vec2f) = default;
+};
+
+/// Bedrock height meaning "no bedrock": finite (so it survives float GPU buffers and the
+/// finiteness checks) but far below any terrain.
+inline constexpr double kNoBedrock = -1.0e30;
+
+struct VertexArrays {
+    std::vector<Vec2> position;          ///< metres, fixed for the life of the vertex
+    std::vector<double> height;          ///< metres, surface z = f(x, y)
+    std::vector<double> bedrock;         ///< metres, non-erodible lower surface (<= height)
+    std::vector<std::uint16_t> material;  ///< index into the material table
+    std::vector<float> moisture;         ///< saturation in [0, 1]
+    std::vector<Vec2f> slide;            ///< texture slide offset in texture units, wrapped to [0, 1)
+    std::vector<double> lumped_area;     ///< m²: one third of the areas of the incident triangles
+    std::vector<std::uint8_t> alive;     ///< 1 for live ids
+
+    std::size_t size() const { return height.size(); }
+    void resize(std::size_t n) {
+        position.resize(n);
+        height.resize(n, 0.0);
+        bedrock.resize(n, kNoBedrock);
+        material.resize(n, 0);
+        moisture.resize(n, 0.0f);
+        slide.resize(n);
+        lumped_area.resize(n, 0.0);
+        alive.resize(n, 0);
+    }
+};
+
+}  // namespace sandtin

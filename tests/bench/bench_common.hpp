@@ -1,0 +1,51 @@
+#pragma once
+// Shared helpers of the benchmark drivers: timing, medians and the benchmark configuration.
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdint>
+#include <vector>
+
+namespace sandtin::bench {
+
+struct BenchConfig {
+    bool quick = false;  ///< small sizes, for smoke tests of the drivers themselves
+};
+
+class Stopwatch {
+public:
+    Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+    double ms() const {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
+            .count();
+    }
+
+private:
+    std::chrono::steady_clock::time_point start_;
+};
+
+/// CPU time of the calling thread: on a shared virtual machine it is far less noisy than wall
+/// time, because time the hypervisor gives to other guests is not counted.
+class CpuStopwatch {
+public:
+    CpuStopwatch() : start_(now()) {}
+    double ms() const { return now() - start_; }
+
+private:
+    static double now() {
+        timespec t{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+        return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+    }
+    double start_;
+};
+
+inline double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace sandtin::bench
