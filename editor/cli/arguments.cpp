@@ -10,7 +10,8 @@ namespace sandtin::cli {
 Arguments::Arguments(const std::vector<std::string>& args, const std::map<std::string, int>& spec) {
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (a.size() > 1 && a[0] == '-' && !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
+        if (a.size() > 1 && a[0] == '-' &&
+            !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
             const auto it = spec.find(a);
             if (it == spec.end()) throw UsageError("unknown option '" + a + "'");
             if (values_.count(a) > 0) throw UsageError("option '" + a + "' is given twice");
@@ -58,7 +59,8 @@ double parse_number(const std::string& text, const std::string& what) {
 
 std::uint64_t parse_count(const std::string& text, const std::string& what) {
     char* end = nullptr;
-    if (text.empty() || text[0] == '-') throw UsageError(what + ": '" + text + "' is not a non-negative integer");
+    if (text.empty() || text[0] == '-')
+        throw UsageError(what + ": '" + text + "' is not a non-negative integer");
     errno = 0;
     const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
     if (end != text.c_str() + text.size() || errno == ERANGE) {

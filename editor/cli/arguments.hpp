@@ -17,7 +17,7 @@ struct UsageError : std::runtime_error {
 };
 
 class Arguments {
-public:
+  public:
     /// `spec` maps each allowed option (with its dashes) to the number of values it takes.
     Arguments(const std::vector<std::string>& args, const std::map<std::string, int>& spec);
 
@@ -40,7 +40,7 @@ public:
     }
     void require_positionals(std::size_t n, const std::string& usage) const;
 
-private:
+  private:
     std::vector<std::string> positionals_;
     std::map<std::string, std::vector<std::string>> values_;
 };

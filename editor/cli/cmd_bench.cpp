@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "arguments.hpp"
+#include "bench_groove.hpp"
 #include "bench_tin.hpp"
 #include "commands.hpp"
 
@@ -10,15 +11,17 @@ namespace sandtin::cli {
 
 int run_bench(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
-    args.require_positionals(1, "sandtin bench tin [--quick] [--json]");
+    args.require_positionals(1, "sandtin bench (tin | groove) [--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
     const std::string which = args.positionals()[0];
     nlohmann::json result;
     if (which == "tin") {
         result = bench::bench_tin(config);
+    } else if (which == "groove") {
+        result = bench::bench_groove(config);
     } else {
-        throw UsageError("unknown benchmark '" + which + "' (available: tin)");
+        throw UsageError("unknown benchmark '" + which + "' (available: tin, groove)");
     }
     std::cout << result.dump(2) << "\n";
     return 0;

@@ -29,11 +29,13 @@ int run_demo(const std::vector<std::string>& raw) {
         std::vector<VertexId> rim;
         for (int i = 0; i < 12; ++i) {
             const double a = 2.0 * std::numbers::pi * i / 12.0;
-            rim.push_back(tin.insert_point_on_surface(centre + Vec2{std::cos(a), std::sin(a)} * 0.15, &hint));
+            rim.push_back(
+                tin.insert_point_on_surface(centre + Vec2{std::cos(a), std::sin(a)} * 0.15, &hint));
         }
         // Older rims under the new footprint are released, as a tool stroke does.
         std::vector<Vec2> footprint;
-        for (VertexId v : rim) footprint.push_back(tin.position(v));
+        for (VertexId v : rim)
+            footprint.push_back(tin.position(v));
         ReleaseFilter older;
         older.older_than = generation;
         older.touching_polygon = footprint;
@@ -47,7 +49,8 @@ int run_demo(const std::vector<std::string>& raw) {
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";
     } else {
-        std::cout << "sandtin demo: default sandbox 4 x 4 m, " << stamps << " stamps along a curve\n"
+        std::cout << "sandtin demo: default sandbox 4 x 4 m, " << stamps
+                  << " stamps along a curve\n"
                   << j.dump(2) << "\n";
     }
     return j["valid"].get<bool>() ? 0 : 1;

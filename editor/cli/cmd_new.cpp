@@ -16,11 +16,17 @@ constexpr const char* kUsage =
 }
 
 int run_new(const std::vector<std::string>& raw) {
-    const Arguments args(raw, {{"--flat", 2}, {"--grid", 4}, {"--points", 1}, {"--seed", 1},
-                               {"--height", 1}, {"-o", 1}, {"--json", 0}});
+    const Arguments args(raw, {{"--flat", 2},
+                               {"--grid", 4},
+                               {"--points", 1},
+                               {"--seed", 1},
+                               {"--height", 1},
+                               {"-o", 1},
+                               {"--json", 0}});
     args.require_positionals(0, kUsage);
     if (args.has("--flat") == args.has("--grid")) {
-        throw UsageError("give exactly one of --flat W H or --grid W H NX NY\nusage: " + std::string(kUsage));
+        throw UsageError("give exactly one of --flat W H or --grid W H NX NY\nusage: " +
+                         std::string(kUsage));
     }
     const std::string out = args.text("-o");
     const double z = args.number_or("--height", 0.0);

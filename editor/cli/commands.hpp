@@ -9,6 +9,7 @@ namespace sandtin::cli {
 
 int run_new(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
+int run_run(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 

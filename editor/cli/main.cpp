@@ -17,6 +17,7 @@ usage: sandtin <command> [options]
 commands:
   new     create a terrain:   sandtin new --flat W H [--points N] [--seed S] -o scene.sandtin
   info    describe a session: sandtin info scene.sandtin [--json]
+  run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--json]
   bench   benchmarks (JSON):  sandtin bench tin [--quick]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     try {
         if (command == "new") return sandtin::cli::run_new(args);
         if (command == "info") return sandtin::cli::run_info(args);
+        if (command == "run") return sandtin::cli::run_run(args);
         if (command == "bench") return sandtin::cli::run_bench(args);
         if (command == "demo") return sandtin::cli::run_demo(args);
         if (command == "help" || command == "--help" || command == "-h") {

@@ -17,7 +17,8 @@ double signed_area(std::span<const Vec2> polygon) {
 
 Rect bounding_box(std::span<const Vec2> points) {
     Rect r;
-    for (Vec2 p : points) r.expand(p);
+    for (Vec2 p : points)
+        r.expand(p);
     return r;
 }
 
@@ -28,9 +29,13 @@ bool point_in_polygon(Vec2 p, std::span<const Vec2> polygon) {
     for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
         const Vec2 a = polygon[i];
         const Vec2 b = polygon[j];
-        // Points on the border count as inside.
-        if (distance_to_segment(p, a, b) <= 1e-12 * (1.0 + std::abs(p.x) + std::abs(p.y))) {
-            return true;
+        // On the border (collinear with an edge and inside its box) counts as inside; the
+        // tolerance is relative to the edge so it scales with the coordinates.
+        if (p.x >= std::min(a.x, b.x) && p.x <= std::max(a.x, b.x) && p.y >= std::min(a.y, b.y) &&
+            p.y <= std::max(a.y, b.y)) {
+            const double c = cross(b - a, p - a);
+            const double scale = std::abs(b.x - a.x) + std::abs(b.y - a.y);
+            if (std::abs(c) <= 1e-12 * scale * (scale + std::abs(p.x) + std::abs(p.y))) return true;
         }
         if ((a.y > p.y) != (b.y > p.y)) {
             const double x_cross = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
@@ -68,6 +73,10 @@ bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 }
 
 bool segment_touches_polygon(Vec2 a, Vec2 b, std::span<const Vec2> polygon) {
+    Rect seg;
+    seg.expand(a);
+    seg.expand(b);
+    if (!seg.intersects(bounding_box(polygon))) return false;
     if (point_in_polygon(a, polygon) || point_in_polygon(b, polygon)) return true;
     const std::size_t n = polygon.size();
     for (std::size_t i = 0; i < n; ++i) {

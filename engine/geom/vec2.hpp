@@ -28,14 +28,28 @@ struct Vec2 {
     }
 };
 
-constexpr double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+constexpr double dot(Vec2 a, Vec2 b) {
+    return a.x * b.x + a.y * b.y;
+}
 /// z component of the 3D cross product: positive when b is counter-clockwise from a.
-constexpr double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double length(Vec2 a) { return std::hypot(a.x, a.y); }
-constexpr double length_squared(Vec2 a) { return dot(a, a); }
-inline double distance(Vec2 a, Vec2 b) { return length(b - a); }
-constexpr Vec2 lerp(Vec2 a, Vec2 b, double t) { return a + (b - a) * t; }
-inline bool is_finite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
+constexpr double cross(Vec2 a, Vec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
+inline double length(Vec2 a) {
+    return std::hypot(a.x, a.y);
+}
+constexpr double length_squared(Vec2 a) {
+    return dot(a, a);
+}
+inline double distance(Vec2 a, Vec2 b) {
+    return length(b - a);
+}
+constexpr Vec2 lerp(Vec2 a, Vec2 b, double t) {
+    return a + (b - a) * t;
+}
+inline bool is_finite(Vec2 a) {
+    return std::isfinite(a.x) && std::isfinite(a.y);
+}
 /// Rotates a vector counter-clockwise by `angle` radians.
 inline Vec2 rotate(Vec2 a, double angle) {
     const double c = std::cos(angle);

@@ -17,39 +17,40 @@ namespace sandtin {
 static_assert(std::endian::native == std::endian::little, "sandtin files are little-endian");
 
 class ByteWriter {
-public:
+  public:
     template <class T>
-        requires std::is_trivially_copyable_v<T>
+    requires std::is_trivially_copyable_v<T>
     void put(const T& value) {
         const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
         bytes_.insert(bytes_.end(), p, p + sizeof(T));
     }
     template <class T>
-        requires std::is_trivially_copyable_v<T>
+    requires std::is_trivially_copyable_v<T>
     void put_array(std::span<const T> values) {
         put<std::uint64_t>(values.size());
         const auto* p = reinterpret_cast<const std::uint8_t*>(values.data());
         bytes_.insert(bytes_.end(), p, p + values.size_bytes());
     }
-    void put_bytes(std::span<const std::uint8_t> data) { bytes_.insert(bytes_.end(), data.begin(), data.end()); }
+    void put_bytes(std::span<const std::uint8_t> data) {
+        bytes_.insert(bytes_.end(), data.begin(), data.end());
+    }
     void put_string(const std::string& s) {
         put<std::uint64_t>(s.size());
         bytes_.insert(bytes_.end(), s.begin(), s.end());
     }
     std::vector<std::uint8_t>& bytes() { return bytes_; }
 
-private:
+  private:
     std::vector<std::uint8_t> bytes_;
 };
 
 class ByteReader {
-public:
+  public:
     ByteReader(std::span<const std::uint8_t> data, std::string context)
         : data_(data), context_(std::move(context)) {}
 
     template <class T>
-        requires std::is_trivially_copyable_v<T>
-    T get() {
+    requires std::is_trivially_copyable_v<T> T get() {
         need(sizeof(T), "a value");
         T value;
         std::memcpy(&value, data_.data() + pos_, sizeof(T));
@@ -57,8 +58,8 @@ public:
         return value;
     }
     template <class T>
-        requires std::is_trivially_copyable_v<T>
-    std::vector<T> get_array(std::uint64_t max_count = UINT32_MAX) {
+    requires std::is_trivially_copyable_v<T> std::vector<T> get_array(
+        std::uint64_t max_count = UINT32_MAX) {
         const auto count = get<std::uint64_t>();
         if (count > max_count) fail("an array of " + std::to_string(count) + " items is too long");
         need(count * sizeof(T), "an array of " + std::to_string(count) + " items");
@@ -84,10 +85,11 @@ public:
     std::size_t remaining() const { return data_.size() - pos_; }
     bool at_end() const { return pos_ == data_.size(); }
     [[noreturn]] void fail(const std::string& what) const {
-        throw std::runtime_error(context_ + ": " + what + " (at byte " + std::to_string(pos_) + ")");
+        throw std::runtime_error(context_ + ": " + what + " (at byte " + std::to_string(pos_) +
+                                 ")");
     }
 
-private:
+  private:
     void need(std::uint64_t n, const std::string& what) const {
         if (n > remaining()) fail("file is truncated: expected " + what);
     }

@@ -113,8 +113,10 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
         w.put<std::uint64_t>(session.next_generation);
         chunk(kTagGeneration, w.bytes());
     }
-    chunk(kTagMeta, std::vector<std::uint8_t>(session.metadata_json.begin(), session.metadata_json.end()));
-    for (const auto& [id, body] : session.unknown_chunks) chunk(id, body);
+    chunk(kTagMeta,
+          std::vector<std::uint8_t>(session.metadata_json.begin(), session.metadata_json.end()));
+    for (const auto& [id, body] : session.unknown_chunks)
+        chunk(id, body);
 
     ByteWriter file;
     file.put_bytes(kMagic);
@@ -129,7 +131,8 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
 
 Session decode_session(std::span<const std::uint8_t> bytes, const std::string& name) {
     ByteReader header(bytes, name);
-    if (bytes.size() < kMagic.size() || std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
+    if (bytes.size() < kMagic.size() ||
+        std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
         header.fail("not a sandtin session file (bad magic bytes)");
     }
     if (bytes.size() < kHeaderSize) header.fail("file is truncated: the header is incomplete");

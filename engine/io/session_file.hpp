@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.hpp"
 #include "tin/tin_snapshot.hpp"
+#include "util/atomic_file.hpp"
 
 namespace sandtin {
 
@@ -24,7 +24,7 @@ inline constexpr std::uint32_t kSessionFormatVersion = 1;
 
 struct Session {
     TinSnapshot terrain;
-    Generation next_generation = 1;  ///< generation the next tool stamp will use
+    Generation next_generation = 1;    ///< generation the next tool stamp will use
     std::string metadata_json = "{}";  ///< free-form JSON object (scene name, tool settings, ...)
     std::map<std::uint32_t, std::vector<std::uint8_t>> unknown_chunks;  ///< kept verbatim
 };

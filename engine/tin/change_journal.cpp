@@ -21,7 +21,8 @@ std::vector<IdRange> merge_into_ranges(std::vector<std::uint32_t> ids, std::uint
 
 std::uint64_t count_in_ranges(const std::vector<IdRange>& ranges) {
     std::uint64_t n = 0;
-    for (const IdRange& r : ranges) n += r.size();
+    for (const IdRange& r : ranges)
+        n += r.size();
     return n;
 }
 

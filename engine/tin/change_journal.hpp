@@ -25,9 +25,10 @@ std::uint64_t count_in_ranges(const std::vector<IdRange>& ranges);
 
 /// A set of dirty ids with O(1) insertion and no duplicates.
 class DirtySet {
-public:
+  public:
     void mark(std::uint32_t id) {
-        if (id >= flags_.size()) flags_.resize(static_cast<std::size_t>(id) + 1 + flags_.size() / 2, 0);
+        if (id >= flags_.size())
+            flags_.resize(static_cast<std::size_t>(id) + 1 + flags_.size() / 2, 0);
         if (!flags_[id]) {
             flags_[id] = 1;
             list_.push_back(id);
@@ -38,22 +39,24 @@ public:
     bool empty() const { return list_.empty(); }
     /// Returns the ids (unsorted) and clears the set in O(count).
     std::vector<std::uint32_t> take() {
-        for (std::uint32_t id : list_) flags_[id] = 0;
+        for (std::uint32_t id : list_)
+            flags_[id] = 0;
         std::vector<std::uint32_t> out;
         out.swap(list_);
         return out;
     }
     void clear() { take(); }
 
-private:
+  private:
     std::vector<std::uint8_t> flags_;
     std::vector<std::uint32_t> list_;
 };
 
 /// What changed since the previous take_changes().
 struct ChangeSet {
-    std::vector<IdRange> vertices;   ///< dirty VertexId ranges (born, died or any attribute changed)
-    std::vector<IdRange> triangles;  ///< dirty TriangleSlot ranges (born, died, re-pointed or re-flagged)
+    std::vector<IdRange> vertices;  ///< dirty VertexId ranges (born, died or any attribute changed)
+    std::vector<IdRange>
+        triangles;  ///< dirty TriangleSlot ranges (born, died, re-pointed or re-flagged)
     std::uint32_t vertex_capacity = 0;  ///< size of every per-vertex array
     std::uint32_t slot_capacity = 0;    ///< size of the triangle buffer
     std::uint32_t live_vertices = 0;

@@ -9,7 +9,7 @@
 namespace sandtin {
 
 class IdAllocator {
-public:
+  public:
     explicit IdAllocator(bool deferred_recycling = true) : deferred_(deferred_recycling) {}
 
     /// Returns a free id, growing capacity() when none is free.
@@ -31,7 +31,7 @@ public:
     void restore(std::uint32_t capacity, std::vector<std::uint32_t> free_list);
     void clear();
 
-private:
+  private:
     bool deferred_;
     std::uint32_t capacity_ = 0;
     std::vector<std::uint32_t> free_;

@@ -28,19 +28,23 @@ namespace {
 /// Routes no events at all: used for bulk builds and destruction, so that a Tin built or
 /// destroyed inside another Tin's edit never writes into the other's journal.
 class NoEventScope {
-public:
+  public:
     NoEventScope() : previous_(detail::t_events) { detail::t_events = nullptr; }
     ~NoEventScope() { detail::t_events = previous_; }
     NoEventScope(const NoEventScope&) = delete;
     NoEventScope& operator=(const NoEventScope&) = delete;
 
-private:
+  private:
     detail::TdsEvents* previous_;
 };
 
-detail::Point to_point(Vec2 p) { return {p.x, p.y}; }
+detail::Point to_point(Vec2 p) {
+    return {p.x, p.y};
+}
 
-double triangle_area(Vec2 a, Vec2 b, Vec2 c) { return 0.5 * cross(b - a, c - a); }
+double triangle_area(Vec2 a, Vec2 b, Vec2 c) {
+    return 0.5 * cross(b - a, c - a);
+}
 
 void require(bool condition, const char* message) {
     if (!condition) throw std::invalid_argument(message);
@@ -130,9 +134,10 @@ void Tin::Impl::finish_bulk_build() {
             continue;
         }
         // Points straight from the vertices just loaded: no second random access by id.
-        const double third = (cross(Vec2{b->point().x() - a->point().x(), b->point().y() - a->point().y()},
-                                    Vec2{c->point().x() - a->point().x(), c->point().y() - a->point().y()})) /
-                             6.0;
+        const double third =
+            (cross(Vec2{b->point().x() - a->point().x(), b->point().y() - a->point().y()},
+                   Vec2{c->point().x() - a->point().x(), c->point().y() - a->point().y()})) /
+            6.0;
         va.lumped_area[a->id] += third;
         va.lumped_area[b->id] += third;
         va.lumped_area[c->id] += third;
@@ -145,7 +150,8 @@ void Tin::Impl::finish_bulk_build() {
         for (std::uint32_t id = 0; id < va.size(); ++id) {
             if (va.alive[id]) journal_vertices.mark(id);
         }
-        for (std::uint32_t s = 0; s < slot_cache.size(); ++s) journal_slots.mark(s);
+        for (std::uint32_t s = 0; s < slot_cache.size(); ++s)
+            journal_slots.mark(s);
     }
 }
 
@@ -156,7 +162,7 @@ namespace {
 /// Bookkeeping shared by all edits: turns the CGAL events of one edit into attribute, area,
 /// journal and volume updates.
 class EditFinisher {
-public:
+  public:
     explicit EditFinisher(Tin::Impl& impl) : impl_(impl) {}
 
     void mark_vertex(std::uint32_t id) {
@@ -208,9 +214,9 @@ public:
     }
 
     /// Completes the edit: slot cache, lumped areas, journal, volume accounting and, with
-    /// VolumePolicy::Conserve, compensation (into `absorb` when valid, else spread uniformly
-    /// over the re-triangulated vertices).
-    void finish(VolumePolicy policy, std::uint32_t absorb, EditReport* report) {
+    /// VolumePolicy::Conserve, compensation: a uniform height shift of the `absorb` vertices
+    /// when given (new vertices of an insertion), else of all re-triangulated vertices.
+    void finish(VolumePolicy policy, std::span<const std::uint32_t> absorb, EditReport* report) {
         Tin::Impl& m = impl_;
         VertexArrays& va = m.va;
         m.ensure_vertex_capacity();
@@ -223,18 +229,21 @@ public:
         for (std::uint32_t slot : m.events.op_slots.ids()) {
             const SlotRecord before = m.slot_cache[slot];
             const void* face = m.events.face_of_slot[slot];
-            const SlotRecord after =
-                face != nullptr ? m.read_face(*static_cast<const detail::Face*>(face)) : SlotRecord{};
+            const SlotRecord after = face != nullptr
+                                         ? m.read_face(*static_cast<const detail::Face*>(face))
+                                         : SlotRecord{};
             if (before == after) continue;
             ++local.triangles_changed;
             if (m.options.track_changes) m.journal_slots.mark(slot);
             if (before.finite()) {
                 --m.live_triangles;
-                for (std::uint32_t c : before.corners) affected_.mark(c);
+                for (std::uint32_t c : before.corners)
+                    affected_.mark(c);
             }
             if (after.finite()) {
                 ++m.live_triangles;
-                for (std::uint32_t c : after.corners) affected_.mark(c);
+                for (std::uint32_t c : after.corners)
+                    affected_.mark(c);
             }
             m.slot_cache[slot] = after;
         }
@@ -267,21 +276,34 @@ public:
             affected_area += a_new;
         }
         local.volume_change = dv.value();
+        double net_change = local.volume_change;
 
         if (policy == VolumePolicy::Conserve && local.volume_change != 0.0) {
-            if (absorb != kNoId && va.alive[absorb] && va.lumped_area[absorb] > 0.0) {
-                va.height[absorb] -= local.volume_change / va.lumped_area[absorb];
-                clamp_bedrock(absorb);
+            double absorb_area = 0.0;
+            for (std::uint32_t id : absorb) {
+                if (va.alive[id]) absorb_area += va.lumped_area[id];
+            }
+            auto shift = [&](std::uint32_t id, double dh) {
+                const double before = va.height[id];
+                va.height[id] += dh;
+                if (va.height[id] == before) return;  // below half an ulp: nothing changed
+                clamp_bedrock(id);
+                mark_vertex(id);
+                net_change += va.lumped_area[id] * (va.height[id] - before);
+            };
+            if (absorb_area > 0.0) {
+                const double dh = -local.volume_change / absorb_area;
+                for (std::uint32_t id : absorb) {
+                    if (va.alive[id]) shift(id, dh);
+                }
             } else if (affected_area > 0.0) {
                 const double dh = -local.volume_change / affected_area;
                 for (std::uint32_t id : affected_.ids()) {
-                    if (!va.alive[id]) continue;
-                    va.height[id] += dh;
-                    clamp_bedrock(id);
-                    mark_vertex(id);
+                    if (va.alive[id]) shift(id, dh);
                 }
             }
         }
+        m.volume_ledger.add(net_change);
         affected_.clear();
         m.events.born_vertices.clear();
         m.events.died_vertices.clear();
@@ -292,7 +314,7 @@ public:
         if (report != nullptr) report->accumulate(local);
     }
 
-private:
+  private:
     void clamp_bedrock(std::uint32_t id) {
         VertexArrays& va = impl_.va;
         if (va.bedrock[id] > va.height[id]) va.bedrock[id] = va.height[id];
@@ -366,7 +388,8 @@ FiniteLocation finite_location(const Tin::Impl& m, Vec2 p, CdtPlus::Locate_type 
         } else {
             const Vh v = f->vertex(li);
             auto fc = m.cdt.incident_faces(v);
-            while (m.cdt.is_infinite(fc)) ++fc;
+            while (m.cdt.is_infinite(fc))
+                ++fc;
             f = fc;
         }
     }
@@ -416,6 +439,22 @@ Tin::~Tin() {
 
 namespace {
 
+/// A point to insert in a bulk build, with its height and position in the input.
+struct Record {
+    detail::Point point;
+    double height;
+    std::uint32_t input_index;
+};
+
+/// Property map giving CGAL's spatial sort the point of a Record.
+struct RecordPoint {
+    using key_type = Record;
+    using value_type = detail::Point;
+    using reference = const detail::Point&;
+    using category = boost::readable_property_map_tag;
+    friend reference get(const RecordPoint&, const Record& r) { return r.point; }
+};
+
 std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positions,
                                       std::span<const double> heights, TinOptions options) {
     require(!domain.empty() && is_finite(domain.min) && is_finite(domain.max) &&
@@ -425,7 +464,8 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     for (std::size_t i = 0; i < positions.size(); ++i) {
         require_inside(domain, positions[i], "point");
         if (!std::isfinite(heights[i])) {
-            throw std::invalid_argument("point " + describe(positions[i]) + ": height is not finite");
+            throw std::invalid_argument("point " + describe(positions[i]) +
+                                        ": height is not finite");
         }
     }
 
@@ -463,30 +503,42 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     }
     // Hilbert order: fast insertion with hints, and neighbouring ids are neighbours in space,
     // which keeps physics and GPU buffers cache-friendly. The sorted records carry their
-    // heights, so insertion reads memory sequentially.
-    using Record = std::pair<detail::Point, double>;
+    // heights and input positions, so insertion reads memory sequentially and a duplicate
+    // position can keep the height that came first in the input (the sort does not keep equal
+    // points in input order).
     std::vector<Record> sorted;
     sorted.reserve(pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i) sorted.emplace_back(to_point(pts[i]), hs[i]);
-    using SortTraits = CGAL::Spatial_sort_traits_adapter_2<
-        detail::Kernel, CGAL::First_of_pair_property_map<Record>>;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        sorted.push_back({to_point(pts[i]), hs[i], static_cast<std::uint32_t>(i)});
+    }
+    using SortTraits = CGAL::Spatial_sort_traits_adapter_2<detail::Kernel, RecordPoint>;
     CGAL::spatial_sort(sorted.begin() + 4, sorted.end(), SortTraits());
 
     m.va.resize(pts.size());
     m.events.vertex_of_id.resize(pts.size(), nullptr);
+    std::vector<std::uint32_t> source(pts.size(), kNoId);
     auto insert_one = [&](const Record& r, Fh& hint) {
-        const Vh v = m.cdt.insert(r.first, hint);
+        const Vh v = m.cdt.insert(r.point, hint);
         hint = v->face();
-        if (v->id != kNoId) return;  // duplicate position: the first height wins
+        if (v->id != kNoId) {
+            // Duplicate position: the earlier input point's height wins.
+            if (r.input_index < source[v->id]) {
+                source[v->id] = r.input_index;
+                m.va.height[v->id] = r.height;
+            }
+            return;
+        }
         const std::uint32_t id = m.events.vertex_ids.allocate();
         v->id = id;
+        source[id] = r.input_index;
         m.events.vertex_of_id[id] = &*v;
-        m.va.position[id] = {r.first.x(), r.first.y()};
-        m.va.height[id] = r.second;
+        m.va.position[id] = {r.point.x(), r.point.y()};
+        m.va.height[id] = r.height;
         m.va.alive[id] = 1;
     };
     Fh hint;
-    for (const Record& r : sorted) insert_one(r, hint);
+    for (const Record& r : sorted)
+        insert_one(r, hint);
     // Duplicates leave unused tail entries; trim the arrays to the ids handed out.
     m.va.resize(m.events.vertex_ids.capacity());
     m.events.vertex_of_id.resize(m.events.vertex_ids.capacity());
@@ -506,7 +558,8 @@ Tin Tin::flat_rectangle(Rect domain, double height, TinOptions options) {
 
 Tin Tin::regular_grid(Rect domain, int cells_x, int cells_y, const HeightFunction& height,
                       TinOptions options) {
-    require(cells_x >= 1 && cells_y >= 1, "a regular grid needs at least one cell in each direction");
+    require(cells_x >= 1 && cells_y >= 1,
+            "a regular grid needs at least one cell in each direction");
     require(static_cast<std::uint64_t>(cells_x + 1) * static_cast<std::uint64_t>(cells_y + 1) <
                 (1ull << 31),
             "regular grid has too many vertices");
@@ -516,10 +569,10 @@ Tin Tin::regular_grid(Rect domain, int cells_x, int cells_y, const HeightFunctio
     for (int j = 0; j <= cells_y; ++j) {
         for (int i = 0; i <= cells_x; ++i) {
             // Exact border coordinates, so the hull is exactly the domain.
-            const double x = i == cells_x ? domain.max.x
-                                          : domain.min.x + domain.width() * i / cells_x;
-            const double y = j == cells_y ? domain.max.y
-                                          : domain.min.y + domain.height() * j / cells_y;
+            const double x =
+                i == cells_x ? domain.max.x : domain.min.x + domain.width() * i / cells_x;
+            const double y =
+                j == cells_y ? domain.max.y : domain.min.y + domain.height() * j / cells_y;
             pts.push_back({x, y});
             hs.push_back(height ? height({x, y}) : 0.0);
         }
@@ -559,18 +612,34 @@ Tin Tin::from_points(Rect domain, std::span<const Vec2> positions, std::span<con
 
 // ---- Queries ------------------------------------------------------------------------------
 
-Rect Tin::domain() const { return impl_->domain; }
-std::size_t Tin::vertex_count() const { return impl_->events.vertex_ids.live(); }
-std::size_t Tin::triangle_count() const { return impl_->live_triangles; }
+Rect Tin::domain() const {
+    return impl_->domain;
+}
+std::size_t Tin::vertex_count() const {
+    return impl_->events.vertex_ids.live();
+}
+std::size_t Tin::triangle_count() const {
+    return impl_->live_triangles;
+}
 std::size_t Tin::constrained_edge_count() const {
     // number_of_subconstraints() only reads a map size but is not declared const.
     return const_cast<CdtPlus&>(impl_->cdt).number_of_subconstraints();
 }
-std::size_t Tin::constraint_count() const { return impl_->constraint_ids.live(); }
-std::uint32_t Tin::vertex_capacity() const { return impl_->events.vertex_ids.capacity(); }
-std::uint32_t Tin::slot_capacity() const { return impl_->events.slots.capacity(); }
-bool Tin::is_alive(VertexId v) const { return impl_->alive(v); }
-const VertexArrays& Tin::vertices() const { return impl_->va; }
+std::size_t Tin::constraint_count() const {
+    return impl_->constraint_ids.live();
+}
+std::uint32_t Tin::vertex_capacity() const {
+    return impl_->events.vertex_ids.capacity();
+}
+std::uint32_t Tin::slot_capacity() const {
+    return impl_->events.slots.capacity();
+}
+bool Tin::is_alive(VertexId v) const {
+    return impl_->alive(v);
+}
+const VertexArrays& Tin::vertices() const {
+    return impl_->va;
+}
 
 Vec2 Tin::position(VertexId v) const {
     require(is_alive(v), "position: vertex id is not alive");
@@ -679,6 +748,225 @@ double Tin::volume(double datum) const {
     return sum.value();
 }
 
+namespace {
+
+bool triangle_meets_disc(Vec2 a, Vec2 b, Vec2 c, Vec2 centre, double radius) {
+    const double d1 = cross(b - a, centre - a);
+    const double d2 = cross(c - b, centre - b);
+    const double d3 = cross(a - c, centre - c);
+    if (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) return true;
+    return distance_to_segment(centre, a, b) <= radius ||
+           distance_to_segment(centre, b, c) <= radius ||
+           distance_to_segment(centre, c, a) <= radius;
+}
+
+/// Breadth-first walk over finite faces. `enter(face)` decides whether a face belongs to the
+/// region; `cross(face, i)` whether the walk may step over edge i. Calls visit(face) once per
+/// face in the region.
+template <class Enter, class Cross, class Visit>
+void walk_faces(const Tin::Impl& m, std::span<const Fh> starts, Enter&& enter, Cross&& cross_edge,
+                Visit&& visit) {
+    static thread_local DirtySet seen;
+    static thread_local std::vector<Fh> queue;
+    seen.clear();
+    queue.clear();
+    for (Fh f : starts) {
+        if (m.cdt.is_infinite(f) || seen.contains(f->slot) || !enter(f)) continue;
+        seen.mark(f->slot);
+        queue.push_back(f);
+    }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const Fh f = queue[head];
+        visit(f);
+        for (int i = 0; i < 3; ++i) {
+            const Fh g = f->neighbor(i);
+            if (m.cdt.is_infinite(g) || seen.contains(g->slot) || !cross_edge(f, i) || !enter(g)) {
+                continue;
+            }
+            seen.mark(g->slot);
+            queue.push_back(g);
+        }
+    }
+    seen.clear();
+}
+
+Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
+    CdtPlus::Locate_type lt;
+    int li = 0;
+    const Fh f = m.cdt.locate(to_point(p), lt, li, start_face(m, p, hint));
+    if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL) return Fh();
+    const FiniteLocation loc = finite_location(m, p, lt, f, li);
+    update_hint(hint, loc);
+    return loc.face;
+}
+
+}  // namespace
+
+std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHint* hint) const {
+    const Impl& m = *impl_;
+    std::vector<VertexId> out;
+    if (!is_finite(centre) || !(radius >= 0.0)) return out;
+    // Start from the face under the centre clamped into the domain, so discs overlapping the
+    // border still find their vertices.
+    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
+                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
+    if (distance(start, centre) > radius) return out;
+    const Fh f = face_at(m, start, hint);
+    if (f == Fh()) return out;
+    const double r2 = radius * radius;
+    static thread_local DirtySet taken;
+    taken.clear();
+    const std::array<Fh, 1> starts = {f};
+    walk_faces(
+        m, starts,
+        [&](Fh g) {
+            return triangle_meets_disc(m.va.position[g->vertex(0)->id],
+                                       m.va.position[g->vertex(1)->id],
+                                       m.va.position[g->vertex(2)->id], centre, radius);
+        },
+        [](Fh, int) { return true; },
+        [&](Fh g) {
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t id = g->vertex(i)->id;
+                if (!taken.contains(id) && length_squared(m.va.position[id] - centre) <= r2) {
+                    taken.mark(id);
+                    out.push_back(VertexId{id});
+                }
+            }
+        });
+    taken.clear();
+    return out;
+}
+
+std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
+                                              std::span<const Vec2> bound, LocateHint* hint) const {
+    const Impl& m = *impl_;
+    std::vector<VertexId> out;
+    std::vector<Fh> starts;
+    for (Vec2 s : seeds) {
+        if (!is_finite(s) || !m.domain.contains(s)) continue;
+        const Fh f = face_at(m, s, hint);
+        if (f != Fh()) starts.push_back(f);
+    }
+    auto centroid_inside = [&](Fh g) {
+        const Vec2 c = (m.va.position[g->vertex(0)->id] + m.va.position[g->vertex(1)->id] +
+                        m.va.position[g->vertex(2)->id]) /
+                       3.0;
+        return point_in_polygon(c, bound);
+    };
+    static thread_local DirtySet taken;
+    taken.clear();
+    walk_faces(
+        m, starts, centroid_inside, [](Fh g, int i) { return !g->is_constrained(i); },
+        [&](Fh g) {
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t id = g->vertex(i)->id;
+                if (!taken.contains(id)) {
+                    taken.mark(id);
+                    out.push_back(VertexId{id});
+                }
+            }
+        });
+    taken.clear();
+    return out;
+}
+
+std::vector<std::pair<double, double>> Tin::section(Vec2 a, Vec2 b, LocateHint* hint) const {
+    const Impl& m = *impl_;
+    const Rect& d = m.domain;
+    a = {std::clamp(a.x, d.min.x, d.max.x), std::clamp(a.y, d.min.y, d.max.y)};
+    b = {std::clamp(b.x, d.min.x, d.max.x), std::clamp(b.y, d.min.y, d.max.y)};
+    std::vector<std::pair<double, double>> out;
+    if (!is_finite(a) || !is_finite(b)) return out;
+    out.emplace_back(0.0, height_at(a, hint).value_or(0.0));
+    if (a == b) return out;
+    const Fh start = face_at(m, a, hint);
+    auto lfc = m.cdt.line_walk(to_point(a), to_point(b), start);
+    std::vector<std::pair<double, double>> crossings;
+    if (!lfc.is_empty()) {
+        const auto done = lfc;
+        const Vec2 ab = b - a;
+        for (std::size_t steps = 0; steps < 4'000'000; ++steps) {
+            if (m.cdt.is_infinite(lfc)) break;
+            const Fh f = lfc;
+            double t_exit = 0.0;
+            bool contains_b = true;
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t iu = f->vertex(CdtPlus::ccw(i))->id;
+                const std::uint32_t iw = f->vertex(CdtPlus::cw(i))->id;
+                const Vec2 u = m.va.position[iu];
+                const Vec2 w = m.va.position[iw];
+                if (cross(w - u, b - u) < 0.0) contains_b = false;
+                const double denom = cross(ab, w - u);
+                if (denom == 0.0) continue;  // parallel: the crossings are at its ends
+                const double t = cross(u - a, w - u) / denom;
+                const double sp = cross(u - a, ab) / denom;
+                if (sp < -1e-12 || sp > 1.0 + 1e-12) continue;
+                t_exit = std::max(t_exit, t);
+                if (t > 0.0 && t < 1.0) {
+                    const double c = std::clamp(sp, 0.0, 1.0);
+                    crossings.emplace_back(t, (1.0 - c) * m.va.height[iu] + c * m.va.height[iw]);
+                }
+            }
+            if (contains_b || t_exit >= 1.0) break;
+            ++lfc;
+            if (lfc == done) break;
+        }
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (const auto& c : crossings) {
+        // Each interior edge is met from both of its faces.
+        if (c.first - out.back().first > 1e-12) out.push_back(c);
+    }
+    const double hb = height_at(b, hint).value_or(out.back().second);
+    if (1.0 - out.back().first <= 1e-12 && out.size() > 1) out.pop_back();
+    out.emplace_back(1.0, hb);
+    return out;
+}
+
+std::vector<std::array<VertexId, 2>> Tin::edges_longer_than(Vec2 centre, double radius,
+                                                            double max_length,
+                                                            LocateHint* hint) const {
+    const Impl& m = *impl_;
+    std::vector<std::array<VertexId, 2>> out;
+    if (!is_finite(centre) || !(radius >= 0.0) || !(max_length > 0.0)) return out;
+    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
+                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
+    if (distance(start, centre) > radius) return out;
+    const Fh f = face_at(m, start, hint);
+    if (f == Fh()) return out;
+    const double l2 = max_length * max_length;
+    const std::array<Fh, 1> starts = {f};
+    walk_faces(
+        m, starts,
+        [&](Fh g) {
+            return triangle_meets_disc(m.va.position[g->vertex(0)->id],
+                                       m.va.position[g->vertex(1)->id],
+                                       m.va.position[g->vertex(2)->id], centre, radius);
+        },
+        [](Fh, int) { return true; },
+        [&](Fh g) {
+            for (int i = 0; i < 3; ++i) {
+                const std::uint32_t a = g->vertex(CdtPlus::ccw(i))->id;
+                const std::uint32_t b = g->vertex(CdtPlus::cw(i))->id;
+                // Each interior edge is seen from both faces; report it from the face whose
+                // slot is smaller (or from its only finite face).
+                const Fh n = g->neighbor(i);
+                if (!m.cdt.is_infinite(n) && n->slot < g->slot) {
+                    if (triangle_meets_disc(m.va.position[n->vertex(0)->id],
+                                            m.va.position[n->vertex(1)->id],
+                                            m.va.position[n->vertex(2)->id], centre, radius)) {
+                        continue;
+                    }
+                }
+                if (length_squared(m.va.position[a] - m.va.position[b]) > l2) {
+                    out.push_back({VertexId{a}, VertexId{b}});
+                }
+            }
+        });
+    return out;
+}
+
 std::optional<ConstraintInfo> Tin::constraint(ConstraintId id) const {
     const Impl& m = *impl_;
     if (!id.valid() || id.value >= m.constraints.size() || !m.constraints[id.value].alive) {
@@ -688,7 +976,8 @@ std::optional<ConstraintInfo> Tin::constraint(ConstraintId id) const {
     ConstraintInfo info;
     info.id = id;
     info.generation = e.generation;
-    for (Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) info.vertices.push_back(VertexId{v->id});
+    for (Vh v : m.cdt.vertices_in_constraint(e.cgal_id))
+        info.vertices.push_back(VertexId{v->id});
     return info;
 }
 
@@ -711,57 +1000,94 @@ std::string ValidationReport::summary() const {
 
 // ---- Edits --------------------------------------------------------------------------------
 
-VertexId Tin::insert_point(Vec2 p, double height, LocateHint* hint, EditReport* report) {
-    Impl& m = *impl_;
-    require_inside(m.domain, p, "insert_point");
-    if (!std::isfinite(height)) {
-        throw std::invalid_argument("insert_point " + describe(p) + ": height is not finite");
-    }
+namespace {
+
+/// Inserts one point inside an edit (no finish): at `height`, or on the current surface when
+/// height is NaN. Returns the id and whether a new vertex was created. A point on an existing
+/// vertex returns that vertex (its height set when one is given).
+std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finisher, Vec2 p,
+                                     double height, LocateHint* hint) {
     CdtPlus::Locate_type lt;
     int li = 0;
     const Fh f = m.cdt.locate(to_point(p), lt, li, start_face(m, p, hint));
     if (lt == CdtPlus::VERTEX) {
         const VertexId existing{f->vertex(li)->id};
-        set_height(existing, height);
+        if (!std::isnan(height)) tin.set_height(existing, height);
         if (hint != nullptr) hint->vertex = existing;
-        return existing;
+        return {existing, false};
     }
     const FiniteLocation loc = finite_location(m, p, lt, f, li);
-    detail::EventScope scope(m.events);
-    EditFinisher finisher(m);
+    if (std::isnan(height)) {
+        height = 0.0;
+        for (std::size_t i = 0; i < 3; ++i)
+            height += loc.weights[i] * m.va.height[loc.corners[i]];
+    }
     const Vh v = m.cdt.insert(to_point(p), lt, f, li);
     finisher.prepare_born();
     m.va.height[v->id] = height;
     finisher.inherit(v->id, loc.corners, loc.weights);
-    finisher.finish(VolumePolicy::Report, kNoId, report);
+    // A vertex placed below the interpolated bedrock takes the bedrock down with it: the sand
+    // thickness is never negative.
+    if (m.va.bedrock[v->id] > height) m.va.bedrock[v->id] = height;
     if (hint != nullptr) hint->vertex = VertexId{v->id};
-    return VertexId{v->id};
+    return {VertexId{v->id}, true};
+}
+
+}  // namespace
+
+VertexId Tin::insert_point(Vec2 p, double height, LocateHint* hint, EditReport* report) {
+    const std::array<Vec2, 1> ps = {p};
+    const std::array<double, 1> hs = {height};
+    return insert_points(ps, hs, hint, report).front();
 }
 
 VertexId Tin::insert_point_on_surface(Vec2 p, LocateHint* hint, VolumePolicy policy,
                                       EditReport* report) {
+    const std::array<Vec2, 1> ps = {p};
+    return insert_points_on_surface(ps, hint, policy, report).front();
+}
+
+std::vector<VertexId> Tin::insert_points(std::span<const Vec2> points,
+                                         std::span<const double> heights, LocateHint* hint,
+                                         EditReport* report) {
     Impl& m = *impl_;
-    require_inside(m.domain, p, "insert_point_on_surface");
-    CdtPlus::Locate_type lt;
-    int li = 0;
-    const Fh f = m.cdt.locate(to_point(p), lt, li, start_face(m, p, hint));
-    if (lt == CdtPlus::VERTEX) {
-        const VertexId existing{f->vertex(li)->id};
-        if (hint != nullptr) hint->vertex = existing;
-        return existing;
+    require(points.size() == heights.size(), "insert_points: points and heights differ in length");
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        require_inside(m.domain, points[i], "insert_points");
+        if (!std::isfinite(heights[i])) {
+            throw std::invalid_argument("insert_points " + describe(points[i]) +
+                                        ": height is not finite");
+        }
     }
-    const FiniteLocation loc = finite_location(m, p, lt, f, li);
-    double h = 0.0;
-    for (std::size_t i = 0; i < 3; ++i) h += loc.weights[i] * m.va.height[loc.corners[i]];
+    std::vector<VertexId> ids;
+    ids.reserve(points.size());
     detail::EventScope scope(m.events);
     EditFinisher finisher(m);
-    const Vh v = m.cdt.insert(to_point(p), lt, f, li);
-    finisher.prepare_born();
-    m.va.height[v->id] = h;
-    finisher.inherit(v->id, loc.corners, loc.weights);
-    finisher.finish(policy, v->id, report);
-    if (hint != nullptr) hint->vertex = VertexId{v->id};
-    return VertexId{v->id};
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        ids.push_back(insert_one(*this, m, finisher, points[i], heights[i], hint).first);
+    }
+    finisher.finish(VolumePolicy::Report, {}, report);
+    return ids;
+}
+
+std::vector<VertexId> Tin::insert_points_on_surface(std::span<const Vec2> points, LocateHint* hint,
+                                                    VolumePolicy policy, EditReport* report) {
+    Impl& m = *impl_;
+    for (Vec2 p : points)
+        require_inside(m.domain, p, "insert_points_on_surface");
+    std::vector<VertexId> ids;
+    std::vector<std::uint32_t> created;
+    ids.reserve(points.size());
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    for (Vec2 p : points) {
+        const auto [id, is_new] =
+            insert_one(*this, m, finisher, p, std::numeric_limits<double>::quiet_NaN(), hint);
+        ids.push_back(id);
+        if (is_new) created.push_back(id.value);
+    }
+    finisher.finish(policy, created, report);
+    return ids;
 }
 
 bool Tin::remove_vertex(VertexId v, VolumePolicy policy, EditReport* report) {
@@ -771,7 +1097,233 @@ bool Tin::remove_vertex(VertexId v, VolumePolicy policy, EditReport* report) {
     detail::EventScope scope(m.events);
     EditFinisher finisher(m);
     m.cdt.remove(m.handle(v));
-    finisher.finish(policy, kNoId, report);
+    finisher.finish(policy, {}, report);
+    return true;
+}
+
+namespace {
+
+/// Least-squares plane z = a x + b y + c through points (relative to `origin` for conditioning);
+/// returns the largest vertical residual, or +infinity when the fit is degenerate.
+double plane_fit_residual(const std::vector<Vec2>& xy, const std::vector<double>& z, Vec2 origin) {
+    double sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, n = 0, sxz = 0, syz = 0, sz = 0;
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+        const Vec2 p = xy[i] - origin;
+        sxx += p.x * p.x;
+        sxy += p.x * p.y;
+        syy += p.y * p.y;
+        sx += p.x;
+        sy += p.y;
+        n += 1.0;
+        sxz += p.x * z[i];
+        syz += p.y * z[i];
+        sz += z[i];
+    }
+    // Solve [sxx sxy sx; sxy syy sy; sx sy n] (a b c) = (sxz syz sz) by Cramer's rule.
+    const double det =
+        sxx * (syy * n - sy * sy) - sxy * (sxy * n - sy * sx) + sx * (sxy * sy - syy * sx);
+    const double scale = (sxx + syy + n) * (sxx + syy + n) * (sxx + syy + n);
+    if (!(std::abs(det) > 1e-14 * scale)) return std::numeric_limits<double>::infinity();
+    const double a =
+        (sxz * (syy * n - sy * sy) - sxy * (syz * n - sy * sz) + sx * (syz * sy - syy * sz)) / det;
+    const double b =
+        (sxx * (syz * n - sz * sy) - sxz * (sxy * n - sy * sx) + sx * (sxy * sz - syz * sx)) / det;
+    const double c =
+        (sxx * (syy * sz - sy * syz) - sxy * (sxy * sz - sy * sxz) + sxz * (sxy * sy - syy * sx)) /
+        det;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+        const Vec2 p = xy[i] - origin;
+        worst = std::max(worst, std::abs(a * p.x + b * p.y + c - z[i]));
+    }
+    return worst;
+}
+
+}  // namespace
+
+bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double tolerance,
+                              VolumePolicy policy, EditReport* report) {
+    Impl& m = *impl_;
+    if (vertices.empty()) return true;
+    static thread_local std::vector<std::uint8_t> in_set;
+    static thread_local DirtySet face_in_region;
+    if (in_set.size() < m.va.size()) in_set.resize(m.va.size(), 0);
+    auto cleanup = [&] {
+        for (VertexId v : vertices) {
+            if (v.value < in_set.size()) in_set[v.value] = 0;
+        }
+        face_in_region.clear();
+    };
+    for (VertexId v : vertices) {
+        if (!m.alive(v) || in_set[v.value] || is_boundary(v) || is_on_constraint(v)) {
+            cleanup();
+            return false;
+        }
+        in_set[v.value] = 1;
+    }
+    // The faces around the set, and their boundary as directed edges with the region on the left.
+    std::vector<Fh> faces;
+    for (VertexId v : vertices) {
+        auto fc = m.cdt.incident_faces(m.handle(v));
+        const auto done = fc;
+        do {
+            const Fh f = fc;
+            if (!face_in_region.contains(f->slot)) {
+                face_in_region.mark(f->slot);
+                faces.push_back(f);
+            }
+        } while (++fc != done);
+    }
+    struct BoundaryEdge {
+        Vh from, to;
+        Fh outside;
+        int outside_index;
+        bool constrained;
+    };
+    std::unordered_map<std::uint32_t, BoundaryEdge> next;  // keyed by the start vertex id
+    for (const Fh f : faces) {
+        for (int i = 0; i < 3; ++i) {
+            const Fh g = f->neighbor(i);
+            if (face_in_region.contains(g->slot)) continue;
+            const Vh from = f->vertex(CdtPlus::ccw(i));
+            const Vh to = f->vertex(CdtPlus::cw(i));
+            if (m.cdt.is_infinite(from) || m.cdt.is_infinite(to) || in_set[from->id] ||
+                in_set[to->id]) {
+                cleanup();
+                return false;
+            }
+            if (!next.emplace(from->id, BoundaryEdge{from, to, g, m.cdt.mirror_index(f, i),
+                                                     f->is_constrained(i)})
+                     .second) {
+                cleanup();
+                return false;  // the boundary touches itself: not a disc
+            }
+        }
+    }
+    std::vector<BoundaryEdge> loop;
+    if (!next.empty()) {
+        std::uint32_t at = next.begin()->first;
+        for (std::size_t k = 0; k <= next.size(); ++k) {
+            const auto it = next.find(at);
+            if (it == next.end()) break;
+            loop.push_back(it->second);
+            at = it->second.to->id;
+            if (at == next.begin()->first) break;
+        }
+    }
+    if (loop.size() != next.size() || loop.size() < 3) {
+        cleanup();
+        return false;  // several boundary loops: the set surrounds something it does not remove
+    }
+    // Every corner of the region is removed or on its boundary; a vertex whose whole star lies
+    // in the region but which is not in the set would be left without faces.
+    for (const Fh f : faces) {
+        for (int i = 0; i < 3; ++i) {
+            const Vh v = f->vertex(i);
+            if (!in_set[v->id] && next.find(v->id) == next.end()) {
+                cleanup();
+                return false;
+            }
+        }
+    }
+    // Planarity of the whole patch.
+    std::vector<Vec2> xy;
+    std::vector<double> z;
+    for (const BoundaryEdge& e : loop) {
+        xy.push_back(m.va.position[e.from->id]);
+        z.push_back(m.va.height[e.from->id]);
+    }
+    for (VertexId v : vertices) {
+        xy.push_back(m.va.position[v.value]);
+        z.push_back(m.va.height[v.value]);
+    }
+    if (!(plane_fit_residual(xy, z, xy.front()) <= tolerance)) {
+        cleanup();
+        return false;
+    }
+    // Ear clipping of the boundary polygon with exact predicates, before anything changes.
+    const auto orientation = detail::Kernel().orientation_2_object();
+    std::vector<std::size_t> poly(loop.size());
+    for (std::size_t k = 0; k < poly.size(); ++k)
+        poly[k] = k;
+    auto pt = [&](std::size_t k) -> const detail::Point& { return loop[k].from->point(); };
+    std::vector<std::array<std::size_t, 3>> ears;
+    while (poly.size() > 3) {
+        bool clipped = false;
+        for (std::size_t i = 0; i < poly.size() && !clipped; ++i) {
+            const std::size_t a = poly[(i + poly.size() - 1) % poly.size()];
+            const std::size_t b = poly[i];
+            const std::size_t c = poly[(i + 1) % poly.size()];
+            if (orientation(pt(a), pt(b), pt(c)) != CGAL::LEFT_TURN) continue;
+            bool blocked = false;
+            for (std::size_t k : poly) {
+                if (k == a || k == b || k == c) continue;
+                // Inside or on the ear's closed triangle blocks it (also catches collinear
+                // boundary points the new diagonal would run through).
+                if (orientation(pt(a), pt(b), pt(k)) != CGAL::RIGHT_TURN &&
+                    orientation(pt(b), pt(c), pt(k)) != CGAL::RIGHT_TURN &&
+                    orientation(pt(c), pt(a), pt(k)) != CGAL::RIGHT_TURN) {
+                    blocked = true;
+                    break;
+                }
+            }
+            if (blocked) continue;
+            ears.push_back({a, b, c});
+            poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(i));
+            clipped = true;
+        }
+        if (!clipped) {
+            cleanup();
+            return false;
+        }
+    }
+    if (orientation(pt(poly[0]), pt(poly[1]), pt(poly[2])) != CGAL::LEFT_TURN) {
+        cleanup();
+        return false;
+    }
+    ears.push_back({poly[0], poly[1], poly[2]});
+
+    // Surgery on the data structure: delete the region, glue the ear triangles in, flip to
+    // constrained Delaunay.
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    detail::Tds& tds = m.cdt.tds();
+    std::vector<Vh> doomed;
+    for (VertexId v : vertices)
+        doomed.push_back(m.handle(v));
+    cleanup();
+    for (const Fh f : faces)
+        tds.delete_face(f);
+    for (const Vh v : doomed)
+        tds.delete_vertex(v);
+    std::unordered_map<std::uint64_t, std::pair<Fh, int>> half_edges;
+    auto key = [](std::size_t a, std::size_t b) {
+        return (static_cast<std::uint64_t>(a) << 32) | b;
+    };
+    CdtPlus::List_edges to_check;
+    for (const auto& ear : ears) {
+        const Fh f = tds.create_face(loop[ear[0]].from, loop[ear[1]].from, loop[ear[2]].from);
+        for (int i = 0; i < 3; ++i) {
+            // Edge opposite corner i runs from corner ccw(i) to corner cw(i).
+            const std::size_t from = ear[static_cast<std::size_t>(CdtPlus::ccw(i))];
+            const std::size_t to = ear[static_cast<std::size_t>(CdtPlus::cw(i))];
+            f->vertex(i)->set_face(f);
+            if ((from + 1) % loop.size() == to) {
+                const BoundaryEdge& e = loop[from];
+                f->set_neighbor(i, e.outside);
+                e.outside->set_neighbor(e.outside_index, f);
+                if (e.constrained) f->set_constraint(i, true);
+            } else if (const auto twin = half_edges.find(key(to, from)); twin != half_edges.end()) {
+                f->set_neighbor(i, twin->second.first);
+                twin->second.first->set_neighbor(twin->second.second, f);
+            } else {
+                half_edges.emplace(key(from, to), std::make_pair(f, i));
+            }
+            to_check.emplace_back(f, i);
+        }
+    }
+    m.cdt.propagating_flip(to_check);
+    finisher.finish(policy, {}, report);
     return true;
 }
 
@@ -852,6 +1404,46 @@ ConstraintId Tin::insert_constraint(VertexId a, VertexId b, Generation generatio
     return insert_constraint(polyline, false, generation, policy, report);
 }
 
+namespace {
+
+/// Constrains one polyline inside an edit (no finish) and registers it.
+ConstraintId constrain_one(Tin::Impl& m, std::span<const VertexId> polyline, bool closed,
+                           Generation generation) {
+    if (polyline.size() == 2 && !closed) {
+        // CGAL would add a second, overlapping constraint: refresh the existing one instead.
+        const Vh a = m.handle(polyline[0]);
+        const Vh b = m.handle(polyline[1]);
+        if (m.cdt.is_subconstraint(a, b)) {
+            for (auto ctx : m.cdt.contexts(a, b)) {
+                if (ctx.number_of_vertices() != 2) continue;
+                const auto it = m.constraint_of_cgal.find(ctx.id().vl_ptr());
+                if (it == m.constraint_of_cgal.end()) continue;
+                auto& entry = m.constraints[it->second];
+                entry.generation = std::max(entry.generation, generation);
+                return ConstraintId{it->second};
+            }
+        }
+    }
+    std::vector<Vh> handles;
+    handles.reserve(polyline.size() + 1);
+    for (VertexId v : polyline)
+        handles.push_back(m.handle(v));
+    if (closed && polyline.front() != polyline.back()) handles.push_back(handles.front());
+    const detail::CgalConstraintId cid = m.cdt.insert_polyline(handles);
+    EditFinisher(m).prepare_born();
+    const std::uint32_t id = m.constraint_ids.allocate();
+    if (id >= m.constraints.size()) m.constraints.resize(static_cast<std::size_t>(id) + 1);
+    Rect bounds;
+    for (VertexId v : polyline)
+        bounds.expand(m.va.position[v.value]);
+    m.constraints[id] = {cid, generation, true, bounds};
+    m.constraint_of_cgal[cid.vl_ptr()] = id;
+    resolve_crossing_heights(m, cid);
+    return ConstraintId{id};
+}
+
+}  // namespace
+
 ConstraintId Tin::insert_constraint(std::span<const VertexId> polyline, bool closed,
                                     Generation generation, VolumePolicy policy,
                                     EditReport* report) {
@@ -869,60 +1461,62 @@ ConstraintId Tin::insert_constraint(std::span<const VertexId> polyline, bool clo
     }
     detail::EventScope scope(m.events);
     EditFinisher finisher(m);
-    detail::CgalConstraintId cid;
-    if (polyline.size() == 2 && !closed) {
-        cid = m.cdt.insert_constraint(m.handle(polyline[0]), m.handle(polyline[1]));
-    } else {
-        std::vector<detail::Point> pts;
-        pts.reserve(polyline.size());
-        for (VertexId v : polyline) pts.push_back(m.handle(v)->point());
-        cid = m.cdt.insert_constraint(pts.begin(), pts.end(), closed);
-    }
-    finisher.prepare_born();
-    ConstraintId result;
-    if (cid == detail::CgalConstraintId(nullptr)) {
-        // CGAL refuses duplicates: refresh the generation of the existing constraint.
-        for (auto ctx : m.cdt.contexts(m.handle(polyline[0]), m.handle(polyline[1]))) {
-            const auto it = m.constraint_of_cgal.find(ctx.id().vl_ptr());
-            if (it != m.constraint_of_cgal.end()) {
-                result = ConstraintId{it->second};
-                auto& entry = m.constraints[it->second];
-                entry.generation = std::max(entry.generation, generation);
-                break;
-            }
-        }
-    } else {
-        const std::uint32_t id = m.constraint_ids.allocate();
-        if (id >= m.constraints.size()) m.constraints.resize(static_cast<std::size_t>(id) + 1);
-        m.constraints[id] = {cid, generation, true};
-        m.constraint_of_cgal[cid.vl_ptr()] = id;
-        result = ConstraintId{id};
-        resolve_crossing_heights(m, cid);
-    }
-    finisher.finish(policy, kNoId, report);
+    const ConstraintId result = constrain_one(m, polyline, closed, generation);
+    finisher.finish(policy, {}, report);
     return result;
 }
 
+std::vector<ConstraintId> Tin::insert_constraints(std::span<const std::array<VertexId, 2>> segments,
+                                                  Generation generation, VolumePolicy policy,
+                                                  EditReport* report) {
+    Impl& m = *impl_;
+    for (const auto& s : segments) {
+        for (VertexId v : s) {
+            if (!is_alive(v)) {
+                throw std::invalid_argument("insert_constraints: vertex id " +
+                                            std::to_string(v.value) + " is not alive");
+            }
+        }
+    }
+    std::vector<ConstraintId> ids;
+    ids.reserve(segments.size());
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    for (const auto& s : segments) {
+        // An earlier segment may have killed nothing, but a crossing can never remove a vertex;
+        // still, stay defensive about ids that died inside this edit.
+        if (s[0] == s[1] || !m.alive(s[0]) || !m.alive(s[1])) {
+            ids.push_back(ConstraintId{});
+            continue;
+        }
+        ids.push_back(constrain_one(m, s, false, generation));
+    }
+    finisher.finish(policy, {}, report);
+    return ids;
+}
+
 std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy policy,
-                                     EditReport* report) {
+                                     EditReport* report, std::vector<VertexId>* released_vertices) {
     Impl& m = *impl_;
     std::vector<std::uint32_t> doomed;
+    const Rect polygon_box = bounding_box(filter.touching_polygon);
     for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
         const detail::ConstraintEntry& e = m.constraints[id];
         if (!e.alive) continue;
         if (filter.generation && e.generation != *filter.generation) continue;
         if (filter.older_than && e.generation >= *filter.older_than) continue;
         if (!filter.touching_polygon.empty()) {
+            if (!e.bounds.intersects(polygon_box)) continue;
             bool touches = false;
-            const Vh* previous = nullptr;
-            for (const Vh& v : m.cdt.vertices_in_constraint(e.cgal_id)) {
-                if (previous != nullptr &&
-                    segment_touches_polygon(m.va.position[(*previous)->id], m.va.position[v->id],
+            std::uint32_t previous = kNoId;
+            for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
+                if (previous != kNoId &&
+                    segment_touches_polygon(m.va.position[previous], m.va.position[v->id],
                                             filter.touching_polygon)) {
                     touches = true;
                     break;
                 }
-                previous = &v;
+                previous = v->id;
             }
             if (!touches) continue;
         }
@@ -933,12 +1527,16 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
     EditFinisher finisher(m);
     for (std::uint32_t id : doomed) {
         detail::ConstraintEntry& e = m.constraints[id];
+        if (released_vertices != nullptr) {
+            for (Vh v : m.cdt.vertices_in_constraint(e.cgal_id))
+                released_vertices->push_back(VertexId{v->id});
+        }
         m.constraint_of_cgal.erase(e.cgal_id.vl_ptr());
         m.cdt.remove_constraint(e.cgal_id);
         e = {};
         m.constraint_ids.release(id);
     }
-    finisher.finish(policy, kNoId, report);
+    finisher.finish(policy, {}, report);
     return doomed.size();
 }
 
@@ -954,7 +1552,7 @@ bool Tin::release_constraint(ConstraintId id, VolumePolicy policy, EditReport* r
     m.cdt.remove_constraint(e.cgal_id);
     e = {};
     m.constraint_ids.release(id.value);
-    finisher.finish(policy, kNoId, report);
+    finisher.finish(policy, {}, report);
     return true;
 }
 
@@ -977,11 +1575,24 @@ void set_attribute(Tin::Impl& m, VertexId v, std::vector<T>& array, T value, con
 
 void Tin::set_height(VertexId v, double height) {
     require(std::isfinite(height), "set_height: height is not finite");
-    set_attribute(*impl_, v, impl_->va.height, height, "set_height");
+    Impl& m = *impl_;
+    const double before = m.alive(v) ? m.va.height[v.value] : 0.0;
+    set_attribute(m, v, m.va.height, height, "set_height");
+    m.volume_ledger.add(m.va.lumped_area[v.value] * (height - before));
+    if (m.va.bedrock[v.value] > height) set_attribute(m, v, m.va.bedrock, height, "set_height");
+}
+
+double Tin::volume_ledger() const {
+    return impl_->volume_ledger.value();
 }
 
 void Tin::set_bedrock(VertexId v, double bedrock) {
     require(std::isfinite(bedrock), "set_bedrock: bedrock is not finite");
+    if (is_alive(v) && bedrock > impl_->va.height[v.value]) {
+        throw std::invalid_argument("set_bedrock: bedrock " + std::to_string(bedrock) +
+                                    " m would lie above the surface at " +
+                                    std::to_string(impl_->va.height[v.value]) + " m");
+    }
     set_attribute(*impl_, v, impl_->va.bedrock, bedrock, "set_bedrock");
 }
 
@@ -1018,6 +1629,8 @@ ChangeSet Tin::take_changes() {
     return cs;
 }
 
-bool Tin::tracks_changes() const { return impl_->options.track_changes; }
+bool Tin::tracks_changes() const {
+    return impl_->options.track_changes;
+}
 
 }  // namespace sandtin

@@ -105,7 +105,7 @@ struct ReleaseFilter {
 };
 
 class Tin {
-public:
+  public:
     using HeightFunction = std::function<double(Vec2)>;
 
     /// Two triangles covering `domain` at a constant height.
@@ -138,7 +138,7 @@ public:
     std::size_t vertex_count() const;    ///< live vertices
     std::size_t triangle_count() const;  ///< finite triangles
     std::size_t constrained_edge_count() const;
-    std::size_t constraint_count() const;  ///< registered constrained polylines
+    std::size_t constraint_count() const;   ///< registered constrained polylines
     std::uint32_t vertex_capacity() const;  ///< one past the largest VertexId ever used
     std::uint32_t slot_capacity() const;    ///< one past the largest TriangleSlot ever used
 
@@ -171,6 +171,33 @@ public:
     /// (compensated summation).
     double volume(double datum = 0.0) const;
 
+    /// Running sum of every volume change since construction (m³): heights set times lumped
+    /// areas, plus re-triangulation changes left after compensation. O(1); it equals
+    /// volume() minus the initial volume up to rounding, so tools measure what an edit did
+    /// without summing over the whole terrain.
+    double volume_ledger() const;
+
+    /// Vertices within `radius` metres of `centre`, found by walking the faces that meet the
+    /// disc (constrained edges do not stop the walk).
+    std::vector<VertexId> vertices_in_disc(Vec2 centre, double radius,
+                                           LocateHint* hint = nullptr) const;
+    /// Corners of the faces reachable from the faces containing `seeds` without crossing a
+    /// constrained edge and whose centroids lie inside the closed polygon `bound`: the
+    /// vertices inside (and on) a constrained contour.
+    std::vector<VertexId> vertices_in_region(std::span<const Vec2> seeds,
+                                             std::span<const Vec2> bound,
+                                             LocateHint* hint = nullptr) const;
+    /// The surface along the segment a-b: (t, z) pairs with t in [0, 1] along the segment, at
+    /// a, at every crossing with a triangle edge, and at b, in order. The piecewise-linear
+    /// surface restricted to the segment is exactly the polyline through these points. Points
+    /// outside the domain are clamped into it.
+    std::vector<std::pair<double, double>> section(Vec2 a, Vec2 b,
+                                                   LocateHint* hint = nullptr) const;
+    /// Edges longer than `max_length` metres among the faces that meet the disc.
+    std::vector<std::array<VertexId, 2>> edges_longer_than(Vec2 centre, double radius,
+                                                           double max_length,
+                                                           LocateHint* hint = nullptr) const;
+
     std::vector<ConstraintInfo> constraints() const;
     std::optional<ConstraintInfo> constraint(ConstraintId id) const;
 
@@ -188,10 +215,30 @@ public:
     VertexId insert_point_on_surface(Vec2 p, LocateHint* hint = nullptr,
                                      VolumePolicy policy = VolumePolicy::Conserve,
                                      EditReport* report = nullptr);
+    /// Batch forms of the two insertions: one re-triangulation bookkeeping pass for all points,
+    /// which is what tools use for a contour. Points are inserted in order; ids are returned in
+    /// the same order. With Conserve, the new vertices share the volume compensation.
+    std::vector<VertexId> insert_points(std::span<const Vec2> points,
+                                        std::span<const double> heights, LocateHint* hint = nullptr,
+                                        EditReport* report = nullptr);
+    std::vector<VertexId> insert_points_on_surface(std::span<const Vec2> points,
+                                                   LocateHint* hint = nullptr,
+                                                   VolumePolicy policy = VolumePolicy::Conserve,
+                                                   EditReport* report = nullptr);
     /// Removes v. Returns false (and changes nothing) for border vertices and vertices on a
     /// constraint. With VolumePolicy::Conserve the ring around the hole absorbs the volume change.
     bool remove_vertex(VertexId v, VolumePolicy policy = VolumePolicy::Conserve,
                        EditReport* report = nullptr);
+
+    /// Removes a connected set of interior vertices in one step when the triangles around them
+    /// form a disc whose boundary, together with the set, lies within `tolerance` metres
+    /// (vertically) of one plane: the hole is re-triangulated from its boundary and made
+    /// constrained-Delaunay again. Cost O(set size), versus a Delaunay hole fill per vertex.
+    /// Returns false and changes nothing when the set does not qualify (a vertex on the border
+    /// or a constraint, a ring with holes or pinches, curvature beyond the tolerance).
+    bool remove_planar_patch(std::span<const VertexId> vertices, double tolerance,
+                             VolumePolicy policy = VolumePolicy::Conserve,
+                             EditReport* report = nullptr);
 
     /// Constrains the segment a-b. Crossings with existing constraints become new vertices at
     /// the height of the crossed constraint. Re-inserting an existing constraint refreshes its
@@ -204,16 +251,25 @@ public:
                                    Generation generation,
                                    VolumePolicy policy = VolumePolicy::Conserve,
                                    EditReport* report = nullptr);
+    /// Constrains each segment as its own constraint, in one edit: what tools use for a rim,
+    /// so that later stamps can release the part of it they cover. Segments whose ends are the
+    /// same vertex are skipped (invalid id in the result).
+    std::vector<ConstraintId> insert_constraints(std::span<const std::array<VertexId, 2>> segments,
+                                                 Generation generation,
+                                                 VolumePolicy policy = VolumePolicy::Conserve,
+                                                 EditReport* report = nullptr);
     /// Unconstrains every constraint that matches the filter; Delaunay flips follow. Returns how
-    /// many constraints were released.
+    /// many constraints were released; their vertices are appended to `released_vertices`.
     std::size_t release_constraints(const ReleaseFilter& filter,
                                     VolumePolicy policy = VolumePolicy::Conserve,
-                                    EditReport* report = nullptr);
+                                    EditReport* report = nullptr,
+                                    std::vector<VertexId>* released_vertices = nullptr);
     bool release_constraint(ConstraintId id, VolumePolicy policy = VolumePolicy::Conserve,
                             EditReport* report = nullptr);
 
     /// Attribute setters record the vertex in the change journal when the value changes.
-    /// They throw std::invalid_argument for dead ids and non-finite values.
+    /// They throw std::invalid_argument for dead ids and non-finite values. set_height lowers
+    /// the bedrock with the surface, so sand thickness never goes negative.
     void set_height(VertexId v, double height);
     void set_bedrock(VertexId v, double bedrock);
     void set_material(VertexId v, std::uint16_t material);
@@ -231,7 +287,7 @@ public:
 
     struct Impl;
 
-private:
+  private:
     explicit Tin(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };

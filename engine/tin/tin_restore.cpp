@@ -26,13 +26,13 @@ using Fh = Tin::Impl::Fh;
 namespace {
 
 class NoEvents {
-public:
+  public:
     NoEvents() : previous_(detail::t_events) { detail::t_events = nullptr; }
     ~NoEvents() { detail::t_events = previous_; }
     NoEvents(const NoEvents&) = delete;
     NoEvents& operator=(const NoEvents&) = delete;
 
-private:
+  private:
     detail::TdsEvents* previous_;
 };
 
@@ -52,7 +52,9 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
-double triangle_area(Vec2 a, Vec2 b, Vec2 c) { return 0.5 * cross(b - a, c - a); }
+double triangle_area(Vec2 a, Vec2 b, Vec2 c) {
+    return 0.5 * cross(b - a, c - a);
+}
 
 }  // namespace
 
@@ -72,7 +74,8 @@ TinSnapshot Tin::snapshot() const {
         ConstraintRecord r;
         r.id = c.id.value;
         r.generation = c.generation;
-        for (VertexId v : c.vertices) r.vertices.push_back(v.value);
+        for (VertexId v : c.vertices)
+            r.vertices.push_back(v.value);
         s.constraints.push_back(std::move(r));
     }
     s.constraint_capacity = m.constraint_ids.capacity();
@@ -86,8 +89,10 @@ void check_free_list(const std::vector<std::uint32_t>& free_list, std::uint32_t 
                      const std::vector<std::uint8_t>& in_use, const char* what) {
     std::vector<std::uint8_t> seen(capacity, 0);
     std::size_t free_count = 0;
-    for (std::uint32_t i = 0; i < capacity; ++i) free_count += in_use[i] ? 0 : 1;
-    if (free_list.size() != free_count) corrupt(std::string(what) + " free list has the wrong size");
+    for (std::uint32_t i = 0; i < capacity; ++i)
+        free_count += in_use[i] ? 0 : 1;
+    if (free_list.size() != free_count)
+        corrupt(std::string(what) + " free list has the wrong size");
     for (std::uint32_t id : free_list) {
         if (id >= capacity || in_use[id] || seen[id]) {
             corrupt(std::string(what) + " free list names a used, repeated or out-of-range id");
@@ -118,7 +123,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         if (!sv.alive[i]) continue;
         vertex_used[i] = 1;
         const Vec2 p = sv.position[i];
-        if (!is_finite(p) || !d.contains(p)) corrupt("vertex " + std::to_string(i) + " lies outside the domain");
+        if (!is_finite(p) || !d.contains(p))
+            corrupt("vertex " + std::to_string(i) + " lies outside the domain");
         if (!std::isfinite(sv.height[i]) || !std::isfinite(sv.bedrock[i])) {
             corrupt("vertex " + std::to_string(i) + " has a non-finite height or bedrock");
         }
@@ -146,7 +152,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
                 corrupt("triangle slot " + std::to_string(t) + " names a dead or unknown vertex");
             }
         }
-        if (outside > 1) corrupt("triangle slot " + std::to_string(t) + " has two corners at infinity");
+        if (outside > 1)
+            corrupt("triangle slot " + std::to_string(t) + " has two corners at infinity");
         if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
             corrupt("triangle slot " + std::to_string(t) + " repeats a corner");
         }
@@ -178,7 +185,9 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         v->id = i;
         m.events.vertex_of_id[i] = &*v;
     }
-    auto vertex_handle = [&](std::uint32_t c) { return c == kOutsideCorner ? infinite : m.handle(c); };
+    auto vertex_handle = [&](std::uint32_t c) {
+        return c == kOutsideCorner ? infinite : m.handle(c);
+    };
     std::unordered_map<std::uint64_t, std::pair<Fh, int>> half_edges;
     half_edges.reserve(slot_count * 3);
     std::vector<Fh> faces;
@@ -203,14 +212,15 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
     }
     for (const Fh f : faces) {
         for (int i = 0; i < 3; ++i) {
-            const std::uint32_t a = key_of(f->vertex(CdtPlus::ccw(i)) == infinite
-                                               ? kOutsideCorner
-                                               : f->vertex(CdtPlus::ccw(i))->id);
-            const std::uint32_t b = key_of(f->vertex(CdtPlus::cw(i)) == infinite
-                                               ? kOutsideCorner
-                                               : f->vertex(CdtPlus::cw(i))->id);
+            const std::uint32_t a =
+                key_of(f->vertex(CdtPlus::ccw(i)) == infinite ? kOutsideCorner
+                                                              : f->vertex(CdtPlus::ccw(i))->id);
+            const std::uint32_t b =
+                key_of(f->vertex(CdtPlus::cw(i)) == infinite ? kOutsideCorner
+                                                             : f->vertex(CdtPlus::cw(i))->id);
             const auto twin = half_edges.find(edge_key(b, a));
-            if (twin == half_edges.end()) corrupt("the triangles do not close up (an edge has no twin)");
+            if (twin == half_edges.end())
+                corrupt("the triangles do not close up (an edge has no twin)");
             f->set_neighbor(i, twin->second.first);
         }
     }
@@ -244,7 +254,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
             if (!sv.alive[i]) continue;
             if (references[i] == 0) corrupt("vertex " + std::to_string(i) + " is in no triangle");
             if (star_size(m.handle(i)) != references[i]) {
-                corrupt("the triangles around vertex " + std::to_string(i) + " do not form one fan");
+                corrupt("the triangles around vertex " + std::to_string(i) +
+                        " do not form one fan");
             }
         }
         if (infinite_references < 3 || star_size(infinite) != infinite_references) {
@@ -260,15 +271,17 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         if (inf < 0) {
             if (orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) !=
                 CGAL::LEFT_TURN) {
-                corrupt("triangle in slot " + std::to_string(f->slot) + " is not counter-clockwise");
+                corrupt("triangle in slot " + std::to_string(f->slot) +
+                        " is not counter-clockwise");
             }
             area.add(triangle_area(sv.position[f->vertex(0)->id], sv.position[f->vertex(1)->id],
                                    sv.position[f->vertex(2)->id]));
         } else {
             const Vec2 a = sv.position[f->vertex(CdtPlus::ccw(inf))->id];
             const Vec2 b = sv.position[f->vertex(CdtPlus::cw(inf))->id];
-            const bool on_border = (a.x == d.min.x && b.x == d.min.x) || (a.x == d.max.x && b.x == d.max.x) ||
-                                   (a.y == d.min.y && b.y == d.min.y) || (a.y == d.max.y && b.y == d.max.y);
+            const bool on_border =
+                (a.x == d.min.x && b.x == d.min.x) || (a.x == d.max.x && b.x == d.max.x) ||
+                (a.y == d.min.y && b.y == d.min.y) || (a.y == d.max.y && b.y == d.max.y);
             if (!on_border) corrupt("a border edge does not lie on the domain rectangle");
         }
     }
@@ -286,11 +299,13 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
             corrupt("constraint id " + std::to_string(r.id) + " is repeated or out of range");
         }
         constraint_used[r.id] = 1;
-        if (r.vertices.size() < 2) corrupt("constraint " + std::to_string(r.id) + " has fewer than two vertices");
-        std::vector<detail::Point> pts;
+        if (r.vertices.size() < 2)
+            corrupt("constraint " + std::to_string(r.id) + " has fewer than two vertices");
+        std::vector<Vh> handles;
         for (std::size_t i = 0; i < r.vertices.size(); ++i) {
             const std::uint32_t v = r.vertices[i];
-            if (v >= n || !sv.alive[v]) corrupt("constraint " + std::to_string(r.id) + " names a dead vertex");
+            if (v >= n || !sv.alive[v])
+                corrupt("constraint " + std::to_string(r.id) + " names a dead vertex");
             if (i > 0) {
                 Fh f;
                 int li = 0;
@@ -299,13 +314,13 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
                     corrupt("constraint " + std::to_string(r.id) + " follows no triangle edge");
                 }
             }
-            pts.push_back(m.handle(v)->point());
+            handles.push_back(m.handle(v));
         }
-        const detail::CgalConstraintId cid = m.cdt.insert_constraint(pts.begin(), pts.end());
-        if (cid == detail::CgalConstraintId(nullptr)) {
-            corrupt("constraint " + std::to_string(r.id) + " duplicates another");
-        }
-        m.constraints[r.id] = {cid, r.generation, true};
+        const detail::CgalConstraintId cid = m.cdt.insert_polyline(handles);
+        Rect bounds;
+        for (std::uint32_t v : r.vertices)
+            bounds.expand(sv.position[v]);
+        m.constraints[r.id] = {cid, r.generation, true, bounds};
         m.constraint_of_cgal[cid.vl_ptr()] = r.id;
     }
     check_free_list(s.constraint_free_list, s.constraint_capacity, constraint_used, "constraint");
@@ -327,7 +342,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
             if (sv.alive[i]) m.journal_vertices.mark(i);
         }
-        for (std::uint32_t t = 0; t < slot_count; ++t) m.journal_slots.mark(t);
+        for (std::uint32_t t = 0; t < slot_count; ++t)
+            m.journal_slots.mark(t);
     }
 
     Tin tin(std::move(impl));
@@ -364,14 +380,17 @@ ValidationReport Tin::check_valid() const {
             continue;
         }
         const Vec2 p{v->point().x(), v->point().y()};
-        if (!(p == va.position[id])) problem("vertex " + std::to_string(id) + " position differs from CGAL's");
-        if (!m.domain.contains(p)) problem("vertex " + std::to_string(id) + " lies outside the domain");
+        if (!(p == va.position[id]))
+            problem("vertex " + std::to_string(id) + " position differs from CGAL's");
+        if (!m.domain.contains(p))
+            problem("vertex " + std::to_string(id) + " lies outside the domain");
     }
     std::size_t alive = 0;
     CompensatedSum total_area;
     for (std::uint32_t id = 0; id < capacity; ++id) {
         if (!va.alive[id]) {
-            if (m.events.vertex_of_id[id] != nullptr) problem("dead id " + std::to_string(id) + " still maps to a vertex");
+            if (m.events.vertex_of_id[id] != nullptr)
+                problem("dead id " + std::to_string(id) + " still maps to a vertex");
             continue;
         }
         ++alive;
@@ -381,10 +400,12 @@ ValidationReport Tin::check_valid() const {
         }
         if (!std::isfinite(va.height[id]) || !std::isfinite(va.bedrock[id]) ||
             !std::isfinite(va.slide[id].x) || !std::isfinite(va.slide[id].y) ||
-            !(va.moisture[id] >= 0.0f && va.moisture[id] <= 1.0f) || !std::isfinite(va.lumped_area[id])) {
+            !(va.moisture[id] >= 0.0f && va.moisture[id] <= 1.0f) ||
+            !std::isfinite(va.lumped_area[id])) {
             problem("vertex " + std::to_string(id) + " has a non-finite or out-of-range attribute");
         }
-        if (va.bedrock[id] > va.height[id]) problem("vertex " + std::to_string(id) + " has bedrock above its surface");
+        if (va.bedrock[id] > va.height[id])
+            problem("vertex " + std::to_string(id) + " has bedrock above its surface");
         const double recomputed = m.recompute_lumped_area(id);
         if (!(std::abs(recomputed - va.lumped_area[id]) <= 1e-9 * std::max(recomputed, 1e-300)) ||
             !(recomputed > 0.0)) {
@@ -417,7 +438,8 @@ ValidationReport Tin::check_valid() const {
         }
         slot_seen[s] = 1;
         const SlotRecord now = m.read_face(*f);
-        if (!(now == m.slot_cache[s])) problem("slot " + std::to_string(s) + " cache differs from its face");
+        if (!(now == m.slot_cache[s]))
+            problem("slot " + std::to_string(s) + " cache differs from its face");
         if (now.finite()) ++finite_faces;
     }
     for (std::uint32_t s = 0; s < slots; ++s) {
@@ -467,7 +489,8 @@ ValidationReport Tin::check_valid() const {
         if (!e.alive) continue;
         ++registered;
         const auto it = m.constraint_of_cgal.find(e.cgal_id.vl_ptr());
-        if (it == m.constraint_of_cgal.end() || it->second != id) problem("constraint registry is inconsistent");
+        if (it == m.constraint_of_cgal.end() || it->second != id)
+            problem("constraint registry is inconsistent");
     }
     if (registered != m.constraint_of_cgal.size() ||
         registered != const_cast<CdtPlus&>(m.cdt).number_of_constraints() ||

@@ -20,14 +20,14 @@ struct Vec2f {
 inline constexpr double kNoBedrock = -1.0e30;
 
 struct VertexArrays {
-    std::vector<Vec2> position;          ///< metres, fixed for the life of the vertex
-    std::vector<double> height;          ///< metres, surface z = f(x, y)
-    std::vector<double> bedrock;         ///< metres, non-erodible lower surface (<= height)
+    std::vector<Vec2> position;           ///< metres, fixed for the life of the vertex
+    std::vector<double> height;           ///< metres, surface z = f(x, y)
+    std::vector<double> bedrock;          ///< metres, non-erodible lower surface (<= height)
     std::vector<std::uint16_t> material;  ///< index into the material table
-    std::vector<float> moisture;         ///< saturation in [0, 1]
-    std::vector<Vec2f> slide;            ///< texture slide offset in texture units, wrapped to [0, 1)
-    std::vector<double> lumped_area;     ///< m²: one third of the areas of the incident triangles
-    std::vector<std::uint8_t> alive;     ///< 1 for live ids
+    std::vector<float> moisture;          ///< saturation in [0, 1]
+    std::vector<Vec2f> slide;         ///< texture slide offset in texture units, wrapped to [0, 1)
+    std::vector<double> lumped_area;  ///< m²: one third of the areas of the incident triangles
+    std::vector<std::uint8_t> alive;  ///< 1 for live ids
 
     std::size_t size() const { return height.size(); }
     void resize(std::size_t n) {

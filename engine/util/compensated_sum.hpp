@@ -7,7 +7,7 @@
 namespace sandtin {
 
 class CompensatedSum {
-public:
+  public:
     void add(double x) {
         const double t = sum_ + x;
         if (std::abs(sum_) >= std::abs(x)) {
@@ -19,7 +19,7 @@ public:
     }
     double value() const { return sum_ + compensation_; }
 
-private:
+  private:
     double sum_ = 0.0;
     double compensation_ = 0.0;
 };

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdint>
+#include <ctime>
 #include <vector>
 
 namespace sandtin::bench {
@@ -14,25 +14,25 @@ struct BenchConfig {
 };
 
 class Stopwatch {
-public:
+  public:
     Stopwatch() : start_(std::chrono::steady_clock::now()) {}
     double ms() const {
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_)
             .count();
     }
 
-private:
+  private:
     std::chrono::steady_clock::time_point start_;
 };
 
 /// CPU time of the calling thread: on a shared virtual machine it is far less noisy than wall
 /// time, because time the hypervisor gives to other guests is not counted.
 class CpuStopwatch {
-public:
+  public:
     CpuStopwatch() : start_(now()) {}
     double ms() const { return now() - start_; }
 
-private:
+  private:
     static double now() {
         timespec t{};
         clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);

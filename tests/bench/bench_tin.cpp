@@ -16,7 +16,8 @@ std::vector<Vec2> random_square_points(std::size_t n, std::uint64_t seed) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<Vec2> pts = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     pts.reserve(n + 4);
-    for (std::size_t i = 0; i < n; ++i) pts.push_back({u(rng), u(rng)});
+    for (std::size_t i = 0; i < n; ++i)
+        pts.push_back({u(rng), u(rng)});
     return pts;
 }
 
@@ -52,8 +53,9 @@ std::vector<Vec2> ring(Vec2 centre, double radius, int points) {
 
 nlohmann::json bench_insert(const BenchConfig& config) {
     nlohmann::json rows = nlohmann::json::array();
-    const std::vector<std::size_t> sizes =
-        config.quick ? std::vector<std::size_t>{1000, 10000} : std::vector<std::size_t>{10000, 100000, 1000000};
+    const std::vector<std::size_t> sizes = config.quick
+                                               ? std::vector<std::size_t>{1000, 10000}
+                                               : std::vector<std::size_t>{10000, 100000, 1000000};
     for (std::size_t n : sizes) {
         const std::vector<Vec2> pts = random_square_points(n, 42);
         const std::vector<double> zeros(pts.size(), 0.0);
@@ -114,15 +116,19 @@ nlohmann::json bench_locate(const BenchConfig& config) {
     };
     const double hinted = time_ns([&] {
         LocateHint hint;
-        for (Vec2 p : path) checksum += tin.locate(p, &hint).barycentric[0];
+        for (Vec2 p : path)
+            checksum += tin.locate(p, &hint).barycentric[0];
     });
     const double path_unhinted = time_ns([&] {
-        for (Vec2 p : path) checksum += tin.locate(p).barycentric[0];
+        for (Vec2 p : path)
+            checksum += tin.locate(p).barycentric[0];
     });
     const double scattered_unhinted = time_ns([&] {
-        for (Vec2 p : scattered) checksum += tin.locate(p).barycentric[0];
+        for (Vec2 p : scattered)
+            checksum += tin.locate(p).barycentric[0];
     });
-    const double cgal_path = time_ns([&] { checksum += static_cast<double>(cgal.locate_all(path)); });
+    const double cgal_path =
+        time_ns([&] { checksum += static_cast<double>(cgal.locate_all(path)); });
     return {{"points", n},
             {"queries", q},
             {"path_with_hint_ns", hinted},
@@ -137,7 +143,8 @@ nlohmann::json bench_remove(const BenchConfig& config) {
     const std::size_t removals = n / 10;
     TinOptions options;
     options.track_changes = false;
-    Tin tin = Tin::random_points(Rect::from_size(1, 1), n, 5, [](Vec2 p) { return 0.1 * p.x * p.y; }, options);
+    Tin tin = Tin::random_points(
+        Rect::from_size(1, 1), n, 5, [](Vec2 p) { return 0.1 * p.x * p.y; }, options);
     std::mt19937_64 rng(3);
     std::vector<VertexId> doomed;
     for (std::uint32_t i = 0; i < tin.vertex_capacity() && doomed.size() < removals; i += 7) {
@@ -147,9 +154,12 @@ nlohmann::json bench_remove(const BenchConfig& config) {
     std::shuffle(doomed.begin(), doomed.end(), rng);
     Stopwatch w;
     std::size_t removed = 0;
-    for (VertexId v : doomed) removed += tin.remove_vertex(v) ? 1 : 0;
+    for (VertexId v : doomed)
+        removed += tin.remove_vertex(v) ? 1 : 0;
     const double ms = w.ms();
-    return {{"points", n}, {"removed", removed}, {"us_per_removal", ms * 1e3 / static_cast<double>(removed)}};
+    return {{"points", n},
+            {"removed", removed},
+            {"us_per_removal", ms * 1e3 / static_cast<double>(removed)}};
 }
 
 nlohmann::json bench_constraints(const BenchConfig& config) {
@@ -170,7 +180,8 @@ nlohmann::json bench_constraints(const BenchConfig& config) {
         {
             Stopwatch w;
             std::vector<VertexId> ids;
-            for (Vec2 p : r) ids.push_back(tin.insert_point_on_surface(p, &hint));
+            for (Vec2 p : r)
+                ids.push_back(tin.insert_point_on_surface(p, &hint));
             tin.insert_constraint(ids, true, generation++);
             ours.push_back(w.ms());
         }

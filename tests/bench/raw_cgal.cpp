@@ -8,7 +8,8 @@
 namespace sandtin::bench {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, CGAL::Default, CGAL::Exact_predicates_tag>;
+using Cdt =
+    CGAL::Constrained_Delaunay_triangulation_2<Kernel, CGAL::Default, CGAL::Exact_predicates_tag>;
 
 struct RawCgalTin::Impl {
     Cdt cdt;
@@ -21,7 +22,8 @@ RawCgalTin::~RawCgalTin() = default;
 void RawCgalTin::insert(std::span<const Vec2> points) {
     std::vector<Kernel::Point_2> pts;
     pts.reserve(points.size());
-    for (Vec2 p : points) pts.emplace_back(p.x, p.y);
+    for (Vec2 p : points)
+        pts.emplace_back(p.x, p.y);
     impl_->cdt.insert(pts.begin(), pts.end());
 }
 
@@ -36,7 +38,8 @@ std::size_t RawCgalTin::locate_all(std::span<const Vec2> queries) const {
 
 void RawCgalTin::constrain_ring(std::span<const Vec2> ring) {
     std::vector<Cdt::Vertex_handle> vs;
-    Cdt::Face_handle hint = impl_->last != Cdt::Vertex_handle() ? impl_->last->face() : Cdt::Face_handle();
+    Cdt::Face_handle hint =
+        impl_->last != Cdt::Vertex_handle() ? impl_->last->face() : Cdt::Face_handle();
     for (Vec2 p : ring) {
         vs.push_back(impl_->cdt.insert(Kernel::Point_2(p.x, p.y), hint));
         hint = vs.back()->face();
@@ -47,6 +50,8 @@ void RawCgalTin::constrain_ring(std::span<const Vec2> ring) {
     impl_->last = vs.front();
 }
 
-std::size_t RawCgalTin::vertex_count() const { return impl_->cdt.number_of_vertices(); }
+std::size_t RawCgalTin::vertex_count() const {
+    return impl_->cdt.number_of_vertices();
+}
 
 }  // namespace sandtin::bench

@@ -11,7 +11,7 @@
 namespace sandtin::bench {
 
 class RawCgalTin {
-public:
+  public:
     RawCgalTin();
     ~RawCgalTin();
     RawCgalTin(const RawCgalTin&) = delete;
@@ -25,7 +25,7 @@ public:
     void constrain_ring(std::span<const Vec2> ring);
     std::size_t vertex_count() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

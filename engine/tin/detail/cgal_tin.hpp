@@ -25,6 +25,7 @@
 #include "tin/change_journal.hpp"
 #include "tin/id_allocator.hpp"
 #include "tin/tin.hpp"
+#include "util/compensated_sum.hpp"
 
 namespace sandtin::detail {
 
@@ -46,7 +47,8 @@ struct TdsEvents {
 
     std::uint32_t vertex_born(void* vertex) {
         const std::uint32_t id = vertex_ids.allocate();
-        if (id >= vertex_of_id.size()) vertex_of_id.resize(static_cast<std::size_t>(id) + 1, nullptr);
+        if (id >= vertex_of_id.size())
+            vertex_of_id.resize(static_cast<std::size_t>(id) + 1, nullptr);
         vertex_of_id[id] = vertex;
         born_vertices.push_back(id);
         return id;
@@ -58,7 +60,8 @@ struct TdsEvents {
     }
     std::uint32_t face_born(void* face) {
         const std::uint32_t slot = slots.allocate();
-        if (slot >= face_of_slot.size()) face_of_slot.resize(static_cast<std::size_t>(slot) + 1, nullptr);
+        if (slot >= face_of_slot.size())
+            face_of_slot.resize(static_cast<std::size_t>(slot) + 1, nullptr);
         face_of_slot[slot] = face;
         op_slots.mark(slot);
         return slot;
@@ -76,19 +79,19 @@ inline thread_local TdsEvents* t_events = nullptr;
 
 /// Scope of one edit: routes CGAL lifetime events to `events`.
 class EventScope {
-public:
+  public:
     explicit EventScope(TdsEvents& events) : previous_(t_events) { t_events = &events; }
     ~EventScope() { t_events = previous_; }
     EventScope(const EventScope&) = delete;
     EventScope& operator=(const EventScope&) = delete;
 
-private:
+  private:
     TdsEvents* previous_;
 };
 
 template <class Gt, class Vb = CGAL::Triangulation_vertex_base_2<Gt>>
 class TinVertexBase : public Vb {
-public:
+  public:
     using Face_handle = typename Vb::Face_handle;
     using Point = typename Vb::Point;
 
@@ -114,7 +117,7 @@ public:
 
     std::uint32_t id = kNoId;  ///< VertexId value; kNoId for the vertex at infinity
 
-private:
+  private:
     void born() {
         if (t_events != nullptr) id = t_events->vertex_born(this);
     }
@@ -122,7 +125,7 @@ private:
 
 template <class Gt, class Fb = CGAL::Constrained_triangulation_face_base_2<Gt>>
 class TinFaceBase : public Fb {
-public:
+  public:
     using Vertex_handle = typename Fb::Vertex_handle;
     using Face_handle = typename Fb::Face_handle;
 
@@ -191,7 +194,7 @@ public:
 
     std::uint32_t slot = kNoId;  ///< TriangleSlot
 
-private:
+  private:
     void born() {
         if (t_events != nullptr) slot = t_events->face_born(this);
     }
@@ -204,7 +207,25 @@ using VertexBase = TinVertexBase<Kernel>;
 using FaceBase = TinFaceBase<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
-using CdtPlus = CGAL::Constrained_triangulation_plus_2<Cdt>;
+/// CGAL's constraint hierarchy over the CDT, plus one operation CGAL only offers for points.
+class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
+  public:
+    using Base = CGAL::Constrained_triangulation_plus_2<Cdt>;
+    using Base::Base;
+
+    /// Constrains a polyline through existing vertices. CGAL's polyline insertion takes points
+    /// and re-inserts them, and re-inserting an existing point runs flip_around(), which can
+    /// flip away an edge that a later segment of the same restore needs.
+    Constraint_id insert_polyline(const std::vector<Vertex_handle>& vs) {
+        Constraint_id id = hierarchy.insert_constraint(vs[0], vs[1]);
+        insert_subconstraint(vs[0], vs[1]);
+        for (std::size_t j = 1; j + 1 < vs.size(); ++j) {
+            hierarchy.append_constraint(id, vs[j], vs[j + 1]);
+            insert_subconstraint(vs[j], vs[j + 1]);
+        }
+        return id;
+    }
+};
 using VertexHandle = CdtPlus::Vertex_handle;
 using FaceHandle = CdtPlus::Face_handle;
 using Vertex = Tds::Vertex;
@@ -226,6 +247,7 @@ struct ConstraintEntry {
     CgalConstraintId cgal_id;
     Generation generation = 0;
     bool alive = false;
+    Rect bounds;  ///< bounding box of the polyline (crossing vertices lie on it)
 };
 
 }  // namespace sandtin::detail
@@ -243,6 +265,7 @@ struct Tin::Impl {
     VertexArrays va;
     std::vector<detail::SlotRecord> slot_cache;
     std::uint32_t live_triangles = 0;
+    CompensatedSum volume_ledger;  ///< running sum of every volume change (m³)
     DirtySet journal_vertices;
     DirtySet journal_slots;
 
@@ -260,9 +283,7 @@ struct Tin::Impl {
         return v.valid() && v.value < events.vertex_of_id.size() &&
                events.vertex_of_id[v.value] != nullptr;
     }
-    std::uint32_t corner_id(Vh v) const {
-        return cdt.is_infinite(v) ? kOutsideCorner : v->id;
-    }
+    std::uint32_t corner_id(Vh v) const { return cdt.is_infinite(v) ? kOutsideCorner : v->id; }
     detail::SlotRecord read_face(const detail::Face& f) const;
     double recompute_lumped_area(std::uint32_t id) const;
     void ensure_vertex_capacity();

@@ -1,0 +1,73 @@
+// sandtin run: apply a script to a terrain and save the result.
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "io/script.hpp"
+#include "io/session_file.hpp"
+#include "terrain_report.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin::cli {
+
+namespace {
+constexpr const char* kUsage = "sandtin run script.json [-i in.sandtin] -o out.sandtin [--json]";
+}
+
+int run_run(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"-i", 1}, {"-o", 1}, {"--json", 0}});
+    args.require_positionals(1, kUsage);
+    const std::filesystem::path script_path = args.positionals()[0];
+    const std::string out = args.text("-o");
+    const std::vector<std::uint8_t> bytes = read_file(script_path, 1u << 28);
+    const std::string text(bytes.begin(), bytes.end());
+    // Parse everything before touching any terrain: a bad script changes nothing.
+    const Script script = parse_script(text, script_path.string(), script_path.parent_path());
+
+    Session session;
+    TinOptions options;
+    options.track_changes = false;
+    Tin tin = [&] {
+        if (args.has("-i")) {
+            session = load_session(args.text("-i"));
+            return Tin::from_snapshot(session.terrain, options);
+        }
+        if (!script.terrain) {
+            throw UsageError(
+                "no terrain: give -i in.sandtin or a \"terrain\" object in the script\nusage: " +
+                std::string(kUsage));
+        }
+        const ScriptTerrain& t = *script.terrain;
+        const Rect domain = Rect::from_size(t.size.x, t.size.y);
+        if (t.points == 0) return Tin::flat_rectangle(domain, t.height, options);
+        return Tin::random_points(
+            domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
+    }();
+    SculptContext context(tin.domain());
+    context.set_next_generation(session.next_generation);
+    const double volume_before = tin.volume();
+    const nlohmann::json steps = run_script(script, tin, context);
+
+    session.terrain = tin.snapshot();
+    session.next_generation = context.peek_generation();
+    save_session(out, session);
+    nlohmann::json j;
+    j["steps"] = steps;
+    j["terrain"] = describe_terrain(tin);
+    j["volume_before"] = volume_before;
+    j["file"] = out;
+    if (args.has("--json")) {
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::cout << "ran " << steps.size() << " operations; wrote " << out << ": "
+                  << tin.vertex_count() << " vertices, " << tin.triangle_count()
+                  << " triangles, volume " << tin.volume() << " m^3 (was " << volume_before
+                  << ")\n";
+    }
+    return j["terrain"]["valid"].get<bool>() ? 0 : 1;
+}
+
+}  // namespace sandtin::cli

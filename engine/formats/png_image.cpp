@@ -1,0 +1,195 @@
+#include "formats/png_image.hpp"
+
+#include <png.h>
+
+#include <csetjmp>
+#include <cstring>
+#include <stdexcept>
+
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+
+namespace {
+
+struct ReadState {
+    std::span<const std::uint8_t> bytes;
+    std::size_t offset = 0;
+    std::string error;
+};
+
+void on_error(png_structp png, png_const_charp message) {
+    auto* state = static_cast<ReadState*>(png_get_error_ptr(png));
+    if (state != nullptr && state->error.empty()) state->error = message;
+    png_longjmp(png, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}
+
+void read_bytes(png_structp png, png_bytep out, png_size_t n) {
+    auto* state = static_cast<ReadState*>(png_get_io_ptr(png));
+    if (state->offset + n > state->bytes.size()) {
+        png_error(png, "file is truncated");
+    }
+    std::memcpy(out, state->bytes.data() + state->offset, n);
+    state->offset += n;
+}
+
+// libpng reports errors with longjmp, so no C++ object with a destructor may live in the frame
+// that calls setjmp: the decode loop works on plain pointers owned by the caller.
+bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLimits& limits,
+                 PngImage& image, std::vector<png_bytep>& rows, std::vector<std::uint8_t>& raw) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_read_fn(png, &state, read_bytes);
+    png_read_info(png, info);
+    const png_uint_32 w = png_get_image_width(png, info);
+    const png_uint_32 h = png_get_image_height(png, info);
+    if (w == 0 || h == 0) {
+        state.error = "image is empty (0 x 0)";
+        return false;
+    }
+    if (w > limits.max_width || h > limits.max_height) {
+        state.error = "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                      " pixels exceeds the limit of " + std::to_string(limits.max_width) + " x " +
+                      std::to_string(limits.max_height);
+        return false;
+    }
+    const int color = png_get_color_type(png, info);
+    int depth = png_get_bit_depth(png, info);
+    if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+    if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+    if (depth == 16) png_set_swap(png);  // little-endian samples in memory
+    png_read_update_info(png, info);
+    depth = png_get_bit_depth(png, info);
+    const int channels = png_get_channels(png, info);
+    const std::size_t row_bytes = png_get_rowbytes(png, info);
+    raw.resize(row_bytes * h);
+    rows.resize(h);
+    for (png_uint_32 y = 0; y < h; ++y)
+        rows[y] = raw.data() + row_bytes * y;
+    png_read_image(png, rows.data());
+    image.width = w;
+    image.height = h;
+    image.channels = channels;
+    image.bit_depth = depth;
+    return true;
+}
+
+}  // namespace
+
+PngImage decode_png(std::span<const std::uint8_t> bytes, const std::string& name,
+                    const PngLimits& limits) {
+    if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) {
+        throw std::runtime_error(name + ": not a PNG file (bad signature)");
+    }
+    ReadState state;
+    state.bytes = bytes;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
+    if (png == nullptr) throw std::runtime_error(name + ": cannot initialise libpng");
+    png_infop info = png_create_info_struct(png);
+    if (info == nullptr) {
+        png_destroy_read_struct(&png, nullptr, nullptr);
+        throw std::runtime_error(name + ": cannot initialise libpng");
+    }
+    png_set_user_limits(png, limits.max_width, limits.max_height);
+    PngImage image;
+    std::vector<png_bytep> rows;
+    std::vector<std::uint8_t> raw;
+    const bool ok = decode_into(png, info, state, limits, image, rows, raw);
+    png_destroy_read_struct(&png, &info, nullptr);
+    if (!ok) throw std::runtime_error(name + ": invalid PNG: " + state.error);
+    const std::size_t n = static_cast<std::size_t>(image.width) * image.height *
+                          static_cast<std::size_t>(image.channels);
+    image.samples.resize(n);
+    if (image.bit_depth == 16) {
+        std::memcpy(image.samples.data(), raw.data(), n * 2);
+    } else {
+        for (std::size_t i = 0; i < n; ++i)
+            image.samples[i] = raw[i];
+    }
+    return image;
+}
+
+PngImage read_png(const std::filesystem::path& path, const PngLimits& limits) {
+    const std::vector<std::uint8_t> bytes = read_file(path, 1ull << 32);
+    if (bytes.empty()) throw std::runtime_error(path.string() + ": file is empty");
+    return decode_png(bytes, path.string(), limits);
+}
+
+namespace {
+
+struct WriteState {
+    std::vector<std::uint8_t> out;
+    std::string error;
+};
+
+void write_bytes(png_structp png, png_bytep data, png_size_t n) {
+    auto* state = static_cast<WriteState*>(png_get_io_ptr(png));
+    state->out.insert(state->out.end(), data, data + n);
+}
+
+void flush_nothing(png_structp) {}
+
+void on_write_error(png_structp png, png_const_charp message) {
+    auto* state = static_cast<WriteState*>(png_get_error_ptr(png));
+    if (state != nullptr && state->error.empty()) state->error = message;
+    png_longjmp(png, 1);
+}
+
+bool encode_into(png_structp png, png_infop info, WriteState& state, const PngImage& image,
+                 std::vector<png_bytep>& rows) {
+    if (setjmp(png_jmpbuf(png))) return false;
+    png_set_write_fn(png, &state, write_bytes, flush_nothing);
+    const int type = image.channels == 1   ? PNG_COLOR_TYPE_GRAY
+                     : image.channels == 2 ? PNG_COLOR_TYPE_GRAY_ALPHA
+                     : image.channels == 3 ? PNG_COLOR_TYPE_RGB
+                                           : PNG_COLOR_TYPE_RGBA;
+    png_set_IHDR(png, info, image.width, image.height, image.bit_depth, type, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    if (image.bit_depth == 16) png_set_swap(png);
+    png_write_image(png, rows.data());
+    png_write_end(png, nullptr);
+    return true;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(const PngImage& image) {
+    if (image.width == 0 || image.height == 0 || image.channels < 1 || image.channels > 4 ||
+        (image.bit_depth != 8 && image.bit_depth != 16) ||
+        image.samples.size() != static_cast<std::size_t>(image.width) * image.height *
+                                    static_cast<std::size_t>(image.channels)) {
+        throw std::invalid_argument("encode_png: inconsistent image description");
+    }
+    const std::size_t row_samples =
+        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.channels);
+    const std::size_t bytes_per_sample = image.bit_depth == 16 ? 2 : 1;
+    std::vector<std::uint8_t> raw(row_samples * bytes_per_sample * image.height);
+    if (image.bit_depth == 16) {
+        std::memcpy(raw.data(), image.samples.data(), raw.size());
+    } else {
+        for (std::size_t i = 0; i < image.samples.size(); ++i) {
+            raw[i] = static_cast<std::uint8_t>(std::min<std::uint16_t>(image.samples[i], 255));
+        }
+    }
+    std::vector<png_bytep> rows(image.height);
+    for (std::uint32_t y = 0; y < image.height; ++y)
+        rows[y] = raw.data() + row_samples * bytes_per_sample * y;
+    WriteState state;
+    png_structp png =
+        png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_write_error, on_warning);
+    if (png == nullptr) throw std::runtime_error("encode_png: cannot initialise libpng");
+    png_infop info = png_create_info_struct(png);
+    const bool ok = info != nullptr && encode_into(png, info, state, image, rows);
+    png_destroy_write_struct(&png, &info);
+    if (!ok) throw std::runtime_error("encode_png: " + state.error);
+    return std::move(state.out);
+}
+
+void write_png(const std::filesystem::path& path, const PngImage& image) {
+    write_file_atomically(path, encode_png(image));
+}
+
+}  // namespace sandtin

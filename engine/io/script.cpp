@@ -1,0 +1,397 @@
+#include "io/script.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+
+#include "tools/stamp.hpp"
+#include "tools/tool_json.hpp"
+#include "util/json_fields.hpp"
+
+namespace sandtin {
+
+namespace {
+
+/// Reads characters for nlohmann's SAX parser and counts the lines it has passed.
+class LineCountingIterator {
+  public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = const char&;
+
+    LineCountingIterator() = default;
+    LineCountingIterator(const char* p, std::size_t* newlines) : p_(p), newlines_(newlines) {}
+    reference operator*() const { return *p_; }
+    LineCountingIterator& operator++() {
+        if (*p_ == '\n') ++*newlines_;
+        ++p_;
+        return *this;
+    }
+    LineCountingIterator operator++(int) {
+        LineCountingIterator old = *this;
+        ++*this;
+        return old;
+    }
+    friend bool operator==(const LineCountingIterator& a, const LineCountingIterator& b) {
+        return a.p_ == b.p_;
+    }
+
+  private:
+    const char* p_ = nullptr;
+    std::size_t* newlines_ = nullptr;
+};
+
+/// Records the line on which each operation object starts.
+class OperationLines : public nlohmann::json_sax<nlohmann::json> {
+  public:
+    explicit OperationLines(const std::size_t* newlines) : newlines_(newlines) {}
+    std::vector<std::size_t> lines;
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override {
+        if (in_operations()) lines.push_back(*newlines_ + 1);
+        stack_.push_back({false, pending_key_});
+        pending_key_.clear();
+        return true;
+    }
+    bool key(string_t& k) override {
+        pending_key_ = k;
+        return true;
+    }
+    bool end_object() override {
+        stack_.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override {
+        stack_.push_back({true, pending_key_});
+        pending_key_.clear();
+        return true;
+    }
+    bool end_array() override {
+        stack_.pop_back();
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+        return false;
+    }
+
+  private:
+    struct Level {
+        bool array;
+        std::string key;
+    };
+    bool value() {
+        pending_key_.clear();
+        return true;
+    }
+    bool in_operations() const {
+        // A bare top-level array, or the array under the top-level key "operations".
+        if (stack_.size() == 1) return stack_[0].array;
+        return stack_.size() == 2 && !stack_[0].array && stack_[1].array &&
+               stack_[1].key == "operations";
+    }
+    const std::size_t* newlines_;
+    std::vector<Level> stack_;
+    std::string pending_key_;
+};
+
+Falloff parse_falloff(JsonFields& f, const char* fallback) {
+    const std::string s =
+        f.choice("falloff", fallback, {"constant", "linear", "smooth", "gaussian"});
+    return s == "constant" ? Falloff::Constant
+           : s == "linear" ? Falloff::Linear
+           : s == "smooth" ? Falloff::Smooth
+                           : Falloff::Gaussian;
+}
+
+std::shared_ptr<const Tool> parse_tool(JsonFields& f, const std::filesystem::path& base_dir) {
+    const nlohmann::json& t = f.required("tool");
+    const ToolSpec spec = parse_tool_spec(t, base_dir, f.context() + ": tool");
+    try {
+        return std::make_shared<const Tool>(Tool::build(spec));
+    } catch (const std::exception& e) {
+        f.fail_field("tool", std::string("is invalid: ") + e.what());
+    }
+}
+
+/// Depth fields: "depth" (metres below the terrain) or "bottom" (absolute height), not both.
+void parse_depth(JsonFields& f, DepthMode& mode, double& value) {
+    if (f.has("depth") && f.has("bottom")) f.fail("give either 'depth' or 'bottom', not both");
+    if (f.has("bottom")) {
+        mode = DepthMode::Absolute;
+        value = f.required_number("bottom");
+    } else {
+        mode = DepthMode::Relative;
+        value = f.number("depth", 0.0);
+    }
+}
+
+/// "at": one point, or "path" (+ "curve", "spacing"): points every `spacing` metres.
+std::vector<Vec2> parse_points(JsonFields& f, double default_spacing) {
+    if (f.has("at") == f.has("path")) f.fail("give exactly one of 'at' or 'path'");
+    if (f.has("at")) return {f.point("at")};
+    std::vector<Vec2> path = f.points("path", 1);
+    const double spacing = f.positive("spacing", default_spacing);
+    if (f.boolean("curve", false)) path = catmull_rom(path, spacing / 4.0);
+    StrokeSampler sampler(spacing);
+    std::vector<Vec2> out;
+    for (Vec2 p : path) {
+        for (const StrokeSample& s : sampler.add_point(p))
+            out.push_back(s.position);
+    }
+    for (const StrokeSample& s : sampler.finish())
+        out.push_back(s.position);
+    return out;
+}
+
+ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nlohmann::json& object,
+                                const std::filesystem::path& base_dir,
+                                const std::vector<ScriptExtension>& extensions) {
+    if (op == "stamp") {
+        StampOp s;
+        s.tool = parse_tool(f, base_dir);
+        s.at = f.point("at");
+        s.angle = f.number("angle", 0.0);
+        parse_depth(f, s.depth_mode, s.depth);
+        f.reject_unknown();
+        return s;
+    }
+    if (op == "stroke") {
+        StrokeOp s;
+        s.tool = parse_tool(f, base_dir);
+        s.path = f.points("path", 1);
+        s.settings.spacing = f.positive("spacing", 0.25 * s.tool->radius());
+        if (f.boolean("curve", false)) s.path = catmull_rom(s.path, s.settings.spacing / 4.0);
+        parse_depth(f, s.settings.depth_mode, s.settings.depth);
+        s.settings.follow_path = f.boolean("follow_path", true);
+        s.settings.angle = f.number("angle", 0.0);
+        f.reject_unknown();
+        return s;
+    }
+    if (op == "pour" || op == "remove") {
+        PourOp p;
+        p.remove = op == "remove";
+        p.volume = f.non_negative("volume", 0.0);
+        if (!f.has("volume")) f.fail("missing required field 'volume'");
+        p.settings.radius = f.positive("radius", p.settings.radius);
+        p.settings.falloff = parse_falloff(f, "smooth");
+        p.settings.refine_spacing = f.non_negative("refine_spacing", 0.0);
+        p.points = parse_points(f, 0.5 * p.settings.radius);
+        f.reject_unknown();
+        return p;
+    }
+    if (op == "brush") {
+        BrushOp b;
+        const std::string kind =
+            f.choice("kind", "raise", {"raise", "lower", "smooth", "flatten", "paint"});
+        b.settings.kind = kind == "raise"     ? BrushKind::Raise
+                          : kind == "lower"   ? BrushKind::Lower
+                          : kind == "smooth"  ? BrushKind::Smooth
+                          : kind == "flatten" ? BrushKind::Flatten
+                                              : BrushKind::PaintMaterial;
+        b.settings.radius = f.positive("radius", b.settings.radius);
+        const bool fraction =
+            b.settings.kind == BrushKind::Smooth || b.settings.kind == BrushKind::Flatten;
+        b.settings.strength = fraction ? f.in_range("strength", 0.5, 0.0, 1.0)
+                                       : f.non_negative("strength", b.settings.strength);
+        b.settings.falloff = parse_falloff(f, "smooth");
+        b.settings.refine_spacing = f.non_negative("refine_spacing", 0.0);
+        b.settings.material = static_cast<std::uint16_t>(f.integer("material", 0, 0, 65535));
+        if (f.has("height")) b.settings.flatten_to = f.required_number("height");
+        b.points = parse_points(f, 0.25 * b.settings.radius);
+        f.reject_unknown();
+        return b;
+    }
+    if (op == "simplify") {
+        SimplifyOp s;
+        if (f.has("tolerance")) s.tolerance = f.positive("tolerance", 0.0);
+        f.reject_unknown();
+        return s;
+    }
+    for (const ScriptExtension& ext : extensions) {
+        if (std::optional<CustomOp> custom = ext(op, object, f.context()))
+            return std::move(*custom);
+    }
+    f.fail_field("op", "names an unknown operation '" + op + "'");
+}
+
+}  // namespace
+
+Script parse_script(std::string_view text, const std::string& name,
+                    const std::filesystem::path& base_dir,
+                    const std::vector<ScriptExtension>& extensions) {
+    nlohmann::json document;
+    try {
+        document = nlohmann::json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::parse_error& e) {
+        // nlohmann reports a byte offset; turn it into a line.
+        const std::size_t offset = std::min<std::size_t>(e.byte, text.size());
+        const std::size_t line =
+            1 + static_cast<std::size_t>(std::count(
+                    text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+        throw JsonInputError(name + ":" + std::to_string(line) + ": not valid JSON: " + e.what());
+    }
+    std::size_t newlines = 0;
+    OperationLines lines(&newlines);
+    nlohmann::json::sax_parse(LineCountingIterator(text.data(), &newlines),
+                              LineCountingIterator(text.data() + text.size(), &newlines), &lines);
+
+    Script script;
+    const nlohmann::json* operations = &document;
+    if (document.is_object()) {
+        JsonFields top(document, name);
+        top.integer("version", 1, 1, 1);
+        if (const nlohmann::json* settings = top.get("settings")) {
+            JsonFields s(*settings, name + ": settings");
+            if (s.has("simplify_tolerance"))
+                script.simplify_tolerance = s.positive("simplify_tolerance", 0.0);
+            if (s.has("keep_generations")) {
+                script.keep_generations =
+                    static_cast<Generation>(s.integer("keep_generations", 64, 1, 1'000'000));
+            }
+            if (s.has("simplify")) script.simplify = s.boolean("simplify", true);
+            s.reject_unknown();
+        }
+        if (const nlohmann::json* terrain = top.get("terrain")) {
+            JsonFields t(*terrain, name + ": terrain");
+            ScriptTerrain st;
+            if (t.has("size")) {
+                st.size = t.point("size");
+                if (!(st.size.x > 0.0 && st.size.y > 0.0)) t.fail_field("size", "must be positive");
+            }
+            st.points = static_cast<std::size_t>(t.integer("points", 0, 0, 50'000'000));
+            st.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, INT64_MAX));
+            st.height = t.number("height", 0.0);
+            t.reject_unknown();
+            script.terrain = st;
+        }
+        operations = &top.required("operations");
+        top.reject_unknown();
+    }
+    if (!operations->is_array()) {
+        throw JsonInputError(
+            name + ": a script is an array of operations or an object with \"operations\"");
+    }
+    for (std::size_t k = 0; k < operations->size(); ++k) {
+        const nlohmann::json& object = (*operations)[k];
+        const std::size_t line = k < lines.lines.size() ? lines.lines[k] : 0;
+        std::string context =
+            name + ":" + std::to_string(line) + ": operation " + std::to_string(k + 1);
+        if (!object.is_object()) throw JsonInputError(context + ": must be a JSON object");
+        const auto op_it = object.find("op");
+        if (op_it == object.end() || !op_it->is_string()) {
+            throw JsonInputError(context + ": missing the string field 'op'");
+        }
+        const std::string op = op_it->get<std::string>();
+        context += " (" + op + ")";
+        JsonFields f(object, context);
+        f.get("op");
+        ScriptStep step{parse_operation(op, f, object, base_dir, extensions), op, line};
+        script.steps.push_back(std::move(step));
+    }
+    return script;
+}
+
+namespace {
+
+nlohmann::json stamp_json(const StampReport& r) {
+    return {{"stamps_applied", r.applied ? 1 : 0},
+            {"displaced_volume", r.displaced_volume},
+            {"deposited_volume", r.deposited_volume},
+            {"volume_change", r.volume_change},
+            {"vertices_inserted", r.vertices_inserted},
+            {"vertices_removed", r.vertices_removed},
+            {"triangles_touched", r.triangles_touched},
+            {"constraints_released", r.constraints_released},
+            {"enforce_ms", r.enforce_ms},
+            {"simplify_ms", r.simplify_ms},
+            {"extrude_ms", r.extrude_ms}};
+}
+
+}  // namespace
+
+nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context) {
+    if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
+    if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
+    if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
+    nlohmann::json reports = nlohmann::json::array();
+    for (const ScriptStep& step : script.steps) {
+        const auto t0 = std::chrono::steady_clock::now();
+        nlohmann::json r = std::visit(
+            [&](const auto& op) -> nlohmann::json {
+                using T = std::decay_t<decltype(op)>;
+                if constexpr (std::is_same_v<T, StampOp>) {
+                    ToolPlacement at{op.at, op.angle, op.depth};
+                    if (op.depth_mode == DepthMode::Relative) {
+                        const Rect d = tin.domain();
+                        const Vec2 c{std::clamp(op.at.x, d.min.x, d.max.x),
+                                     std::clamp(op.at.y, d.min.y, d.max.y)};
+                        at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
+                    }
+                    return stamp_json(stamp(tin, *op.tool, at, context));
+                } else if constexpr (std::is_same_v<T, StrokeOp>) {
+                    std::vector<StampReport> per;
+                    const StampReport total =
+                        apply_stroke(tin, *op.tool, op.path, op.settings, context, &per);
+                    nlohmann::json j = stamp_json(total);
+                    j["stamps_applied"] = per.size();
+                    return j;
+                } else if constexpr (std::is_same_v<T, PourOp>) {
+                    const double each =
+                        op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
+                    double moved = 0.0;
+                    for (Vec2 p : op.points) {
+                        const PourReport pr = op.remove
+                                                  ? remove_sand(tin, p, each, op.settings, context)
+                                                  : pour_sand(tin, p, each, op.settings, context);
+                        moved += pr.volume;
+                    }
+                    if (context.settings.simplify_after_edit)
+                        context.simplifier.run(tin, context.settings.simplify);
+                    return {{"volume", moved}, {"points", op.points.size()}};
+                } else if constexpr (std::is_same_v<T, BrushOp>) {
+                    std::size_t changed = 0;
+                    double dv = 0.0;
+                    for (Vec2 p : op.points) {
+                        const BrushReport br = apply_brush(tin, p, op.settings, context);
+                        changed += br.vertices_changed;
+                        dv += br.volume_change;
+                    }
+                    return {{"dabs", op.points.size()},
+                            {"vertices_changed", changed},
+                            {"volume_change", dv}};
+                } else if constexpr (std::is_same_v<T, SimplifyOp>) {
+                    SimplifySettings s = context.settings.simplify;
+                    if (op.tolerance) s.tolerance = *op.tolerance;
+                    // An explicit simplify tests every vertex, not only the queue.
+                    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+                        if (tin.is_alive(VertexId{i})) context.simplifier.enqueue(VertexId{i});
+                    }
+                    const SimplifyReport sr = context.simplifier.run(tin, s);
+                    return {{"tested", sr.tested},
+                            {"removed", sr.removed},
+                            {"volume_change", sr.volume_change},
+                            {"max_volume_change", sr.max_volume_change}};
+                } else {
+                    return op.run(tin, context);
+                }
+            },
+            step.operation);
+        r["op"] = step.op_name;
+        r["line"] = step.line;
+        r["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                      .count();
+        reports.push_back(std::move(r));
+    }
+    return reports;
+}
+
+}  // namespace sandtin

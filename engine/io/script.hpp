@@ -1,0 +1,118 @@
+#pragma once
+// Sculpting scripts: `sandtin run script.json` applies a list of operations to a terrain.
+//
+//   { "version": 1,
+//     "terrain": { "size": [1, 1], "points": 10000, "seed": 1, "height": 0 },
+//     "settings": { "simplify_tolerance": 0.0005, "keep_generations": 64, "simplify": true },
+//     "operations": [
+//       { "op": "stamp",  "tool": {...}, "at": [x, y], "angle": 0, "depth": 0.05 },
+//       { "op": "stroke", "tool": {...}, "path": [[x, y], ...], "curve": false, "spacing": 0.01,
+//                         "depth": 0.05, "follow_path": true },
+//       { "op": "pour",   "at": [x, y], "volume": 1e-4, "radius": 0.02 },
+//       { "op": "remove", "path": [[x, y], ...], "volume": 1e-4, "radius": 0.02, "spacing": 0.01 },
+//       { "op": "brush",  "kind": "raise", "at": [x, y], "radius": 0.05, "strength": 0.002 },
+//       { "op": "simplify", "tolerance": 0.001 } ] }
+//
+// A bare array of operations is accepted too. All lengths are metres, angles radians, volumes
+// m³. See README.md ("Scripts") for every field. Parsing checks the whole script before anything
+// runs, so a bad script leaves the terrain untouched; errors name the line, the operation and
+// the field.
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tin/tin.hpp"
+#include "tools/brushes.hpp"
+#include "tools/sand.hpp"
+#include "tools/sculpt_context.hpp"
+#include "tools/stroke.hpp"
+#include "tools/tool.hpp"
+
+namespace sandtin {
+
+struct StampOp {
+    std::shared_ptr<const Tool> tool;
+    Vec2 at;
+    double angle = 0.0;
+    DepthMode depth_mode = DepthMode::Relative;
+    double depth = 0.0;  ///< metres below the terrain (relative) or the bottom height (absolute)
+};
+
+struct StrokeOp {
+    std::shared_ptr<const Tool> tool;
+    std::vector<Vec2> path;  ///< already densified when the script asked for a curve
+    StrokeSettings settings;
+};
+
+struct PourOp {
+    bool remove = false;
+    std::vector<Vec2> points;  ///< one point, or the samples along a path
+    double volume = 0.0;       ///< total m³ over all points
+    PourSettings settings;
+};
+
+struct BrushOp {
+    std::vector<Vec2> points;  ///< dab centres
+    BrushSettings settings;
+};
+
+struct SimplifyOp {
+    std::optional<double> tolerance;
+};
+
+/// Extension point for operations defined outside the sculpting tools (erosion, recorded
+/// haptic sessions): a name and a callable that runs it and reports JSON.
+struct CustomOp {
+    std::string name;
+    std::function<nlohmann::json(Tin&, SculptContext&)> run;
+};
+
+using ScriptOperation = std::variant<StampOp, StrokeOp, PourOp, BrushOp, SimplifyOp, CustomOp>;
+
+struct ScriptStep {
+    ScriptOperation operation;
+    std::string op_name;
+    std::size_t line = 0;  ///< 1-based line of the operation in the script text
+};
+
+/// The terrain a script starts from when no input session is given ("terrain" field):
+/// a W x H m rectangle with `points` random points (seeded) at `height`.
+struct ScriptTerrain {
+    Vec2 size{1.0, 1.0};
+    std::size_t points = 0;
+    std::uint64_t seed = 1;
+    double height = 0.0;
+};
+
+struct Script {
+    std::vector<ScriptStep> steps;
+    std::optional<ScriptTerrain> terrain;
+    std::optional<double> simplify_tolerance;
+    std::optional<Generation> keep_generations;
+    std::optional<bool> simplify;
+};
+
+/// Parses operation kinds that other rooms add (e.g. "erode"). Returns nullopt for kinds it
+/// does not know; throws JsonInputError for bad fields.
+using ScriptExtension = std::function<std::optional<CustomOp>(
+    const std::string& op, const nlohmann::json& object, const std::string& context)>;
+
+/// Parses and validates a script. Throws JsonInputError with "<name>:<line>: operation <k>
+/// (<op>): ..." messages.
+Script parse_script(std::string_view text, const std::string& name,
+                    const std::filesystem::path& base_dir,
+                    const std::vector<ScriptExtension>& extensions = {});
+
+/// Applies the script's settings to the context and runs every step; returns one JSON report
+/// per step.
+nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context);
+
+}  // namespace sandtin

@@ -1,0 +1,87 @@
+#include "tools/extrusion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "geom/polygon.hpp"
+
+namespace sandtin {
+
+RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
+                          std::optional<Vec2> motion, double width, double volume, LocateHint* hint,
+                          std::vector<VertexId>* touched) {
+    RidgeReport report;
+    const std::size_t n = outer.size();
+    if (!(volume > 0.0) || n < 3 || !(width > 0.0)) return report;
+    const Rect domain = tin.domain();
+
+    // Per-vertex weights: cut depth times the direction factor.
+    std::vector<double> weight(n, 0.0);
+    std::vector<Vec2> normal(n);
+    double total_weight = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 prev = outer[(i + n - 1) % n];
+        const Vec2 next = outer[(i + 1) % n];
+        const Vec2 e1 = (outer[i] - prev) / std::max(length(outer[i] - prev), 1e-300);
+        const Vec2 e2 = (next - outer[i]) / std::max(length(next - outer[i]), 1e-300);
+        Vec2 nrm = Vec2{e1.y, -e1.x} + Vec2{e2.y, -e2.x};
+        nrm = nrm / std::max(length(nrm), 1e-300);
+        normal[i] = nrm;
+        double f = 1.0;
+        if (motion && length(*motion) > 0.0) {
+            const Vec2 d = *motion / length(*motion);
+            f = std::clamp((dot(nrm, d) + 0.5) / 1.5, 0.0, 1.0);
+        }
+        weight[i] = std::max(0.0, cut_depth[i]) * f;
+        total_weight += weight[i];
+    }
+    if (!(total_weight > 0.0)) {
+        // The tool displaced volume but no control point reports a cut ahead of the motion
+        // (for example a tool sunk entirely): spread it evenly rather than lose it.
+        std::fill(weight.begin(), weight.end(), 1.0);
+    }
+
+    // Ridge sample points and their cross-section factors.
+    static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
+    std::vector<Vec2> points;
+    std::vector<double> factor;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!(weight[i] > 0.0)) continue;
+        for (double s : kStations) {
+            const Vec2 p = outer[i] + normal[i] * (s * width);
+            if (!domain.contains(p) || point_in_polygon(p, outer)) continue;
+            const double t = 2.0 * s - 1.0;
+            points.push_back(p);
+            factor.push_back(weight[i] * (1.0 - t * t));
+        }
+    }
+    if (points.empty()) return report;
+    const std::size_t before = tin.vertex_count();
+    const std::vector<VertexId> ids =
+        tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
+    report.vertices_inserted = tin.vertex_count() - before;
+
+    // Merge duplicates (two stations on one vertex) and solve for the ridge height.
+    std::unordered_map<VertexId, double> k;
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        k[ids[i]] += factor[i];
+    std::vector<std::pair<VertexId, double>> ks(k.begin(), k.end());
+    std::sort(ks.begin(), ks.end());  // deterministic order
+    double denominator = 0.0;
+    const VertexArrays& va = tin.vertices();
+    for (const auto& [v, kv] : ks)
+        denominator += va.lumped_area[v.value] * kv;
+    if (!(denominator > 0.0)) return report;
+    const double ridge_height = volume / denominator;
+    const double ledger0 = tin.volume_ledger();
+    for (const auto& [v, kv] : ks) {
+        if (kv <= 0.0) continue;
+        tin.set_height(v, va.height[v.value] + ridge_height * kv);
+        if (touched != nullptr) touched->push_back(v);
+    }
+    report.deposited = tin.volume_ledger() - ledger0;
+    return report;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,29 @@
+#pragma once
+// Material pushing (seed 000 §7.3.3, seed 004 §3.4.4): the volume a stamp displaced is put back
+// into a ridge just outside the tool. The seeds' ridge had a fixed height and lost material;
+// here its height is solved so the deposited volume equals the displaced one exactly.
+//
+// Cross-section: a parabola 1 - (2s/w - 1)² over the band s in [0, w] outward from the outer
+// contour, sampled at s = w/4, w/2, 3w/4 and closed at s = w. Along the contour the ridge is
+// weighted by how deep the tool cut next to each control point and by the direction of motion:
+// ahead gets the most, the sides a third, behind nothing (f = clamp((n·d + 1/2) / 1.5, 0, 1)).
+
+#include <optional>
+#include <span>
+
+#include "tin/tin.hpp"
+
+namespace sandtin {
+
+struct RidgeReport {
+    double deposited = 0.0;  ///< m³ added to the terrain
+    std::size_t vertices_inserted = 0;
+};
+
+/// Deposits `volume` m³ in a ridge of width `width` m outside the counter-clockwise polygon
+/// `outer`, weighted per outer vertex by `cut_depth` (m) and the motion direction.
+RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
+                          std::optional<Vec2> motion, double width, double volume,
+                          LocateHint* hint = nullptr, std::vector<VertexId>* touched = nullptr);
+
+}  // namespace sandtin

@@ -1,0 +1,40 @@
+#pragma once
+// State that lives across edits of one sculpting session: the stamp generation counter, the
+// point-location hint along the tool path, and the simplification queue.
+
+#include "tin/tin.hpp"
+#include "tools/simplifier.hpp"
+
+namespace sandtin {
+
+struct SculptSettings {
+    SimplifySettings simplify;
+    /// Remove redundant vertices at the end of every stamp, brush dab and pour.
+    bool simplify_after_edit = true;
+    /// Constraints of stamps more than this many generations old are released everywhere, so
+    /// the constraint count stays bounded however long the session runs.
+    Generation keep_generations = 64;
+};
+
+class SculptContext {
+  public:
+    SculptContext() = default;
+    explicit SculptContext(const Rect& domain) {
+        settings.simplify.tolerance = default_simplify_tolerance(domain);
+    }
+
+    /// The generation for the next stamp (increasing from 1).
+    Generation next_generation() { return next_generation_++; }
+    Generation peek_generation() const { return next_generation_; }
+    /// Restores the counter from a session file.
+    void set_next_generation(Generation g) { next_generation_ = g < 1 ? 1 : g; }
+
+    SculptSettings settings;
+    LocateHint hint;
+    Simplifier simplifier;
+
+  private:
+    Generation next_generation_ = 1;
+};
+
+}  // namespace sandtin

@@ -1,0 +1,324 @@
+#include "tools/stamp.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "geom/polygon.hpp"
+#include "tools/extrusion.hpp"
+
+namespace sandtin {
+
+void StampReport::accumulate(const StampReport& o) {
+    applied = applied || o.applied;
+    generation = std::max(generation, o.generation);
+    displaced_volume += o.displaced_volume;
+    deposited_volume += o.deposited_volume;
+    volume_change += o.volume_change;
+    vertices_inserted += o.vertices_inserted;
+    vertices_removed += o.vertices_removed;
+    triangles_touched += o.triangles_touched;
+    constraints_released += o.constraints_released;
+    simplify.accumulate(o.simplify);
+    enforce_ms += o.enforce_ms;
+    simplify_ms += o.simplify_ms;
+    extrude_ms += o.extrude_ms;
+}
+
+namespace {
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+        .count();
+}
+
+/// Removes points closer than `eps` to their predecessor (clipping and subdivision can make
+/// them), keeping the polygon closed.
+std::vector<Vec2> drop_near_duplicates(std::vector<Vec2> pts, double eps) {
+    std::vector<Vec2> out;
+    for (Vec2 p : pts) {
+        if (out.empty() || distance(out.back(), p) > eps) out.push_back(p);
+    }
+    while (out.size() > 1 && distance(out.front(), out.back()) <= eps)
+        out.pop_back();
+    return out;
+}
+
+double surface_or(const Tin& tin, Vec2 p, LocateHint* hint, double fallback) {
+    const std::optional<double> h = tin.height_at(p, hint);
+    return h ? *h : fallback;
+}
+
+/// Drapes the closed polygon over the terrain: along each edge, the crossings with triangle
+/// edges where the surface bends by more than `tolerance` (Douglas-Peucker on the exact
+/// section), so the rim follows the terrain within the tolerance with as few points as that
+/// takes.
+void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance, LocateHint* hint,
+                std::vector<Vec2>& points, std::vector<double>& heights) {
+    const std::size_t n = polygon.size();
+    std::vector<std::pair<std::size_t, std::size_t>> stack;
+    std::vector<std::uint8_t> keep;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = polygon[i];
+        const Vec2 b = polygon[(i + 1) % n];
+        const auto sec = tin.section(a, b, hint);
+        keep.assign(sec.size(), 0);
+        keep.front() = 1;
+        keep.back() = 1;
+        stack.clear();
+        stack.emplace_back(0, sec.size() - 1);
+        while (!stack.empty()) {
+            const auto [lo, hi] = stack.back();
+            stack.pop_back();
+            if (hi <= lo + 1) continue;
+            double worst = 0.0;
+            std::size_t at = lo;
+            for (std::size_t k = lo + 1; k < hi; ++k) {
+                const double t = (sec[k].first - sec[lo].first) / (sec[hi].first - sec[lo].first);
+                const double straight = (1.0 - t) * sec[lo].second + t * sec[hi].second;
+                const double dev = std::abs(sec[k].second - straight);
+                if (dev > worst) {
+                    worst = dev;
+                    at = k;
+                }
+            }
+            // Crossings closer than a millionth of the edge to a kept point add nothing.
+            if (worst > tolerance && sec[at].first - sec[lo].first > 1e-6 &&
+                sec[hi].first - sec[at].first > 1e-6) {
+                keep[at] = 1;
+                stack.emplace_back(lo, at);
+                stack.emplace_back(at, hi);
+            }
+        }
+        for (std::size_t k = 0; k + 1 < sec.size(); ++k) {
+            if (!keep[k]) continue;
+            points.push_back(k == 0 ? a : lerp(a, b, sec[k].first));
+            heights.push_back(sec[k].second);
+        }
+    }
+}
+
+}  // namespace
+
+StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptContext& context,
+                  std::optional<Vec2> motion) {
+    StampReport report;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!is_finite(at.centre) || !std::isfinite(at.angle) || !std::isfinite(at.bottom)) {
+        throw std::invalid_argument("stamp: tool placement is not finite");
+    }
+    const Rect domain = tin.domain();
+    const double spacing = tool.rim_spacing();
+    const double eps = 1e-9 * std::max(tool.radius(), 1e-9);
+    auto to_world = [&](std::span<const Vec2> local) {
+        std::vector<Vec2> out;
+        for (Vec2 p : subdivide_contour(local, spacing))
+            out.push_back(tool.to_world(at, p));
+        return out;
+    };
+    std::vector<Vec2> outer = drop_near_duplicates(
+        clip_to_rect(to_world(tool.shape().outer), domain.min, domain.max), eps);
+    std::vector<Vec2> inner = drop_near_duplicates(
+        clip_to_rect(to_world(tool.shape().inner), domain.min, domain.max), eps);
+    if (outer.size() < 3 || inner.size() < 3 || !(std::abs(signed_area(inner)) > eps * eps)) {
+        return report;  // the tool misses the terrain
+    }
+    report.applied = true;
+    const Generation generation = context.next_generation();
+    report.generation = generation;
+    LocateHint* hint = &context.hint;
+    const double ledger_start = tin.volume_ledger();
+    EditReport edit;
+
+    // 1. Release older constraints under the footprint and those past their lifetime.
+    std::vector<VertexId> released;
+    ReleaseFilter under;
+    under.older_than = generation;
+    under.touching_polygon = outer;
+    report.constraints_released +=
+        tin.release_constraints(under, VolumePolicy::Report, &edit, &released);
+    if (generation > context.settings.keep_generations) {
+        ReleaseFilter expired;
+        expired.older_than = generation - context.settings.keep_generations;
+        report.constraints_released +=
+            tin.release_constraints(expired, VolumePolicy::Report, &edit, &released);
+    }
+    context.simplifier.enqueue(released);
+
+    // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour and at
+    //    the interior samples of a curved profile.
+    std::vector<Vec2> rim;
+    std::vector<double> rim_h;
+    sample_rim(tin, outer, tool.rim_tolerance(), hint, rim, rim_h);
+    std::vector<double> inner_terrain(inner.size());
+    for (std::size_t i = 0; i < inner.size(); ++i)
+        inner_terrain[i] = surface_or(tin, inner[i], hint, 0.0);
+    std::vector<Vec2> lattice;
+    std::vector<double> lattice_terrain;
+    if (!tool.profile().is_flat()) {
+        const double step = std::min(spacing, tool.profile().sample_spacing());
+        lattice = interior_lattice(inner, step);
+        for (Vec2 p : lattice)
+            lattice_terrain.push_back(surface_or(tin, p, hint, 0.0));
+    }
+    const bool dig = tool.spec().mode == ImprintMode::Dig;
+    auto imprint = [&](Vec2 p, double terrain) {
+        const double u = tool.underside(at, p);
+        if (!std::isfinite(u)) return terrain;  // no contact there
+        return dig ? std::min(terrain, u) : u;
+    };
+
+    // Which parts of the contours the stamp actually changes: an inner segment is active
+    // where the terrain along it (pre-stamp) stands off the tool by more than the tolerance;
+    // an outer segment is kept next to an active inner one. Along the trail of a stroke the
+    // trailing half of each contour lies in sand already dug to the tool's depth, and
+    // constraining it would only create vertices the next stamp removes again.
+    std::vector<double> inner_h(inner.size());
+    for (std::size_t i = 0; i < inner.size(); ++i)
+        inner_h[i] = imprint(inner[i], inner_terrain[i]);
+    const double tol = tool.rim_tolerance();
+    std::vector<std::uint8_t> inner_active(inner.size(), 0);
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+        const Vec2 a = inner[i];
+        const Vec2 b = inner[(i + 1) % inner.size()];
+        for (const auto& [t, z] : tin.section(a, b, hint)) {
+            const Vec2 p = lerp(a, b, t);
+            if (std::abs(z - imprint(p, z)) > tol) {
+                inner_active[i] = 1;
+                break;
+            }
+        }
+    }
+    std::vector<std::uint8_t> rim_active(rim.size(), 0);
+    const double reach = tool.shape().gap + spacing;
+    for (std::size_t k = 0; k < rim.size(); ++k) {
+        const Vec2 a = rim[k];
+        const Vec2 b = rim[(k + 1) % rim.size()];
+        for (std::size_t i = 0; i < inner.size() && !rim_active[k]; ++i) {
+            if (!inner_active[i]) continue;
+            const Vec2 c = inner[i];
+            const Vec2 d = inner[(i + 1) % inner.size()];
+            const double gap =
+                std::min({distance_to_segment(a, c, d), distance_to_segment(b, c, d),
+                          distance_to_segment(c, a, b), distance_to_segment(d, a, b)});
+            rim_active[k] = gap <= reach ? 1 : 0;
+        }
+    }
+    // Inserts the endpoints of the active segments of a closed contour and constrains them.
+    auto enforce = [&](const std::vector<Vec2>& pts, const std::vector<double>& hs,
+                       const std::vector<std::uint8_t>& active) {
+        const std::size_t n = pts.size();
+        std::vector<std::size_t> index(n, SIZE_MAX);
+        std::vector<Vec2> ps;
+        std::vector<double> zs;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (active[k] || active[(k + n - 1) % n]) {
+                index[k] = ps.size();
+                ps.push_back(pts[k]);
+                zs.push_back(hs[k]);
+            }
+        }
+        const std::vector<VertexId> ids = tin.insert_points(ps, zs, hint, &edit);
+        std::vector<std::array<VertexId, 2>> segments;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!active[k]) continue;
+            const VertexId a = ids[index[k]];
+            const VertexId b = ids[index[(k + 1) % n]];
+            if (a != b) segments.push_back({a, b});
+        }
+        tin.insert_constraints(segments, generation, VolumePolicy::Report, &edit);
+    };
+
+    // 3. Outer contour at the terrain's heights.
+    enforce(rim, rim_h, rim_active);
+    // 4. Inner contour at the profile's heights.
+    enforce(inner, inner_h, inner_active);
+    if (!lattice.empty()) {
+        std::vector<double> lattice_h(lattice.size());
+        for (std::size_t i = 0; i < lattice.size(); ++i)
+            lattice_h[i] = imprint(lattice[i], lattice_terrain[i]);
+        tin.insert_points(lattice, lattice_h, hint, &edit);
+    }
+
+    // 5. Every vertex inside I follows the profile.
+    const std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
+    const VertexArrays& va = tin.vertices();
+    for (VertexId v : region) {
+        const Vec2 p = va.position[v.value];
+        if (!point_in_polygon(p, inner)) continue;
+        const double h = imprint(p, va.height[v.value]);
+        if (h != va.height[v.value]) tin.set_height(v, h);
+    }
+    report.displaced_volume = -(tin.volume_ledger() - ledger_start);
+    report.enforce_ms = elapsed_ms(t0);
+
+    // 6. Inner vertices that the flat imprint made redundant go at once; the rest of the queue
+    //    (released rims, earlier edits) is processed too: this is the end of the iteration.
+    //    A flat tool that lowered everything it covers leaves one planar patch: it is removed
+    //    in a single step, without testing each vertex (the cost stays near-independent of how
+    //    dense the terrain was under the tool).
+    const auto t1 = std::chrono::steady_clock::now();
+    bool cleared = false;
+    if (tool.profile().is_flat() && context.settings.simplify_after_edit && region.size() > 1) {
+        bool level = true;
+        std::vector<VertexId> interior;
+        for (VertexId v : region) {
+            if (va.height[v.value] != at.bottom && point_in_polygon(va.position[v.value], inner)) {
+                level = false;
+                break;
+            }
+            if (!tin.is_on_constraint(v) && !tin.is_boundary(v) &&
+                point_in_polygon(va.position[v.value], inner)) {
+                interior.push_back(v);
+            }
+        }
+        if (level && !interior.empty()) {
+            EditReport patch;
+            cleared = tin.remove_planar_patch(interior, context.settings.simplify.tolerance,
+                                              context.settings.simplify.volume_policy, &patch);
+            if (cleared) {
+                report.simplify.tested += interior.size();
+                report.simplify.removed += interior.size();
+                report.simplify.volume_change += patch.volume_change;
+                report.simplify.max_volume_change = std::abs(patch.volume_change);
+            }
+        }
+    }
+    if (!cleared) context.simplifier.enqueue(region);
+    if (context.settings.simplify_after_edit) {
+        report.simplify.accumulate(context.simplifier.run(tin, context.settings.simplify));
+    }
+    report.simplify_ms = elapsed_ms(t1);
+
+    // 7. Extrusion: the displaced volume goes into a ridge ahead of and beside the tool.
+    const auto t2 = std::chrono::steady_clock::now();
+    if (tool.spec().extrude && report.displaced_volume > 0.0) {
+        // Cut depth at each rim point: that of the nearest inner contour point.
+        std::vector<double> cut(rim.size(), 0.0);
+        for (std::size_t i = 0; i < rim.size(); ++i) {
+            double best = std::numeric_limits<double>::infinity();
+            for (std::size_t j = 0; j < inner.size(); ++j) {
+                const double d = length_squared(inner[j] - rim[i]);
+                if (d < best) {
+                    best = d;
+                    cut[i] = inner_terrain[j] - inner_h[j];
+                }
+            }
+        }
+        std::vector<VertexId> ridge;
+        const RidgeReport ridge_report = deposit_ridge(
+            tin, rim, cut, motion, tool.extrusion_width(), report.displaced_volume, hint, &ridge);
+        report.deposited_volume = ridge_report.deposited;
+        context.simplifier.enqueue(ridge);
+    }
+    report.extrude_ms = elapsed_ms(t2);
+
+    report.volume_change = tin.volume_ledger() - ledger_start;
+    report.triangles_touched = edit.triangles_changed;
+    report.vertices_inserted = edit.vertices_created;
+    report.vertices_removed = edit.vertices_removed + report.simplify.removed;
+    return report;
+}
+
+}  // namespace sandtin

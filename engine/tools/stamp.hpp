@@ -1,0 +1,44 @@
+#pragma once
+// One stamp of a tool into the terrain, in the seeds' order (seed 000 §7.3, seed 003 §3.3,
+// seed 004 §3.4):
+//   1. release older constraints under the new footprint (and those past their lifetime);
+//   2. interpolate the terrain heights along the outer contour O, subdividing its edges until
+//      the rim follows the terrain within the tool's tolerance;
+//   3. constrain O (each segment its own constraint, tagged with the stamp's generation);
+//   4. constrain the inner contour I with its points at the tool's profile height;
+//   5. set every vertex inside I to the profile, walking the faces inside the constrained I;
+//   6. remove inner vertices that became redundant (automatic simplification);
+//   7. optionally push the displaced volume into a ridge outside O (extrusion).
+
+#include <optional>
+
+#include "tin/tin.hpp"
+#include "tools/sculpt_context.hpp"
+#include "tools/tool.hpp"
+
+namespace sandtin {
+
+struct StampReport {
+    bool applied = false;  ///< false when the tool missed the terrain entirely
+    Generation generation = 0;
+    double displaced_volume = 0.0;  ///< m³ the inner part removed (negative when it filled)
+    double deposited_volume = 0.0;  ///< m³ put back by extrusion
+    double volume_change = 0.0;     ///< m³ net change of the terrain volume
+    std::size_t vertices_inserted = 0;
+    std::size_t vertices_removed = 0;
+    std::size_t triangles_touched = 0;  ///< triangle slots the stamp changed
+    std::size_t constraints_released = 0;
+    SimplifyReport simplify;
+    double enforce_ms = 0.0;   ///< steps 1-5
+    double simplify_ms = 0.0;  ///< step 6
+    double extrude_ms = 0.0;   ///< step 7
+
+    void accumulate(const StampReport& o);
+};
+
+/// Stamps `tool` at `at`. `motion` (any length) is the direction the tool moves in, which
+/// shapes the extrusion ridge; without it the ridge surrounds the tool.
+StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptContext& context,
+                  std::optional<Vec2> motion = std::nullopt);
+
+}  // namespace sandtin

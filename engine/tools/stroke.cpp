@@ -1,0 +1,130 @@
+#include "tools/stroke.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace sandtin {
+
+StrokeSampler::StrokeSampler(double spacing) : spacing_(spacing) {
+    if (!(spacing > 0.0) || !std::isfinite(spacing)) {
+        throw std::invalid_argument("stroke: spacing must be a positive number of metres");
+    }
+}
+
+std::vector<StrokeSample> StrokeSampler::add_point(Vec2 p) {
+    std::vector<StrokeSample> out;
+    if (!is_finite(p)) throw std::invalid_argument("stroke: path point is not finite");
+    if (!last_) {
+        last_ = p;
+        start_pending_ = true;
+        next_at_ = spacing_;
+        return out;
+    }
+    const Vec2 a = *last_;
+    const double len = distance(a, p);
+    if (len <= 0.0) return out;
+    const Vec2 dir = (p - a) / len;
+    if (start_pending_) {
+        out.push_back({a, dir, 0.0});
+        start_pending_ = false;
+    }
+    // Samples at arc lengths next_at_, next_at_ + spacing, ... within this segment. Positions
+    // are computed from the segment start and the arc length, so splitting a straight segment
+    // into pieces gives the same samples.
+    while (next_at_ <= travelled_ + len) {
+        const double t = (next_at_ - travelled_) / len;
+        out.push_back({lerp(a, p, t), dir, next_at_});
+        next_at_ += spacing_;
+    }
+    travelled_ += len;
+    last_ = p;
+    last_direction_ = dir;
+    return out;
+}
+
+std::vector<StrokeSample> StrokeSampler::finish() {
+    std::vector<StrokeSample> out;
+    if (start_pending_ && last_) out.push_back({*last_, last_direction_, 0.0});
+    start_pending_ = false;
+    return out;
+}
+
+std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
+    std::vector<Vec2> out;
+    if (control.size() < 3 || !(max_step > 0.0))
+        return std::vector<Vec2>(control.begin(), control.end());
+    const std::size_t n = control.size();
+    auto point = [&](std::ptrdiff_t i) {
+        // Reflect the end points so the curve starts and ends at the first and last control.
+        if (i < 0) return control[0] * 2.0 - control[1];
+        if (i >= static_cast<std::ptrdiff_t>(n)) return control[n - 1] * 2.0 - control[n - 2];
+        return control[static_cast<std::size_t>(i)];
+    };
+    out.push_back(control[0]);
+    for (std::size_t seg = 0; seg + 1 < n; ++seg) {
+        const auto i = static_cast<std::ptrdiff_t>(seg);
+        const Vec2 p0 = point(i - 1), p1 = point(i), p2 = point(i + 1), p3 = point(i + 2);
+        // Centripetal knots (alpha = 1/2).
+        auto knot = [](Vec2 a, Vec2 b) { return std::sqrt(std::max(distance(a, b), 1e-12)); };
+        const double t0 = 0.0, t1 = t0 + knot(p0, p1), t2 = t1 + knot(p1, p2),
+                     t3 = t2 + knot(p2, p3);
+        const int steps = std::max(1, static_cast<int>(std::ceil(distance(p1, p2) / max_step)));
+        for (int k = 1; k <= steps; ++k) {
+            const double t = t1 + (t2 - t1) * k / steps;
+            const Vec2 a1 = p0 * ((t1 - t) / (t1 - t0)) + p1 * ((t - t0) / (t1 - t0));
+            const Vec2 a2 = p1 * ((t2 - t) / (t2 - t1)) + p2 * ((t - t1) / (t2 - t1));
+            const Vec2 a3 = p2 * ((t3 - t) / (t3 - t2)) + p3 * ((t - t2) / (t3 - t2));
+            const Vec2 b1 = a1 * ((t2 - t) / (t2 - t0)) + a2 * ((t - t0) / (t2 - t0));
+            const Vec2 b2 = a2 * ((t3 - t) / (t3 - t1)) + a3 * ((t - t1) / (t3 - t1));
+            out.push_back(b1 * ((t2 - t) / (t2 - t1)) + b2 * ((t - t1) / (t2 - t1)));
+        }
+    }
+    return out;
+}
+
+ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample& sample,
+                            const StrokeSettings& settings, LocateHint* hint) {
+    ToolPlacement at;
+    at.centre = sample.position;
+    at.angle =
+        settings.follow_path ? std::atan2(sample.direction.y, sample.direction.x) : settings.angle;
+    if (settings.depth_mode == DepthMode::Absolute) {
+        at.bottom = settings.depth;
+    } else {
+        const Rect d = tin.domain();
+        Vec2 front = sample.position + sample.direction * tool.radius();
+        front = {std::clamp(front.x, d.min.x, d.max.x), std::clamp(front.y, d.min.y, d.max.y)};
+        const std::optional<double> h = tin.height_at(front, hint);
+        const std::optional<double> hc =
+            tin.height_at({std::clamp(sample.position.x, d.min.x, d.max.x),
+                           std::clamp(sample.position.y, d.min.y, d.max.y)},
+                          hint);
+        at.bottom = (h ? *h : hc.value_or(0.0)) - settings.depth;
+    }
+    return at;
+}
+
+StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
+                         const StrokeSettings& settings, SculptContext& context,
+                         std::vector<StampReport>* per_stamp) {
+    StampReport total;
+    StrokeSampler sampler(settings.spacing);
+    const bool moves = path.size() > 1;
+    auto run = [&](const std::vector<StrokeSample>& samples) {
+        for (const StrokeSample& s : samples) {
+            const ToolPlacement at = placement_for(tin, tool, s, settings, &context.hint);
+            const std::optional<Vec2> motion =
+                moves ? std::optional<Vec2>(s.direction) : std::nullopt;
+            const StampReport r = stamp(tin, tool, at, context, motion);
+            if (per_stamp != nullptr) per_stamp->push_back(r);
+            total.accumulate(r);
+        }
+    };
+    for (Vec2 p : path)
+        run(sampler.add_point(p));
+    run(sampler.finish());
+    return total;
+}
+
+}  // namespace sandtin

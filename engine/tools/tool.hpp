@@ -1,0 +1,96 @@
+#pragma once
+// A sculpting tool: its footprint (inner and outer contour), its underside profile and the
+// parameters of how it is stamped. Built once from a ToolSpec; stamping only reads it.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geom/vec2.hpp"
+#include "tools/tool_profile.hpp"
+#include "tools/tool_shape.hpp"
+
+namespace sandtin {
+
+enum class ContourKind : std::uint8_t { Circle, Rectangle, Polygon };
+enum class ProfileKind : std::uint8_t { Flat, HalfSphere, Heightfield, Mesh };
+
+/// How the inner part changes the heights it covers.
+enum class ImprintMode : std::uint8_t {
+    Dig,    ///< press down only: h = min(h, tool)  (sand is never lifted by a pressing tool)
+    Level,  ///< set exactly: h = tool  (a trowel that also fills)
+};
+
+struct ToolSpec {
+    std::string name = "circle";
+    ContourKind contour = ContourKind::Circle;
+    double radius = 0.04;       ///< circle radius (m)
+    double width = 0.08;        ///< rectangle extent across the forward axis (m)
+    double length = 0.08;       ///< rectangle extent along the forward axis (m)
+    std::vector<Vec2> polygon;  ///< polygon contour (m, before `scale`), any orientation
+    double scale = 1.0;         ///< uniform scale of polygon contours and mesh/heightfield profiles
+
+    ProfileKind profile = ProfileKind::Flat;
+    double sphere_radius = 0.0;  ///< half-sphere radius (m); 0 = the contour's bounding radius
+    std::filesystem::path profile_file;  ///< PNG heightfield or OBJ mesh
+    double relief = 0.02;                ///< heightfield: metres between black and white
+    bool contour_from_mesh = false;      ///< contour = the mesh's boundary loop seen from below
+
+    int control_points = 12;     ///< circle: number of vertices of the inner contour
+    double gap = 0.0;            ///< distance from I to O (m); 0 = 2.5 % of the tool's radius
+    double rim_spacing = 0.0;    ///< longest contour edge (m); 0 = perimeter / control points
+    double rim_tolerance = 0.0;  ///< how closely O follows the terrain (m); 0 = 1 % of the radius
+    ImprintMode mode = ImprintMode::Dig;
+    bool extrude = false;          ///< push the displaced volume into a ridge around the tool
+    double extrusion_width = 0.0;  ///< ridge width (m); 0 = the tool's radius
+};
+
+/// Where a stamp goes: the centre in the plane, the heading (radians, counter-clockwise from
+/// +x) and the height of the tool's lowest point (m).
+struct ToolPlacement {
+    Vec2 centre;
+    double angle = 0.0;
+    double bottom = 0.0;
+};
+
+class Tool {
+  public:
+    /// Throws std::invalid_argument (or std::runtime_error for unreadable profile files) with
+    /// a message naming the bad parameter.
+    static Tool build(const ToolSpec& spec);
+
+    const ToolSpec& spec() const { return spec_; }
+    const ToolShape& shape() const { return shape_; }
+    const ToolProfile& profile() const { return profile_; }
+    double radius() const { return radius_; }  ///< bounding radius of the inner contour (m)
+    double rim_spacing() const { return rim_spacing_; }
+    double rim_tolerance() const { return rim_tolerance_; }
+    double extrusion_width() const { return extrusion_width_; }
+
+    Vec2 to_world(const ToolPlacement& at, Vec2 local) const {
+        return at.centre + rotate(local, at.angle);
+    }
+    Vec2 to_local(const ToolPlacement& at, Vec2 world) const {
+        return rotate(world - at.centre, -at.angle);
+    }
+    /// Height of the tool's underside above world point p (m); +infinity where it has no contact.
+    double underside(const ToolPlacement& at, Vec2 world) const {
+        return at.bottom + profile_.offset(to_local(at, world));
+    }
+
+  private:
+    ToolSpec spec_;
+    ToolShape shape_;
+    ToolProfile profile_;
+    double radius_ = 0.0;
+    double rim_spacing_ = 0.0;
+    double rim_tolerance_ = 0.0;
+    double extrusion_width_ = 0.0;
+};
+
+/// The boundary loop of a mesh seen from below (x, y of its open border), centred and scaled
+/// like ToolProfile::mesh_imprint. Throws std::invalid_argument when the mesh has no border.
+std::vector<Vec2> mesh_outline(const TriangleMesh& mesh, double scale);
+
+}  // namespace sandtin

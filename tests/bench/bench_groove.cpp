@@ -1,0 +1,133 @@
+#include "bench_groove.hpp"
+
+#include <cmath>
+
+#include "tin/tin.hpp"
+#include "tools/stroke.hpp"
+
+namespace sandtin::bench {
+
+namespace {
+
+struct GrooveRun {
+    double total_ms = 0.0;
+    double enforce_ms = 0.0;
+    double simplify_ms = 0.0;
+    double per_stamp_median_ms = 0.0;
+    double per_stamp_p90_ms = 0.0;
+    std::size_t stamps = 0;
+    std::size_t vertices_before = 0;
+    std::size_t vertices_after = 0;
+    std::size_t triangles_touched = 0;
+    std::size_t constrained_edges_after = 0;
+    bool valid = false;
+};
+
+/// A flat TIN of n random points on the unit square; a circular tool of radius 0.04, 12
+/// control points, its bottom at -0.1; a stroke along the diagonal from (0.5 - L/2)(1, 1) to
+/// (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the diagonal. Stamps are
+/// r/4 = 1 cm apart, so consecutive footprints overlap by 7/8 and the walls are smooth to
+/// 0.3 mm.
+GrooveRun run_groove(std::size_t n, double trace, bool validate) {
+    TinOptions options;
+    options.track_changes = false;
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), n, 2009, {}, options);
+    SculptContext context(tin.domain());
+    ToolSpec spec;
+    spec.contour = ContourKind::Circle;
+    spec.radius = 0.04;
+    spec.control_points = 12;
+    const Tool tool = Tool::build(spec);
+    StrokeSettings settings;
+    settings.spacing = 0.01;
+    settings.depth_mode = DepthMode::Absolute;
+    settings.depth = -0.1;
+    const double half = 0.5 * trace;
+    const std::vector<Vec2> path = {{0.5 - half, 0.5 - half}, {0.5 + half, 0.5 + half}};
+
+    GrooveRun run;
+    run.vertices_before = tin.vertex_count();
+    std::vector<StampReport> stamps;
+    Stopwatch w;
+    const StampReport total = apply_stroke(tin, tool, path, settings, context, &stamps);
+    run.total_ms = w.ms();
+    run.enforce_ms = total.enforce_ms;
+    run.simplify_ms = total.simplify_ms;
+    std::vector<double> per;
+    for (const StampReport& s : stamps)
+        per.push_back(s.enforce_ms + s.simplify_ms + s.extrude_ms);
+    run.per_stamp_median_ms = median(per);
+    std::sort(per.begin(), per.end());
+    run.per_stamp_p90_ms = per.empty() ? 0.0 : per[per.size() * 9 / 10];
+    run.stamps = stamps.size();
+    run.vertices_after = tin.vertex_count();
+    run.triangles_touched = total.triangles_touched;
+    run.constrained_edges_after = tin.constrained_edge_count();
+    run.valid = !validate || tin.check_valid().ok();
+    return run;
+}
+
+nlohmann::json to_json(const GrooveRun& r) {
+    return {{"stamps", r.stamps},
+            {"total_ms", r.total_ms},
+            {"enforce_ms", r.enforce_ms},
+            {"simplify_ms", r.simplify_ms},
+            {"erosion_ms", nullptr},
+            {"per_stamp_median_ms", r.per_stamp_median_ms},
+            {"per_stamp_p90_ms", r.per_stamp_p90_ms},
+            {"vertices_before", r.vertices_before},
+            {"vertices_after", r.vertices_after},
+            {"triangles_touched", r.triangles_touched},
+            {"constrained_edges_after", r.constrained_edges_after},
+            {"valid", r.valid}};
+}
+
+}  // namespace
+
+nlohmann::json bench_groove(const BenchConfig& config) {
+    nlohmann::json j;
+    j["bench"] = "groove";
+    j["tool"] = {{"radius", 0.04}, {"control_points", 12}, {"bottom", -0.1}, {"spacing", 0.01}};
+    const std::vector<std::size_t> sizes = config.quick
+                                               ? std::vector<std::size_t>{1000, 10000}
+                                               : std::vector<std::size_t>{10000, 100000, 1000000};
+    nlohmann::json by_size = nlohmann::json::array();
+    std::vector<double> medians;
+    for (std::size_t n : sizes) {
+        // Median over repetitions of the whole groove; the per-stamp figures are from the
+        // repetition with the median total.
+        std::vector<GrooveRun> runs;
+        const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
+        for (int r = 0; r < reps; ++r)
+            runs.push_back(run_groove(n, 0.8, r == 0));
+        std::sort(runs.begin(), runs.end(),
+                  [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
+        const GrooveRun& mid = runs[runs.size() / 2];
+        nlohmann::json row = to_json(mid);
+        row["points"] = n;
+        row["repetitions"] = reps;
+        row["valid"] = runs.front().valid && runs.back().valid;
+        by_size.push_back(row);
+        medians.push_back(mid.per_stamp_median_ms);
+    }
+    j["by_size"] = by_size;
+    j["per_stamp_growth"] = medians.front() > 0.0 ? medians.back() / medians.front() : 0.0;
+    nlohmann::json by_trace = nlohmann::json::array();
+    const std::size_t n = config.quick ? 1000 : 10000;
+    for (int k = 1; k <= 8; ++k) {
+        const double trace = 0.1 * k;
+        std::vector<GrooveRun> runs;
+        for (int r = 0; r < (config.quick ? 1 : 3); ++r)
+            runs.push_back(run_groove(n, trace, false));
+        std::sort(runs.begin(), runs.end(),
+                  [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
+        nlohmann::json row = to_json(runs[runs.size() / 2]);
+        row["trace"] = trace;
+        row["points"] = n;
+        by_trace.push_back(row);
+    }
+    j["by_trace"] = by_trace;
+    return j;
+}
+
+}  // namespace sandtin::bench

@@ -1,0 +1,224 @@
+#!/usr/bin/env bash
+# End-to-end tests of the sandtin CLI.
+# usage: cli_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get
+#   scenarios: roundtrip, bad_input, bench, demo
+# json_get (tests/cli/json_get.cpp) reads values out of the JSON the CLI prints.
+set -uo pipefail
+
+SANDTIN=${1:?path to the sandtin binary}
+SCENARIO=${2:?scenario}
+WORK=${3:?work directory}
+JSON_GET=${4:?path to json_get}
+
+rm -rf "$WORK"
+mkdir -p "$WORK"
+cd "$WORK" || exit 1
+
+failures=0
+fail() {
+    echo "FAIL: $*" >&2
+    failures=$((failures + 1))
+}
+
+# json FILE POINTER...: the values at JSON pointers, one per line (strings raw, the rest as
+# compact JSON).
+json() {
+    "$JSON_GET" "$@"
+}
+
+# holds WHAT AWK-CONDITION VALUES...: the condition over a, b, c (the values) must hold.
+holds() {
+    local what=$1 cond=$2
+    shift 2
+    if ! awk -v a="${1:-}" -v b="${2:-}" -v c="${3:-}" "BEGIN { exit !($cond) }"; then
+        fail "$what: ($cond) does not hold for a='${1:-}' b='${2:-}' c='${3:-}'"
+    fi
+}
+
+abs_le() {  # abs_le X Y REL: |X - Y| <= REL * |Y|
+    holds "$4" "(a - b <= c * (b < 0 ? -b : b)) && (b - a <= c * (b < 0 ? -b : b))" "$1" "$2" "$3"
+}
+
+# run NAME ARGS...: runs sandtin, keeping stdout in NAME.out, stderr in NAME.err, exit code in $rc.
+run() {
+    local name=$1
+    shift
+    "$SANDTIN" "$@" >"$name.out" 2>"$name.err"
+    rc=$?
+}
+
+expect_ok() {
+    local name=$1
+    shift
+    run "$name" "$@"
+    if [[ $rc -ne 0 ]]; then
+        fail "$name: 'sandtin $*' exited with $rc; stderr: $(cat "$name.err")"
+        return 1
+    fi
+    return 0
+}
+
+# expect_error NAME KEYWORD ARGS...: non-zero exit below 128 (no crash, no signal), a message
+# on stderr containing KEYWORD (case-insensitive).
+expect_error() {
+    local name=$1 keyword=$2
+    shift 2
+    run "$name" "$@"
+    if [[ $rc -eq 0 ]]; then
+        fail "$name: 'sandtin $*' succeeded but should have failed"
+    elif [[ $rc -ge 128 ]]; then
+        fail "$name: 'sandtin $*' crashed (exit $rc, signal $((rc - 128)))"
+    fi
+    if [[ ! -s "$name.err" ]]; then
+        fail "$name: no message on stderr"
+    elif ! grep -qi -- "$keyword" "$name.err"; then
+        fail "$name: stderr lacks '$keyword': $(cat "$name.err")"
+    fi
+    if grep -qi "terminate called\|Segmentation\|Aborted\|core dumped" "$name.err"; then
+        fail "$name: crash message on stderr: $(cat "$name.err")"
+    fi
+}
+
+check_eq() {  # check_eq WHAT ACTUAL EXPECTED
+    if [[ "$2" != "$3" ]]; then fail "$1: got '$2', expected '$3'"; fi
+}
+
+scenario_roundtrip() {
+    # The acceptance example: new, then info.
+    expect_ok new1 new --flat 10 10 --points 1000 --seed 3 -o scene.sandtin || return
+    [[ -s scene.sandtin ]] || fail "new wrote no file"
+    expect_ok info1 info scene.sandtin --json || return
+    check_eq "info vertices" "$(json info1.out /vertices)" 1004
+    check_eq "info valid" "$(json info1.out /valid)" true
+    # Euler's formula for 1004 points, 4 of them on the hull: T = 2V - h - 2.
+    check_eq "info triangles" "$(json info1.out /triangles)" 2002
+    check_eq "info constrained_edges" "$(json info1.out /constrained_edges)" 0
+    check_eq "info bbox" "$(json info1.out /bbox/min/0 /bbox/min/1 /bbox/max/0 /bbox/max/1 | tr '\n' ' ')" \
+        "0.0 0.0 10.0 10.0 "
+
+    # What `new --json` reports of the terrain it saved equals what `info` reads back.
+    expect_ok new2 new --flat 10 10 --points 1000 --seed 3 --height 1.5 -o scene2.sandtin --json || return
+    expect_ok info2 info scene2.sandtin --json || return
+    for key in vertices triangles constrained_edges constraints bbox volume; do
+        check_eq "new vs info $key" "$(json info2.out "/$key")" "$(json new2.out "/$key")"
+    done
+    check_eq "info2 vertices" "$(json info2.out /vertices)" 1004
+    check_eq "info2 valid" "$(json info2.out /valid)" true
+    # Flat at 1.5 m over 100 m^2: 150 m^3 (independent of the triangulation).
+    abs_le "$(json info2.out /volume)" 150 1e-12 "volume of the flat terrain"
+
+    # Same seed, same file; another seed, another file.
+    expect_ok new3 new --flat 10 10 --points 1000 --seed 3 -o scene3.sandtin || return
+    cmp -s scene.sandtin scene3.sandtin || fail "new is not deterministic for a seed"
+    expect_ok new4 new --flat 10 10 --points 1000 --seed 4 -o scene4.sandtin || return
+    cmp -s scene.sandtin scene4.sandtin && fail "different seeds gave the same file"
+
+    # A grid: (8+1) x (6+1) vertices, 2*8*6 triangles, flat at 2 m over 4 x 3 m.
+    expect_ok grid1 new --grid 4 3 8 6 --height 2 -o grid.sandtin --json || return
+    expect_ok grid2 info grid.sandtin --json || return
+    check_eq "grid vertices" "$(json grid2.out /vertices)" 63
+    check_eq "grid triangles" "$(json grid2.out /triangles)" 96
+    abs_le "$(json grid2.out /volume)" 24 1e-12 "grid volume"
+    check_eq "grid valid" "$(json grid2.out /valid)" true
+
+    # Zero points: just the rectangle.
+    expect_ok rect1 new --flat 3 2 -o rect.sandtin || return
+    expect_ok rect2 info rect.sandtin --json || return
+    check_eq "rect vertices" "$(json rect2.out /vertices)" 4
+    check_eq "rect triangles" "$(json rect2.out /triangles)" 2
+
+    # Human-readable info.
+    expect_ok info3 info scene.sandtin || return
+    grep -q "vertices *1004" info3.out || fail "plain info lacks the vertex count: $(cat info3.out)"
+    grep -q "valid *yes" info3.out || fail "plain info lacks 'valid yes': $(cat info3.out)"
+    expect_ok help help
+}
+
+scenario_bad_input() {
+    expect_ok good new --flat 10 10 --points 200 --seed 1 -o good.sandtin || return
+    local size
+    size=$(stat -c %s good.sandtin)
+
+    expect_error missing "missing.sandtin" info missing.sandtin --json
+    head -c $((size / 2)) good.sandtin >truncated.sandtin
+    expect_error truncated "truncated" info truncated.sandtin
+    head -c 20 good.sandtin >header_only.sandtin
+    expect_error truncated_header "truncated" info header_only.sandtin
+    : >empty.sandtin
+    expect_error empty "empty.sandtin" info empty.sandtin
+    printf 'this is not a terrain at all, just some text\n%.0s' {1..20} >garbage.sandtin
+    expect_error garbage "not a sandtin" info garbage.sandtin
+    head -c 4096 /dev/urandom >random.sandtin 2>/dev/null || dd if=/dev/urandom of=random.sandtin bs=4096 count=1 2>/dev/null
+    expect_error random "not a sandtin" info random.sandtin
+    # One flipped byte in the payload.
+    cp good.sandtin flipped.sandtin
+    printf '\xff' | dd of=flipped.sandtin bs=1 seek=$((size - 7)) conv=notrunc 2>/dev/null
+    expect_error flipped "checksum" info flipped.sandtin
+    expect_error directory "cannot" info .
+
+    expect_error nan_width "nan" new --flat nan 10 -o nan.sandtin
+    expect_error zero_width "positive" new --flat 0 10 -o zero.sandtin
+    expect_error negative_height "positive" new --flat 10 -3 -o neg.sandtin
+    expect_error inf_width "inf" new --flat inf 10 -o inf.sandtin
+    expect_error negative_points "points" new --flat 10 10 --points -5 -o negpts.sandtin
+    expect_error text_points "points" new --flat 10 10 --points many -o txt.sandtin
+    expect_error unknown_option "--bogus" new --flat 10 10 --bogus -o bogus.sandtin
+    expect_error missing_value "--flat" new --flat 10
+    expect_error missing_output "-o" new --flat 10 10
+    expect_error both_shapes "exactly one" new --flat 10 10 --grid 10 10 2 2 -o both.sandtin
+    expect_error bad_grid "NX" new --grid 10 10 0 2 -o g.sandtin
+    expect_error nan_height "height" new --flat 10 10 --height nan -o h.sandtin
+    expect_error no_dir "nosuchdir" new --flat 10 10 -o nosuchdir/x.sandtin
+    for f in nan zero neg inf negpts txt bogus both g h; do
+        [[ -e "$f.sandtin" ]] && fail "a failed 'new' left $f.sandtin behind"
+    done
+    expect_error unknown_command "frobnicate" frobnicate
+    expect_error no_arguments "usage"
+    expect_error info_no_file "usage" info
+    expect_error bench_unknown "unknown benchmark" bench nosuchbench
+    expect_error demo_extra "usage" demo extra-argument
+    # The good file is still fine after all that.
+    expect_ok good_info info good.sandtin --json && check_eq "good valid" "$(json good_info.out /valid)" true
+}
+
+scenario_bench() {
+    expect_ok bench bench tin --quick || return
+    # A smoke test of the driver: the sections exist and hold numbers; timings are not judged.
+    json bench.out /insert/0/sandtin_ms /insert/0/cgal_ms /locate/path_with_hint_ns \
+        /remove/us_per_removal /constraints/sandtin_ms_per_ring_median >/dev/null ||
+        fail "bench output lacks insert/locate/remove/constraints figures: $(head -c 400 bench.out)"
+    check_eq "bench quick flag" "$(json bench.out /quick)" true
+    holds "bench removals" "a > 0" "$(json bench.out /remove/removed)"
+    holds "bench constraint rings" "a > 0 && b > 0" "$(json bench.out /constraints/rings)" \
+        "$(json bench.out /constraints/constrained_edges_after)"
+    expect_ok bench_json bench tin --quick --json || return
+    check_eq "bench --json" "$(json bench_json.out /bench)" tin
+}
+
+scenario_demo() {
+    expect_ok demo demo --json || return
+    check_eq "demo valid" "$(json demo.out /valid)" true
+    holds "demo stamps" "a > 0" "$(json demo.out /stamps)"
+    holds "demo constrained edges" "a > 0" "$(json demo.out /constrained_edges)"
+    # Every edit of the demo conserves volume (VolumePolicy::Conserve).
+    abs_le "$(json demo.out /volume)" "$(json demo.out /volume_before)" 1e-10 "demo volume conserved"
+    expect_ok demo_plain demo || return
+    grep -q "sandtin demo" demo_plain.out || fail "plain demo output lacks its title"
+}
+
+case "$SCENARIO" in
+    roundtrip) scenario_roundtrip ;;
+    bad_input) scenario_bad_input ;;
+    bench) scenario_bench ;;
+    demo) scenario_demo ;;
+    *)
+        echo "unknown scenario $SCENARIO" >&2
+        exit 2
+        ;;
+esac
+
+if [[ $failures -ne 0 ]]; then
+    echo "$failures check(s) failed in scenario $SCENARIO" >&2
+    exit 1
+fi
+echo "scenario $SCENARIO: all checks passed"

@@ -1,0 +1,105 @@
+// Atomic file replacement and whole-file reads.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AtomicFile : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("sandtin-atomic-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    static std::vector<std::uint8_t> pattern(std::size_t n, std::uint8_t seed) {
+        std::vector<std::uint8_t> v(n);
+        for (std::size_t i = 0; i < n; ++i)
+            v[i] = static_cast<std::uint8_t>(seed + i * 31 + (i >> 8));
+        return v;
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(AtomicFile, WriteThenReadBack) {
+    const fs::path p = dir_ / "a.bin";
+    for (std::size_t n :
+         {std::size_t{0}, std::size_t{1}, std::size_t{4096}, (std::size_t{1} << 20) + 17}) {
+        const auto data = pattern(n, static_cast<std::uint8_t>(n));
+        write_file_atomically(p, data);
+        EXPECT_EQ(read_file(p), data) << n;
+        EXPECT_EQ(fs::file_size(p), n);
+    }
+    // Only the target remains: no temporaries left behind after successful writes.
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_))
+        ++entries;
+    EXPECT_EQ(entries, 1u);
+}
+
+TEST_F(AtomicFile, InterruptedWriteKeepsTheOldContent) {
+    const fs::path p = dir_ / "b.bin";
+    const auto old_data = pattern(1000, 1);
+    write_file_atomically(p, old_data);
+    const auto new_data = pattern(3u << 20, 2);
+    std::size_t calls = 0;
+    try {
+        write_file_atomically(p, new_data, [&](std::size_t written) {
+            ++calls;
+            return written < (std::size_t{1} << 20);
+        });
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("interrupted"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(calls, 1u);
+    EXPECT_EQ(read_file(p), old_data);
+    // A new file whose first save is interrupted never appears.
+    const fs::path q = dir_ / "c.bin";
+    EXPECT_THROW(write_file_atomically(q, old_data, [](std::size_t) { return false; }),
+                 std::runtime_error);
+    EXPECT_FALSE(fs::exists(q));
+}
+
+TEST_F(AtomicFile, ErrorsNameThePath) {
+    const fs::path missing_dir = dir_ / "no" / "such" / "dir" / "x.bin";
+    try {
+        write_file_atomically(missing_dir, pattern(10, 3));
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("x.bin"), std::string::npos) << e.what();
+    }
+    try {
+        (void)read_file(dir_ / "absent.bin");
+        ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("absent.bin"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)read_file(dir_), std::runtime_error);
+}
+
+TEST_F(AtomicFile, ReadRefusesFilesAboveTheLimit) {
+    const fs::path p = dir_ / "big.bin";
+    write_file_atomically(p, pattern(5000, 4));
+    EXPECT_THROW((void)read_file(p, 4999), std::runtime_error);
+    EXPECT_EQ(read_file(p, 5000).size(), 5000u);
+}
+
+}  // namespace
+}  // namespace sandtin

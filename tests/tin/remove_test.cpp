@@ -1,0 +1,191 @@
+// remove_vertex. Oracles: Euler's formula, volume before/after (conserved or reported),
+// brute-force volume, snapshot equality when nothing may change.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "support/tin_oracles.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::brute_force_volume;
+using test::close_rel;
+
+double bumpy(Vec2 p) {
+    return 3.0 + 0.6 * std::sin(4.0 * p.x) * std::cos(3.0 * p.y) - 0.1 * p.y;
+}
+
+void expect_sound(const Tin& tin) {
+    const ValidationReport r = tin.check_valid();
+    ASSERT_TRUE(r.ok()) << r.summary();
+    const auto problems = test::mesh_problems(tin);
+    ASSERT_TRUE(problems.empty()) << test::join(problems);
+    EXPECT_EQ(tin.triangle_count(),
+              test::euler_triangle_count(tin.vertex_count(), test::border_vertex_count(tin)));
+}
+
+std::vector<VertexId> interior_ids(const Tin& tin) {
+    std::vector<VertexId> out;
+    for (VertexId v : test::live_ids(tin)) {
+        if (!test::on_domain_border(tin.domain(), tin.position(v))) out.push_back(v);
+    }
+    return out;
+}
+
+TEST(RemoveVertex, InteriorVertexDisappearsAndEulerHolds) {
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 100, 1, bumpy);
+    const auto ids = interior_ids(tin);
+    const VertexId v = ids[ids.size() / 2];
+    const Vec2 p = tin.position(v);
+    const std::size_t n = tin.vertex_count();
+    const std::size_t t = tin.triangle_count();
+    EXPECT_TRUE(tin.remove_vertex(v));
+    EXPECT_FALSE(tin.is_alive(v));
+    EXPECT_EQ(tin.vertices().alive[v.index()], 0);
+    EXPECT_EQ(tin.vertex_count(), n - 1);
+    EXPECT_EQ(tin.triangle_count(), t - 2);
+    EXPECT_NE(tin.locate(p).kind, Location::Kind::OnVertex);
+    for (const auto& tri : tin.triangles()) {
+        for (VertexId c : tri)
+            EXPECT_NE(c, v);
+    }
+    // A dead id cannot be removed again, nor queried.
+    EXPECT_THROW(tin.remove_vertex(v), std::invalid_argument);
+    EXPECT_THROW((void)tin.height(v), std::invalid_argument);
+    EXPECT_THROW((void)tin.position(v), std::invalid_argument);
+    EXPECT_THROW(tin.remove_vertex(VertexId{}), std::invalid_argument);
+    EXPECT_THROW(tin.remove_vertex(VertexId{tin.vertex_capacity() + 10}), std::invalid_argument);
+    expect_sound(tin);
+}
+
+TEST(RemoveVertex, BorderVerticesAreRefusedAndNothingChanges) {
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 50, 2, bumpy);
+    const VertexId mid_edge = tin.insert_point({2.0, 0.0}, 1.0);
+    tin.take_changes();
+    const TinSnapshot before = tin.snapshot();
+    std::size_t border = 0;
+    for (VertexId v : test::live_ids(tin)) {
+        if (!test::on_domain_border(tin.domain(), tin.position(v))) continue;
+        ++border;
+        EXPECT_TRUE(tin.is_boundary(v));
+        EditReport report;
+        EXPECT_FALSE(tin.remove_vertex(v, VolumePolicy::Conserve, &report));
+        EXPECT_EQ(report.vertices_removed, 0u);
+        EXPECT_EQ(report.volume_change, 0.0);
+    }
+    EXPECT_EQ(border, 5u);  // four corners and the one on the bottom edge
+    EXPECT_TRUE(tin.is_alive(mid_edge));
+    test::expect_snapshots_equal(before, tin.snapshot());
+    EXPECT_TRUE(tin.take_changes().empty());
+}
+
+TEST(RemoveVertex, ConstrainedVerticesAreRefused) {
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 50, 3, bumpy);
+    const VertexId a = tin.insert_point({1.0, 1.0}, 1.0);
+    const VertexId b = tin.insert_point({3.0, 2.5}, 2.0);
+    const VertexId c = tin.insert_point({2.0, 3.0}, 1.5);
+    tin.insert_constraint(a, b, 1);
+    tin.take_changes();
+    const TinSnapshot before = tin.snapshot();
+    EXPECT_TRUE(tin.is_on_constraint(a));
+    EXPECT_TRUE(tin.is_on_constraint(b));
+    EXPECT_FALSE(tin.remove_vertex(a));
+    EXPECT_FALSE(tin.remove_vertex(b));
+    test::expect_snapshots_equal(before, tin.snapshot());
+    EXPECT_FALSE(tin.is_on_constraint(c));
+    EXPECT_TRUE(tin.remove_vertex(c));
+    // Once the constraint is released, its vertices can go.
+    ASSERT_EQ(tin.release_constraints({}), 1u);
+    EXPECT_FALSE(tin.is_on_constraint(a));
+    EXPECT_TRUE(tin.remove_vertex(a));
+    expect_sound(tin);
+}
+
+TEST(RemoveVertex, ConservePolicyKeepsVolume) {
+    for (std::uint64_t seed : {4u, 5u}) {
+        SCOPED_TRACE(seed);
+        Tin tin = Tin::random_points(Rect::from_size(5.0, 3.0), 800, seed, bumpy);
+        const double v0 = tin.volume();
+        auto ids = interior_ids(tin);
+        std::mt19937_64 rng = test::test_rng(seed);
+        std::shuffle(ids.begin(), ids.end(), rng);
+        ids.resize(600);
+        double worst = 0.0;
+        for (VertexId v : ids) {
+            const double before = tin.volume();
+            EditReport report;
+            ASSERT_TRUE(tin.remove_vertex(v, VolumePolicy::Conserve, &report));
+            EXPECT_EQ(report.vertices_removed, 1u);
+            worst = std::max(worst, std::abs(tin.volume() - before) / std::abs(before));
+        }
+        EXPECT_LE(worst, 1e-12);
+        EXPECT_LE(std::abs(tin.volume() - v0), 1e-12 * std::abs(v0));
+        EXPECT_TRUE(close_rel(brute_force_volume(tin), v0, 1e-12));
+        EXPECT_EQ(tin.vertex_count(), 804u - 600u);
+        expect_sound(tin);
+    }
+}
+
+TEST(RemoveVertex, ReportPolicyReportsMeasuredChangeAndKeepsHeights) {
+    Tin tin = Tin::random_points(Rect::from_size(5.0, 3.0), 600, 6, bumpy);
+    auto ids = interior_ids(tin);
+    std::mt19937_64 rng = test::test_rng(6);
+    std::shuffle(ids.begin(), ids.end(), rng);
+    ids.resize(400);
+    bool any_nonzero = false;
+    for (VertexId v : ids) {
+        const TinSnapshot before_snap = tin.snapshot();
+        const double before = tin.volume();
+        EditReport report;
+        ASSERT_TRUE(tin.remove_vertex(v, VolumePolicy::Report, &report));
+        const double after = tin.volume();
+        EXPECT_NEAR(report.volume_change, after - before, 1e-12 * std::abs(before));
+        any_nonzero = any_nonzero || report.volume_change != 0.0;
+        // Report leaves every surviving height alone.
+        const VertexArrays& va = tin.vertices();
+        for (std::size_t i = 0; i < va.size(); ++i) {
+            if (va.alive[i]) {
+                ASSERT_EQ(va.height[i], before_snap.vertices.height[i]) << i;
+            }
+        }
+    }
+    EXPECT_TRUE(any_nonzero);
+    EXPECT_TRUE(close_rel(tin.volume(), brute_force_volume(tin), 1e-12));
+    expect_sound(tin);
+}
+
+TEST(RemoveVertex, PlanarRemovalKeepsThePlane) {
+    // Removing vertices from a plane re-triangulates within the plane: nothing to compensate.
+    const test::Plane plane{0.2, -0.7, 5.0};
+    const Rect d = Rect::from_size(3.0, 3.0);
+    Tin tin = Tin::random_points(d, 300, 7, plane);
+    auto ids = interior_ids(tin);
+    for (std::size_t i = 0; i < ids.size(); i += 2)
+        ASSERT_TRUE(tin.remove_vertex(ids[i]));
+    for (VertexId v : test::live_ids(tin)) {
+        EXPECT_NEAR(tin.height(v), plane(tin.position(v)), 1e-12 * 8.0);
+    }
+    EXPECT_TRUE(close_rel(tin.volume(), plane.integral(d), 1e-12));
+    expect_sound(tin);
+}
+
+TEST(RemoveVertex, RemovingEveryInteriorVertexLeavesTheRectangle) {
+    Tin tin = Tin::random_points(Rect::from_size(2.0, 2.0), 200, 8, bumpy);
+    const double v0 = tin.volume();
+    for (VertexId v : interior_ids(tin))
+        ASSERT_TRUE(tin.remove_vertex(v));
+    EXPECT_EQ(tin.vertex_count(), 4u);
+    EXPECT_EQ(tin.triangle_count(), 2u);
+    EXPECT_LE(std::abs(tin.volume() - v0), 1e-12 * std::abs(v0));
+    expect_sound(tin);
+}
+
+}  // namespace
+}  // namespace sandtin
