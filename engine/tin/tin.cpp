@@ -165,9 +165,7 @@ class EditFinisher {
   public:
     explicit EditFinisher(Tin::Impl& impl) : impl_(impl) {}
 
-    void mark_vertex(std::uint32_t id) {
-        if (impl_.options.track_changes) impl_.journal_vertices.mark(id);
-    }
+    void mark_vertex(std::uint32_t id) { impl_.note_attribute(id); }
 
     /// Gives the vertices CGAL created in this edit their position and default attributes.
     /// Their heights are NaN until the edit resolves them.
@@ -255,6 +253,7 @@ class EditFinisher {
             va.alive[id] = 0;
             va.lumped_area[id] = 0.0;
             mark_vertex(id);
+            m.note_topology(id);
             ++local.vertices_removed;
         }
         for (std::uint32_t id : m.events.born_vertices) {
@@ -266,6 +265,7 @@ class EditFinisher {
         double affected_area = 0.0;
         for (std::uint32_t id : affected_.ids()) {
             if (!va.alive[id]) continue;
+            m.note_topology(id);
             const double a_new = m.recompute_lumped_area(id);
             const double a_old = va.lumped_area[id];
             if (a_new != a_old) {
@@ -301,6 +301,35 @@ class EditFinisher {
                 for (std::uint32_t id : affected_.ids()) {
                     if (va.alive[id]) shift(id, dh);
                 }
+            }
+        }
+        // Vertices a rounding error apart (CGAL's crossings of nearly coincident constraints)
+        // cannot be merged, so they must share one height, or the sliver between them is a
+        // vertical wall: a new vertex takes its old neighbour's height, and a compensation
+        // shift carries over to such neighbours. The volume this moves is below rounding.
+        const double snap2 = m.snap_distance * m.snap_distance;
+        auto level_slivers = [&](std::uint32_t id, bool take_neighbour) {
+            auto vc = m.cdt.incident_vertices(m.handle(id));
+            const auto done = vc;
+            do {
+                if (m.cdt.is_infinite(vc) || vc->id == id) continue;
+                const std::uint32_t w = vc->id;
+                if (length_squared(va.position[w] - va.position[id]) > snap2) continue;
+                const std::uint32_t from = take_neighbour ? w : id;
+                const std::uint32_t to = take_neighbour ? id : w;
+                if (va.height[to] == va.height[from]) continue;
+                net_change += va.lumped_area[to] * (va.height[from] - va.height[to]);
+                va.height[to] = va.height[from];
+                clamp_bedrock(to);
+                mark_vertex(to);
+            } while (++vc != done);
+        };
+        for (std::uint32_t id : m.events.born_vertices) {
+            if (va.alive[id]) level_slivers(id, true);
+        }
+        if (policy == VolumePolicy::Conserve && local.volume_change != 0.0) {
+            for (std::uint32_t id : affected_.ids()) {
+                if (va.alive[id]) level_slivers(id, false);
             }
         }
         m.volume_ledger.add(net_change);
@@ -473,6 +502,8 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     auto impl = std::make_unique<Tin::Impl>();
     impl->domain = domain;
     impl->options = options;
+    impl->snap_distance = default_snap_distance(domain);
+    impl->cdt.snap_distance = impl->snap_distance;
     Tin::Impl& m = *impl;
 
     // Corners first so the triangulation is the domain from the start; a corner missing from
@@ -981,6 +1012,21 @@ std::optional<ConstraintInfo> Tin::constraint(ConstraintId id) const {
     return info;
 }
 
+std::vector<std::array<Vec2, 2>> Tin::constrained_segments(const Rect& box,
+                                                           Generation older_than) const {
+    const Impl& m = *impl_;
+    std::vector<std::array<Vec2, 2>> out;
+    for (const detail::ConstraintEntry& e : m.constraints) {
+        if (!e.alive || e.generation >= older_than || !e.bounds.intersects(box)) continue;
+        std::uint32_t previous = kNoId;
+        for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
+            if (previous != kNoId) out.push_back({m.va.position[previous], m.va.position[v->id]});
+            previous = v->id;
+        }
+    }
+    return out;
+}
+
 std::vector<ConstraintInfo> Tin::constraints() const {
     std::vector<ConstraintInfo> out;
     for (std::uint32_t i = 0; i < impl_->constraints.size(); ++i) {
@@ -1017,6 +1063,18 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
         return {existing, false};
     }
     const FiniteLocation loc = finite_location(m, p, lt, f, li);
+    // A point a rounding error away from a vertex (a rim crossing computed at a vertex, say)
+    // would make a sliver the physics and the renderer choke on: it is that vertex.
+    for (std::size_t i = 0; i < 3; ++i) {
+        if (length_squared(m.va.position[loc.corners[i]] - p) <=
+            m.snap_distance * m.snap_distance) {
+            // The vertex keeps its own height: the point was not quite there, and what the
+            // caller computed for its spot (a rim or profile height) is not the vertex's.
+            const VertexId existing{loc.corners[i]};
+            if (hint != nullptr) hint->vertex = existing;
+            return {existing, false};
+        }
+    }
     if (std::isnan(height)) {
         height = 0.0;
         for (std::size_t i = 0; i < 3; ++i)
@@ -1067,6 +1125,57 @@ std::vector<VertexId> Tin::insert_points(std::span<const Vec2> points,
         ids.push_back(insert_one(*this, m, finisher, points[i], heights[i], hint).first);
     }
     finisher.finish(VolumePolicy::Report, {}, report);
+    return ids;
+}
+
+std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, VolumePolicy policy,
+                                       EditReport* report) {
+    Impl& m = *impl_;
+    std::vector<VertexId> ids;
+    std::vector<std::uint32_t> created;
+    ids.reserve(splits.size());
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    for (const EdgeSplit& split : splits) {
+        Fh f;
+        int i = 0;
+        if (!m.alive(split.a) || !m.alive(split.b) || !(split.t > 0.0 && split.t < 1.0) ||
+            !m.cdt.is_edge(m.handle(split.a), m.handle(split.b), f, i)) {
+            ids.push_back(VertexId{});  // an earlier split in this batch removed the edge
+            continue;
+        }
+        const Vec2 pa = m.va.position[split.a.value];
+        const Vec2 pb = m.va.position[split.b.value];
+        const Vec2 p = lerp(pa, pb, split.t);
+        if (length_squared(p - pa) <= m.snap_distance * m.snap_distance ||
+            length_squared(p - pb) <= m.snap_distance * m.snap_distance) {
+            ids.push_back(VertexId{});
+            continue;
+        }
+        // Inserted into the edge itself (CGAL trusts the locate type), so the surface is unchanged
+        // and a constrained edge is split like any other, even when rounding puts p a hair off
+        // the segment.
+        const Vh v = m.cdt.insert(to_point(p), CdtPlus::EDGE, f, i);
+        // p may sit a rounding error off the segment, so an edge from it may miss the
+        // Delaunay criterion that CGAL's flips around a new vertex do not look at.
+        CdtPlus::List_edges incident;
+        auto ec = m.cdt.incident_edges(v);
+        const auto edone = ec;
+        do {
+            if (!m.cdt.is_infinite(*ec) && !m.cdt.is_constrained(*ec)) incident.push_back(*ec);
+        } while (++ec != edone);
+        m.cdt.propagating_flip(incident);
+        finisher.prepare_born();
+        m.va.height[v->id] =
+            (1.0 - split.t) * m.va.height[split.a.value] + split.t * m.va.height[split.b.value];
+        const std::array<std::uint32_t, 2> sources = {split.a.value, split.b.value};
+        const std::array<double, 2> weights = {1.0 - split.t, split.t};
+        finisher.inherit(v->id, sources, weights);
+        if (m.va.bedrock[v->id] > m.va.height[v->id]) m.va.bedrock[v->id] = m.va.height[v->id];
+        ids.push_back(VertexId{v->id});
+        created.push_back(v->id);
+    }
+    finisher.finish(policy, created, report);
     return ids;
 }
 
@@ -1129,7 +1238,7 @@ double plane_fit_residual(const std::vector<Vec2>& xy, const std::vector<double>
     const double b =
         (sxx * (syz * n - sz * sy) - sxz * (sxy * n - sy * sx) + sx * (sxy * sz - syz * sx)) / det;
     const double c =
-        (sxx * (syy * sz - sy * syz) - sxy * (sxy * sz - sy * sxz) + sxz * (sxy * sy - syy * sx)) /
+        (sxx * (syy * sz - syz * sy) - sxy * (sxy * sz - syz * sx) + sxz * (sxy * sy - syy * sx)) /
         det;
     double worst = 0.0;
     for (std::size_t i = 0; i < xy.size(); ++i) {
@@ -1394,6 +1503,45 @@ void resolve_crossing_heights(Tin::Impl& m, detail::CgalConstraintId inserted) {
             EditFinisher(m).inherit(id, best_sources, best_weights);
         }
     }
+    // Where nearly coincident constraints are crossed, CGAL can make crossing vertices a
+    // rounding error from each other or from an old vertex. They cannot be merged inside
+    // CGAL's insertion, but each such cluster can share one height (an old member's, when it
+    // has one), so the slivers between them carry no spike.
+    std::vector<Vh> cluster;
+    for (std::uint32_t id : m.events.born_vertices) {
+        if (m.events.vertex_of_id[id] == nullptr) continue;
+        cluster.assign(1, m.handle(id));
+        for (std::size_t k = 0; k < cluster.size() && cluster.size() < 16; ++k) {
+            auto vc = m.cdt.incident_vertices(cluster[k]);
+            const auto done = vc;
+            do {
+                if (m.cdt.is_infinite(vc)) continue;
+                const Vh w = vc;
+                if (std::find(cluster.begin(), cluster.end(), w) != cluster.end()) continue;
+                if (distance(m.va.position[w->id], m.va.position[cluster[k]->id]) <=
+                    m.snap_distance) {
+                    cluster.push_back(w);
+                }
+            } while (++vc != done);
+        }
+        if (cluster.size() < 2) continue;
+        double reference = m.va.height[id];
+        for (const Vh w : cluster) {
+            const bool born =
+                std::find(m.events.born_vertices.begin(), m.events.born_vertices.end(), w->id) !=
+                m.events.born_vertices.end();
+            if (!born && std::isfinite(m.va.height[w->id])) {
+                reference = m.va.height[w->id];
+                break;
+            }
+        }
+        for (const Vh w : cluster) {
+            const bool born =
+                std::find(m.events.born_vertices.begin(), m.events.born_vertices.end(), w->id) !=
+                m.events.born_vertices.end();
+            if (born) m.va.height[w->id] = reference;
+        }
+    }
 }
 
 }  // namespace
@@ -1495,18 +1643,42 @@ std::vector<ConstraintId> Tin::insert_constraints(std::span<const std::array<Ver
     return ids;
 }
 
+namespace {
+
+/// Whether releasing the constrained edge a-b would flip nothing: the vertex opposite it in
+/// one triangle lies outside the circumcircle of the other (exact predicate).
+bool edge_is_delaunay(const Tin::Impl& m, Vh a, Vh b) {
+    Fh f;
+    int i = 0;
+    if (!m.cdt.is_edge(a, b, f, i)) return true;
+    const Fh g = f->neighbor(i);
+    if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g)) return true;
+    const Vh d = g->vertex(m.cdt.mirror_index(f, i));
+    const auto in_circle = detail::Kernel().side_of_oriented_circle_2_object();
+    return in_circle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(),
+                     d->point()) != CGAL::ON_POSITIVE_SIDE;
+}
+
+}  // namespace
+
 std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy policy,
                                      EditReport* report, std::vector<VertexId>* released_vertices) {
     Impl& m = *impl_;
     std::vector<std::uint32_t> doomed;
-    const Rect polygon_box = bounding_box(filter.touching_polygon);
+    const Rect touch_box = bounding_box(filter.touching_polygon);
+    const Rect inside_box = bounding_box(filter.inside_polygon);
+    // Ids alive before this call: pieces split off below get new ids (possibly recycled ones)
+    // and must not be visited again.
+    std::vector<std::uint32_t> candidates;
     for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
+        if (m.constraints[id].alive) candidates.push_back(id);
+    }
+    for (const std::uint32_t id : candidates) {
         const detail::ConstraintEntry& e = m.constraints[id];
-        if (!e.alive) continue;
         if (filter.generation && e.generation != *filter.generation) continue;
         if (filter.older_than && e.generation >= *filter.older_than) continue;
         if (!filter.touching_polygon.empty()) {
-            if (!e.bounds.intersects(polygon_box)) continue;
+            if (!e.bounds.intersects(touch_box)) continue;
             bool touches = false;
             std::uint32_t previous = kNoId;
             for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
@@ -1520,7 +1692,71 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
             }
             if (!touches) continue;
         }
-        doomed.push_back(id);
+        if (!filter.inside_polygon.empty() && !e.bounds.intersects(inside_box)) continue;
+        if (filter.only_if_delaunay) {
+            bool delaunay = true;
+            Vh previous;
+            bool first = true;
+            for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
+                if (!first && !edge_is_delaunay(m, previous, v)) {
+                    delaunay = false;
+                    break;
+                }
+                previous = v;
+                first = false;
+            }
+            if (!delaunay) continue;
+        }
+        if (filter.inside_polygon.empty()) {
+            doomed.push_back(id);
+            continue;
+        }
+        // Classify the pieces, then split the constraint between runs inside and outside.
+        std::vector<Vh> vs;
+        for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id))
+            vs.push_back(v);
+        std::vector<std::uint8_t> inside(vs.size() - 1);
+        bool any_in = false;
+        bool any_out = false;
+        for (std::size_t k = 0; k + 1 < vs.size(); ++k) {
+            const Vec2 mid = (m.va.position[vs[k]->id] + m.va.position[vs[k + 1]->id]) * 0.5;
+            inside[k] = point_in_polygon(mid, filter.inside_polygon) ? 1 : 0;
+            (inside[k] ? any_in : any_out) = true;
+        }
+        if (!any_in) continue;
+        if (!any_out) {
+            doomed.push_back(id);
+            continue;
+        }
+        std::uint32_t current = id;
+        std::size_t run_start = 0;
+        for (std::size_t k = 1; k <= inside.size(); ++k) {
+            if (k < inside.size() && inside[k] == inside[run_start]) continue;
+            if (k == inside.size()) {
+                if (inside[run_start]) doomed.push_back(current);
+                break;
+            }
+            // Split at vertex k: the current constraint keeps [.., vs[k]], a new one takes
+            // [vs[k], ..]. Only the hierarchy changes; the triangulation does not.
+            auto it = m.cdt.vertices_in_constraint_begin(m.constraints[current].cgal_id);
+            std::advance(it, static_cast<std::ptrdiff_t>(k - run_start));
+            const detail::CgalConstraintId second = m.cdt.split(m.constraints[current].cgal_id, it);
+            const std::uint32_t nid = m.constraint_ids.allocate();
+            if (nid >= m.constraints.size())
+                m.constraints.resize(static_cast<std::size_t>(nid) + 1);
+            Rect first_box;
+            Rect second_box;
+            for (std::size_t j = run_start; j <= k; ++j)
+                first_box.expand(m.va.position[vs[j]->id]);
+            for (std::size_t j = k; j < vs.size(); ++j)
+                second_box.expand(m.va.position[vs[j]->id]);
+            m.constraints[current].bounds = first_box;
+            m.constraints[nid] = {second, m.constraints[current].generation, true, second_box};
+            m.constraint_of_cgal[second.vl_ptr()] = nid;
+            if (inside[run_start]) doomed.push_back(current);
+            current = nid;
+            run_start = k;
+        }
     }
     if (doomed.empty()) return 0;
     detail::EventScope scope(m.events);
@@ -1568,7 +1804,7 @@ void set_attribute(Tin::Impl& m, VertexId v, std::vector<T>& array, T value, con
     }
     if (array[v.value] == value) return;
     array[v.value] = value;
-    if (m.options.track_changes) m.journal_vertices.mark(v.value);
+    m.note_attribute(v.value);
 }
 
 }  // namespace
@@ -1629,8 +1865,73 @@ ChangeSet Tin::take_changes() {
     return cs;
 }
 
+double Tin::snap_distance() const {
+    return impl_->snap_distance;
+}
+
+void Tin::set_snap_distance(double d) {
+    require(d >= 0.0 && std::isfinite(d), "set_snap_distance: distance must be finite and >= 0");
+    impl_->snap_distance = d;
+    impl_->cdt.snap_distance = d;
+}
+
 bool Tin::tracks_changes() const {
     return impl_->options.track_changes;
+}
+
+std::uint32_t Tin::subscribe_vertex_changes() {
+    Impl& m = *impl_;
+    for (std::uint32_t i = 0; i < m.feeds.size(); ++i) {
+        if (!m.feeds[i].active) {
+            m.feeds[i].active = true;
+            return i;
+        }
+    }
+    m.feeds.emplace_back();
+    m.feeds.back().active = true;
+    return static_cast<std::uint32_t>(m.feeds.size() - 1);
+}
+
+void Tin::unsubscribe_vertex_changes(std::uint32_t subscription) {
+    Impl& m = *impl_;
+    if (subscription >= m.feeds.size()) return;
+    m.feeds[subscription].active = false;
+    m.feeds[subscription].attributes.clear();
+    m.feeds[subscription].topology.clear();
+}
+
+VertexChanges Tin::take_vertex_changes(std::uint32_t subscription) {
+    Impl& m = *impl_;
+    VertexChanges out;
+    if (subscription >= m.feeds.size() || !m.feeds[subscription].active) return out;
+    Impl::VertexFeed& f = m.feeds[subscription];
+    for (std::uint32_t id : f.attributes.take())
+        out.attributes.push_back(VertexId{id});
+    for (std::uint32_t id : f.topology.take())
+        out.topology.push_back(VertexId{id});
+    return out;
+}
+
+void Tin::set_heights(std::span<const VertexId> vertices, std::span<const double> heights) {
+    Impl& m = *impl_;
+    require(vertices.size() == heights.size(),
+            "set_heights: vertices and heights differ in length");
+    VertexArrays& va = m.va;
+    CompensatedSum change;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const std::uint32_t id = vertices[i].value;
+        const double h = heights[i];
+        if (!m.alive(vertices[i]) || !std::isfinite(h)) {
+            throw std::invalid_argument("set_heights: dead vertex or non-finite height at entry " +
+                                        std::to_string(i));
+        }
+        if (va.height[id] == h) continue;
+        change.add(va.lumped_area[id] * (h - va.height[id]));
+        va.height[id] = h;
+        if (va.bedrock[id] > h) va.bedrock[id] = h;
+        m.note_attribute(id);
+    }
+    m.volume_ledger.add(change.value());
 }
 
 }  // namespace sandtin

@@ -17,6 +17,7 @@
 // Not thread-safe: one thread edits and queries; other threads read copies (GPU mirror,
 // haptic snapshots).
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -90,6 +91,19 @@ struct ConstraintInfo {
     std::vector<VertexId> vertices;
 };
 
+/// An edge a-b to split at fraction t from a (Tin::split_edges).
+struct EdgeSplit {
+    VertexId a;
+    VertexId b;
+    double t = 0.5;
+};
+
+/// What Tin::take_vertex_changes() reports.
+struct VertexChanges {
+    std::vector<VertexId> attributes;  ///< height or other attribute changed, born or died
+    std::vector<VertexId> topology;    ///< neighbours or triangles changed, born or died
+};
+
 struct ValidationReport {
     std::vector<std::string> problems;
     bool ok() const { return problems.empty(); }
@@ -102,7 +116,20 @@ struct ReleaseFilter {
     std::optional<Generation> generation;    ///< exactly this generation
     std::optional<Generation> older_than;    ///< generation < older_than
     std::span<const Vec2> touching_polygon;  ///< some segment touches this closed polygon
+    /// Only the parts inside this closed polygon: a constraint that crosses its border is first
+    /// split at its vertices there (pieces are classified by their midpoints), and only the
+    /// inside pieces are released, so what lies outside keeps its constraint. Crossings
+    /// without a vertex keep the whole piece; constrain the border first.
+    std::span<const Vec2> inside_polygon;
+    /// Only constraints whose edges are all locally Delaunay already: releasing them
+    /// re-triangulates nothing, so the surface cannot change anywhere.
+    bool only_if_delaunay = false;
 };
+
+/// 1e-6 of the larger side of the domain.
+inline double default_snap_distance(const Rect& domain) {
+    return 1e-6 * std::max(domain.width(), domain.height());
+}
 
 class Tin {
   public:
@@ -199,6 +226,10 @@ class Tin {
                                                            LocateHint* hint = nullptr) const;
 
     std::vector<ConstraintInfo> constraints() const;
+    /// The pieces (consecutive vertex pairs) of constraints older than `older_than` whose
+    /// bounding boxes meet `box`, as segments in metres.
+    std::vector<std::array<Vec2, 2>> constrained_segments(const Rect& box,
+                                                          Generation older_than) const;
     std::optional<ConstraintInfo> constraint(ConstraintId id) const;
 
     ValidationReport check_valid() const;
@@ -225,6 +256,13 @@ class Tin {
                                                    LocateHint* hint = nullptr,
                                                    VolumePolicy policy = VolumePolicy::Conserve,
                                                    EditReport* report = nullptr);
+    /// Splits edges at a fraction t in (0, 1) from a towards b, topologically inside the edge
+    /// (so a constrained edge stays constrained in two pieces), with the height interpolated
+    /// along it. Splits whose edge no longer exists, or that would land within the snap
+    /// distance of an end, are skipped (invalid id). Used for long-edge refinement.
+    std::vector<VertexId> split_edges(std::span<const EdgeSplit> splits,
+                                      VolumePolicy policy = VolumePolicy::Conserve,
+                                      EditReport* report = nullptr);
     /// Removes v. Returns false (and changes nothing) for border vertices and vertices on a
     /// constraint. With VolumePolicy::Conserve the ring around the hole absorbs the volume change.
     bool remove_vertex(VertexId v, VolumePolicy policy = VolumePolicy::Conserve,
@@ -271,6 +309,9 @@ class Tin {
     /// They throw std::invalid_argument for dead ids and non-finite values. set_height lowers
     /// the bedrock with the surface, so sand thickness never goes negative.
     void set_height(VertexId v, double height);
+    /// Many heights at once (the physics writes every changed vertex each iteration); the same
+    /// effect as set_height for each entry.
+    void set_heights(std::span<const VertexId> vertices, std::span<const double> heights);
     void set_bedrock(VertexId v, double bedrock);
     void set_material(VertexId v, std::uint16_t material);
     void set_moisture(VertexId v, float moisture);
@@ -281,6 +322,20 @@ class Tin {
     /// recycles the ids and slots whose death it reported.
     ChangeSet take_changes();
     bool tracks_changes() const;
+
+    /// Inserted points within this distance (m) of an existing vertex reuse that vertex (which
+    /// keeps its height), so rounding-level near-duplicates never make sliver triangles.
+    /// Default: 1e-6 of the larger domain side (1 µm on a 1 m sandbox).
+    double snap_distance() const;
+    void set_snap_distance(double metres);
+
+    /// Opens an independent change channel for a consumer other than the GPU mirror (the
+    /// physics). It reports vertices whose height or attributes changed and vertices whose star
+    /// changed. Unlike take_changes() it never delays id recycling: a reported id only means
+    /// "look at this id again".
+    std::uint32_t subscribe_vertex_changes();
+    void unsubscribe_vertex_changes(std::uint32_t subscription);
+    VertexChanges take_vertex_changes(std::uint32_t subscription);
 
     /// A complete copy: vertices by id, triangles by slot, constraints and free lists.
     TinSnapshot snapshot() const;

@@ -164,6 +164,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
     Impl& m = *impl;
     m.domain = d;
     m.options = options;
+    m.snap_distance = default_snap_distance(d);
+    m.cdt.snap_distance = m.snap_distance;
     m.events.vertex_ids.restore(vertex_capacity, s.vertex_free_list);
     m.events.slots.restore(static_cast<std::uint32_t>(slot_count), s.slot_free_list);
     m.va = sv;

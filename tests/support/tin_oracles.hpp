@@ -151,6 +151,49 @@ inline std::set<Tri> triangle_set(const Tin& tin) {
     return s;
 }
 
+/// In-circle determinant of `q` against the counter-clockwise triangle `t`, in extended
+/// precision and relative to the squared spread of the points: positive when q lies strictly
+/// inside the circumcircle, about zero when cocircular.
+inline long double relative_in_circle(const Tin& tin, const Tri& t, VertexId q_id) {
+    const Vec2 p0 = tin.position(t[0]);
+    const Vec2 p1 = tin.position(t[1]);
+    const Vec2 p2 = tin.position(t[2]);
+    const Vec2 q = tin.position(q_id);
+    const long double ax = ld(p0.x) - ld(q.x), ay = ld(p0.y) - ld(q.y);
+    const long double bx = ld(p1.x) - ld(q.x), by = ld(p1.y) - ld(q.y);
+    const long double cx = ld(p2.x) - ld(q.x), cy = ld(p2.y) - ld(q.y);
+    const long double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const long double det =
+        ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+    return det / ((a2 + b2 + c2) * (a2 + b2 + c2));
+}
+
+/// Interior edges, as (smaller id, larger id), whose two triangles are not clearly Delaunay:
+/// the opposite vertex lies inside or (within `tolerance`) on the other triangle's circumcircle.
+/// Releasing the constraint on such an edge would make CGAL flip it.
+inline std::set<std::pair<std::uint32_t, std::uint32_t>> edges_not_clearly_delaunay(
+    const Tin& tin, long double tolerance = 1e-12L) {
+    const auto tris = tin.triangles();
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::size_t, int>> directed;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+        for (int i = 0; i < 3; ++i) {
+            const VertexId a = tris[k][static_cast<std::size_t>((i + 1) % 3)];
+            const VertexId b = tris[k][static_cast<std::size_t>((i + 2) % 3)];
+            directed.emplace(std::make_pair(a.value, b.value), std::make_pair(k, i));
+        }
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+    for (const auto& [edge, where] : directed) {
+        if (edge.first > edge.second) continue;
+        const auto twin = directed.find({edge.second, edge.first});
+        if (twin == directed.end()) continue;
+        const Tri& u = tris[twin->second.first];
+        const VertexId opposite = u[static_cast<std::size_t>(twin->second.second)];
+        if (relative_in_circle(tin, tris[where.first], opposite) > -tolerance) out.insert(edge);
+    }
+    return out;
+}
+
 /// Structural problems of the mesh found without CGAL: triangles counter-clockwise, every
 /// directed edge used once, every undirected edge shared by at most two triangles, single-use
 /// edges on the domain border, areas tiling the domain, lumped areas consistent, heights
@@ -200,22 +243,9 @@ inline std::vector<std::string> mesh_problems(const Tin& tin) {
         }
         if (edge.first > edge.second) continue;  // each interior edge once
         if (tin.is_constrained_edge(VertexId{edge.first}, VertexId{edge.second})) continue;
-        const Tri& t = tris[where.first];
         const Tri& u = tris[twin->second.first];
         const VertexId opposite = u[static_cast<std::size_t>(twin->second.second)];
-        // In-circle test of `opposite` against t, in extended precision, relative tolerance.
-        const Vec2 p0 = tin.position(t[0]);
-        const Vec2 p1 = tin.position(t[1]);
-        const Vec2 p2 = tin.position(t[2]);
-        const Vec2 q = tin.position(opposite);
-        const long double ax = ld(p0.x) - ld(q.x), ay = ld(p0.y) - ld(q.y);
-        const long double bx = ld(p1.x) - ld(q.x), by = ld(p1.y) - ld(q.y);
-        const long double cx = ld(p2.x) - ld(q.x), cy = ld(p2.y) - ld(q.y);
-        const long double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-        const long double det =
-            ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
-        const long double scale = (a2 + b2 + c2) * (a2 + b2 + c2);
-        if (det > 1e-12L * scale) {
+        if (relative_in_circle(tin, tris[where.first], opposite) > 1e-12L) {
             problem("edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) +
                     " is not locally Delaunay");
         }

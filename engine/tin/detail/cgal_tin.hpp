@@ -213,6 +213,44 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
     using Base = CGAL::Constrained_triangulation_plus_2<Cdt>;
     using Base::Base;
 
+    /// Crossing points within this distance (m) of an end of the crossed constraint snap to
+    /// that end instead of becoming a new vertex a rounding error away from it.
+    double snap_distance = 0.0;
+
+    Vertex_handle intersect(Face_handle f, int i, Vertex_handle vaa, Vertex_handle vbb) override {
+        const Vertex_handle vcc = f->vertex(cw(i));
+        const Vertex_handle vdd = f->vertex(ccw(i));
+        if (snap_distance > 0.0) {
+            // Where a-b crosses c-d, in double precision: only to decide the snap.
+            const Point& pa = vaa->point();
+            const Point& pb = vbb->point();
+            const Point& pc = vcc->point();
+            const Point& pd = vdd->point();
+            const double ax = pa.x(), ay = pa.y(), bx = pb.x(), by = pb.y();
+            const double cx = pc.x(), cy = pc.y(), dx = pd.x(), dy = pd.y();
+            const double denom = (bx - ax) * (dy - cy) - (by - ay) * (dx - cx);
+            if (denom != 0.0) {
+                const double t = ((cx - ax) * (dy - cy) - (cy - ay) * (dx - cx)) / denom;
+                const double px = ax + t * (bx - ax);
+                const double py = ay + t * (by - ay);
+                const double s2 = snap_distance * snap_distance;
+                auto near = [&](Vertex_handle v) {
+                    const double ex = v->point().x() - px;
+                    const double ey = v->point().y() - py;
+                    return ex * ex + ey * ey <= s2;
+                };
+                for (const Vertex_handle v : {vcc, vdd}) {
+                    if (near(v)) {
+                        // As CGAL does when its rounded crossing falls on c or d.
+                        insert_subconstraint(vcc, vdd);
+                        return v;
+                    }
+                }
+            }
+        }
+        return Base::intersect(f, i, vaa, vbb);
+    }
+
     /// Constrains a polyline through existing vertices. CGAL's polyline insertion takes points
     /// and re-inserts them, and re-inserting an existing point runs flip_around(), which can
     /// flip away an edge that a later segment of the same restore needs.
@@ -260,6 +298,7 @@ struct Tin::Impl {
 
     Rect domain;
     TinOptions options;
+    double snap_distance = 0.0;  ///< m: inserted points this close to a vertex reuse it
     detail::CdtPlus cdt;
     detail::TdsEvents events;
     VertexArrays va;
@@ -268,6 +307,28 @@ struct Tin::Impl {
     CompensatedSum volume_ledger;  ///< running sum of every volume change (m³)
     DirtySet journal_vertices;
     DirtySet journal_slots;
+
+    /// Extra change channels (Tin::subscribe_vertex_changes): one per consumer.
+    struct VertexFeed {
+        bool active = false;
+        DirtySet attributes;
+        DirtySet topology;
+    };
+    std::vector<VertexFeed> feeds;
+
+    /// A vertex's height or other attribute changed (or it was born or died).
+    void note_attribute(std::uint32_t id) {
+        if (options.track_changes) journal_vertices.mark(id);
+        for (VertexFeed& f : feeds) {
+            if (f.active) f.attributes.mark(id);
+        }
+    }
+    /// A vertex's star (its triangles or neighbours) changed.
+    void note_topology(std::uint32_t id) {
+        for (VertexFeed& f : feeds) {
+            if (f.active) f.topology.mark(id);
+        }
+    }
 
     std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
     IdAllocator constraint_ids{false};
