@@ -7,6 +7,40 @@
 
 namespace sandtin {
 
+namespace {
+
+/// Height at v of the least-squares plane through its neighbours (the mean when the fit is
+/// degenerate, e.g. collinear neighbours on the border).
+double neighbour_plane_height(const VertexArrays& va, VertexId v,
+                              const std::vector<VertexId>& ring) {
+    const Vec2 o = va.position[v.value];
+    double sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, n = 0, sxz = 0, syz = 0, sz = 0;
+    for (VertexId w : ring) {
+        const Vec2 p = va.position[w.value] - o;
+        const double z = va.height[w.value];
+        sxx += p.x * p.x;
+        sxy += p.x * p.y;
+        syy += p.y * p.y;
+        sx += p.x;
+        sy += p.y;
+        n += 1.0;
+        sxz += p.x * z;
+        syz += p.y * z;
+        sz += z;
+    }
+    if (n == 0.0) return va.height[v.value];
+    const double det =
+        sxx * (syy * n - sy * sy) - sxy * (sxy * n - sy * sx) + sx * (sxy * sy - syy * sx);
+    const double scale = (sxx + syy + n) * (sxx + syy + n) * (sxx + syy + n);
+    if (!(std::abs(det) > 1e-12 * scale)) return sz / n;
+    // The plane's value at the vertex itself (local origin) is its constant term c.
+    return (sxx * (syy * sz - syz * sy) - sxy * (sxy * sz - syz * sx) +
+            sxz * (sxy * sy - syy * sx)) /
+           det;
+}
+
+}  // namespace
+
 BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptContext& context) {
     if (!is_finite(centre)) throw std::invalid_argument("brush: centre is not finite");
     if (!(s.radius > 0.0) || !std::isfinite(s.radius))
@@ -47,16 +81,15 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
             break;
         }
         case BrushKind::Smooth: {
+            // Towards the least-squares plane of the neighbours, evaluated at the vertex: a
+            // plane is left exactly as it is (a plain neighbour average is not, on an irregular
+            // triangulation), and bumps and pits are pulled in.
             std::vector<VertexId> ring;
             for (std::size_t i = 0; i < disc.size(); ++i) {
                 const VertexId v = disc[i];
                 tin.neighbours(v, ring);
-                double mean = 0.0;
-                for (VertexId w : ring)
-                    mean += va.height[w.value];
-                mean = ring.empty() ? va.height[v.value] : mean / static_cast<double>(ring.size());
                 const double h = va.height[v.value];
-                target[i] = h + s.strength * weight[i] * (mean - h);
+                target[i] = h + s.strength * weight[i] * (neighbour_plane_height(va, v, ring) - h);
             }
             break;
         }

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "geom/polygon.hpp"
+#include "tools/slivers.hpp"
 
 namespace sandtin {
 
@@ -13,13 +14,14 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
                           std::vector<VertexId>* touched) {
     RidgeReport report;
     const std::size_t n = outer.size();
-    if (!(volume > 0.0) || n < 3 || !(width > 0.0)) return report;
+    if (volume == 0.0 || !std::isfinite(volume) || n < 3 || !(width > 0.0)) return report;
     const Rect domain = tin.domain();
 
     // Per-vertex weights: cut depth times the direction factor.
     std::vector<double> weight(n, 0.0);
     std::vector<Vec2> normal(n);
     double total_weight = 0.0;
+    std::vector<double> direction(n, 1.0);
     for (std::size_t i = 0; i < n; ++i) {
         const Vec2 prev = outer[(i + n - 1) % n];
         const Vec2 next = outer[(i + 1) % n];
@@ -28,18 +30,17 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         Vec2 nrm = Vec2{e1.y, -e1.x} + Vec2{e2.y, -e2.x};
         nrm = nrm / std::max(length(nrm), 1e-300);
         normal[i] = nrm;
-        double f = 1.0;
         if (motion && length(*motion) > 0.0) {
             const Vec2 d = *motion / length(*motion);
-            f = std::clamp((dot(nrm, d) + 0.5) / 1.5, 0.0, 1.0);
+            direction[i] = std::clamp((dot(nrm, d) + 0.5) / 1.5, 0.0, 1.0);
         }
-        weight[i] = std::max(0.0, cut_depth[i]) * f;
+        weight[i] = std::max(0.0, cut_depth[i]) * direction[i];
         total_weight += weight[i];
     }
     if (!(total_weight > 0.0)) {
-        // The tool displaced volume but no control point reports a cut ahead of the motion
-        // (for example a tool sunk entirely): spread it evenly rather than lose it.
-        std::fill(weight.begin(), weight.end(), 1.0);
+        // The tool displaced volume but no control point reports a cut where the ridge may go
+        // (a tool sunk below its rim, say): spread it by direction alone rather than lose it.
+        weight = direction;
     }
 
     // Ridge sample points and their cross-section factors.
@@ -80,6 +81,10 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         tin.set_height(v, va.height[v.value] + ridge_height * kv);
         if (touched != nullptr) touched->push_back(v);
     }
+    std::vector<VertexId> raised;
+    for (const auto& [v, kv] : ks)
+        raised.push_back(v);
+    equalise_slivers(tin, raised, volume < 0.0);
     report.deposited = tin.volume_ledger() - ledger0;
     return report;
 }

@@ -20,8 +20,9 @@ struct RidgeReport {
     std::size_t vertices_inserted = 0;
 };
 
-/// Deposits `volume` m³ in a ridge of width `width` m outside the counter-clockwise polygon
-/// `outer`, weighted per outer vertex by `cut_depth` (m) and the motion direction.
+/// Deposits `volume` m³ (negative: takes it away) in a ridge of width `width` m outside the
+/// counter-clockwise polygon `outer`, weighted per outer vertex by `cut_depth` (m) and the motion
+/// direction.
 RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
                           std::optional<Vec2> motion, double width, double volume,
                           LocateHint* hint = nullptr, std::vector<VertexId>* touched = nullptr);

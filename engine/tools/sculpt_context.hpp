@@ -11,8 +11,9 @@ struct SculptSettings {
     SimplifySettings simplify;
     /// Remove redundant vertices at the end of every stamp, brush dab and pour.
     bool simplify_after_edit = true;
-    /// Constraints of stamps more than this many generations old are released everywhere, so
-    /// the constraint count stays bounded however long the session runs.
+    /// Constraints of stamps more than this many generations old are released wherever that
+    /// changes no triangle (their edges are Delaunay anyway); the rest go when a later stamp
+    /// covers them.
     Generation keep_generations = 64;
 };
 

@@ -7,6 +7,7 @@
 
 #include "geom/polygon.hpp"
 #include "tools/extrusion.hpp"
+#include "tools/slivers.hpp"
 
 namespace sandtin {
 
@@ -54,8 +55,8 @@ double surface_or(const Tin& tin, Vec2 p, LocateHint* hint, double fallback) {
 /// edges where the surface bends by more than `tolerance` (Douglas-Peucker on the exact
 /// section), so the rim follows the terrain within the tolerance with as few points as that
 /// takes.
-void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance, LocateHint* hint,
-                std::vector<Vec2>& points, std::vector<double>& heights) {
+void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance, double min_spacing,
+                LocateHint* hint, std::vector<Vec2>& points, std::vector<double>& heights) {
     const std::size_t n = polygon.size();
     std::vector<std::pair<std::size_t, std::size_t>> stack;
     std::vector<std::uint8_t> keep;
@@ -63,6 +64,7 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
         const Vec2 a = polygon[i];
         const Vec2 b = polygon[(i + 1) % n];
         const auto sec = tin.section(a, b, hint);
+        const double min_dt = min_spacing / std::max(distance(a, b), 1e-300);
         keep.assign(sec.size(), 0);
         keep.front() = 1;
         keep.back() = 1;
@@ -83,9 +85,10 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
                     at = k;
                 }
             }
-            // Crossings closer than a millionth of the edge to a kept point add nothing.
-            if (worst > tolerance && sec[at].first - sec[lo].first > 1e-6 &&
-                sec[hi].first - sec[at].first > 1e-6) {
+            // A crossing closer than min_spacing to a kept point would only make sliver
+            // triangles (tiny vertices slow the relaxation down to their own scale).
+            if (worst > tolerance && sec[at].first - sec[lo].first > min_dt &&
+                sec[hi].first - sec[at].first > min_dt) {
                 keep[at] = 1;
                 stack.emplace_back(lo, at);
                 stack.emplace_back(at, hi);
@@ -131,26 +134,12 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const double ledger_start = tin.volume_ledger();
     EditReport edit;
 
-    // 1. Release older constraints under the footprint and those past their lifetime.
-    std::vector<VertexId> released;
-    ReleaseFilter under;
-    under.older_than = generation;
-    under.touching_polygon = outer;
-    report.constraints_released +=
-        tin.release_constraints(under, VolumePolicy::Report, &edit, &released);
-    if (generation > context.settings.keep_generations) {
-        ReleaseFilter expired;
-        expired.older_than = generation - context.settings.keep_generations;
-        report.constraints_released +=
-            tin.release_constraints(expired, VolumePolicy::Report, &edit, &released);
-    }
-    context.simplifier.enqueue(released);
-
     // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour and at
     //    the interior samples of a curved profile.
     std::vector<Vec2> rim;
     std::vector<double> rim_h;
-    sample_rim(tin, outer, tool.rim_tolerance(), hint, rim, rim_h);
+    const double min_spacing = 0.25 * tool.shape().gap;
+    sample_rim(tin, outer, tool.rim_tolerance(), min_spacing, hint, rim, rim_h);
     std::vector<double> inner_terrain(inner.size());
     for (std::size_t i = 0; i < inner.size(); ++i)
         inner_terrain[i] = surface_or(tin, inner[i], hint, 0.0);
@@ -205,6 +194,22 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             rim_active[k] = gap <= reach ? 1 : 0;
         }
     }
+    // An outer segment crossed by an older constraint is constrained too: the release below
+    // splits that constraint where O crosses it, and a constrained O keeps the release's flips
+    // from reaching the older imprint outside.
+    const std::vector<std::array<Vec2, 2>> older =
+        tin.constrained_segments(bounding_box(std::span<const Vec2>(rim)), generation);
+    for (std::size_t k = 0; k < rim.size(); ++k) {
+        if (rim_active[k]) continue;
+        const Vec2 a = rim[k];
+        const Vec2 b = rim[(k + 1) % rim.size()];
+        for (const auto& seg : older) {
+            if (segments_intersect(a, b, seg[0], seg[1])) {
+                rim_active[k] = 1;
+                break;
+            }
+        }
+    }
     // Inserts the endpoints of the active segments of a closed contour and constrains them.
     auto enforce = [&](const std::vector<Vec2>& pts, const std::vector<double>& hs,
                        const std::vector<std::uint8_t>& active) {
@@ -232,6 +237,26 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
 
     // 3. Outer contour at the terrain's heights.
     enforce(rim, rim_h, rim_active);
+
+    // Older constraints inside the footprint are released now that O is constrained: a
+    // constraint crossing O was split where O crossed it, its outside part keeps its
+    // constraint, and the Delaunay flips of the release stay inside O. Constraints past their
+    // lifetime go wherever they are, but only where releasing them re-triangulates nothing.
+    std::vector<VertexId> released;
+    ReleaseFilter under;
+    under.older_than = generation;
+    under.inside_polygon = outer;
+    report.constraints_released +=
+        tin.release_constraints(under, VolumePolicy::Report, &edit, &released);
+    if (generation > context.settings.keep_generations) {
+        ReleaseFilter expired;
+        expired.older_than = generation - context.settings.keep_generations;
+        expired.only_if_delaunay = true;
+        report.constraints_released +=
+            tin.release_constraints(expired, VolumePolicy::Report, &edit, &released);
+    }
+    context.simplifier.enqueue(released);
+
     // 4. Inner contour at the profile's heights.
     enforce(inner, inner_h, inner_active);
     if (!lattice.empty()) {
@@ -250,6 +275,46 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         const double h = imprint(p, va.height[v.value]);
         if (h != va.height[v.value]) tin.set_height(v, h);
     }
+    // Vertices already standing in the thin band between I and O (left there by earlier
+    // edits) would otherwise poke up through the new wall when the band is re-triangulated:
+    // a digging tool brings them down to the wall, the ramp from the profile at I to the rim
+    // at O.
+    if (dig) {
+        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+            const Vec2 p = va.position[v.value];
+            if (!point_in_polygon(p, outer) || point_in_polygon(p, inner)) continue;
+            double d_inner = std::numeric_limits<double>::infinity();
+            for (std::size_t i = 0; i < inner.size(); ++i) {
+                d_inner = std::min(d_inner,
+                                   distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]));
+            }
+            double d_outer = std::numeric_limits<double>::infinity();
+            double rim_height = 0.0;
+            for (std::size_t k = 0; k < rim.size(); ++k) {
+                const Vec2 a = rim[k];
+                const Vec2 b = rim[(k + 1) % rim.size()];
+                const double d = distance_to_segment(p, a, b);
+                if (d < d_outer) {
+                    d_outer = d;
+                    const double len2 = length_squared(b - a);
+                    const double t =
+                        len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
+                    rim_height = (1.0 - t) * rim_h[k] + t * rim_h[(k + 1) % rim.size()];
+                }
+            }
+            const double profile = tool.underside(at, p);
+            if (!std::isfinite(profile) || !(d_inner + d_outer > 0.0)) continue;
+            const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
+                                (d_inner + d_outer);
+            if (va.height[v.value] > wall) tin.set_height(v, wall);
+        }
+    }
+    // Vertices a rounding error apart (left where nearly coincident old rims were crossed)
+    // can fall on both sides of the contour and get different heights: a vertical sliver.
+    // They take the lower height.
+    if (dig)
+        equalise_slivers(tin, tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint),
+                         true);
     report.displaced_volume = -(tin.volume_ledger() - ledger_start);
     report.enforce_ms = elapsed_ms(t0);
 
@@ -293,7 +358,9 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
 
     // 7. Extrusion: the displaced volume goes into a ridge ahead of and beside the tool.
     const auto t2 = std::chrono::steady_clock::now();
-    if (tool.spec().extrude && report.displaced_volume > 0.0) {
+    // A stamp that gained a little volume (re-triangulating a curved surface while enforcing
+    // its contours) gives it back through the same ridge, with the sign reversed.
+    if (tool.spec().extrude && report.displaced_volume != 0.0) {
         // Cut depth at each rim point: that of the nearest inner contour point.
         std::vector<double> cut(rim.size(), 0.0);
         for (std::size_t i = 0; i < rim.size(); ++i) {

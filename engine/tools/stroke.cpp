@@ -51,7 +51,6 @@ std::vector<StrokeSample> StrokeSampler::finish() {
 }
 
 std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
-    std::vector<Vec2> out;
     if (control.size() < 3 || !(max_step > 0.0))
         return std::vector<Vec2>(control.begin(), control.end());
     const std::size_t n = control.size();
@@ -61,7 +60,8 @@ std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
         if (i >= static_cast<std::ptrdiff_t>(n)) return control[n - 1] * 2.0 - control[n - 2];
         return control[static_cast<std::size_t>(i)];
     };
-    out.push_back(control[0]);
+    std::vector<Vec2> out = {control[0]};
+    std::vector<Vec2> piece;
     for (std::size_t seg = 0; seg + 1 < n; ++seg) {
         const auto i = static_cast<std::ptrdiff_t>(seg);
         const Vec2 p0 = point(i - 1), p1 = point(i), p2 = point(i + 1), p3 = point(i + 2);
@@ -69,16 +69,29 @@ std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
         auto knot = [](Vec2 a, Vec2 b) { return std::sqrt(std::max(distance(a, b), 1e-12)); };
         const double t0 = 0.0, t1 = t0 + knot(p0, p1), t2 = t1 + knot(p1, p2),
                      t3 = t2 + knot(p2, p3);
-        const int steps = std::max(1, static_cast<int>(std::ceil(distance(p1, p2) / max_step)));
-        for (int k = 1; k <= steps; ++k) {
-            const double t = t1 + (t2 - t1) * k / steps;
+        auto eval = [&](double t) {
             const Vec2 a1 = p0 * ((t1 - t) / (t1 - t0)) + p1 * ((t - t0) / (t1 - t0));
             const Vec2 a2 = p1 * ((t2 - t) / (t2 - t1)) + p2 * ((t - t1) / (t2 - t1));
             const Vec2 a3 = p2 * ((t3 - t) / (t3 - t2)) + p3 * ((t - t2) / (t3 - t2));
             const Vec2 b1 = a1 * ((t2 - t) / (t2 - t0)) + a2 * ((t - t0) / (t2 - t0));
             const Vec2 b2 = a2 * ((t3 - t) / (t3 - t1)) + a3 * ((t - t1) / (t3 - t1));
-            out.push_back(b1 * ((t2 - t) / (t2 - t1)) + b2 * ((t - t1) / (t2 - t1)));
+            return b1 * ((t2 - t) / (t2 - t1)) + b2 * ((t - t1) / (t2 - t1));
+        };
+        // The curve is longer than its chord: double the steps until no piece exceeds max_step.
+        int steps = std::max(1, static_cast<int>(std::ceil(distance(p1, p2) / max_step)));
+        for (int attempt = 0; attempt < 20; ++attempt, steps *= 2) {
+            piece.clear();
+            Vec2 previous = p1;
+            bool ok = true;
+            for (int k = 1; k <= steps; ++k) {
+                const Vec2 q = k == steps ? p2 : eval(t1 + (t2 - t1) * k / steps);
+                ok = ok && distance(previous, q) <= max_step;
+                piece.push_back(q);
+                previous = q;
+            }
+            if (ok) break;
         }
+        out.insert(out.end(), piece.begin(), piece.end());
     }
     return out;
 }
@@ -86,9 +99,14 @@ std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
 ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample& sample,
                             const StrokeSettings& settings, LocateHint* hint) {
     ToolPlacement at;
-    at.centre = sample.position;
-    at.angle =
-        settings.follow_path ? std::atan2(sample.direction.y, sample.direction.x) : settings.angle;
+    // Rounded to 0.1 nm and 1 nrad: the same path sampled at another rate gives samples that
+    // differ in the last bits, and a stamp's rim draping reacts to every bit; rounded, they
+    // stamp identically.
+    auto round_to = [](double v, double quantum) { return std::round(v / quantum) * quantum; };
+    at.centre = {round_to(sample.position.x, 1e-10), round_to(sample.position.y, 1e-10)};
+    at.angle = round_to(
+        settings.follow_path ? std::atan2(sample.direction.y, sample.direction.x) : settings.angle,
+        1e-9);
     if (settings.depth_mode == DepthMode::Absolute) {
         at.bottom = settings.depth;
     } else {
@@ -107,7 +125,8 @@ ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample
 
 StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
                          const StrokeSettings& settings, SculptContext& context,
-                         std::vector<StampReport>* per_stamp) {
+                         std::vector<StampReport>* per_stamp,
+                         const std::function<void(const StampReport&)>& after_stamp) {
     StampReport total;
     StrokeSampler sampler(settings.spacing);
     const bool moves = path.size() > 1;
@@ -119,6 +138,7 @@ StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
             const StampReport r = stamp(tin, tool, at, context, motion);
             if (per_stamp != nullptr) per_stamp->push_back(r);
             total.accumulate(r);
+            if (after_stamp) after_stamp(r);
         }
     };
     for (Vec2 p : path)

@@ -2,6 +2,7 @@
 // Strokes: a tool dragged along a path is a sequence of stamps spaced by arc length (metres),
 // never per frame, so the terrain does not depend on how often the path was sampled.
 
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -61,9 +62,11 @@ struct StrokeSettings {
 ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample& sample,
                             const StrokeSettings& settings, LocateHint* hint);
 
-/// Stamps the tool along a polyline (already densified if it is a curve).
+/// Stamps the tool along a polyline (already densified if it is a curve). `after_stamp` runs
+/// after each stamp (e.g. a few relaxation iterations, as in the seeds' main loop).
 StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
                          const StrokeSettings& settings, SculptContext& context,
-                         std::vector<StampReport>* per_stamp = nullptr);
+                         std::vector<StampReport>* per_stamp = nullptr,
+                         const std::function<void(const StampReport&)>& after_stamp = {});
 
 }  // namespace sandtin

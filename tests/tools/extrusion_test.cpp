@@ -1,0 +1,207 @@
+// Extrusion (material pushing): the volume a stamp displaces goes into a ridge outside O, ahead
+// of and beside the motion, and a stamp or stroke with extrusion conserves volume within 1 % of
+// what it displaced. Oracles: Tin::volume() and a brute-force per-triangle volume; the
+// displaced volume measured on a twin terrain stamped without extrusion (or, for strokes, the
+// cut integrated on a fine grid); the deposit located by sampling the surface before and after.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tin/tin.hpp"
+#include "tools/extrusion.hpp"
+#include "tools/stamp.hpp"
+#include "tools/stroke.hpp"
+#include "tools/tool.hpp"
+#include "tools/tool_json.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::inside_polygon;
+using test::live_ids;
+using test::mesh_is_sound;
+
+const Rect kUnit = Rect::from_size(1.0, 1.0);
+
+Tin terrain() {
+    return test::smooth_terrain(kUnit, 20000, 201, test::rolling_sand);
+}
+
+ToolSpec spec_of(const std::string& asset, bool extrude) {
+    ToolSpec s = load_tool_asset(asset);
+    s.extrude = extrude;
+    return s;
+}
+
+/// Where the surface rose, integrated on a grid: total, in the rear sector (more than 135
+/// degrees from the motion, seen from the tool centre) and in the front half.
+struct Deposit {
+    double total = 0.0;
+    double rear = 0.0;
+    double front = 0.0;
+};
+
+Deposit deposit_around(const std::vector<Vec2>& pts, const std::vector<double>& before,
+                       const std::vector<double>& after, double cell_area, Vec2 centre,
+                       Vec2 motion) {
+    Deposit d;
+    const Vec2 m = motion / length(motion);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const double rise = std::max(0.0, after[i] - before[i]) * cell_area;
+        d.total += rise;
+        const Vec2 r = pts[i] - centre;
+        const double c = dot(r, m) / std::max(length(r), 1e-300);
+        if (c < -std::sqrt(0.5)) d.rear += rise;
+        if (c > 0.0) d.front += rise;
+    }
+    return d;
+}
+
+struct StampCase {
+    std::string asset;
+    double depth;  ///< m below the sand at the centre
+    double angle;
+};
+
+TEST(Extrusion, StampConservesVolumeAndDepositsOutsideOAheadOfTheMotion) {
+    const StampCase cases[] = {{"circle", 0.015, 0.4}, {"box", 0.012, 2.0}, {"ball", 0.02, -1.0}};
+    for (const StampCase& c : cases) {
+        SCOPED_TRACE(c.asset);
+        const Tool with = Tool::build(spec_of(c.asset, true));
+        const Tool without = Tool::build(spec_of(c.asset, false));
+        Tin tin = terrain();
+        Tin twin = terrain();
+        SculptContext context(tin.domain()), twin_context(twin.domain());
+        ToolPlacement at{{0.5, 0.5}, c.angle, 0.0};
+        at.bottom = *tin.height_at(at.centre) - c.depth;
+        const Vec2 motion{std::cos(c.angle), std::sin(c.angle)};
+
+        // The displaced volume, measured on the twin without extrusion.
+        const double v0 = twin.volume();
+        ASSERT_TRUE(stamp(twin, without, at, twin_context, motion).applied);
+        const double displaced = v0 - twin.volume();
+        ASSERT_GT(displaced, 1e-7);
+
+        const Tin before = Tin::from_snapshot(tin.snapshot());
+        const Rect around{{0.3, 0.3}, {0.7, 0.7}};
+        const std::vector<Vec2> grid = test::grid_points(around, 401, 401);
+        const std::vector<double> h0 = test::surface_at(tin, grid);
+        const StampReport r = stamp(tin, with, at, context, motion);
+        ASSERT_TRUE(r.applied);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        const double change = tin.volume() - v0;
+        EXPECT_LE(std::abs(change), 0.01 * displaced)
+            << "net change " << change << " m^3 for " << displaced << " m^3 displaced";
+        EXPECT_NEAR(tin.volume(), test::brute_force_volume(tin), 1e-12);
+        // The report agrees with the measurement (to the same 1 %).
+        EXPECT_NEAR(r.displaced_volume, displaced, 0.01 * displaced);
+        EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 0.01 * displaced);
+
+        // No vertex inside O rose above the pre-stamp sand (beyond the simplifier's
+        // volume-conserving shifts).
+        const std::vector<Vec2> outer = test::rotate_all(with.shape().outer, at.centre, at.angle);
+        const double tol = context.settings.simplify.tolerance;
+        LocateHint hint;
+        for (VertexId v : live_ids(tin)) {
+            const Vec2 p = tin.position(v);
+            if (!inside_polygon(p, outer)) continue;
+            EXPECT_LE(tin.height(v), *before.height_at(p, &hint) + tol) << p.x << ", " << p.y;
+        }
+        // The ridge: where the surface rose, measured on the grid.
+        const std::vector<double> h1 = test::surface_at(tin, grid);
+        const double cell = (around.width() / 400) * (around.height() / 400);
+        const Deposit d = deposit_around(grid, h0, h1, cell, at.centre, motion);
+        EXPECT_GT(d.total, 0.5 * displaced) << "the displaced sand should reappear as a ridge";
+        EXPECT_LE(d.rear, 0.05 * d.total)
+            << "deposit behind the tool: " << d.rear << " of " << d.total << " m^3";
+        EXPECT_GT(d.front, d.total - d.front) << "more should go ahead than behind";
+    }
+}
+
+TEST(Extrusion, StrokeConservesVolume) {
+    const std::vector<Vec2> path = {{0.2, 0.25}, {0.55, 0.4}, {0.7, 0.75}};
+    for (const std::string asset : {"circle", "box", "ball", "rake"}) {
+        SCOPED_TRACE(asset);
+        const Tool tool = Tool::build(spec_of(asset, true));
+        Tin tin = terrain();
+        SculptContext context(tin.domain());
+        StrokeSettings settings;
+        settings.spacing = 0.01;
+        settings.depth = asset == "ball" ? 0.02 : 0.01;
+        settings.depth_mode = DepthMode::Relative;
+        const Rect around{{0.05, 0.1}, {0.85, 0.9}};
+        const std::vector<Vec2> grid = test::grid_points(around, 801, 801);
+        const std::vector<double> h0 = test::surface_at(tin, grid);
+        const double v0 = tin.volume();
+        std::vector<StampReport> per;
+        apply_stroke(tin, tool, path, settings, context, &per);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        const std::vector<double> h1 = test::surface_at(tin, grid);
+        // What the stroke cut, net, on the grid: a lower bound of what it displaced.
+        const double cell = (around.width() / 800) * (around.height() / 800);
+        double cut = 0.0;
+        for (std::size_t i = 0; i < grid.size(); ++i)
+            cut += std::max(0.0, h0[i] - h1[i]) * cell;
+        ASSERT_GT(cut, 1e-6);
+        const double change = tin.volume() - v0;
+        EXPECT_LE(std::abs(change), 0.01 * cut) << "net change " << change << " m^3, cut " << cut
+                                                << " m^3 over " << per.size() << " stamps";
+        EXPECT_NEAR(tin.volume(), test::brute_force_volume(tin), 1e-11);
+    }
+}
+
+TEST(Extrusion, StampAtTheDomainBorderStillConserves) {
+    // Moving towards the border: most of the ridge would fall outside the domain.
+    const Tool tool = Tool::build(spec_of("circle", true));
+    Tin tin = terrain();
+    SculptContext context(tin.domain());
+    const ToolPlacement at{{0.03, 0.5}, std::numbers::pi, *tin.height_at({0.03, 0.5}) - 0.015};
+    const double v0 = tin.volume();
+    const StampReport r = stamp(tin, tool, at, context, Vec2{-1.0, 0.0});
+    ASSERT_TRUE(r.applied);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    ASSERT_GT(r.displaced_volume, 0.0);
+    EXPECT_LE(std::abs(tin.volume() - v0), 0.01 * r.displaced_volume);
+}
+
+TEST(Extrusion, DepositRidgeAddsExactlyTheVolumeOutsideTheContour) {
+    Tin tin = test::smooth_terrain(kUnit, 5000, 202, test::rolling_sand);
+    std::vector<Vec2> outer;
+    for (Vec2 p : circle_contour(0.05, 24))
+        outer.push_back(p + Vec2{0.5, 0.5});
+    // Constrained, as a stamp leaves it, so the ridge cannot reach inside.
+    const std::vector<VertexId> ids = tin.insert_points_on_surface(outer);
+    tin.insert_constraint(ids, /*closed=*/true, 1);
+    const std::vector<double> cut(outer.size(), 0.01);
+    const double volume = 2e-5;
+    const std::vector<Vec2> grid = test::grid_points(Rect{{0.35, 0.35}, {0.65, 0.65}}, 301, 301);
+    const std::vector<double> h0 = test::surface_at(tin, grid);
+    const double v0 = tin.volume();
+    const RidgeReport r = deposit_ridge(tin, outer, cut, Vec2{0.0, 1.0}, 0.04, volume);
+    EXPECT_NEAR(tin.volume() - v0, volume, 1e-12 * std::max(1.0, v0));
+    EXPECT_NEAR(r.deposited, volume, 1e-15);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    const std::vector<double> h1 = test::surface_at(tin, grid);
+    const Deposit d = deposit_around(grid, h0, h1, 0.001 * 0.001, {0.5, 0.5}, {0.0, 1.0});
+    EXPECT_LE(d.rear, 0.05 * d.total);
+    // Nothing inside the contour rose.
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+        if (test::inside_by(grid[i], outer, 1e-9)) {
+            EXPECT_LE(h1[i], h0[i] + 1e-12);
+        }
+    }
+    // No volume, no motion, or a zero width: nothing happens.
+    const double v1 = tin.volume();
+    EXPECT_EQ(deposit_ridge(tin, outer, cut, std::nullopt, 0.04, 0.0).deposited, 0.0);
+    EXPECT_EQ(deposit_ridge(tin, outer, cut, std::nullopt, 0.0, 1e-5).deposited, 0.0);
+    EXPECT_EQ(tin.volume(), v1);
+}
+
+}  // namespace
+}  // namespace sandtin

@@ -1,0 +1,272 @@
+// Tool undersides: the analytic half-sphere, the imprint of a mesh seen from below, bitmap
+// heightfields, and the shipped foot and rake assets. Oracles: the sphere formula, the lower
+// envelope of a generated mesh found by brute force over its triangles (with the rigorous
+// bound of bilinear interpolation between grid samples), exact linear ramps.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tin/tin.hpp"
+#include "tools/stamp.hpp"
+#include "tools/tool.hpp"
+#include "tools/tool_json.hpp"
+#include "tools/tool_profile.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::inside_polygon;
+using test::live_ids;
+using test::mesh_is_sound;
+
+TEST(ToolProfile, FlatIsZeroEverywhere) {
+    const ToolProfile p = ToolProfile::flat();
+    EXPECT_TRUE(p.is_flat());
+    for (Vec2 q : test::random_points_in(Rect{{-1, -1}, {1, 1}}, 100, 1))
+        EXPECT_EQ(p.offset(q), 0.0);
+}
+
+TEST(ToolProfile, HalfSphereIsTheLowerHemisphere) {
+    const double r = 0.05;
+    const ToolProfile p = ToolProfile::half_sphere(r);
+    EXPECT_EQ(p.kind(), ToolProfile::Kind::HalfSphere);
+    EXPECT_EQ(p.offset({0, 0}), 0.0);
+    for (Vec2 q : test::random_points_in(Rect{{-0.07, -0.07}, {0.07, 0.07}}, 2000, 2)) {
+        const double d2 = q.x * q.x + q.y * q.y;
+        const double expected = d2 < r * r ? r - std::sqrt(r * r - d2) : r;
+        EXPECT_NEAR(p.offset(q), expected, 1e-16);
+        EXPECT_GE(p.offset(q), 0.0);
+    }
+    // On the equator the surface is vertical: offset r.
+    EXPECT_NEAR(p.offset({r, 0}), r, 1e-16);
+    EXPECT_NEAR(p.offset(rotate({r * 0.6, 0}, 1.0)), r - r * 0.8, 1e-16);
+    EXPECT_THROW(ToolProfile::half_sphere(0.0), std::invalid_argument);
+    EXPECT_THROW(ToolProfile::half_sphere(-1.0), std::invalid_argument);
+}
+
+// A spherical cap (the bottom of a ball of radius R, out to rho_max) as a triangle mesh, moved
+// to `centre` and lifted by `lift`, with a flat lid above it that the imprint must ignore.
+struct Dome {
+    double R = 0.05;
+    double rho_max = 0.04;
+    Vec2 centre{0.3, -0.2};
+    double lift = 1.0;
+    int rings = 40;
+    int segments = 96;
+
+    double cap(double rho) const { return R - std::sqrt(R * R - rho * rho); }
+    TriangleMesh mesh(bool with_lid) const {
+        TriangleMesh m;
+        auto add = [&](Vec2 p, double z) {
+            m.vertices.push_back({p.x + centre.x, p.y + centre.y, z + lift});
+            return static_cast<std::uint32_t>(m.vertices.size() - 1);
+        };
+        auto ring_vertex = [&](int k, int s) -> std::uint32_t {
+            return static_cast<std::uint32_t>(1 + (k - 1) * segments + (s % segments));
+        };
+        add({0, 0}, 0.0);
+        for (int k = 1; k <= rings; ++k) {
+            const double rho = rho_max * k / rings;
+            for (int s = 0; s < segments; ++s) {
+                const double a = 2.0 * std::numbers::pi * s / segments;
+                add({rho * std::cos(a), rho * std::sin(a)}, cap(rho));
+            }
+        }
+        for (int s = 0; s < segments; ++s)
+            m.triangles.push_back({0, ring_vertex(1, s), ring_vertex(1, s + 1)});
+        for (int k = 1; k < rings; ++k) {
+            for (int s = 0; s < segments; ++s) {
+                const auto a = ring_vertex(k, s), b = ring_vertex(k, s + 1);
+                const auto c = ring_vertex(k + 1, s), d = ring_vertex(k + 1, s + 1);
+                m.triangles.push_back({a, c, d});
+                m.triangles.push_back({a, d, b});
+            }
+        }
+        if (with_lid) {
+            const std::uint32_t hub = add({0, 0}, 0.1);
+            const std::uint32_t first = hub + 1;
+            for (int s = 0; s < segments; ++s) {
+                const double a = 2.0 * std::numbers::pi * s / segments;
+                add({rho_max * std::cos(a), rho_max * std::sin(a)}, 0.1);
+            }
+            for (int s = 0; s < segments; ++s) {
+                m.triangles.push_back({hub, first + static_cast<std::uint32_t>(s),
+                                       first + static_cast<std::uint32_t>((s + 1) % segments)});
+            }
+        }
+        return m;
+    }
+};
+
+/// Lowest z of the mesh above (x, y), by brute force over all triangles; +inf when none.
+double lower_envelope(const TriangleMesh& m, Vec2 p) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& t : m.triangles) {
+        const Vec2 a{m.vertices[t[0]][0], m.vertices[t[0]][1]};
+        const Vec2 b{m.vertices[t[1]][0], m.vertices[t[1]][1]};
+        const Vec2 c{m.vertices[t[2]][0], m.vertices[t[2]][1]};
+        if (test::orient2(a, b, c) == 0.0L) continue;
+        const auto w = test::barycentric(p, a, b, c);
+        if (w[0] < -1e-12L || w[1] < -1e-12L || w[2] < -1e-12L) continue;
+        best = std::min(
+            best, static_cast<double>(w[0] * m.vertices[t[0]][2] + w[1] * m.vertices[t[1]][2] +
+                                      w[2] * m.vertices[t[2]][2]));
+    }
+    return best;
+}
+
+TEST(ToolProfile, MeshImprintIsTheLowerEnvelopeWithinGridResolution) {
+    const Dome dome;
+    const TriangleMesh mesh = dome.mesh(/*with_lid=*/true);
+    const double scale = 2.0;
+    const int resolution = 256;
+    const ToolProfile p = ToolProfile::mesh_imprint(mesh, scale, resolution);
+    EXPECT_EQ(p.kind(), ToolProfile::Kind::Grid);
+    // The grid spans the mesh's bounding box (2 rho_max square) times the scale.
+    const double cell = 2.0 * dome.rho_max * scale / (resolution - 1);
+    const double diag = cell * std::sqrt(2.0);
+    std::size_t compared = 0;
+    for (Vec2 q : test::random_points_in(Rect{{-0.06, -0.06}, {0.06, 0.06}}, 1500, 3)) {
+        const double rho = length(q) / scale;  // mesh units
+        if (rho > 0.7 * dome.rho_max) continue;
+        ++compared;
+        // Oracle 1: the mesh itself. Bilinear interpolation returns a convex combination of
+        // the four surrounding grid samples, each the envelope at a point within one cell
+        // diagonal of q, so the error is at most the envelope's slope times that diagonal.
+        const double rho_far = rho + diag / scale;
+        const double slope = rho_far / std::sqrt(dome.R * dome.R - rho_far * rho_far);
+        const double envelope = scale * (lower_envelope(mesh, q / scale + dome.centre) - dome.lift);
+        EXPECT_NEAR(p.offset(q), envelope, slope * diag + 1e-12) << q.x << ", " << q.y;
+        // Oracle 2: the analytic sphere (the mesh is a faceted sphere, which adds its chordal
+        // error: under 2e-5 m for these rings and segments, times the scale).
+        EXPECT_NEAR(p.offset(q), scale * dome.cap(rho), slope * diag + scale * 2e-5);
+    }
+    EXPECT_GT(compared, 500u);
+    // The lowest point is the origin of the tool.
+    EXPECT_NEAR(p.offset({0, 0}), 0.0, 1e-12);
+    // Where the mesh does not reach (the corners of its bounding box) the tool has no contact.
+    const double corner = 0.95 * dome.rho_max * scale;
+    for (Vec2 q : {Vec2{corner, corner}, Vec2{-corner, corner}, Vec2{corner, -corner}})
+        EXPECT_EQ(p.offset(q), std::numeric_limits<double>::infinity());
+}
+
+TEST(ToolProfile, MeshOutlineIsTheBorderRingCentredAndScaled) {
+    const Dome dome;
+    const TriangleMesh mesh = dome.mesh(/*with_lid=*/false);
+    const double scale = 0.5;
+    const std::vector<Vec2> outline = mesh_outline(mesh, scale);
+    ASSERT_EQ(outline.size(), static_cast<std::size_t>(dome.segments));
+    for (Vec2 p : outline)
+        EXPECT_NEAR(length(p), dome.rho_max * scale, 1e-15);
+    EXPECT_NEAR(std::abs(static_cast<double>(test::signed_area_ld(outline))),
+                0.5 * dome.segments * std::pow(dome.rho_max * scale, 2) *
+                    std::sin(2.0 * std::numbers::pi / dome.segments),
+                1e-15);
+    // A closed mesh (the dome with its lid shares no border... here: a tetrahedron) has none.
+    TriangleMesh tetra;
+    tetra.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    tetra.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    EXPECT_THROW(mesh_outline(tetra, 1.0), std::invalid_argument);
+}
+
+PngImage ramp_image(int channels, int bit_depth) {
+    PngImage img;
+    img.width = 11;
+    img.height = 5;
+    img.channels = channels;
+    img.bit_depth = bit_depth;
+    const std::uint16_t unit = bit_depth == 16 ? 257 : 1;  // 65535 / 255
+    for (std::uint32_t row = 0; row < img.height; ++row) {
+        for (std::uint32_t x = 0; x < img.width; ++x) {
+            // Brighter (higher) to the right and towards the top row.
+            const auto v =
+                static_cast<std::uint16_t>((10 * x + 30 * (img.height - 1 - row)) * unit);
+            for (int c = 0; c < channels; ++c)
+                img.samples.push_back(v);
+        }
+    }
+    return img;
+}
+
+TEST(ToolProfile, HeightfieldOfARampIsLinear) {
+    const Rect extent{{-0.05, -0.02}, {0.05, 0.02}};
+    const double relief = 0.01;
+    for (const auto& [channels, depth] : {std::pair{1, 8}, std::pair{3, 8}, std::pair{1, 16}}) {
+        SCOPED_TRACE(std::to_string(channels) + " channels, " + std::to_string(depth) + " bits");
+        const ToolProfile p = ToolProfile::heightfield(ramp_image(channels, depth), extent, relief);
+        auto expected = [&](Vec2 q) {
+            const double fx = std::clamp((q.x - extent.min.x) / extent.width(), 0.0, 1.0) * 10.0;
+            const double fy = std::clamp((q.y - extent.min.y) / extent.height(), 0.0, 1.0) * 4.0;
+            return relief / 255.0 * (10.0 * fx + 30.0 * fy);
+        };
+        for (Vec2 q : test::random_points_in(extent, 500, 5))
+            EXPECT_NEAR(p.offset(q), expected(q), 1e-15);
+        // Corners: black at (min.x, min.y) (the bottom row), brightest at (max.x, max.y).
+        EXPECT_NEAR(p.offset(extent.min), 0.0, 1e-15);
+        EXPECT_NEAR(p.offset(extent.max), relief * 220.0 / 255.0, 1e-15);
+        EXPECT_NEAR(p.offset({extent.min.x, extent.max.y}), relief * 120.0 / 255.0, 1e-15);
+        // Outside the extent the edge values continue.
+        EXPECT_NEAR(p.offset({1.0, 1.0}), relief * 220.0 / 255.0, 1e-15);
+    }
+    PngImage tiny = ramp_image(1, 8);
+    tiny.width = 1;
+    tiny.samples.resize(5);
+    EXPECT_THROW(ToolProfile::heightfield(tiny, extent, relief), std::invalid_argument);
+    EXPECT_THROW(ToolProfile::heightfield(ramp_image(1, 8), Rect{}, relief), std::invalid_argument);
+    EXPECT_THROW(ToolProfile::heightfield(ramp_image(1, 8), extent, -1.0), std::invalid_argument);
+}
+
+/// Stamps an asset tool on rolling sand and checks the imprint against the tool's own
+/// underside: nothing inside I above the pre-stamp sand or (beyond the simplifier's
+/// tolerance, which may shift heights to conserve volume) above the tool.
+void stamp_asset(const std::string& name) {
+    SCOPED_TRACE(name);
+    const Tool tool = Tool::build(load_tool_asset(name));
+    EXPECT_TRUE(test::is_simple(tool.shape().outer));
+    for (Vec2 p : tool.shape().inner)
+        EXPECT_TRUE(inside_polygon(p, tool.shape().outer));
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, test::rolling_sand);
+    SculptContext context(tin.domain());
+    const Tin before = Tin::from_snapshot(tin.snapshot());
+    ToolPlacement at{{0.5, 0.5}, 0.6, 0.0};
+    at.bottom = *tin.height_at(at.centre) - 0.01;
+    const StampReport r = stamp(tin, tool, at, context, Vec2{1.0, 0.0});
+    ASSERT_TRUE(r.applied);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    EXPECT_GT(r.displaced_volume, 0.0);
+    const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
+    const double tol = context.settings.simplify.tolerance;
+    std::size_t below = 0, checked = 0;
+    LocateHint hint;
+    for (VertexId v : live_ids(tin)) {
+        const Vec2 p = tin.position(v);
+        if (!test::inside_by(p, inner, 1e-9)) continue;
+        ++checked;
+        const double h = tin.height(v);
+        const double sand = *before.height_at(p, &hint);
+        EXPECT_LE(h, sand + tol) << p.x << ", " << p.y;
+        const double u = tool.underside(at, p);
+        if (std::isfinite(u)) {
+            EXPECT_LE(h, u + tol) << p.x << ", " << p.y;
+        }
+        below += h < sand - 1e-3 ? 1 : 0;
+    }
+    EXPECT_GT(checked, 10u);
+    EXPECT_GT(below, 10u) << "the tool should have pressed into the sand";
+}
+
+TEST(ToolProfile, ShippedFootAndRakeBuildAndStamp) {
+    stamp_asset("foot");
+    stamp_asset("rake");
+    stamp_asset("ball");
+}
+
+}  // namespace
+}  // namespace sandtin

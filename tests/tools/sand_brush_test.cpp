@@ -1,0 +1,360 @@
+// Pouring and removing sand, and the artist brushes. Oracles: Tin::volume() and the brute-force
+// per-triangle volume, the documented falloff formulas evaluated per vertex, the analytic
+// integral of the falloff over the disc, bedrock read back per vertex, variance of a noisy patch,
+// an analytic plane.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+#include <vector>
+
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tin/tin.hpp"
+#include "tools/brushes.hpp"
+#include "tools/sand.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::live_ids;
+using test::mesh_is_sound;
+
+const Rect kUnit = Rect::from_size(1.0, 1.0);
+
+/// Heights of the live vertices by id.
+std::unordered_map<std::uint32_t, double> heights(const Tin& tin) {
+    std::unordered_map<std::uint32_t, double> h;
+    for (VertexId v : live_ids(tin))
+        h[v.value] = tin.height(v);
+    return h;
+}
+
+VertexId nearest_vertex(const Tin& tin, Vec2 c) {
+    VertexId best;
+    double d = 1e300;
+    for (VertexId v : live_ids(tin)) {
+        if (distance(tin.position(v), c) < d) {
+            d = distance(tin.position(v), c);
+            best = v;
+        }
+    }
+    return best;
+}
+
+// ---- 10. Pour and remove ---------------------------------------------------------------------
+
+TEST(Sand, PourAddsExactlyTheVolume) {
+    Tin tin = Tin::random_points(kUnit, 3000, 401, test::rolling_sand);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    const auto h0 = heights(tin);
+    const double v0 = tin.volume();
+    PourSettings s;
+    s.radius = 0.03;
+    const double volume = 1e-4;
+    const Vec2 c{0.4, 0.6};
+    const PourReport r = pour_sand(tin, c, volume, s, context);
+    EXPECT_NEAR(tin.volume() - v0, volume, 1e-12 * volume);
+    EXPECT_NEAR(test::brute_force_volume(tin) - v0, volume, 1e-12 * volume);
+    EXPECT_NEAR(r.volume, volume, 1e-12 * volume);
+    EXPECT_GT(r.vertices_changed, 10u);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    // Vertices beyond the radius keep their heights; the pile peaks at the centre.
+    for (const auto& [id, h] : h0) {
+        const VertexId v{id};
+        ASSERT_TRUE(tin.is_alive(v));
+        if (distance(tin.position(v), c) > s.radius) {
+            EXPECT_EQ(tin.height(v), h);
+        } else if (distance(tin.position(v), c) < s.radius) {
+            EXPECT_GT(tin.height(v), h);
+        }
+    }
+    EXPECT_GT(*tin.height_at(c), test::rolling_sand(c) + 0.5 * volume / (std::numbers::pi * 9e-4));
+}
+
+TEST(Sand, PourOnTwoTrianglesRefinesAndAddsExactlyTheVolume) {
+    Tin tin = Tin::flat_rectangle(kUnit, 0.1);
+    ASSERT_EQ(tin.vertex_count(), 4u);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    const double v0 = tin.volume();
+    PourSettings s;
+    s.radius = 0.05;
+    const double volume = 1e-4;
+    const Vec2 c{0.5, 0.5};
+    const PourReport r = pour_sand(tin, c, volume, s, context);
+    EXPECT_GT(r.vertices_inserted, 20u) << "a pour on two triangles needs points to have a shape";
+    EXPECT_EQ(tin.vertex_count(), 4u + r.vertices_inserted);
+    EXPECT_NEAR(tin.volume() - v0, volume, 1e-12 * volume);
+    EXPECT_NEAR(test::brute_force_volume(tin) - v0, volume, 1e-12 * volume);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    // A round pile: the top at the centre, sand raised half-way out in every direction, and
+    // flat sand beyond the radius plus one refined edge (r / 4): no triangle reaching there
+    // has a corner inside the disc.
+    const double top = *tin.height_at(c);
+    LocateHint hint;
+    for (int k = 0; k < 16; ++k) {
+        const Vec2 dir{std::cos(k * std::numbers::pi / 8), std::sin(k * std::numbers::pi / 8)};
+        EXPECT_LT(*tin.height_at(c + dir * (0.5 * s.radius), &hint), top);
+        EXPECT_GT(*tin.height_at(c + dir * (0.5 * s.radius), &hint), 0.1);
+        EXPECT_NEAR(*tin.height_at(c + dir * (1.25 * s.radius + 1e-3), &hint), 0.1, 1e-15);
+    }
+    // Pouring nothing changes nothing; a bad volume throws.
+    const test::TinState before = test::capture(tin);
+    pour_sand(tin, c, 0.0, s, context);
+    test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+    EXPECT_THROW(pour_sand(tin, c, -1.0, s, context), std::invalid_argument);
+    EXPECT_THROW(pour_sand(tin, c, std::nan(""), s, context), std::invalid_argument);
+}
+
+TEST(Sand, RemoveNeverGoesBelowBedrockAndReportsWhatItTook) {
+    Tin tin = Tin::random_points(kUnit, 3000, 402, test::rolling_sand);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    // Two millimetres of sand over the bedrock everywhere.
+    for (VertexId v : live_ids(tin))
+        tin.set_bedrock(v, tin.height(v) - 0.002);
+    PourSettings s;
+    s.radius = 0.03;
+    const Vec2 c{0.55, 0.45};
+
+    // A little: all of it comes out.
+    double v0 = tin.volume();
+    PourReport r = remove_sand(tin, c, 1e-7, s, context);
+    EXPECT_NEAR(r.volume, -1e-7, 1e-12 * 1e-7 + 1e-16);
+    EXPECT_NEAR(tin.volume() - v0, -1e-7, 1e-12 * 1e-7 + 1e-16);
+
+    // Far more than the disc holds: it stops at the bedrock and says how much it took.
+    v0 = tin.volume();
+    const auto h0 = heights(tin);
+    r = remove_sand(tin, c, 1e-3, s, context);
+    const double taken = v0 - tin.volume();
+    // (Tin::volume() sums ~0.1 m^3, so its rounding is ~1e-17 m^3.)
+    EXPECT_NEAR(r.volume, -taken, 1e-12 * taken + 1e-16);
+    EXPECT_NEAR(test::brute_force_volume(tin), tin.volume(), 1e-12);
+    EXPECT_GT(taken, 0.0);
+    EXPECT_LT(taken, 1e-3);
+    // At most the sand of the vertices in the disc: 2 mm over their lumped areas, which lie
+    // within one refined edge (r / 4) of the disc.
+    EXPECT_LT(taken, 0.002 * std::numbers::pi * std::pow(1.25 * s.radius, 2));
+    const VertexArrays& va = tin.vertices();
+    std::size_t bare = 0;
+    for (VertexId v : live_ids(tin)) {
+        EXPECT_GE(va.height[v.index()], va.bedrock[v.index()]) << "below bedrock";
+        const double d = distance(tin.position(v), c);
+        if (d < 0.9 * s.radius) {
+            EXPECT_EQ(va.height[v.index()], va.bedrock[v.index()]) << "sand left at d = " << d;
+            ++bare;
+        }
+        const auto old = h0.find(v.value);
+        if (d > s.radius && old != h0.end()) {  // untouched
+            EXPECT_EQ(va.height[v.index()], old->second);
+        }
+    }
+    EXPECT_GT(bare, 10u);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    // Nothing left to take: a further removal takes nothing.
+    v0 = tin.volume();
+    r = remove_sand(tin, c + Vec2{0.002, 0.0}, 1e-4, s, context);
+    EXPECT_NEAR(r.volume, tin.volume() - v0, 1e-15);
+}
+
+// ---- 11. Brushes -----------------------------------------------------------------------------
+
+double smooth_falloff(double t) {
+    return t < 1.0 ? 1.0 - t * t * (3.0 - 2.0 * t) : 0.0;
+}
+
+TEST(Brush, RaiseAndLowerFollowTheFalloffAndPeakAtTheCentre) {
+    for (const BrushKind kind : {BrushKind::Raise, BrushKind::Lower}) {
+        const double sign = kind == BrushKind::Raise ? 1.0 : -1.0;
+        SCOPED_TRACE(sign > 0 ? "raise" : "lower");
+        Tin tin = Tin::random_points(kUnit, 5000, 411, test::rolling_sand);
+        SculptContext context(tin.domain());
+        context.settings.simplify_after_edit = false;
+        BrushSettings b;
+        b.kind = kind;
+        b.radius = 0.05;
+        b.strength = 0.004;
+        b.falloff = Falloff::Smooth;
+        const Vec2 c{0.52, 0.47};
+        const auto h0 = heights(tin);
+        const Tin before = Tin::from_snapshot(tin.snapshot());
+        const double v0 = tin.volume();
+        const BrushReport r = apply_brush(tin, c, b, context);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        // Every vertex that existed moved by strength * falloff(d / r), exactly.
+        for (const auto& [id, h] : h0) {
+            const VertexId v{id};
+            const double t = distance(tin.position(v), c) / b.radius;
+            EXPECT_NEAR(tin.height(v) - h, sign * b.strength * smooth_falloff(t), 1e-15);
+        }
+        // The extreme change, over all vertices (new ones measured against the sand before),
+        // is at the vertex nearest the centre.
+        const VertexId centre_vertex = nearest_vertex(tin, c);
+        double best = -1e300;
+        VertexId best_v;
+        LocateHint hint;
+        for (VertexId v : live_ids(tin)) {
+            const double change =
+                sign * (tin.height(v) - *before.height_at(tin.position(v), &hint));
+            if (change > best) {
+                best = change;
+                best_v = v;
+            }
+        }
+        EXPECT_EQ(best_v, centre_vertex);
+        // The volume: strength times the integral of the falloff over the disc,
+        // 2 pi r^2 * int_0^1 (1 - 3t^2 + 2t^3) t dt = 0.3 pi r^2.
+        const double expected = sign * b.strength * 0.3 * std::numbers::pi * b.radius * b.radius;
+        EXPECT_NEAR(tin.volume() - v0, expected, 0.1 * std::abs(expected));
+        EXPECT_NEAR(r.volume_change, tin.volume() - v0, 1e-12);
+        EXPECT_GT(r.vertices_changed, 20u);
+    }
+}
+
+/// A reproducible noise in [-1, 1] from a position.
+double noise(Vec2 p) {
+    const double s = std::sin(p.x * 12345.678 + p.y * 91011.1213) * 43758.5453;
+    return 2.0 * (s - std::floor(s)) - 1.0;
+}
+
+double variance_in_disc(const Tin& tin, Vec2 c, double r) {
+    double sum = 0.0, sum2 = 0.0;
+    std::size_t n = 0;
+    for (VertexId v : live_ids(tin)) {
+        if (distance(tin.position(v), c) >= r) continue;
+        sum += tin.height(v);
+        sum2 += tin.height(v) * tin.height(v);
+        ++n;
+    }
+    const double mean = sum / static_cast<double>(n);
+    return sum2 / static_cast<double>(n) - mean * mean;
+}
+
+TEST(Brush, SmoothCalmsNoise) {
+    Tin tin = Tin::random_points(kUnit, 20000, 421, [](Vec2 p) { return 0.1 + 0.002 * noise(p); });
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    BrushSettings b;
+    b.kind = BrushKind::Smooth;
+    b.radius = 0.1;
+    b.strength = 1.0;
+    b.falloff = Falloff::Constant;
+    const Vec2 c{0.5, 0.5};
+    const double before = variance_in_disc(tin, c, 0.05);
+    ASSERT_GT(before, 1e-7);
+    apply_brush(tin, c, b, context);
+    const double after = variance_in_disc(tin, c, 0.05);
+    EXPECT_LT(after, 0.5 * before) << before << " -> " << after;
+    EXPECT_TRUE(mesh_is_sound(tin));
+}
+
+TEST(Brush, SmoothLeavesAPlaneUnchanged) {
+    // A sloped plane is as smooth as sand gets: smoothing it must not move it.
+    const test::Plane plane{0.05, -0.03, 0.1};
+    Tin tin = Tin::random_points(kUnit, 5000, 422, plane);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    BrushSettings b;
+    b.kind = BrushKind::Smooth;
+    b.radius = 0.1;
+    b.strength = 1.0;
+    b.falloff = Falloff::Constant;
+    apply_brush(tin, {0.5, 0.5}, b, context);
+    double worst = 0.0;
+    for (VertexId v : live_ids(tin))
+        worst = std::max(worst, std::abs(tin.height(v) - plane(tin.position(v))));
+    EXPECT_LE(worst, 1e-12) << "smoothing moved a plane by up to " << worst << " m";
+}
+
+TEST(Brush, FlattenMovesHeightsTowardTheTarget) {
+    Tin tin = Tin::random_points(kUnit, 5000, 431, test::rolling_sand);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    BrushSettings b;
+    b.kind = BrushKind::Flatten;
+    b.radius = 0.08;
+    b.strength = 0.5;
+    b.falloff = Falloff::Smooth;
+    b.flatten_to = 0.1;
+    const Vec2 c{0.3, 0.7};
+    const auto h0 = heights(tin);
+    apply_brush(tin, c, b, context);
+    std::size_t moved = 0;
+    for (const auto& [id, h] : h0) {
+        const VertexId v{id};
+        const double w = smooth_falloff(distance(tin.position(v), c) / b.radius);
+        const double expected = h + b.strength * w * (0.1 - h);
+        EXPECT_NEAR(tin.height(v), expected, 1e-15);
+        EXPECT_LE(std::abs(tin.height(v) - 0.1), std::abs(h - 0.1) + 1e-15);
+        moved += w > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(moved, 20u);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    // Strength 1 with a constant falloff: exactly level inside the radius.
+    b.strength = 1.0;
+    b.falloff = Falloff::Constant;
+    apply_brush(tin, {0.6, 0.3}, b, context);
+    for (VertexId v : live_ids(tin)) {
+        if (distance(tin.position(v), {0.6, 0.3}) < b.radius * (1.0 - 1e-12)) {
+            EXPECT_NEAR(tin.height(v), 0.1, 1e-15);
+        }
+    }
+}
+
+TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
+    Tin tin = Tin::random_points(kUnit, 5000, 441, test::rolling_sand);
+    SculptContext context(tin.domain());
+    BrushSettings b;
+    b.kind = BrushKind::PaintMaterial;
+    b.radius = 0.06;
+    b.material = 7;
+    const Vec2 c{0.5, 0.5};
+    const std::size_t n = tin.vertex_count();
+    const double v0 = tin.volume();
+    const BrushReport r = apply_brush(tin, c, b, context);
+    EXPECT_EQ(tin.vertex_count(), n) << "painting needs no new points";
+    EXPECT_EQ(tin.volume(), v0);
+    std::size_t painted = 0;
+    const VertexArrays& va = tin.vertices();
+    for (VertexId v : live_ids(tin)) {
+        const double d = distance(tin.position(v), c);
+        if (d < b.radius * (1.0 - 1e-12)) {
+            EXPECT_EQ(va.material[v.index()], 7) << "d = " << d;
+            ++painted;
+        } else if (d > b.radius * (1.0 + 1e-12)) {
+            EXPECT_EQ(va.material[v.index()], 0) << "d = " << d;
+        }
+    }
+    EXPECT_EQ(r.vertices_changed, painted);
+    EXPECT_GT(painted, 30u);
+}
+
+TEST(Brush, BadSettingsThrow) {
+    Tin tin = Tin::random_points(kUnit, 100, 451);
+    SculptContext context(tin.domain());
+    BrushSettings b;
+    b.radius = 0.0;
+    EXPECT_THROW(apply_brush(tin, {0.5, 0.5}, b, context), std::invalid_argument);
+    b = BrushSettings{};
+    b.strength = -1.0;
+    EXPECT_THROW(apply_brush(tin, {0.5, 0.5}, b, context), std::invalid_argument);
+    b = BrushSettings{};
+    b.kind = BrushKind::Smooth;
+    b.strength = 1.5;
+    EXPECT_THROW(apply_brush(tin, {0.5, 0.5}, b, context), std::invalid_argument);
+    b = BrushSettings{};
+    EXPECT_THROW(apply_brush(tin, {std::nan(""), 0.5}, b, context), std::invalid_argument);
+    // Far outside the domain: nothing happens.
+    const test::TinState before = test::capture(tin);
+    apply_brush(tin, {5.0, 5.0}, BrushSettings{}, context);
+    test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+}
+
+}  // namespace
+}  // namespace sandtin

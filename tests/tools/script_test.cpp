@@ -1,0 +1,243 @@
+// Sculpting scripts: parsing (both forms, line numbers), errors that name the line and the
+// field, and running a script. Oracles: the script texts written here, with their line numbers
+// counted by hand; volumes of pours known exactly.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "io/script.hpp"
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tools/tool_json.hpp"
+#include "util/json_fields.hpp"
+
+namespace sandtin {
+namespace {
+
+Script parse(const std::string& text) {
+    return parse_script(text, "script.json", ".");
+}
+
+/// The message of the JsonInputError a script raises ("" when it parses).
+std::string error_of(const std::string& text) {
+    try {
+        parse(text);
+    } catch (const JsonInputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Script, ArrayFormParsesEveryOperationWithItsLine) {
+    const std::string text = R"([
+  {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "depth": 0.01},
+  {"op": "stroke", "tool": {"contour": "circle", "radius": 0.03}, "path": [[0.2, 0.2], [0.8, 0.3]], "spacing": 0.01, "bottom": 0.05},
+
+  {"op": "pour", "at": [0.3, 0.7], "volume": 1e-5, "radius": 0.02},
+  {"op": "remove", "path": [[0.6, 0.6], [0.705, 0.6]], "volume": 1e-6, "radius": 0.02},
+  {
+    "op": "brush", "kind": "smooth", "at": [0.4, 0.4], "radius": 0.05, "strength": 0.5
+  },
+  {"op": "simplify", "tolerance": 0.001}
+]
+)";
+    const Script s = parse(text);
+    ASSERT_EQ(s.steps.size(), 6u);
+    EXPECT_FALSE(s.terrain.has_value());
+    const std::vector<std::size_t> lines = {2, 3, 5, 6, 7, 10};
+    for (std::size_t i = 0; i < s.steps.size(); ++i)
+        EXPECT_EQ(s.steps[i].line, lines[i]) << "operation " << i + 1;
+    EXPECT_EQ(s.steps[0].op_name, "stamp");
+    EXPECT_EQ(s.steps[1].op_name, "stroke");
+    EXPECT_EQ(s.steps[3].op_name, "remove");
+
+    const auto& stamp_op = std::get<StampOp>(s.steps[0].operation);
+    EXPECT_EQ(stamp_op.at, (Vec2{0.5, 0.5}));
+    EXPECT_EQ(stamp_op.depth_mode, DepthMode::Relative);
+    EXPECT_DOUBLE_EQ(stamp_op.depth, 0.01);
+    EXPECT_DOUBLE_EQ(stamp_op.tool->spec().radius, 0.04);  // assets/tools/circle.json
+    const auto& stroke_op = std::get<StrokeOp>(s.steps[1].operation);
+    EXPECT_EQ(stroke_op.path.size(), 2u);
+    EXPECT_DOUBLE_EQ(stroke_op.settings.spacing, 0.01);
+    EXPECT_EQ(stroke_op.settings.depth_mode, DepthMode::Absolute);
+    EXPECT_DOUBLE_EQ(stroke_op.settings.depth, 0.05);
+    EXPECT_DOUBLE_EQ(stroke_op.tool->spec().radius, 0.03);
+    const auto& pour_op = std::get<PourOp>(s.steps[2].operation);
+    EXPECT_FALSE(pour_op.remove);
+    ASSERT_EQ(pour_op.points.size(), 1u);
+    EXPECT_DOUBLE_EQ(pour_op.volume, 1e-5);
+    EXPECT_DOUBLE_EQ(pour_op.settings.radius, 0.02);
+    // A removal along a path: points every spacing (default radius / 2 = 1 cm) over 10.5 cm.
+    const auto& remove_op = std::get<PourOp>(s.steps[3].operation);
+    EXPECT_TRUE(remove_op.remove);
+    ASSERT_EQ(remove_op.points.size(), 11u);
+    for (std::size_t k = 0; k < remove_op.points.size(); ++k)
+        EXPECT_NEAR(remove_op.points[k].x, 0.6 + 0.01 * static_cast<double>(k), 1e-12);
+    const auto& brush_op = std::get<BrushOp>(s.steps[4].operation);
+    EXPECT_EQ(brush_op.settings.kind, BrushKind::Smooth);
+    EXPECT_DOUBLE_EQ(brush_op.settings.strength, 0.5);
+    const auto& simplify_op = std::get<SimplifyOp>(s.steps[5].operation);
+    ASSERT_TRUE(simplify_op.tolerance.has_value());
+    EXPECT_DOUBLE_EQ(*simplify_op.tolerance, 0.001);
+}
+
+TEST(Script, ObjectFormWithTerrainAndSettings) {
+    const std::string text = R"({
+  "version": 1,
+  "terrain": {"size": [2, 1.5], "points": 500, "seed": 9, "height": 0.2},
+  "settings": {"simplify_tolerance": 0.002, "keep_generations": 10, "simplify": false},
+  "operations": [
+    {"op": "pour", "at": [1.0, 0.7], "volume": 2e-5, "radius": 0.05},
+    {"op": "stamp", "tool": {"asset": "lambda"}, "at": [0.5, 0.5], "angle": 0.3, "bottom": 0.15}
+  ]
+})";
+    const Script s = parse(text);
+    ASSERT_TRUE(s.terrain.has_value());
+    EXPECT_EQ(s.terrain->size, (Vec2{2.0, 1.5}));
+    EXPECT_EQ(s.terrain->points, 500u);
+    EXPECT_EQ(s.terrain->seed, 9u);
+    EXPECT_DOUBLE_EQ(s.terrain->height, 0.2);
+    ASSERT_TRUE(s.simplify_tolerance && s.keep_generations && s.simplify);
+    EXPECT_DOUBLE_EQ(*s.simplify_tolerance, 0.002);
+    EXPECT_EQ(*s.keep_generations, 10u);
+    EXPECT_FALSE(*s.simplify);
+    ASSERT_EQ(s.steps.size(), 2u);
+    EXPECT_EQ(s.steps[0].line, 6u);
+    EXPECT_EQ(s.steps[1].line, 7u);
+    const auto& stamp_op = std::get<StampOp>(s.steps[1].operation);
+    EXPECT_EQ(stamp_op.depth_mode, DepthMode::Absolute);
+    EXPECT_DOUBLE_EQ(stamp_op.depth, 0.15);
+    EXPECT_DOUBLE_EQ(stamp_op.angle, 0.3);
+    EXPECT_EQ(stamp_op.tool->spec().name, "lambda");
+}
+
+TEST(Script, RunAppliesTheOperationsAndTheSettings) {
+    const std::string text = R"({
+  "settings": {"simplify_tolerance": 0.002, "keep_generations": 10},
+  "operations": [
+    {"op": "pour", "at": [0.5, 0.5], "volume": 3e-5, "radius": 0.04},
+    {"op": "pour", "path": [[0.2, 0.2], [0.3, 0.2]], "volume": 2e-5, "radius": 0.02},
+    {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.7, 0.7], "bottom": 0.05}
+  ]
+})";
+    const Script s = parse(text);
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 2000, 601, [](Vec2) { return 0.1; });
+    SculptContext context(tin.domain());
+    const double v0 = tin.volume();
+    const nlohmann::json report = run_script(s, tin, context);
+    EXPECT_DOUBLE_EQ(context.settings.simplify.tolerance, 0.002);
+    EXPECT_EQ(context.settings.keep_generations, 10u);
+    ASSERT_EQ(report.size(), 3u);
+    EXPECT_EQ(report[0]["op"], "pour");
+    EXPECT_EQ(report[2]["line"], 6);
+    EXPECT_TRUE(tin.check_valid().ok());
+    // The pours add exactly their volume; the flat stamp then removes its footprint down to
+    // 5 cm: between the inner polygon's area and the outer's, times 5 cm.
+    const Tool circle = Tool::build(load_tool_asset("circle"));
+    const double inner = static_cast<double>(test::signed_area_ld(circle.shape().inner));
+    const double outer = static_cast<double>(test::signed_area_ld(circle.shape().outer));
+    const double dug = v0 + 5e-5 - tin.volume();
+    EXPECT_GT(dug, inner * 0.05 * (1.0 - 1e-9));
+    EXPECT_LT(dug, outer * 0.05);
+    EXPECT_NEAR(*tin.height_at({0.7, 0.7}), 0.05, 1e-12);
+}
+
+TEST(Script, ErrorsNameTheLineAndTheField) {
+    struct Case {
+        const char* what;
+        std::string text;
+        std::vector<std::string> expected;  ///< substrings of the message
+    };
+    const std::string ok = R"(  {"op": "pour", "at": [0.5, 0.5], "volume": 1e-5},)";
+    const Case cases[] = {
+        {"negative radius on line 7",
+         "[\n" + ok + "\n" + ok + "\n" + ok + "\n" + ok + "\n" + ok +
+             "\n  {\"op\": \"pour\", \"at\": [0.5, 0.5], \"volume\": 1e-5, \"radius\": -0.02}\n]",
+         {"script.json:7:", "radius", "positive"}},
+        {"negative tool radius",
+         "[\n" + ok +
+             "\n  {\"op\": \"stamp\", \"tool\": {\"contour\": \"circle\", \"radius\": -1}, "
+             "\"at\": [0.5, 0.5]}\n]",
+         {"script.json:3:", "tool", "radius"}},
+        {"unknown field",
+         "[\n" + ok +
+             "\n  {\"op\": \"stamp\", \"tool\": {\"asset\": \"circle\"}, \"at\": [0.5, "
+             "0.5], \"depht\": 0.01}\n]",
+         {"script.json:3:", "depht", "unknown"}},
+        {"unknown op",
+         "[\n  {\"op\": \"dig\", \"at\": [0.5, 0.5]}\n]",
+         {"script.json:2:", "op", "dig"}},
+        {"invalid JSON",
+         "[\n" + ok + "\n" + ok + "\n  {\"op\": \"pour\", \"at\": [0.5, 0.5] \"volume\": 1e-5}\n]",
+         {"script.json:4:", "JSON"}},
+        {"missing volume",
+         "[\n" + ok + "\n  {\"op\": \"pour\", \"at\": [0.5, 0.5]}\n]",
+         {"script.json:3:", "volume"}},
+        {"depth and bottom",
+         "[\n  {\"op\": \"stamp\", \"tool\": {\"asset\": \"circle\"}, \"at\": [0, 0], \"depth\": "
+         "0.1, \"bottom\": 0}\n]",
+         {"script.json:2:", "depth", "bottom"}},
+        {"smooth strength above 1",
+         "[\n\n\n  {\"op\": \"brush\", \"kind\": \"smooth\", \"at\": [0, 0], \"strength\": 2}\n]",
+         {"script.json:4:", "strength"}},
+        {"unknown asset",
+         "[\n  {\"op\": \"stamp\", \"tool\": {\"asset\": \"no_such_tool\"}, \"at\": [0, 0]}\n]",
+         {"script.json:2:", "asset"}},
+        {"bad path point",
+         "[\n  {\"op\": \"stroke\", \"tool\": {\"asset\": \"circle\"}, \"path\": [[0, 0], [1]]}\n]",
+         {"script.json:2:", "path"}},
+        {"unknown top-level field", R"({"operations": [], "bogus": 1})", {"bogus"}},
+        {"bad terrain size",
+         R"({"terrain": {"size": [0, 1]}, "operations": []})",
+         {"terrain", "size"}},
+        {"operations not an array", R"({"operations": {"op": "pour"}})", {"operations"}},
+        {"operation not an object", "[\n  42\n]", {"script.json:2:", "object"}},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        const std::string message = error_of(c.text);
+        ASSERT_FALSE(message.empty()) << "the script parsed:\n" << c.text;
+        for (const std::string& e : c.expected)
+            EXPECT_NE(message.find(e), std::string::npos) << "'" << e << "' not in: " << message;
+    }
+}
+
+TEST(Script, ExtensionsAddOperations) {
+    int runs = 0;
+    const ScriptExtension wobble = [&](const std::string& op, const nlohmann::json& object,
+                                       const std::string& context) -> std::optional<CustomOp> {
+        if (op != "wobble") return std::nullopt;
+        JsonFields f(object, context);
+        f.get("op");
+        const double steps = f.positive("steps", 1.0);
+        f.reject_unknown();
+        return CustomOp{"wobble", [&runs, steps](Tin&, SculptContext&) {
+                            ++runs;
+                            return nlohmann::json{{"steps", steps}};
+                        }};
+    };
+    const Script s =
+        parse_script("[\n {\"op\": \"wobble\", \"steps\": 3}\n]", "x.json", ".", {wobble});
+    ASSERT_EQ(s.steps.size(), 1u);
+    Tin tin = Tin::flat_rectangle(Rect::from_size(1, 1));
+    SculptContext context;
+    const nlohmann::json r = run_script(s, tin, context);
+    EXPECT_EQ(runs, 1);
+    EXPECT_EQ(r[0]["steps"], 3.0);
+    // Its own field errors still name the line.
+    try {
+        parse_script("[\n\n {\"op\": \"wobble\", \"steps\": -3}\n]", "x.json", ".", {wobble});
+        ADD_FAILURE() << "a negative step count parsed";
+    } catch (const JsonInputError& e) {
+        EXPECT_NE(std::string(e.what()).find("x.json:3:"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("steps"), std::string::npos) << e.what();
+    }
+    // Without the extension the op is unknown.
+    EXPECT_THROW(parse("[{\"op\": \"wobble\"}]"), JsonInputError);
+}
+
+}  // namespace
+}  // namespace sandtin

@@ -1,0 +1,367 @@
+// Automatic simplification: planarity residuals, the simplifier queue, planar patch removal,
+// and the acceptance criterion that a flattened region loses at least 90 % of its interior
+// vertices. Oracles: analytic planes, vertex counts by brute force over positions, snapshots
+// compared field by field when an edit must change nothing, volumes and surfaces sampled on
+// the plane.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tin/tin.hpp"
+#include "tools/brushes.hpp"
+#include "tools/simplifier.hpp"
+#include "tools/stamp.hpp"
+#include "tools/tool.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::inside_by;
+using test::live_ids;
+using test::mesh_is_sound;
+using test::on_domain_border;
+
+const Rect kUnit = Rect::from_size(1.0, 1.0);
+const test::Plane kSlope{0.05, -0.03, 0.1};
+
+std::size_t count_inside(const Tin& tin, std::span<const Vec2> poly, double margin) {
+    std::size_t n = 0;
+    for (VertexId v : live_ids(tin))
+        n += inside_by(tin.position(v), poly, margin) ? 1 : 0;
+    return n;
+}
+
+std::size_t count_in_disc(const Tin& tin, Vec2 c, double r) {
+    std::size_t n = 0;
+    for (VertexId v : live_ids(tin))
+        n += distance(tin.position(v), c) < r ? 1 : 0;
+    return n;
+}
+
+std::vector<VertexId> interior_in_disc(const Tin& tin, Vec2 c, double r) {
+    std::vector<VertexId> out;
+    for (VertexId v : live_ids(tin)) {
+        if (distance(tin.position(v), c) < r && !on_domain_border(tin.domain(), tin.position(v)))
+            out.push_back(v);
+    }
+    return out;
+}
+
+/// Grows a set of interior vertices until the triangles around it form a disc: no vertex
+/// enclosed without being in the set, no pinch (a vertex where the boundary passes twice), a
+/// single boundary loop. Computed from triangles() only.
+std::vector<VertexId> close_to_disc(const Tin& tin, std::vector<VertexId> set) {
+    for (int round = 0; round < 100; ++round) {
+        std::set<VertexId> in(set.begin(), set.end());
+        std::map<std::pair<VertexId, VertexId>, bool> directed;  // edge -> in a region face
+        std::vector<test::Tri> region;
+        for (const test::Tri& t : tin.triangles()) {
+            const bool r = in.count(t[0]) || in.count(t[1]) || in.count(t[2]);
+            for (int i = 0; i < 3; ++i)
+                directed[{t[static_cast<std::size_t>(i)],
+                          t[static_cast<std::size_t>((i + 1) % 3)]}] = r;
+            if (r) region.push_back(t);
+        }
+        std::map<VertexId, std::vector<VertexId>> next;  // boundary: region on the left
+        std::set<VertexId> corners;
+        for (const test::Tri& t : region) {
+            for (int i = 0; i < 3; ++i) {
+                const VertexId a = t[static_cast<std::size_t>(i)];
+                const VertexId b = t[static_cast<std::size_t>((i + 1) % 3)];
+                corners.insert(a);
+                const auto twin = directed.find({b, a});
+                if (twin == directed.end() || !twin->second) next[a].push_back(b);
+            }
+        }
+        std::vector<VertexId> add;
+        for (VertexId v : corners) {
+            if (!in.count(v) && !next.count(v)) add.push_back(v);  // enclosed
+        }
+        for (const auto& [v, to] : next) {
+            if (to.size() > 1) add.push_back(v);  // pinch
+        }
+        if (add.empty()) {
+            // Loops: keep the longest as the outer boundary, fill the others.
+            std::set<VertexId> seen;
+            std::vector<std::vector<VertexId>> loops;
+            for (const auto& [v, to] : next) {
+                if (seen.count(v)) continue;
+                std::vector<VertexId> loop;
+                for (VertexId w = v; !seen.count(w); w = next.at(w).front()) {
+                    seen.insert(w);
+                    loop.push_back(w);
+                }
+                loops.push_back(loop);
+            }
+            if (loops.size() <= 1) return set;
+            std::sort(loops.begin(), loops.end(),
+                      [](const auto& a, const auto& b) { return a.size() > b.size(); });
+            for (std::size_t k = 1; k < loops.size(); ++k)
+                add.insert(add.end(), loops[k].begin(), loops[k].end());
+        }
+        set.insert(set.end(), add.begin(), add.end());
+    }
+    ADD_FAILURE() << "could not close the set to a disc";
+    return set;
+}
+
+// ---- 7. A flattened region loses >= 90 % of its interior vertices ---------------------------
+
+TEST(Simplifier, FlatStampRemovesAtLeast90PercentOfInteriorVertices) {
+    ToolSpec spec;
+    spec.radius = 0.1;
+    spec.control_points = 24;
+    const Tool tool = Tool::build(spec);
+    const ToolPlacement at{{0.5, 0.5}, 0.0, 0.05};
+    const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
+    for (const bool simplify : {false, true}) {
+        Tin tin = Tin::random_points(kUnit, 20000, 301, test::rolling_sand);
+        SculptContext context(tin.domain());
+        context.settings.simplify_after_edit = simplify;
+        const std::size_t before = count_inside(tin, inner, 1e-9);
+        ASSERT_GT(before, 400u);
+        ASSERT_TRUE(stamp(tin, tool, at, context).applied);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        const std::size_t after = count_inside(tin, inner, 1e-9);
+        if (simplify) {
+            EXPECT_LE(after, before / 10) << before << " -> " << after;
+        } else {
+            // Without simplification the floor keeps them: the removal above is the
+            // simplifier's doing, not the stamp's.
+            EXPECT_GE(after, before);
+        }
+    }
+}
+
+TEST(Simplifier, FlattenBrushThenSimplifyRemovesAtLeast90PercentOfInteriorVertices) {
+    Tin tin = Tin::random_points(kUnit, 20000, 302, test::rolling_sand);
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;
+    BrushSettings b;
+    b.kind = BrushKind::Flatten;
+    b.radius = 0.1;
+    b.strength = 1.0;
+    b.falloff = Falloff::Constant;
+    b.flatten_to = 0.08;
+    const Vec2 c{0.45, 0.55};
+    apply_brush(tin, c, b, context);
+    // The interior of the flattened disc: well inside, where every neighbour was flattened.
+    const double r = 0.8 * b.radius;
+    for (VertexId v : live_ids(tin)) {
+        if (distance(tin.position(v), c) < b.radius * (1.0 - 1e-12)) {
+            EXPECT_NEAR(tin.height(v), 0.08, 1e-15);
+        }
+    }
+    const std::size_t before = count_in_disc(tin, c, r);
+    ASSERT_GT(before, 300u);
+    for (VertexId v : live_ids(tin))
+        context.simplifier.enqueue(v);
+    const SimplifyReport rep = context.simplifier.run(tin, context.settings.simplify);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    const std::size_t after = count_in_disc(tin, c, r);
+    EXPECT_LE(after, before / 10) << before << " -> " << after;
+    EXPECT_GE(rep.removed, before - after);
+    // The flat disc is still flat.
+    LocateHint hint;
+    for (Vec2 p : test::random_points_in(Rect{{0.37, 0.47}, {0.53, 0.63}}, 2000, 3)) {
+        if (distance(p, c) < r) {
+            EXPECT_NEAR(*tin.height_at(p, &hint), 0.08, 1e-12);
+        }
+    }
+}
+
+// ---- 14. The simplifier and planar patches --------------------------------------------------
+
+TEST(Simplifier, PlanarityResidualIsZeroOnAPlaneAndPositiveOnABump) {
+    Tin tin = Tin::random_points(kUnit, 2000, 311, kSlope);
+    std::size_t interior = 0;
+    for (VertexId v : live_ids(tin)) {
+        if (tin.is_boundary(v)) {
+            EXPECT_EQ(planarity_residual(tin, v), std::numeric_limits<double>::infinity());
+            continue;
+        }
+        ++interior;
+        EXPECT_LE(planarity_residual(tin, v), 1e-12);
+    }
+    EXPECT_GT(interior, 1900u);
+    // Raise one vertex by delta: the least-squares plane through it and its ring misses it by
+    // delta (1 - leverage), at least delta / 3 for a vertex surrounded by its neighbours, and
+    // no point by more than delta.
+    const double delta = 0.003;
+    std::size_t bumped = 0;
+    for (VertexId v : live_ids(tin)) {
+        if (tin.is_boundary(v) || v.index() % 97 != 0) continue;
+        const double h = tin.height(v);
+        tin.set_height(v, h + delta);
+        const double r = planarity_residual(tin, v);
+        EXPECT_GE(r, delta / 3.0);
+        EXPECT_LE(r, delta * (1.0 + 1e-9));
+        tin.set_height(v, h);
+        EXPECT_LE(planarity_residual(tin, v), 1e-12);
+        ++bumped;
+    }
+    EXPECT_GT(bumped, 10u);
+    // A vertex on a constraint is never a candidate.
+    const std::vector<VertexId> ids =
+        tin.insert_points(std::vector<Vec2>{{0.3, 0.3}, {0.6, 0.4}},
+                          std::vector<double>{kSlope({0.3, 0.3}), kSlope({0.6, 0.4})});
+    tin.insert_constraint(ids[0], ids[1], 1);
+    EXPECT_EQ(planarity_residual(tin, ids[0]), std::numeric_limits<double>::infinity());
+}
+
+TEST(Simplifier, NeverRemovesBorderOrConstrainedVertices) {
+    // Flat sand with points along the border and a constrained polyline through it: every
+    // other vertex is redundant.
+    Tin tin = test::smooth_terrain(
+        kUnit, 3000, 321, [](Vec2) { return 0.1; }, 0.05);
+    const std::vector<Vec2> line = {{0.2, 0.2}, {0.4, 0.35}, {0.5, 0.3}, {0.7, 0.6}, {0.6, 0.8}};
+    const std::vector<VertexId> ids =
+        tin.insert_points(line, std::vector<double>(line.size(), 0.1));
+    tin.insert_constraint(ids, /*closed=*/false, 1);
+    std::vector<VertexId> border;
+    for (VertexId v : live_ids(tin)) {
+        if (on_domain_border(tin.domain(), tin.position(v))) border.push_back(v);
+    }
+    ASSERT_GT(border.size(), 4u);
+    Simplifier s;
+    for (VertexId v : live_ids(tin))
+        s.enqueue(v);
+    EXPECT_EQ(s.queued(), tin.vertex_count());
+    SimplifySettings settings;
+    settings.tolerance = 1e-3;
+    const double v0 = tin.volume();
+    const SimplifyReport r = s.run(tin, settings);
+    EXPECT_EQ(s.queued(), 0u);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    for (VertexId v : border)
+        EXPECT_TRUE(tin.is_alive(v)) << "border vertex removed";
+    for (VertexId v : ids)
+        EXPECT_TRUE(tin.is_alive(v)) << "constraint vertex removed";
+    // Everything else went (it was all flat).
+    for (VertexId v : live_ids(tin)) {
+        EXPECT_TRUE(on_domain_border(tin.domain(), tin.position(v)) || tin.is_on_constraint(v))
+            << tin.position(v).x << ", " << tin.position(v).y;
+    }
+    EXPECT_EQ(r.removed, 3000u);
+    EXPECT_NEAR(tin.volume(), v0, 1e-12);
+    EXPECT_NEAR(r.volume_change, 0.0, 1e-12);
+}
+
+TEST(Simplifier, RemovalsStayWithinToleranceOnCurvedSand) {
+    // On curved sand only vertices within d_m of their ring's plane go, so the surface moves
+    // by little: check it on a grid against the analytic sand.
+    Tin tin = Tin::random_points(kUnit, 4000, 331, test::rolling_sand);
+    const Tin before = Tin::from_snapshot(tin.snapshot());
+    Simplifier s;
+    for (VertexId v : live_ids(tin))
+        s.enqueue(v);
+    SimplifySettings settings;
+    settings.tolerance = 2e-4;
+    settings.volume_policy = VolumePolicy::Report;
+    const double v0 = tin.volume();
+    const SimplifyReport r = s.run(tin, settings);
+    EXPECT_GT(r.removed, 0u);
+    EXPECT_LT(r.removed, 4000u);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    // With VolumePolicy::Report the reported change is the measured one.
+    EXPECT_NEAR(tin.volume() - v0, r.volume_change, 1e-12);
+    // Every removed vertex's height is still represented within a few tolerances (each
+    // removal moves the surface by at most d_m at the vertex; neighbouring removals add up).
+    for (VertexId v : live_ids(before)) {
+        if (tin.is_alive(v)) continue;
+        EXPECT_NEAR(*tin.height_at(before.position(v)), before.height(v), 4.0 * settings.tolerance);
+    }
+}
+
+TEST(Simplifier, PlanarPatchOfADiscIsRemovedInOneStep) {
+    Tin tin = Tin::random_points(kUnit, 5000, 341, kSlope);
+    const Vec2 c{0.5, 0.5};
+    const std::vector<VertexId> set = close_to_disc(tin, interior_in_disc(tin, c, 0.1));
+    ASSERT_GT(set.size(), 100u);
+    for (VertexId v : set)
+        ASSERT_FALSE(on_domain_border(tin.domain(), tin.position(v)));
+    const std::size_t n = tin.vertex_count();
+    const double v0 = tin.volume();
+    EditReport report;
+    ASSERT_TRUE(tin.remove_planar_patch(set, 1e-9, VolumePolicy::Conserve, &report));
+    for (VertexId v : set)
+        EXPECT_FALSE(tin.is_alive(v));
+    EXPECT_EQ(tin.vertex_count(), n - set.size());
+    EXPECT_EQ(report.vertices_removed, set.size());
+    EXPECT_TRUE(mesh_is_sound(tin));
+    EXPECT_NEAR(tin.volume(), v0, 1e-12);
+    EXPECT_NEAR(tin.volume(), test::brute_force_volume(tin), 1e-12);
+    LocateHint hint;
+    for (Vec2 p : test::random_points_in(Rect{{0.35, 0.35}, {0.65, 0.65}}, 2000, 5))
+        EXPECT_NEAR(*tin.height_at(p, &hint), kSlope(p), 1e-12);
+    EXPECT_EQ(count_in_disc(tin, c, 0.1), 0u);
+    // Removing a disc of vertices on curved sand within a generous tolerance works too.
+    Tin curved = Tin::random_points(kUnit, 5000, 342, test::rolling_sand);
+    const std::vector<VertexId> small = close_to_disc(curved, interior_in_disc(curved, c, 0.03));
+    const double cv0 = curved.volume();
+    ASSERT_TRUE(curved.remove_planar_patch(small, 0.01));
+    EXPECT_NEAR(curved.volume(), cv0, 1e-12);  // Conserve
+    EXPECT_TRUE(mesh_is_sound(curved));
+}
+
+TEST(Simplifier, PlanarPatchRefusesAndChangesNothing) {
+    const Vec2 c{0.5, 0.5};
+    auto expect_refused = [](Tin& tin, const std::vector<VertexId>& set, double tol,
+                             const char* what) {
+        SCOPED_TRACE(what);
+        const test::TinState before = test::capture(tin);
+        EXPECT_FALSE(tin.remove_planar_patch(set, tol));
+        test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+        EXPECT_TRUE(tin.check_valid().ok());
+    };
+    {  // Not planar: one vertex 1 cm off the plane.
+        Tin tin = Tin::random_points(kUnit, 5000, 351, kSlope);
+        const std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
+        tin.set_height(set[set.size() / 2], tin.height(set[set.size() / 2]) + 0.01);
+        expect_refused(tin, set, 1e-3, "non-planar");
+    }
+    {  // A constrained vertex in the set.
+        Tin tin = Tin::random_points(kUnit, 5000, 352, kSlope);
+        std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
+        const std::vector<VertexId> ids =
+            tin.insert_points(std::vector<Vec2>{{0.48, 0.5}, {0.52, 0.51}},
+                              std::vector<double>{kSlope({0.48, 0.5}), kSlope({0.52, 0.51})});
+        tin.insert_constraint(ids[0], ids[1], 1);
+        set = interior_in_disc(tin, c, 0.1);
+        ASSERT_NE(std::find(set.begin(), set.end(), ids[0]), set.end());
+        expect_refused(tin, set, 1e-9, "constrained vertex");
+    }
+    {  // A ring around a vertex it does not remove (the nearest to the centre).
+        Tin tin = Tin::random_points(kUnit, 5000, 353, kSlope);
+        std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
+        const auto nearest = std::min_element(set.begin(), set.end(), [&](VertexId a, VertexId b) {
+            return distance(tin.position(a), c) < distance(tin.position(b), c);
+        });
+        set.erase(nearest);
+        expect_refused(tin, set, 1e-9, "ring around one vertex");
+        // An annulus around many.
+        std::vector<VertexId> annulus;
+        for (VertexId v : interior_in_disc(tin, c, 0.1)) {
+            if (distance(tin.position(v), c) > 0.05) annulus.push_back(v);
+        }
+        expect_refused(tin, annulus, 1e-9, "annulus");
+    }
+    {  // A border vertex in the set.
+        Tin tin = test::smooth_terrain(kUnit, 2000, 354, kSlope, 0.05);
+        std::vector<VertexId> set;
+        for (VertexId v : live_ids(tin)) {
+            if (distance(tin.position(v), Vec2{0.5, 0.0}) < 0.1) set.push_back(v);
+        }
+        expect_refused(tin, set, 1e-9, "border vertex");
+    }
+}
+
+}  // namespace
+}  // namespace sandtin
