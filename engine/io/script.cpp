@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iterator>
 
+#include "physics/sand_physics.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
 #include "util/json_fields.hpp"
@@ -22,10 +23,15 @@ class LineCountingIterator {
     using reference = const char&;
 
     LineCountingIterator() = default;
-    LineCountingIterator(const char* p, std::size_t* newlines) : p_(p), newlines_(newlines) {}
+    struct Cursor {
+        std::size_t newlines = 0;
+        char last = 0;  ///< the character consumed last
+    };
+    LineCountingIterator(const char* p, Cursor* cursor) : p_(p), cursor_(cursor) {}
     reference operator*() const { return *p_; }
     LineCountingIterator& operator++() {
-        if (*p_ == '\n') ++*newlines_;
+        if (*p_ == '\n') ++cursor_->newlines;
+        cursor_->last = *p_;
         ++p_;
         return *this;
     }
@@ -40,24 +46,24 @@ class LineCountingIterator {
 
   private:
     const char* p_ = nullptr;
-    std::size_t* newlines_ = nullptr;
+    Cursor* cursor_ = nullptr;
 };
 
 /// Records the line on which each operation object starts.
 class OperationLines : public nlohmann::json_sax<nlohmann::json> {
   public:
-    explicit OperationLines(const std::size_t* newlines) : newlines_(newlines) {}
+    explicit OperationLines(const LineCountingIterator::Cursor* cursor) : cursor_(cursor) {}
     std::vector<std::size_t> lines;
 
     bool null() override { return value(); }
     bool boolean(bool) override { return value(); }
-    bool number_integer(number_integer_t) override { return value(); }
-    bool number_unsigned(number_unsigned_t) override { return value(); }
-    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool number_integer(number_integer_t) override { return number(); }
+    bool number_unsigned(number_unsigned_t) override { return number(); }
+    bool number_float(number_float_t, const string_t&) override { return number(); }
     bool string(string_t&) override { return value(); }
     bool binary(binary_t&) override { return value(); }
     bool start_object(std::size_t) override {
-        if (in_operations()) lines.push_back(*newlines_ + 1);
+        record();
         stack_.push_back({false, pending_key_});
         pending_key_.clear();
         return true;
@@ -71,6 +77,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
         return true;
     }
     bool start_array(std::size_t) override {
+        record();
         stack_.push_back({true, pending_key_});
         pending_key_.clear();
         return true;
@@ -89,8 +96,19 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
         std::string key;
     };
     bool value() {
+        record();
         pending_key_.clear();
         return true;
+    }
+    /// The lexer knows a number ended only by reading one character past it.
+    bool number() {
+        record(cursor_->last == '\n' ? 1 : 0);
+        pending_key_.clear();
+        return true;
+    }
+    /// Any element of the operations array, object or not, starts on the current line.
+    void record(std::size_t lookahead_newlines = 0) {
+        if (in_operations()) lines.push_back(cursor_->newlines - lookahead_newlines + 1);
     }
     bool in_operations() const {
         // A bare top-level array, or the array under the top-level key "operations".
@@ -98,7 +116,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
         return stack_.size() == 2 && !stack_[0].array && stack_[1].array &&
                stack_[1].key == "operations";
     }
-    const std::size_t* newlines_;
+    const LineCountingIterator::Cursor* cursor_;
     std::vector<Level> stack_;
     std::string pending_key_;
 };
@@ -152,9 +170,50 @@ std::vector<Vec2> parse_points(JsonFields& f, double default_spacing) {
     return out;
 }
 
+/// Physics fields shared by "settings" and "erode"; returns whether any was given.
+bool parse_physics_fields(JsonFields& f, TalusSettings& t) {
+    bool any = false;
+    if (f.has("relocation_radius")) {
+        t.parameters.relocation_radius = f.non_negative("relocation_radius", 0.0);
+        any = true;
+    }
+    if (f.has("damping")) {
+        t.parameters.damping = f.in_range("damping", 0.5, 0.01, 1.0);
+        any = true;
+    }
+    if (f.has("rest_tolerance")) {
+        t.parameters.rest_tolerance = f.in_range("rest_tolerance", 1e-4, 0.0, 1.0);
+        any = true;
+    }
+    if (f.has("schedule")) {
+        t.schedule = f.choice("schedule", "sequential", {"sequential", "jacobi"}) == "sequential"
+                         ? Schedule::Sequential
+                         : Schedule::Jacobi;
+        any = true;
+    }
+    if (f.has("threads")) {
+        t.threads = static_cast<int>(f.integer("threads", 1, 1, 64));
+        any = true;
+    }
+    if (f.has("randomness")) {
+        t.randomness = f.in_range("randomness", 0.0, 0.0, 0.99);
+        any = true;
+    }
+    if (f.has("seed")) {
+        t.seed = static_cast<std::uint64_t>(f.integer("seed", 1, 0, INT64_MAX));
+        any = true;
+    }
+    if (f.has("quiet_iterations")) {
+        t.quiet_iterations = static_cast<int>(f.integer("quiet_iterations", 3, 1, 255));
+        any = true;
+    }
+    return any;
+}
+
 ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nlohmann::json& object,
                                 const std::filesystem::path& base_dir,
-                                const std::vector<ScriptExtension>& extensions) {
+                                const std::vector<ScriptExtension>& extensions,
+                                const TalusSettings& physics) {
     if (op == "stamp") {
         StampOp s;
         s.tool = parse_tool(f, base_dir);
@@ -173,6 +232,11 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         parse_depth(f, s.settings.depth_mode, s.settings.depth);
         s.settings.follow_path = f.boolean("follow_path", true);
         s.settings.angle = f.number("angle", 0.0);
+        if (f.boolean("erode", false)) {
+            s.erode_iterations = static_cast<int>(f.integer("erode_iterations", 4, 1, 100000));
+        } else if (f.has("erode_iterations")) {
+            f.fail("'erode_iterations' needs \"erode\": true");
+        }
         f.reject_unknown();
         return s;
     }
@@ -210,6 +274,19 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         f.reject_unknown();
         return b;
     }
+    if (op == "erode") {
+        ErodeOp e;
+        if (f.has("iterations") == f.boolean("until_rest", false)) {
+            f.fail("give either 'iterations' or \"until_rest\": true");
+        }
+        e.until_rest = f.boolean("until_rest", false);
+        e.iterations = static_cast<int>(f.integer("iterations", 0, 1, 100'000'000));
+        e.max_iterations = static_cast<int>(f.integer("max_iterations", 100000, 1, 100'000'000));
+        TalusSettings t = physics;
+        if (parse_physics_fields(f, t)) e.settings = t;
+        f.reject_unknown();
+        return e;
+    }
     if (op == "simplify") {
         SimplifyOp s;
         if (f.has("tolerance")) s.tolerance = f.positive("tolerance", 0.0);
@@ -239,10 +316,10 @@ Script parse_script(std::string_view text, const std::string& name,
                     text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
         throw JsonInputError(name + ":" + std::to_string(line) + ": not valid JSON: " + e.what());
     }
-    std::size_t newlines = 0;
-    OperationLines lines(&newlines);
-    nlohmann::json::sax_parse(LineCountingIterator(text.data(), &newlines),
-                              LineCountingIterator(text.data() + text.size(), &newlines), &lines);
+    LineCountingIterator::Cursor cursor;
+    OperationLines lines(&cursor);
+    nlohmann::json::sax_parse(LineCountingIterator(text.data(), &cursor),
+                              LineCountingIterator(text.data() + text.size(), &cursor), &lines);
 
     Script script;
     const nlohmann::json* operations = &document;
@@ -258,6 +335,7 @@ Script parse_script(std::string_view text, const std::string& name,
                     static_cast<Generation>(s.integer("keep_generations", 64, 1, 1'000'000));
             }
             if (s.has("simplify")) script.simplify = s.boolean("simplify", true);
+            parse_physics_fields(s, script.physics);
             s.reject_unknown();
         }
         if (const nlohmann::json* terrain = top.get("terrain")) {
@@ -294,7 +372,13 @@ Script parse_script(std::string_view text, const std::string& name,
         context += " (" + op + ")";
         JsonFields f(object, context);
         f.get("op");
-        ScriptStep step{parse_operation(op, f, object, base_dir, extensions), op, line};
+        ScriptStep step{parse_operation(op, f, object, base_dir, extensions, script.physics), op,
+                        line};
+        if (std::holds_alternative<ErodeOp>(step.operation)) script.uses_physics = true;
+        if (const auto* stroke = std::get_if<StrokeOp>(&step.operation);
+            stroke != nullptr && stroke->erode_iterations > 0) {
+            script.uses_physics = true;
+        }
         script.steps.push_back(std::move(step));
     }
     return script;
@@ -322,6 +406,20 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
+    // The physics follows the TIN from the start, so it sees every change the script makes.
+    std::unique_ptr<SandPhysics> physics;
+    if (script.uses_physics)
+        physics = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), script.physics);
+    std::vector<VertexId> eroded;
+    auto erode = [&](int iterations, bool until_rest) {
+        eroded.clear();
+        const PhysicsStepReport r = until_rest ? physics->run_to_rest(iterations, &eroded)
+                                               : physics->step(iterations, &eroded);
+        context.simplifier.enqueue(eroded);
+        if (context.settings.simplify_after_edit)
+            context.simplifier.run(tin, context.settings.simplify);
+        return r;
+    };
     nlohmann::json reports = nlohmann::json::array();
     for (const ScriptStep& step : script.steps) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -339,11 +437,31 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
                     return stamp_json(stamp(tin, *op.tool, at, context));
                 } else if constexpr (std::is_same_v<T, StrokeOp>) {
                     std::vector<StampReport> per;
-                    const StampReport total =
-                        apply_stroke(tin, *op.tool, op.path, op.settings, context, &per);
+                    PhysicsStepReport physics_total;
+                    std::function<void(const StampReport&)> after_stamp;
+                    if (op.erode_iterations > 0) {
+                        after_stamp = [&](const StampReport&) {
+                            physics_total.accumulate(erode(op.erode_iterations, false));
+                        };
+                    }
+                    const StampReport total = apply_stroke(tin, *op.tool, op.path, op.settings,
+                                                           context, &per, after_stamp);
                     nlohmann::json j = stamp_json(total);
                     j["stamps_applied"] = per.size();
+                    if (op.erode_iterations > 0) {
+                        j["erosion_iterations"] = physics_total.iterations;
+                        j["erosion_ms"] = physics_total.ms;
+                    }
                     return j;
+                } else if constexpr (std::is_same_v<T, ErodeOp>) {
+                    const TalusSettings saved = physics->settings();
+                    if (op.settings) physics->settings() = *op.settings;
+                    const PhysicsStepReport pr = op.until_rest ? erode(op.max_iterations, true)
+                                                               : erode(op.iterations, false);
+                    physics->settings() = saved;
+                    return {{"iterations", pr.iterations}, {"vertex_updates", pr.vertex_updates},
+                            {"refined", pr.refined},       {"volume_moved", pr.volume_moved},
+                            {"at_rest", pr.at_rest},       {"erosion_ms", pr.ms}};
                 } else if constexpr (std::is_same_v<T, PourOp>) {
                     const double each =
                         op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));

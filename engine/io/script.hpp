@@ -3,7 +3,8 @@
 //
 //   { "version": 1,
 //     "terrain": { "size": [1, 1], "points": 10000, "seed": 1, "height": 0 },
-//     "settings": { "simplify_tolerance": 0.0005, "keep_generations": 64, "simplify": true },
+//     "settings": { "simplify_tolerance": 0.0005, "keep_generations": 64, "simplify": true,
+//                   "relocation_radius": 0.01, "schedule": "sequential", "threads": 1 },
 //     "operations": [
 //       { "op": "stamp",  "tool": {...}, "at": [x, y], "angle": 0, "depth": 0.05 },
 //       { "op": "stroke", "tool": {...}, "path": [[x, y], ...], "curve": false, "spacing": 0.01,
@@ -11,6 +12,7 @@
 //       { "op": "pour",   "at": [x, y], "volume": 1e-4, "radius": 0.02 },
 //       { "op": "remove", "path": [[x, y], ...], "volume": 1e-4, "radius": 0.02, "spacing": 0.01 },
 //       { "op": "brush",  "kind": "raise", "at": [x, y], "radius": 0.05, "strength": 0.002 },
+//       { "op": "erode", "until_rest": true },
 //       { "op": "simplify", "tolerance": 0.001 } ] }
 //
 // A bare array of operations is accepted too. All lengths are metres, angles radians, volumes
@@ -29,6 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "physics/talus_solver.hpp"
 #include "tin/tin.hpp"
 #include "tools/brushes.hpp"
 #include "tools/sand.hpp"
@@ -50,6 +53,7 @@ struct StrokeOp {
     std::shared_ptr<const Tool> tool;
     std::vector<Vec2> path;  ///< already densified when the script asked for a curve
     StrokeSettings settings;
+    int erode_iterations = 0;  ///< relaxation iterations after each stamp ("erode": true)
 };
 
 struct PourOp {
@@ -64,6 +68,14 @@ struct BrushOp {
     BrushSettings settings;
 };
 
+/// Sand relaxation: a number of iterations, or until the sand is at rest.
+struct ErodeOp {
+    int iterations = 0;  ///< when until_rest is false
+    bool until_rest = false;
+    int max_iterations = 100000;            ///< cap when until_rest
+    std::optional<TalusSettings> settings;  ///< overrides the script's physics settings
+};
+
 struct SimplifyOp {
     std::optional<double> tolerance;
 };
@@ -75,7 +87,8 @@ struct CustomOp {
     std::function<nlohmann::json(Tin&, SculptContext&)> run;
 };
 
-using ScriptOperation = std::variant<StampOp, StrokeOp, PourOp, BrushOp, SimplifyOp, CustomOp>;
+using ScriptOperation =
+    std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp, CustomOp>;
 
 struct ScriptStep {
     ScriptOperation operation;
@@ -94,6 +107,8 @@ struct ScriptTerrain {
 
 struct Script {
     std::vector<ScriptStep> steps;
+    TalusSettings physics;  ///< "settings": relocation_radius, schedule, damping, ...
+    bool uses_physics = false;
     std::optional<ScriptTerrain> terrain;
     std::optional<double> simplify_tolerance;
     std::optional<Generation> keep_generations;

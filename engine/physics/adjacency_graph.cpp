@@ -1,0 +1,216 @@
+#include "physics/adjacency_graph.hpp"
+
+#include <algorithm>
+
+namespace sandtin {
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+/// Room for a few more neighbours than now, rounded to 4 slots.
+std::uint32_t row_capacity(std::uint32_t degree) {
+    return (degree + 2 + 3) & ~3u;
+}
+
+}  // namespace
+
+void AdjacencyGraph::refresh_longest(std::uint32_t v) {
+    double m = 0.0;
+    for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k)
+        m = std::max(m, length_[k]);
+    longest_[v] = m;
+}
+
+void AdjacencyGraph::ensure_vertices(std::uint32_t n) {
+    if (offset_.size() >= n) return;
+    longest_.resize(n, 0.0);
+    offset_.resize(n, 0);
+    degree_.resize(n, 0);
+    capacity_.resize(n, 0);
+    dirty_flag_.resize(n, 0);
+    mark_.resize(n, 0);
+}
+
+void AdjacencyGraph::rebuild(const Tin& tin) {
+    const std::uint32_t n = tin.vertex_capacity();
+    offset_.assign(n, 0);
+    degree_.assign(n, 0);
+    capacity_.assign(n, 0);
+    longest_.assign(n, 0.0);
+    target_.clear();
+    reverse_.clear();
+    length_.clear();
+    slack_ = 0;
+    std::vector<VertexId> ring;
+    const VertexArrays& va = tin.vertices();
+    for (std::uint32_t v = 0; v < n; ++v) {
+        if (!va.alive[v]) continue;
+        tin.neighbours(VertexId{v}, ring);
+        offset_[v] = static_cast<std::uint32_t>(target_.size());
+        degree_[v] = static_cast<std::uint32_t>(ring.size());
+        capacity_[v] = row_capacity(degree_[v]);
+        for (VertexId w : ring) {
+            target_.push_back(w.value);
+            length_.push_back(distance(va.position[v], va.position[w.value]));
+        }
+        target_.resize(offset_[v] + capacity_[v], kNone);
+        length_.resize(offset_[v] + capacity_[v], 0.0);
+        slack_ += capacity_[v] - degree_[v];
+        refresh_longest(v);
+    }
+    reverse_.assign(target_.size(), kNone);
+    for (std::uint32_t v = 0; v < n; ++v) {
+        if (degree_[v] > 0) fix_reverse(v);
+    }
+    dirty_rows_.clear();
+    dirty_flag_.assign(n, 0);
+    for (std::uint32_t v = 0; v < n; ++v) {
+        if (degree_[v] > 0) {
+            dirty_flag_[v] = 1;
+            dirty_rows_.push_back(v);
+        }
+    }
+}
+
+void AdjacencyGraph::write_row(const Tin& tin, std::uint32_t v, std::vector<VertexId>& ring) {
+    const VertexArrays& va = tin.vertices();
+    if (v >= va.size() || !va.alive[v]) {
+        slack_ += degree_[v];
+        degree_[v] = 0;
+        longest_[v] = 0.0;
+        return;
+    }
+    tin.neighbours(VertexId{v}, ring);
+    const auto deg = static_cast<std::uint32_t>(ring.size());
+    if (deg > capacity_[v]) {
+        slack_ += capacity_[v];
+        offset_[v] = static_cast<std::uint32_t>(target_.size());
+        capacity_[v] = row_capacity(deg);
+        target_.resize(target_.size() + capacity_[v], kNone);
+        length_.resize(length_.size() + capacity_[v], 0.0);
+        reverse_.resize(reverse_.size() + capacity_[v], kNone);
+    } else {
+        slack_ -= capacity_[v] - degree_[v];
+    }
+    degree_[v] = deg;
+    slack_ += capacity_[v] - deg;
+    for (std::uint32_t k = 0; k < deg; ++k) {
+        target_[offset_[v] + k] = ring[k].value;
+        length_[offset_[v] + k] = distance(va.position[v], va.position[ring[k].value]);
+    }
+    refresh_longest(v);
+}
+
+void AdjacencyGraph::fix_reverse(std::uint32_t v) {
+    for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k) {
+        const std::uint32_t w = target_[k];
+        std::uint32_t found = kNone;
+        for (std::uint32_t m = offset_[w]; m < offset_[w] + degree_[w]; ++m) {
+            if (target_[m] == v) {
+                found = m;
+                break;
+            }
+        }
+        reverse_[k] = found;
+    }
+}
+
+void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed) {
+    if (changed.empty()) return;
+    ensure_vertices(tin.vertex_capacity());
+    std::vector<VertexId> ring;
+    std::vector<std::uint32_t> touched;
+    if (mark_.size() < offset_.size()) mark_.resize(offset_.size(), 0);
+    std::vector<std::uint8_t>& seen = mark_;
+    for (VertexId c : changed) {
+        if (c.value >= offset_.size() || seen[c.value]) continue;
+        seen[c.value] = 1;
+        write_row(tin, c.value, ring);
+        touched.push_back(c.value);
+    }
+    // Rows next to rewritten ones hold reverse slots into them.
+    const std::size_t direct = touched.size();
+    for (std::size_t t = 0; t < direct; ++t) {
+        const std::uint32_t v = touched[t];
+        for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k) {
+            const std::uint32_t w = target_[k];
+            if (!seen[w]) {
+                seen[w] = 1;
+                touched.push_back(w);
+            }
+        }
+    }
+    for (std::uint32_t v : touched)
+        seen[v] = 0;
+    if (slack_ * 2 > target_.size() && target_.size() > 4096) {
+        rebuild(tin);
+        return;
+    }
+    for (std::uint32_t v : touched) {
+        fix_reverse(v);
+        if (!dirty_flag_[v]) {
+            dirty_flag_[v] = 1;
+            dirty_rows_.push_back(v);
+        }
+    }
+}
+
+void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
+                            const std::vector<std::vector<double>>& lengths) {
+    const auto n = static_cast<std::uint32_t>(rows.size());
+    offset_.assign(n, 0);
+    degree_.assign(n, 0);
+    capacity_.assign(n, 0);
+    longest_.assign(n, 0.0);
+    target_.clear();
+    length_.clear();
+    slack_ = 0;
+    for (std::uint32_t v = 0; v < n; ++v) {
+        offset_[v] = static_cast<std::uint32_t>(target_.size());
+        degree_[v] = static_cast<std::uint32_t>(rows[v].size());
+        capacity_[v] = degree_[v];
+        target_.insert(target_.end(), rows[v].begin(), rows[v].end());
+        length_.insert(length_.end(), lengths[v].begin(), lengths[v].end());
+        refresh_longest(v);
+    }
+    reverse_.assign(target_.size(), kNone);
+    for (std::uint32_t v = 0; v < n; ++v)
+        fix_reverse(v);
+    dirty_flag_.assign(n, 0);
+    dirty_rows_.clear();
+}
+
+std::vector<std::uint32_t> AdjacencyGraph::take_dirty_rows() {
+    for (std::uint32_t v : dirty_rows_)
+        dirty_flag_[v] = 0;
+    std::vector<std::uint32_t> out;
+    out.swap(dirty_rows_);
+    return out;
+}
+
+bool AdjacencyGraph::matches(const Tin& tin) const {
+    const VertexArrays& va = tin.vertices();
+    std::vector<VertexId> ring;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) {
+            if (v < degree_.size() && degree_[v] != 0) return false;
+            continue;
+        }
+        if (v >= degree_.size()) return false;
+        tin.neighbours(VertexId{v}, ring);
+        if (ring.size() != degree_[v]) return false;
+        for (std::uint32_t k = 0; k < degree_[v]; ++k) {
+            const std::uint32_t slot = offset_[v] + k;
+            if (target_[slot] != ring[k].value) return false;
+            const std::uint32_t r = reverse_[slot];
+            if (r == kNone || target_[r] != v) return false;
+            if (std::abs(length_[slot] - distance(va.position[v], va.position[ring[k].value])) >
+                0.0)
+                return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,70 @@
+#pragma once
+// The vertex graph the relaxation runs on: compressed rows (CSR) with per-row slack, so a
+// local re-triangulation rewrites a few rows instead of the whole array. Each directed edge
+// slot stores its target, its horizontal length (metres, fixed because vertices never move in
+// the plane) and the slot of the opposite edge, which lets a vertex gather what its
+// neighbours sent it without any atomic operation (the two-phase Jacobi step, on CPU threads
+// and in the compute shader alike).
+//
+// Invariants (checked by matches()): for every live vertex v, the row of v lists exactly its
+// TIN neighbours in counter-clockwise order; reverse(k) of the slot k = (v -> w) is the slot of
+// (w -> v).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tin/tin.hpp"
+
+namespace sandtin {
+
+class AdjacencyGraph {
+  public:
+    /// Builds the rows of every live vertex.
+    void rebuild(const Tin& tin);
+    /// Rewrites the rows of `changed` (vertices whose star changed, born or died) and fixes the
+    /// reverse slots around them. Compacts when more than half the pool is slack.
+    void update(const Tin& tin, std::span<const VertexId> changed);
+    /// Builds a graph from explicit rows (regular grids). rows[v] lists v's neighbours.
+    void assign(const std::vector<std::vector<std::uint32_t>>& rows,
+                const std::vector<std::vector<double>>& lengths);
+
+    std::uint32_t vertex_capacity() const { return static_cast<std::uint32_t>(offset_.size()); }
+    std::uint32_t offset(std::uint32_t v) const { return offset_[v]; }
+    std::uint32_t degree(std::uint32_t v) const { return v < degree_.size() ? degree_[v] : 0; }
+    std::size_t slot_count() const { return target_.size(); }
+    /// Longest edge of v's row (m).
+    double longest_edge(std::uint32_t v) const { return v < longest_.size() ? longest_[v] : 0.0; }
+
+    const std::vector<std::uint32_t>& offsets() const { return offset_; }
+    const std::vector<std::uint32_t>& degrees() const { return degree_; }
+    const std::vector<std::uint32_t>& targets() const { return target_; }
+    const std::vector<std::uint32_t>& reverses() const { return reverse_; }
+    const std::vector<double>& lengths() const { return length_; }
+    const std::vector<double>& longest_edges() const { return longest_; }
+
+    /// Rows whose slots moved or changed since the last call (GPU upload ranges).
+    std::vector<std::uint32_t> take_dirty_rows();
+    /// True when every row matches the TIN (tests and check paths).
+    bool matches(const Tin& tin) const;
+
+  private:
+    void write_row(const Tin& tin, std::uint32_t v, std::vector<VertexId>& scratch);
+    void fix_reverse(std::uint32_t v);
+    void ensure_vertices(std::uint32_t n);
+    void refresh_longest(std::uint32_t v);
+
+    std::vector<std::uint32_t> offset_;
+    std::vector<std::uint32_t> degree_;
+    std::vector<std::uint32_t> capacity_;
+    std::vector<std::uint32_t> target_;
+    std::vector<std::uint32_t> reverse_;
+    std::vector<double> length_;
+    std::vector<double> longest_;
+    std::size_t slack_ = 0;
+    std::vector<std::uint32_t> dirty_rows_;
+    std::vector<std::uint8_t> dirty_flag_;
+    std::vector<std::uint8_t> mark_;  ///< scratch for update(), all zero between calls
+};
+
+}  // namespace sandtin

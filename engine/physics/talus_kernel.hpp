@@ -1,0 +1,102 @@
+#pragma once
+// The per-vertex step of talus relaxation (seed 000 §7.2 Eqs. 7.4-7.5, seed 003 §3.2), in
+// volume form so that mass is conserved exactly. Shared by the sequential schedule, the Jacobi
+// schedule and (transcribed) the compute shader, so all three do the same arithmetic.
+//
+// For vertex i with lumped area A_i and each neighbour j at horizontal distance r_ij, the
+// excess over the angle of repose is e_ij = (h_i - h_j) - r_ij tan(alpha_i). Moving volume q
+// from i to j lowers that step by q (1/A_i + 1/A_j), so q*_ij = e_ij / (1/A_i + 1/A_j) would
+// remove it exactly were j the only lower neighbour. Each edge gets the damped share
+//   q_ij = damping * q*_ij * s,   s = min(1, E A_i / sum_j q*_ij),  E = max_j e_ij,
+// so no edge moves more than damping times what levels it, and i itself drops by at most
+// damping * E (the seeds' "half the largest height difference", Eq. 7.4); when the cap binds,
+// the shares are proportional to q*_ij (the seeds' Eq. 7.5 in volume form). A small
+// neighbour only limits its own edge: a per-vertex budget shared by excess would let one
+// sliver vertex throttle the whole neighbourhood. The outflow is capped by the sand above the
+// bedrock, A_i (h_i - b_i). Edges longer than the relocation radius carry nothing; they are
+// reported so the caller can split them (seed 000 §7.2, "prevention of long edges").
+
+#include <algorithm>
+#include <cstdint>
+
+namespace sandtin {
+
+struct TalusParameters {
+    double damping = 0.5;          ///< fraction of the largest excess removed per step (seeds: 1/2)
+    double rest_tolerance = 1e-4;  ///< an edge is at rest when e <= tol * r tan(alpha)
+    double relocation_radius = 0.0;  ///< r_S in metres; 0 = no limit
+};
+
+/// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.
+inline double signed_unit_hash(std::uint64_t seed, std::uint64_t vertex, std::uint64_t iteration) {
+    std::uint64_t z = seed ^ (vertex * 0x9E3779B97F4A7C15ull) ^ (iteration * 0xD1B54A32D192ED03ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+}
+
+/// Computes the outflow of vertex i along its row [begin, begin + degree) of the graph. Writes
+/// q[k] (m³) for every slot of the row, and returns the total, which is exactly the sum of the
+/// q[k] written (so what leaves equals what arrives). With a relocation radius r_S, an edge
+/// longer than r_S (by more than rounding) carries nothing, and neither does an edge to a
+/// vertex that has such an edge (its gain would spread over the long triangles); the vertex
+/// to refine around is passed to `needs_split` and the edge flows once it is split.
+/// `longest` holds each vertex's longest edge (m).
+template <class NeedsSplit>
+inline double talus_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
+                            const std::uint32_t* target, const double* length,
+                            const double* longest, const double* height, const double* area,
+                            const double* bedrock, double tan_alpha, const TalusParameters& p,
+                            double random_factor, double* q, NeedsSplit&& needs_split) {
+    const double hi = height[i];
+    double largest = 0.0;
+    double sum = 0.0;
+    // Below a few ulps of the height an "excess" is rounding noise; acting on it would make
+    // two nearly coincident vertices trade the last bit forever.
+    const double floor = 64.0 * 2.220446049250313e-16 * (hi < 0.0 ? -hi : hi);
+    const double r_limit = p.relocation_radius > 0.0 ? p.relocation_radius * (1.0 + 1e-9) : 1e300;
+    for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        const double r = length[k];
+        const double slope = r * tan_alpha;
+        const double e = (hi - height[target[k]]) - slope;
+        q[k] = 0.0;
+        if (!(e > p.rest_tolerance * slope) || !(e > floor)) continue;
+        if (r > r_limit) {
+            needs_split(i);
+            continue;
+        }
+        if (longest[target[k]] > r_limit) {
+            needs_split(target[k]);
+            continue;
+        }
+        q[k] = e;  // excess for now; scaled to volume below
+        sum += e;
+        largest = std::max(largest, e);
+    }
+    if (!(sum > 0.0)) return 0.0;
+    // sum held the excesses; now turn each into the volume that levels its edge alone.
+    const double inv_ai = 1.0 / area[i];
+    double levelling = 0.0;
+    for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        if (q[k] > 0.0) {
+            q[k] = q[k] / (inv_ai + 1.0 / area[target[k]]);
+            levelling += q[k];
+        }
+    }
+    double scale = p.damping * random_factor;
+    const double cap = p.damping * largest * area[i];
+    if (scale * levelling > cap) scale = cap / levelling;
+    const double available = area[i] * (hi - bedrock[i]);
+    if (scale * levelling > available) scale = std::max(available, 0.0) / levelling;
+    double sent = 0.0;
+    for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        if (q[k] > 0.0) {
+            q[k] *= scale;
+            sent += q[k];
+        }
+    }
+    return sent;
+}
+
+}  // namespace sandtin
