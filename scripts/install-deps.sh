@@ -9,8 +9,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   # geometry and maths
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
-  # files and formats
-  nlohmann-json3-dev libpng-dev
+  # files and formats (GDAL: GeoTIFF import; OpenEXR: float heightmaps; tinygltf: glTF export)
+  nlohmann-json3-dev libpng-dev libgdal-dev libopenexr-dev libtinygltf-dev
   # GPU, window and UI
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools glslang-dev
   libglfw3-dev libimgui-dev libstb-dev

@@ -4,6 +4,7 @@
 
 #include "arguments.hpp"
 #include "bench_groove.hpp"
+#include "bench_import.hpp"
 #include "bench_tin.hpp"
 #include "commands.hpp"
 
@@ -11,7 +12,7 @@ namespace sandtin::cli {
 
 int run_bench(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
-    args.require_positionals(1, "sandtin bench (tin | groove) [--quick] [--json]");
+    args.require_positionals(1, "sandtin bench (tin | groove | import) [--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
     const std::string which = args.positionals()[0];
@@ -20,8 +21,10 @@ int run_bench(const std::vector<std::string>& raw) {
         result = bench::bench_tin(config);
     } else if (which == "groove") {
         result = bench::bench_groove(config);
+    } else if (which == "import") {
+        result = bench::bench_import(config);
     } else {
-        throw UsageError("unknown benchmark '" + which + "' (available: tin, groove)");
+        throw UsageError("unknown benchmark '" + which + "' (available: tin, groove, import)");
     }
     std::cout << result.dump(2) << "\n";
     return 0;

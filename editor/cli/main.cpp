@@ -18,7 +18,9 @@ commands:
   new     create a terrain:   sandtin new --flat W H [--points N] [--seed S] -o scene.sandtin
   info    describe a session: sandtin info scene.sandtin [--json]
   run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--json]
-  bench   benchmarks (JSON):  sandtin bench tin [--quick]
+  import  heightmap to TIN:   sandtin import FILE --max-error E [--max-points N] -o scene.sandtin
+  export  mesh or map:        sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr)
+  bench   benchmarks (JSON):  sandtin bench (tin | groove | import) [--quick]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
 Errors go to stderr and the exit code is non-zero.
@@ -40,6 +42,8 @@ int main(int argc, char** argv) {
         if (command == "run") return sandtin::cli::run_run(args);
         if (command == "bench") return sandtin::cli::run_bench(args);
         if (command == "demo") return sandtin::cli::run_demo(args);
+        if (command == "import") return sandtin::cli::run_import(args);
+        if (command == "export") return sandtin::cli::run_export(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::cout << kHelp;
             return 0;

@@ -69,6 +69,12 @@ bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLim
     for (png_uint_32 y = 0; y < h; ++y)
         rows[y] = raw.data() + row_bytes * y;
     png_read_image(png, rows.data());
+    png_read_end(png, info);
+    png_textp text = nullptr;
+    const int text_count = png_get_text(png, info, &text, nullptr);
+    for (int i = 0; i < text_count; ++i) {
+        image.text.emplace_back(text[i].key, text[i].text != nullptr ? text[i].text : "");
+    }
     image.width = w;
     image.height = h;
     image.channels = channels;
@@ -82,6 +88,26 @@ PngImage decode_png(std::span<const std::uint8_t> bytes, const std::string& name
                     const PngLimits& limits) {
     if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) {
         throw std::runtime_error(name + ": not a PNG file (bad signature)");
+    }
+    // The size from IHDR (always the first chunk) before libpng sees it: libpng reports an
+    // empty or over-limit image only as "Invalid IHDR data".
+    if (bytes.size() >= 24 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+        const auto be32 = [&](std::size_t at) {
+            return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) |
+                   (std::uint32_t{bytes[at + 2]} << 8) | std::uint32_t{bytes[at + 3]};
+        };
+        const std::uint32_t w = be32(16);
+        const std::uint32_t h = be32(20);
+        if (w == 0 || h == 0) {
+            throw std::runtime_error(name + ": invalid PNG: image is empty (" + std::to_string(w) +
+                                     " x " + std::to_string(h) + ")");
+        }
+        if (w > limits.max_width || h > limits.max_height) {
+            throw std::runtime_error(name + ": image of " + std::to_string(w) + " x " +
+                                     std::to_string(h) + " pixels exceeds the limit of " +
+                                     std::to_string(limits.max_width) + " x " +
+                                     std::to_string(limits.max_height));
+        }
     }
     ReadState state;
     state.bytes = bytes;
@@ -138,7 +164,7 @@ void on_write_error(png_structp png, png_const_charp message) {
 }
 
 bool encode_into(png_structp png, png_infop info, WriteState& state, const PngImage& image,
-                 std::vector<png_bytep>& rows) {
+                 std::vector<png_bytep>& rows, std::vector<png_text>& text) {
     if (setjmp(png_jmpbuf(png))) return false;
     png_set_write_fn(png, &state, write_bytes, flush_nothing);
     const int type = image.channels == 1   ? PNG_COLOR_TYPE_GRAY
@@ -147,6 +173,7 @@ bool encode_into(png_structp png, png_infop info, WriteState& state, const PngIm
                                            : PNG_COLOR_TYPE_RGBA;
     png_set_IHDR(png, info, image.width, image.height, image.bit_depth, type, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (!text.empty()) png_set_text(png, info, text.data(), static_cast<int>(text.size()));
     png_write_info(png, info);
     if (image.bit_depth == 16) png_set_swap(png);
     png_write_image(png, rows.data());
@@ -177,12 +204,20 @@ std::vector<std::uint8_t> encode_png(const PngImage& image) {
     std::vector<png_bytep> rows(image.height);
     for (std::uint32_t y = 0; y < image.height; ++y)
         rows[y] = raw.data() + row_samples * bytes_per_sample * y;
+    // libpng takes non-const char pointers but does not write through them.
+    std::vector<png_text> text(image.text.size());
+    for (std::size_t i = 0; i < image.text.size(); ++i) {
+        text[i].compression = PNG_TEXT_COMPRESSION_NONE;
+        text[i].key = const_cast<char*>(image.text[i].first.c_str());
+        text[i].text = const_cast<char*>(image.text[i].second.c_str());
+        text[i].text_length = image.text[i].second.size();
+    }
     WriteState state;
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_write_error, on_warning);
     if (png == nullptr) throw std::runtime_error("encode_png: cannot initialise libpng");
     png_infop info = png_create_info_struct(png);
-    const bool ok = info != nullptr && encode_into(png, info, state, image, rows);
+    const bool ok = info != nullptr && encode_into(png, info, state, image, rows, text);
     png_destroy_write_struct(&png, &info);
     if (!ok) throw std::runtime_error("encode_png: " + state.error);
     return std::move(state.out);

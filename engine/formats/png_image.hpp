@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sandtin {
@@ -17,6 +18,9 @@ struct PngImage {
     int bit_depth = 0;  ///< 8 or 16
     /// width * height * channels samples; 8-bit images use only the low byte range.
     std::vector<std::uint16_t> samples;
+    /// tEXt key/value pairs (Latin-1), in file order: how sandtin records the height scale of
+    /// an exported heightmap next to its samples.
+    std::vector<std::pair<std::string, std::string>> text;
 
     std::uint16_t sample(std::uint32_t x, std::uint32_t y, int channel = 0) const {
         return samples[(static_cast<std::size_t>(y) * width + x) *

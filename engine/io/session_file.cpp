@@ -14,6 +14,7 @@ namespace {
 
 constexpr std::array<std::uint8_t, 8> kMagic = {'S', 'A', 'N', 'D', 'T', 'I', 'N', 0x1a};
 constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 4 + 4;
+constexpr std::size_t kHeaderChecked = kHeaderSize - 4;  ///< bytes the header CRC covers
 
 constexpr std::uint32_t tag(char a, char b, char c, char d) {
     return static_cast<std::uint32_t>(static_cast<unsigned char>(a)) |
@@ -124,7 +125,7 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
     file.put<std::uint32_t>(0);
     file.put<std::uint64_t>(payload.bytes().size());
     file.put<std::uint32_t>(crc32_of(payload.bytes()));
-    file.put<std::uint32_t>(0);
+    file.put<std::uint32_t>(crc32_of(std::span(file.bytes()).first(kHeaderChecked)));
     file.put_bytes(payload.bytes());
     return std::move(file.bytes());
 }
@@ -138,15 +139,29 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
     if (bytes.size() < kHeaderSize) header.fail("file is truncated: the header is incomplete");
     header.get_bytes(kMagic.size());
     const auto version = header.get<std::uint32_t>();
-    if (version == 0 || version > kSessionFormatVersion) {
+    std::uint32_t stored_header_crc = 0;
+    std::memcpy(&stored_header_crc, bytes.data() + kHeaderChecked, 4);
+    const bool header_intact = stored_header_crc == crc32_of(bytes.first(kHeaderChecked));
+    if (version > kSessionFormatVersion) {
+        // A newer format may lay its header out differently, so a checksum mismatch cannot
+        // tell a damaged version field from a genuinely newer file: say both.
         header.fail("format version " + std::to_string(version) +
                     " is newer than this build supports (" + std::to_string(kSessionFormatVersion) +
-                    "); update sandtin to open it");
+                    "); update sandtin to open it" +
+                    (header_intact ? "" : " (or the header is corrupted)"));
+    }
+    if (version < kOldestSessionFormatVersion) {
+        header.fail("the header is corrupted (format version " + std::to_string(version) + ")");
     }
     header.get<std::uint32_t>();
     const auto length = header.get<std::uint64_t>();
     const auto crc = header.get<std::uint32_t>();
     header.get<std::uint32_t>();
+    // Format 1 had no header checksum; from format 2 a damaged length or CRC field is caught
+    // here rather than misreported as truncation.
+    if (version >= 2 && !header_intact) {
+        header.fail("header checksum mismatch: the file is corrupted");
+    }
     if (length != header.remaining()) {
         header.fail(length > header.remaining() ? "file is truncated: payload is incomplete"
                                                 : "file has trailing bytes after the payload");
@@ -155,6 +170,7 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
     if (crc32_of(payload) != crc) header.fail("checksum mismatch: the file is corrupted");
 
     Session session;
+    session.format_version = version;
     bool have_terrain = false;
     ByteReader r(payload, name);
     while (!r.at_end()) {

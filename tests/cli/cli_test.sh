@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of the sandtin CLI.
 # usage: cli_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get
-#   scenarios: roundtrip, bad_input, bench, demo
+#   scenarios: roundtrip, bad_input, bench, demo, run_good, run_bad
 # json_get (tests/cli/json_get.cpp) reads values out of the JSON the CLI prints.
 set -uo pipefail
 
@@ -206,11 +206,130 @@ scenario_demo() {
     grep -q "sandtin demo" demo_plain.out || fail "plain demo output lacks its title"
 }
 
+# sandtin run: a good script in both forms, from a script terrain and from an input session.
+# Oracles: the lines of the operations counted in the script text; a pour of V m^3 on flat sand
+# of height H over a W x L m rectangle leaves W L H + V exactly, whatever the triangulation.
+scenario_run_good() {
+    cat >good.json <<'END_OF_SCRIPT'
+{
+  "version": 1,
+  "terrain": {"size": [1, 1], "points": 2000, "seed": 5, "height": 0.1},
+  "settings": {"simplify_tolerance": 0.0005},
+  "operations": [
+    {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "depth": 0.02},
+    {"op": "stroke", "tool": {"asset": "box", "extrude": false},
+     "path": [[0.2, 0.2], [0.4, 0.6], [0.8, 0.7]],
+     "curve": true, "spacing": 0.01, "depth": 0.01},
+    {"op": "stamp", "tool": {"asset": "lambda"}, "at": [0.7, 0.3], "angle": 0.5, "bottom": 0.05},
+    {"op": "pour", "at": [0.3, 0.8], "volume": 1e-5, "radius": 0.03},
+    {"op": "brush", "kind": "raise", "at": [0.7, 0.3], "radius": 0.05, "strength": 0.002},
+    {"op": "simplify"}
+  ]
+}
+END_OF_SCRIPT
+    expect_ok run1 run good.json -o out.sandtin --json || return
+    [[ -s out.sandtin ]] || fail "run wrote no file"
+    check_eq "run steps" "$(json run1.out /steps/0/op /steps/1/op /steps/5/op | tr '\n' ' ')" \
+        "stamp stroke simplify "
+    check_eq "run step lines" \
+        "$(json run1.out /steps/0/line /steps/1/line /steps/3/line | tr '\n' ' ')" "6 7 11 "
+    check_eq "run valid" "$(json run1.out /terrain/valid)" true
+    holds "stroke stamps" "a >= 50" "$(json run1.out /steps/1/stamps_applied)"
+    expect_ok info1 info out.sandtin --json || return
+    check_eq "info valid after run" "$(json info1.out /valid)" true
+    check_eq "info vertices = run vertices" "$(json info1.out /vertices)" \
+        "$(json run1.out /terrain/vertices)"
+    # Only the pour (1e-5 m^3) and the raise brush (at most 0.002 * pi * 0.05^2) add sand; the
+    # stamps and the stroke (no extrusion) only dig.
+    holds "the run dug" "a < 0.1 + 1e-5 + 0.002 * 3.1416 * 0.0025" "$(json info1.out /volume)"
+    # Plain output; the same script gives the same terrain.
+    expect_ok run2 run good.json -o out2.sandtin || return
+    grep -q "ran 6 operations" run2.out || fail "plain run output: $(cat run2.out)"
+    cmp -s out.sandtin out2.sandtin || fail "the same script gave two different terrains"
+
+    # A pour adds exactly its volume: 1 x 1 x 0.1 + 0.001.
+    cat >pour.json <<'END_OF_SCRIPT'
+{"terrain": {"points": 500, "seed": 2, "height": 0.1},
+ "operations": [{"op": "pour", "at": [0.5, 0.5], "volume": 0.001, "radius": 0.05}]}
+END_OF_SCRIPT
+    expect_ok pour1 run pour.json -o pour.sandtin --json || return
+    abs_le "$(json pour1.out /terrain/volume)" 0.101 1e-12 "volume after the pour"
+    abs_le "$(json pour1.out /volume_before)" 0.1 1e-12 "volume before the pour"
+
+    # From an input session (-i), which stays as it was: 2 x 1 x 0.2 + 0.002.
+    expect_ok new1 new --flat 2 1 --points 1000 --seed 3 --height 0.2 -o in.sandtin || return
+    cp in.sandtin in.orig
+    cat >pour2.json <<'END_OF_SCRIPT'
+[
+  {"op": "pour", "path": [[0.5, 0.5], [1.5, 0.5]], "volume": 0.002, "radius": 0.04}
+]
+END_OF_SCRIPT
+    expect_ok pour2 run pour2.json -i in.sandtin -o from_in.sandtin --json || return
+    abs_le "$(json pour2.out /terrain/volume)" 0.402 1e-12 "volume after pouring on the input"
+    cmp -s in.sandtin in.orig || fail "run changed its input file"
+    expect_ok info2 info from_in.sandtin --json || return
+    check_eq "input run valid" "$(json info2.out /valid)" true
+    abs_le "$(json info2.out /volume)" 0.402 1e-12 "saved volume"
+
+    # Neither -i nor a terrain: a usage error and no file.
+    printf '[{"op": "simplify"}]\n' >noterrain.json
+    expect_error noterrain "terrain" run noterrain.json -o noterrain.sandtin
+    [[ -e noterrain.sandtin ]] && fail "a failed run left noterrain.sandtin behind"
+    return 0
+}
+
+# Bad scripts: a message naming the line and the field, a non-zero exit, the input session
+# byte-identical and no output file.
+scenario_run_bad() {
+    expect_ok new1 new --flat 1 1 --points 500 --seed 4 --height 0.1 -o in.sandtin || return
+    cp in.sandtin in.orig
+    local ok='  {"op": "pour", "at": [0.5, 0.5], "volume": 1e-5},'
+    {
+        echo "["
+        for _ in 1 2 3 4 5; do echo "$ok"; done
+        echo '  {"op": "pour", "at": [0.5, 0.5], "volume": 1e-5, "radius": -0.02}'
+        echo "]"
+    } >radius.json
+    {
+        echo "["
+        echo "$ok"
+        echo '  {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "depht": 0.01}'
+        echo "]"
+    } >field.json
+    printf '[\n%s\n  {"op": "dig", "at": [0.5, 0.5]}\n]\n' "$ok" >op.json
+    printf '[\n%s\n%s\n  {"op": "pour" "at": [0.5, 0.5]}\n]\n' "$ok" "$ok" >syntax.json
+    printf '[\n  {"op": "stamp", "tool": {"asset": "nope"}, "at": [0.5, 0.5]}\n]\n' >asset.json
+
+    local spec name keyword line
+    for spec in "radius:radius:7" "field:depht:3" "op:dig:3" "syntax:JSON:4" "asset:asset:2"; do
+        IFS=: read -r name keyword line <<<"$spec"
+        expect_error "bad_$name" "$keyword" run "$name.json" -i in.sandtin -o "out_$name.sandtin"
+        grep -q "$name.json:$line:" "bad_$name.err" ||
+            fail "bad_$name: stderr does not name line $line: $(cat "bad_$name.err")"
+        [[ -e "out_$name.sandtin" ]] && fail "bad_$name: a failed run created out_$name.sandtin"
+        cmp -s in.sandtin in.orig || fail "bad_$name: the input session changed"
+    done
+    # Even when the output is the input itself.
+    expect_error bad_inplace "radius" run radius.json -i in.sandtin -o in.sandtin
+    cmp -s in.sandtin in.orig || fail "a bad script run in place changed the input"
+    # A missing script, a missing input, no output given.
+    expect_error missing_script "missing.json" run missing.json -i in.sandtin -o out_missing.sandtin
+    [[ -e out_missing.sandtin ]] && fail "a run without its script created its output"
+    printf '[{"op": "simplify"}]\n' >fine.json
+    expect_error missing_input "nosuch.sandtin" run fine.json -i nosuch.sandtin -o out_noin.sandtin
+    [[ -e out_noin.sandtin ]] && fail "a run without its input created its output"
+    expect_error no_output "-o" run fine.json -i in.sandtin
+    cmp -s in.sandtin in.orig || fail "the input session changed"
+    return 0
+}
+
 case "$SCENARIO" in
     roundtrip) scenario_roundtrip ;;
     bad_input) scenario_bad_input ;;
     bench) scenario_bench ;;
     demo) scenario_demo ;;
+    run_good) scenario_run_good ;;
+    run_bad) scenario_run_bad ;;
     *)
         echo "unknown scenario $SCENARIO" >&2
         exit 2

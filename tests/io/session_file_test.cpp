@@ -1,6 +1,8 @@
 // Session files: round trips, and every kind of damage rejected with a clear message.
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -89,12 +91,15 @@ class SessionFile : public ::testing::Test {
     fs::path dir_;
 };
 
-/// Sets the CRC in the header to match the (modified) payload, as a crafted file would.
+/// Sets the payload CRC and the header CRC to match the (modified) file, as a crafted file
+/// would.
 void fix_crc(std::vector<std::uint8_t>& bytes) {
     const uLong crc = crc32(crc32(0L, Z_NULL, 0), bytes.data() + kHeaderSize,
                             static_cast<uInt>(bytes.size() - kHeaderSize));
     const auto c = static_cast<std::uint32_t>(crc);
     std::memcpy(bytes.data() + 24, &c, 4);
+    const auto h = static_cast<std::uint32_t>(crc32(crc32(0L, Z_NULL, 0), bytes.data(), 28));
+    std::memcpy(bytes.data() + 28, &h, 4);
 }
 
 void set_payload_length(std::vector<std::uint8_t>& bytes) {
@@ -360,6 +365,95 @@ TEST_F(SessionFile, InterruptedSaveLeavesThePreviousFileIntact) {
     });
     EXPECT_EQ(last, encode_session(second).size());
     expect_sessions_equal(load_session(p), second);
+}
+
+}  // namespace
+}  // namespace sandtin
+
+// ---- Format versions, header damage, a save killed mid-write ---------------------------------
+
+namespace sandtin {
+namespace {
+
+/// Written by the format-1 build (commit b3f3abe): `sandtin run` of a 40-point terrain with
+/// one circular stamp, so it holds constraints.
+const std::filesystem::path kVersion1File =
+    std::filesystem::path(SANDTIN_TEST_DATA_DIR) / "session_v1.sandtin";
+
+TEST_F(SessionFile, OlderFormatVersionLoads) {
+    const std::vector<std::uint8_t> bytes = read_file(kVersion1File);
+    std::uint32_t version = 0;
+    std::memcpy(&version, bytes.data() + 8, 4);
+    ASSERT_EQ(version, 1u) << "the fixture must stay a format-1 file";
+    const Session s = load_session(kVersion1File);
+    EXPECT_EQ(s.format_version, 1u);
+    const Tin tin = Tin::from_snapshot(s.terrain);
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+    // What `sandtin info` reported for the file when the format-1 build wrote it.
+    EXPECT_EQ(tin.vertex_count(), 60u);
+    EXPECT_EQ(tin.triangle_count(), 114u);
+    EXPECT_EQ(tin.constrained_edge_count(), 16u);
+    EXPECT_EQ(tin.constraint_count(), 16u);
+    EXPECT_NEAR(tin.volume(), 0.19673113906194895, 1e-15);
+    // Saving upgrades it to the current format, with the same content.
+    save_session(path("upgraded.sandtin"), s);
+    const Session upgraded = load_session(path("upgraded.sandtin"));
+    EXPECT_EQ(upgraded.format_version, kSessionFormatVersion);
+    expect_sessions_equal(upgraded, s);
+}
+
+TEST_F(SessionFile, DamagedHeaderFieldsAreCaughtByTheHeaderChecksum) {
+    const std::vector<std::uint8_t> good = encode_session(make_session(30));
+    // Payload length, reserved word, payload CRC: each flip is corruption, not truncation.
+    for (std::size_t at : {std::size_t{12}, std::size_t{16}, std::size_t{17}, std::size_t{23},
+                           std::size_t{25}, std::size_t{29}}) {
+        std::vector<std::uint8_t> bad = good;
+        bad[at] ^= 0x04;
+        write_bytes(path("h.sandtin"), bad);
+        expect_load_error(path("h.sandtin"), {"header checksum"}, "flip at " + std::to_string(at));
+    }
+    std::vector<std::uint8_t> zero = good;
+    std::memset(zero.data() + 8, 0, 4);
+    write_bytes(path("z.sandtin"), zero);
+    expect_load_error(path("z.sandtin"), {"corrupted"}, "format version 0");
+    std::vector<std::uint8_t> huge = good;
+    const std::uint32_t v = 0xFFFFFFFFu;
+    std::memcpy(huge.data() + 8, &v, 4);
+    write_bytes(path("v.sandtin"), huge);
+    expect_load_error(path("v.sandtin"), {"newer"}, "future version 2^32-1");
+}
+
+TEST_F(SessionFile, SaveKilledMidWriteLeavesTheOldFileLoadable) {
+    // A real crash: a child process starts saving over the file and is killed with SIGKILL
+    // from inside the write (after a partial write, via the interruption hook).
+    const Session old_session = make_session(40000, 3);
+    const Session new_session = make_session(40000, 4);
+    const fs::path p = path("scene.sandtin");
+    save_session(p, old_session);
+    const std::vector<std::uint8_t> before = read_file(p);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        try {
+            save_session(p, new_session, [](std::size_t written) {
+                if (written > 0) ::kill(::getpid(), SIGKILL);
+                return true;
+            });
+        } catch (...) {
+        }
+        ::_exit(0);  // not reached: the kill comes first
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the child should have died mid-save";
+    EXPECT_EQ(WTERMSIG(status), SIGKILL);
+    EXPECT_EQ(read_file(p), before);
+    expect_sessions_equal(load_session(p), old_session);
+    // The killed save's temporary is left behind; it never shadows the scene.
+    std::size_t temporaries = 0;
+    for (const auto& e : fs::directory_iterator(dir_))
+        temporaries += e.path().filename().string().find(".tmp-") != std::string::npos ? 1 : 0;
+    EXPECT_EQ(temporaries, 1u);
 }
 
 }  // namespace

@@ -1,0 +1,123 @@
+// sandtin export: a session to a mesh (OBJ, PLY, STL, glTF, GLB) or a map (height PNG/EXR,
+// normal or albedo PNG).
+
+#include <iostream>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "io/export_terrain.hpp"
+#include "io/session_file.hpp"
+
+namespace sandtin::cli {
+
+namespace {
+
+constexpr const char* kUsage =
+    "sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr) "
+    "[--map height|normal|albedo] [--up y|z] [--units m|cm|mm|km|in|ft] "
+    "[--base DEPTH | --skirt DEPTH] [--max-error E] [--cell-size m] [--size N] "
+    "[--no-textures] [--faceted] [--json]";
+
+/// The cell size the terrain was imported with, if the session says.
+std::optional<double> imported_cell_size(const std::string& metadata) {
+    const nlohmann::json j = nlohmann::json::parse(metadata, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return std::nullopt;
+    const auto ptr = nlohmann::json::json_pointer("/import/raster/cell_size");
+    if (!j.contains(ptr) || !j.at(ptr).is_number()) return std::nullopt;
+    const double cell = j.at(ptr).get<double>();
+    return cell > 0.0 ? std::optional<double>(cell) : std::nullopt;
+}
+
+}  // namespace
+
+int run_export(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"-o", 1},
+                               {"--map", 1},
+                               {"--up", 1},
+                               {"--units", 1},
+                               {"--base", 1},
+                               {"--skirt", 1},
+                               {"--max-error", 1},
+                               {"--cell-size", 1},
+                               {"--size", 1},
+                               {"--no-textures", 0},
+                               {"--faceted", 0},
+                               {"--json", 0}});
+    args.require_positionals(1, kUsage);
+    const std::string out = args.text("-o");
+    ExportFormat format{};
+    ExportOptions options;
+    try {
+        format = export_format_for(out, args.text_or("--map", ""));
+        options.units = args.text_or("--units", "m");
+        (void)unit_scale_of(options.units);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    if (args.has("--up")) {
+        const std::string up = args.text("--up");
+        if (up != "y" && up != "z") throw UsageError("--up: '" + up + "' is not y or z");
+        options.up = up == "y" ? UpAxis::Y : UpAxis::Z;
+    }
+    if (args.has("--base") && args.has("--skirt")) {
+        throw UsageError("give at most one of --base and --skirt");
+    }
+    for (const char* opt : {"--base", "--skirt"}) {
+        if (!args.has(opt)) continue;
+        options.base = std::string(opt) == "--base" ? BaseKind::Solid : BaseKind::Skirt;
+        options.base_depth = args.number(opt);
+        if (!(options.base_depth > 0.0)) {
+            throw UsageError(std::string(opt) + ": the depth must be a positive number of metres");
+        }
+    }
+    if (args.has("--max-error")) {
+        options.max_error = args.number("--max-error");
+        if (*options.max_error < 0.0) throw UsageError("--max-error must be >= 0 metres");
+    }
+    if (args.has("--cell-size")) {
+        options.cell_size = args.number("--cell-size");
+        if (!(*options.cell_size > 0.0)) throw UsageError("--cell-size must be positive");
+    }
+    if (args.has("--size")) {
+        const auto n = args.count("--size");
+        if (n < 2 || n > 16384) throw UsageError("--size must lie in 2..16384");
+        options.map_size = static_cast<std::uint32_t>(n);
+    }
+    options.textures = !args.has("--no-textures");
+    if (args.has("--faceted")) options.normal_mode = NormalMode::Faceted;
+
+    const Session session = load_session(args.positionals()[0]);
+    // Height maps and simplification default to the grid the terrain was imported from, so
+    // export followed by import reproduces it.
+    if (!options.cell_size && !args.has("--size")) {
+        options.cell_size = imported_cell_size(session.metadata_json);
+    }
+    TinOptions tin_options;
+    tin_options.track_changes = false;
+    const Tin tin = Tin::from_snapshot(session.terrain, tin_options);
+    ExportReport report;
+    try {
+        report = export_terrain(tin, out, format, options);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    if (args.has("--json")) {
+        std::cout << to_json(report).dump(2) << "\n";
+    } else {
+        std::cout << "exported " << args.positionals()[0] << " as " << to_string(report.format);
+        if (report.vertices > 0) {
+            std::cout << ": " << report.vertices << " vertices, " << report.triangles
+                      << " triangles";
+        }
+        if (report.map_width > 0) {
+            std::cout << (report.vertices > 0 ? ", maps " : ": ") << report.map_width << " x "
+                      << report.map_height;
+        }
+        std::cout << "\n";
+        for (const auto& f : report.files)
+            std::cout << "wrote " << f.string() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace sandtin::cli

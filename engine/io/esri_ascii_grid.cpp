@@ -1,0 +1,182 @@
+#include "io/esri_ascii_grid.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+
+namespace sandtin {
+
+namespace {
+
+class Cursor {
+  public:
+    Cursor(std::span<const std::uint8_t> bytes, const std::string& name)
+        : text_(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name_(name) {}
+
+    /// The next whitespace-separated token (empty at the end).
+    std::string_view token() {
+        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
+            if (text_[pos_] == '\n') ++line_;
+            ++pos_;
+        }
+        const std::size_t start = pos_;
+        while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_])))
+            ++pos_;
+        return text_.substr(start, pos_ - start);
+    }
+    /// Peeks at the next token without consuming it.
+    std::string_view peek() {
+        const std::size_t pos = pos_;
+        const std::size_t line = line_;
+        const std::string_view t = token();
+        pos_ = pos;
+        line_ = line;
+        return t;
+    }
+    std::size_t line() const { return line_; }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw std::runtime_error(name_ + ": line " + std::to_string(line_) + ": " + what);
+    }
+
+  private:
+    std::string_view text_;
+    std::string name_;
+    std::size_t pos_ = 0;
+    std::size_t line_ = 1;
+};
+
+std::string lower(std::string_view s) {
+    std::string out(s);
+    std::transform(out.begin(), out.end(), out.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return out;
+}
+
+/// Parses a number the way the grid writes it: an optional sign, digits, "nan", "inf".
+std::optional<double> parse_double(std::string_view t) {
+    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (ec != std::errc() || end != t.data() + t.size() || t.empty()) return std::nullopt;
+    return v;
+}
+
+bool is_header_key(std::string_view t) {
+    if (t.empty()) return false;
+    const unsigned char c = static_cast<unsigned char>(t.front());
+    const std::string l = lower(t);
+    return std::isalpha(c) && l != "nan" && l != "inf" && l != "infinity";
+}
+
+}  // namespace
+
+HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const std::string& name,
+                                   const RasterLimits& limits, bool nonfinite_as_nodata) {
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    Cursor in(bytes, name);
+    static const std::map<std::string, std::string> kKeys = {
+        {"ncols", "ncols"},         {"nrows", "nrows"},  {"xllcorner", "x"},
+        {"xllcenter", "x"},         {"xllcentre", "x"},  {"yllcorner", "y"},
+        {"yllcenter", "y"},         {"yllcentre", "y"},  {"cellsize", "cellsize"},
+        {"nodata_value", "nodata"}, {"nodata", "nodata"}};
+    std::map<std::string, double> values;
+    bool x_centre = false;
+    bool y_centre = false;
+    while (is_header_key(in.peek())) {
+        const std::string key = lower(in.token());
+        const auto it = kKeys.find(key);
+        if (it == kKeys.end()) {
+            in.fail("'" + key +
+                    "' is not an ESRI ASCII grid header key (expected ncols, nrows, "
+                    "xllcorner/xllcenter, yllcorner/yllcenter, cellsize, NODATA_value)");
+        }
+        if (values.count(it->second) != 0) in.fail("header key '" + key + "' is given twice");
+        const std::string_view value_text = in.token();
+        const std::optional<double> value = parse_double(value_text);
+        if (!value || !std::isfinite(*value)) {
+            in.fail("header key '" + key + "' needs a finite number, not '" +
+                    std::string(value_text) + "'");
+        }
+        values[it->second] = *value;
+        if (it->second == "x") x_centre = key.find("cent") != std::string::npos;
+        if (it->second == "y") y_centre = key.find("cent") != std::string::npos;
+    }
+    for (const char* required : {"ncols", "nrows", "x", "y", "cellsize"}) {
+        if (values.count(required) == 0) {
+            const std::string what = std::string(required) == "x"   ? "xllcorner or xllcenter"
+                                     : std::string(required) == "y" ? "yllcorner or yllcenter"
+                                                                    : required;
+            throw std::runtime_error(name + ": not an ESRI ASCII grid: the header lacks '" + what +
+                                     "'");
+        }
+    }
+    for (const char* count : {"ncols", "nrows"}) {
+        const double v = values[count];
+        if (v < 0.0 || v != std::floor(v) || v > 4.0e9) {
+            throw std::runtime_error(name + ": header key '" + count +
+                                     "' must be a whole number, not " + std::to_string(v));
+        }
+    }
+    const auto cols = static_cast<std::uint64_t>(values["ncols"]);
+    const auto rows = static_cast<std::uint64_t>(values["nrows"]);
+    check_raster_size(cols, rows, name, limits);
+    const double cellsize = values["cellsize"];
+    if (!(cellsize > 0.0)) {
+        throw std::runtime_error(name + ": header key 'cellsize' must be positive, not " +
+                                 std::to_string(cellsize));
+    }
+    // A plain flag and value: GCC 12 misreads an optional here (-Wmaybe-uninitialized).
+    const bool has_nodata = values.count("nodata") != 0;
+    const double nodata = has_nodata ? values["nodata"] : 0.0;
+
+    HeightRaster r;
+    r.width = static_cast<std::uint32_t>(cols);
+    r.height = static_cast<std::uint32_t>(rows);
+    r.cell_size = cellsize;
+    r.source_format = "esri-ascii";
+    r.georeference.known = true;
+    r.georeference.west = values["x"] + (x_centre ? 0.0 : 0.5 * cellsize);
+    r.georeference.south = values["y"] + (y_centre ? 0.0 : 0.5 * cellsize);
+    r.heights.resize(r.size());
+    bool any_nodata = false;
+    std::vector<std::uint8_t> valid(r.size(), 1);
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const std::string_view t = in.token();
+        const std::size_t col = i % r.width;
+        const std::size_t row = i / r.width;
+        if (t.empty()) {
+            throw std::runtime_error(name + ": truncated: expected " + std::to_string(r.size()) +
+                                     " heights (" + std::to_string(r.width) + " x " +
+                                     std::to_string(r.height) + "), found " + std::to_string(i));
+        }
+        const std::optional<double> v = parse_double(t);
+        if (!v) {
+            in.fail("the height at row " + std::to_string(row) + ", column " + std::to_string(col) +
+                    " is not a number: '" + std::string(t.substr(0, 40)) + "'");
+        }
+        if ((has_nodata && *v == nodata) || (!std::isfinite(*v) && nonfinite_as_nodata)) {
+            valid[i] = 0;
+            any_nodata = true;
+            r.heights[i] = 0.0;
+            continue;
+        }
+        if (!std::isfinite(*v)) {
+            in.fail("the height at row " + std::to_string(row) + ", column " + std::to_string(col) +
+                    " is not finite ('" + std::string(t) +
+                    "'); declare it as NODATA_value or import with non-finite heights as no-data");
+        }
+        r.heights[i] = *v;
+    }
+    if (!in.token().empty()) {
+        in.fail("more heights than ncols x nrows = " + std::to_string(r.size()));
+    }
+    if (any_nodata) r.valid = std::move(valid);
+    return r;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,76 @@
+#include "io/export_maps.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include "formats/png_image.hpp"
+#include "io/heightmap_exr.hpp"
+#include "io/heightmap_png.hpp"
+
+namespace sandtin {
+
+namespace {
+
+std::string exact(double v) {
+    std::array<char, 32> buf{};
+    const auto [end, ec] = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return {buf.data(), end};
+}
+
+std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double scale) {
+    PngImage image;
+    image.width = map.width;
+    image.height = map.height;
+    image.channels = 3;
+    image.bit_depth = 8;
+    image.samples.resize(map.values.size());
+    for (std::size_t i = 0; i < map.values.size(); ++i) {
+        const double v = std::clamp((map.values[i] + offset) * scale, 0.0, 1.0);
+        image.samples[i] = static_cast<std::uint16_t>(std::lround(v * 255.0));
+    }
+    return encode_png(image);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size) {
+    const auto [lo, hi] = std::minmax_element(heights.values.begin(), heights.values.end());
+    const double z_min = *lo;
+    const double range = *hi > *lo ? *hi - *lo : 1.0;  // a flat map still round-trips
+    PngImage image;
+    image.width = heights.width;
+    image.height = heights.height;
+    image.channels = 1;
+    image.bit_depth = 16;
+    image.samples.resize(heights.values.size());
+    for (std::size_t i = 0; i < heights.values.size(); ++i) {
+        const double unit = std::clamp((heights.values[i] - z_min) / range, 0.0, 1.0);
+        image.samples[i] = static_cast<std::uint16_t>(std::lround(unit * 65535.0));
+    }
+    image.text = {{kPngKeyZOffset, exact(z_min)},
+                  {kPngKeyZRange, exact(range)},
+                  {kPngKeyCellSize, exact(cell_size)}};
+    return encode_png(image);
+}
+
+std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size) {
+    HeightRaster raster;
+    raster.width = heights.width;
+    raster.height = heights.height;
+    raster.cell_size = cell_size;
+    raster.heights = heights.values;
+    return encode_exr_heightmap(raster);
+}
+
+std::vector<std::uint8_t> encode_normal_png(const MapImage& normals) {
+    return encode_rgb8(normals, 1.0, 0.5);
+}
+
+std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours) {
+    return encode_rgb8(colours, 0.0, 1.0);
+}
+
+}  // namespace sandtin

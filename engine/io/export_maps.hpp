@@ -1,0 +1,26 @@
+#pragma once
+// Baked maps (engine/maps) as image files.
+//
+//  - Height PNG: 16-bit gray, heights mapped linearly from [z_min, z_max] to [0, 65535], so
+//    the quantisation step is (z_max - z_min) / 65535. The tEXt chunks sandtin:z_offset,
+//    sandtin:z_range and sandtin:cell_size let `sandtin import` restore metres exactly.
+//  - Height EXR: 32-bit float metres (io/heightmap_exr.hpp).
+//  - Normal PNG: 8-bit RGB, (n + 1) / 2 per component (OpenGL convention, +Y = green = north).
+//  - Albedo PNG: 8-bit RGB.
+
+#include <cstdint>
+#include <vector>
+
+#include "maps/map_grid.hpp"
+
+namespace sandtin {
+
+/// `heights` has one channel; `cell_size` in metres is stored for re-import.
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size);
+std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size);
+/// `normals` has three channels, unit vectors.
+std::vector<std::uint8_t> encode_normal_png(const MapImage& normals);
+/// `colours` has three channels in [0, 1].
+std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours);
+
+}  // namespace sandtin

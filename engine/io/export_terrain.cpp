@@ -1,0 +1,296 @@
+#include "io/export_terrain.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "io/export_maps.hpp"
+#include "io/export_mesh_gltf.hpp"
+#include "io/export_mesh_obj.hpp"
+#include "io/export_mesh_ply.hpp"
+#include "io/export_mesh_stl.hpp"
+#include "io/heightmap_raster.hpp"
+#include "maps/height_map.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint32_t kMaxMapSide = 16384;
+
+std::string lower_extension(const fs::path& p) {
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::uint32_t samples_along(double length, double cell) {
+    const double n = std::round(length / cell) + 1.0;
+    if (!(n <= kMaxMapSide)) {
+        throw std::invalid_argument("export: a cell size of " + std::to_string(cell) +
+                                    " m gives more than " + std::to_string(kMaxMapSide) +
+                                    " samples along a " + std::to_string(length) + " m side");
+    }
+    return std::max<std::uint32_t>(2, static_cast<std::uint32_t>(n));
+}
+
+/// A grid of samples on the domain's corners and edges, as square as the domain allows.
+MapGrid corner_grid(const Rect& d, const ExportOptions& o) {
+    if (o.cell_size && !(std::isfinite(*o.cell_size) && *o.cell_size > 0.0)) {
+        throw std::invalid_argument("export: the cell size must be a positive number of metres");
+    }
+    if (o.map_size < 2 || o.map_size > kMaxMapSide) {
+        throw std::invalid_argument("export: the map size must lie in 2.." +
+                                    std::to_string(kMaxMapSide));
+    }
+    const double cell = o.cell_size.value_or(std::max(d.width(), d.height()) / (o.map_size - 1));
+    return MapGrid(d, samples_along(d.width(), cell), samples_along(d.height(), cell),
+                   SampleAt::Corners);
+}
+
+/// Texels covering the domain, map_size along the longer side.
+MapGrid texture_grid(const Rect& d, const ExportOptions& o) {
+    if (o.map_size < 1 || o.map_size > kMaxMapSide) {
+        throw std::invalid_argument("export: the map size must lie in 1.." +
+                                    std::to_string(kMaxMapSide));
+    }
+    const double longer = std::max(d.width(), d.height());
+    const auto along = [&](double side) {
+        return std::max<std::uint32_t>(
+            1, static_cast<std::uint32_t>(std::lround(o.map_size * side / longer)));
+    };
+    return MapGrid(d, along(d.width()), along(d.height()), SampleAt::Centres);
+}
+
+double column_spacing(const MapGrid& g) {
+    return g.domain.width() / (g.width - 1);
+}
+double row_spacing(const MapGrid& g) {
+    return g.domain.height() / (g.height - 1);
+}
+
+/// The terrain re-meshed by greedy insertion within max_error of its samples on `grid`.
+GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
+    HeightRaster raster;
+    raster.width = grid.width;
+    raster.height = grid.height;
+    raster.cell_size = column_spacing(grid);
+    const double dy = row_spacing(grid);
+    if (dy != raster.cell_size) raster.cell_height = dy;
+    raster.origin = grid.domain.min;
+    raster.heights = bake_height_map(tin, grid).values;
+    raster.source_format = "tin";
+    // The raster's domain is the TIN's up to the rounding of (n - 1) * cell.
+    return greedy_tin(raster, {max_error, 0});
+}
+
+void write(const fs::path& p, std::span<const std::uint8_t> bytes, ExportReport& report) {
+    write_file_atomically(p, bytes, {});
+    report.files.push_back(p);
+}
+
+void write_text(const fs::path& p, const std::string& text, ExportReport& report) {
+    write(p, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, report);
+}
+
+bool is_mesh(ExportFormat f) {
+    return f == ExportFormat::Obj || f == ExportFormat::Ply || f == ExportFormat::Stl ||
+           f == ExportFormat::Gltf || f == ExportFormat::Glb;
+}
+
+}  // namespace
+
+ExportFormat export_format_for(const fs::path& path, const std::string& map) {
+    const std::string ext = lower_extension(path);
+    if (!map.empty() && ext != ".png" && !(ext == ".exr" && map == "height")) {
+        throw std::invalid_argument("export: --map applies to .png (and 'height' to .exr), not '" +
+                                    ext + "'");
+    }
+    if (ext == ".obj") return ExportFormat::Obj;
+    if (ext == ".ply") return ExportFormat::Ply;
+    if (ext == ".stl") return ExportFormat::Stl;
+    if (ext == ".gltf") return ExportFormat::Gltf;
+    if (ext == ".glb") return ExportFormat::Glb;
+    if (ext == ".exr") return ExportFormat::HeightExr;
+    if (ext == ".png") {
+        if (map.empty() || map == "height") return ExportFormat::HeightPng;
+        if (map == "normal") return ExportFormat::NormalPng;
+        if (map == "albedo") return ExportFormat::AlbedoPng;
+        throw std::invalid_argument("export: unknown map '" + map +
+                                    "' (use height, normal or albedo)");
+    }
+    throw std::invalid_argument("export: unknown output type '" + ext +
+                                "' (use .obj, .ply, .stl, .gltf, .glb, .png or .exr)");
+}
+
+const char* to_string(ExportFormat f) {
+    switch (f) {
+        case ExportFormat::Obj:
+            return "obj";
+        case ExportFormat::Ply:
+            return "ply";
+        case ExportFormat::Stl:
+            return "stl";
+        case ExportFormat::Gltf:
+            return "gltf";
+        case ExportFormat::Glb:
+            return "glb";
+        case ExportFormat::HeightPng:
+            return "height-png";
+        case ExportFormat::HeightExr:
+            return "height-exr";
+        case ExportFormat::NormalPng:
+            return "normal-png";
+        case ExportFormat::AlbedoPng:
+            return "albedo-png";
+    }
+    return "?";
+}
+
+ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat format,
+                            const ExportOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    ExportReport report;
+    report.format = format;
+    const Rect d = tin.domain();
+
+    if (!is_mesh(format)) {
+        if (o.max_error || o.base != BaseKind::None || o.up) {
+            throw std::invalid_argument(
+                "export: --max-error, --base, --skirt and --up apply to "
+                "meshes, not maps");
+        }
+        const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
+        const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
+        report.map_width = grid.width;
+        report.map_height = grid.height;
+        if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
+            const MapImage heights = bake_height_map(tin, grid);
+            const double cell = column_spacing(grid);
+            if (format == ExportFormat::HeightPng) {
+                const auto [lo, hi] =
+                    std::minmax_element(heights.values.begin(), heights.values.end());
+                report.height_step = (*hi - *lo) / 65535.0;
+                write(out, encode_height_png(heights, cell), report);
+            } else {
+                write(out, encode_height_exr(heights, cell), report);
+            }
+        } else if (format == ExportFormat::NormalPng) {
+            write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode)), report);
+        } else {
+            write(out, encode_albedo_png(bake_albedo_map(tin, grid, o.palette)), report);
+        }
+        report.ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        return report;
+    }
+
+    const bool gltf = format == ExportFormat::Gltf || format == ExportFormat::Glb;
+    const UpAxis up = o.up.value_or(format == ExportFormat::Obj || gltf ? UpAxis::Y : UpAxis::Z);
+    if (gltf && up != UpAxis::Y) {
+        throw std::invalid_argument("export: glTF is Y-up by specification; drop --up z");
+    }
+    MeshExportOptions mesh_options;
+    mesh_options.up = up;
+    mesh_options.unit_scale = unit_scale_of(o.units);
+    mesh_options.base = o.base;
+    mesh_options.base_depth = o.base_depth;
+
+    std::optional<GreedyResult> simplified;
+    if (o.max_error) {
+        simplified = simplify(tin, corner_grid(d, o), *o.max_error);
+        report.simplified = simplified->stats;
+    }
+    const ExportMesh mesh = build_export_mesh(simplified ? simplified->tin : tin, mesh_options);
+    report.vertices = mesh.positions.size();
+    report.triangles = mesh.triangles.size();
+    report.min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+    report.max = report.min * -1.0;
+    for (const Vec3& p : mesh.positions) {
+        report.min = {std::min(report.min.x, p.x), std::min(report.min.y, p.y),
+                      std::min(report.min.z, p.z)};
+        report.max = {std::max(report.max.x, p.x), std::max(report.max.y, p.y),
+                      std::max(report.max.z, p.z)};
+    }
+
+    // Textures come from the original terrain: simplification changes geometry, not looks.
+    GltfTextures textures;
+    const bool with_textures = o.textures && (format == ExportFormat::Obj || gltf);
+    if (with_textures) {
+        const MapGrid grid = texture_grid(d, o);
+        report.map_width = grid.width;
+        report.map_height = grid.height;
+        textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette));
+        textures.normal_png = encode_normal_png(bake_normal_map(tin, grid, o.normal_mode));
+    }
+
+    switch (format) {
+        case ExportFormat::Obj: {
+            const fs::path dir = out.parent_path();
+            const std::string stem = out.stem().string();
+            const std::string mtl = stem + ".mtl";
+            write_text(out, encode_obj(mesh, mtl), report);
+            ObjMaterial material;
+            material.colour = o.palette.colours.front();
+            if (with_textures) {
+                material.albedo_texture = stem + "_albedo.png";
+                material.normal_texture = stem + "_normal.png";
+            }
+            write_text(dir / mtl, encode_mtl(material), report);
+            if (with_textures) {
+                write(dir / material.albedo_texture, textures.albedo_png, report);
+                write(dir / material.normal_texture, textures.normal_png, report);
+            }
+            break;
+        }
+        case ExportFormat::Ply:
+            write(out, encode_ply(mesh), report);
+            break;
+        case ExportFormat::Stl:
+            write(out, encode_stl(mesh), report);
+            break;
+        case ExportFormat::Gltf:
+        case ExportFormat::Glb:
+            write(out, encode_gltf(mesh, textures, format == ExportFormat::Glb), report);
+            break;
+        default:
+            break;
+    }
+    report.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+nlohmann::json to_json(const ExportReport& r) {
+    nlohmann::json j;
+    j["format"] = to_string(r.format);
+    std::vector<std::string> files;
+    for (const auto& f : r.files)
+        files.push_back(f.string());
+    j["files"] = files;
+    if (r.vertices > 0) {
+        j["vertices"] = r.vertices;
+        j["triangles"] = r.triangles;
+        j["bbox"] = {{"min", {r.min.x, r.min.y, r.min.z}}, {"max", {r.max.x, r.max.y, r.max.z}}};
+    }
+    if (r.map_width > 0) j["map"] = {{"width", r.map_width}, {"height", r.map_height}};
+    if (r.height_step > 0.0) j["height_step"] = r.height_step;
+    if (r.simplified) {
+        j["simplified"] = {{"points", r.simplified->points},
+                           {"triangles", r.simplified->triangles},
+                           {"max_error", r.simplified->max_error},
+                           {"rmsd", r.simplified->rmsd}};
+    }
+    j["ms"] = r.ms;
+    return j;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,85 @@
+#pragma once
+// Terrain export: one call per output file, chosen by its extension, shared by the CLI's
+// `export` and the editor's File menu.
+//
+//   .obj (+ .mtl, and the albedo and normal-map PNGs next to it), .ply, .stl, .gltf, .glb
+//   .png  a 16-bit height map, or with map = "normal" / "albedo" an 8-bit RGB map
+//   .exr  a float height map
+//
+// Meshes can be closed into a solid or given a skirt, simplified to a maximum error first,
+// written Y-up or Z-up and in other units. Every file is written atomically.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/export_mesh.hpp"
+#include "io/greedy_tin.hpp"
+#include "maps/albedo_map.hpp"
+#include "maps/normal_map.hpp"
+
+namespace sandtin {
+
+enum class ExportFormat : std::uint8_t {
+    Obj,
+    Ply,
+    Stl,
+    Gltf,
+    Glb,
+    HeightPng,
+    HeightExr,
+    NormalPng,
+    AlbedoPng,
+};
+
+/// The format for an output path; `map` picks what a .png holds ("height", "normal" or
+/// "albedo"). Throws std::invalid_argument naming the supported extensions or maps.
+ExportFormat export_format_for(const std::filesystem::path& path, const std::string& map = "");
+const char* to_string(ExportFormat format);
+
+struct ExportOptions {
+    /// Default per format: Y for OBJ and glTF (what Blender and game engines expect), Z for
+    /// PLY and STL (CAD and slicers). glTF must be Y-up.
+    std::optional<UpAxis> up;
+    std::string units = "m";  ///< m, cm, mm, km, in, ft (meshes only)
+    BaseKind base = BaseKind::None;
+    double base_depth = 1.0;  ///< metres below the lowest point
+    /// Simplify first: greedy insertion over the terrain sampled every `cell_size`, so that
+    /// the exported surface is within max_error metres of those samples.
+    std::optional<double> max_error;
+    /// Metres between height-map samples (and simplification samples). Default: map_size.
+    std::optional<double> cell_size;
+    /// Samples along the longer side of maps, textures and the simplification raster when no
+    /// cell size is given.
+    std::uint32_t map_size = 1024;
+    bool textures = true;  ///< OBJ and glTF: bake and embed/write albedo and normal maps
+    NormalMode normal_mode = NormalMode::Smooth;
+    MaterialColours palette = default_material_colours();
+};
+
+struct ExportReport {
+    ExportFormat format = ExportFormat::Obj;
+    std::vector<std::filesystem::path> files;  ///< every file written, the main one first
+    std::size_t vertices = 0;                  ///< meshes
+    std::size_t triangles = 0;                 ///< meshes
+    Vec3 min{};                                ///< mesh bounds in the output frame and units
+    Vec3 max{};
+    std::uint32_t map_width = 0;  ///< maps: samples; meshes: texture size
+    std::uint32_t map_height = 0;
+    double height_step = 0.0;  ///< 16-bit PNG: metres per grey level
+    std::optional<GreedyStats> simplified;
+    double ms = 0.0;
+};
+
+/// Writes `out` (and its companions). Throws std::invalid_argument for bad options and
+/// std::runtime_error naming the file when writing fails; files already written stay.
+ExportReport export_terrain(const Tin& tin, const std::filesystem::path& out, ExportFormat format,
+                            const ExportOptions& options = {});
+
+nlohmann::json to_json(const ExportReport& report);
+
+}  // namespace sandtin

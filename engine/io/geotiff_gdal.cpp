@@ -1,0 +1,155 @@
+#include "io/geotiff_gdal.hpp"
+
+#include <cpl_vsi.h>
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace sandtin {
+
+namespace {
+
+/// Collects GDAL's messages instead of letting it print them, for the life of the scope.
+class GdalErrors {
+  public:
+    GdalErrors() { CPLPushErrorHandlerEx(&GdalErrors::handle, this); }
+    ~GdalErrors() { CPLPopErrorHandler(); }
+    GdalErrors(const GdalErrors&) = delete;
+    GdalErrors& operator=(const GdalErrors&) = delete;
+    std::string message() const { return last_.empty() ? "unknown GDAL error" : last_; }
+
+  private:
+    static void CPL_STDCALL handle(CPLErr level, CPLErrorNum, const char* message) {
+        auto* self = static_cast<GdalErrors*>(CPLGetErrorHandlerUserData());
+        if (self != nullptr && level >= CE_Failure && message != nullptr) self->last_ = message;
+    }
+    std::string last_;
+};
+
+struct DatasetCloser {
+    void operator()(void* ds) const { GDALClose(ds); }
+};
+
+void register_drivers() {
+    static std::once_flag once;
+    std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// A GDAL in-memory file over caller-owned bytes, unlinked on scope exit.
+class MemoryFile {
+  public:
+    explicit MemoryFile(std::span<const std::uint8_t> bytes) {
+        static std::atomic<std::uint64_t> counter{0};
+        path_ = "/vsimem/sandtin-import-" + std::to_string(counter++) + ".tif";
+        // GDAL takes a non-const pointer but, with take ownership off, only reads it.
+        VSILFILE* f = VSIFileFromMemBuffer(path_.c_str(), const_cast<GByte*>(bytes.data()),
+                                           static_cast<vsi_l_offset>(bytes.size()), FALSE);
+        if (f != nullptr) VSIFCloseL(f);
+    }
+    ~MemoryFile() { VSIUnlink(path_.c_str()); }
+    MemoryFile(const MemoryFile&) = delete;
+    MemoryFile& operator=(const MemoryFile&) = delete;
+    const std::string& path() const { return path_; }
+
+  private:
+    std::string path_;
+};
+
+}  // namespace
+
+HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::string& name,
+                            const RasterLimits& limits, bool nonfinite_as_nodata,
+                            bool pixel_size_override) {
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    register_drivers();
+    GdalErrors errors;
+    const MemoryFile file(bytes);
+    const std::array<const char*, 3> drivers = {"GTiff", "COG", nullptr};
+    std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
+        file.path().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers.data(), nullptr, nullptr));
+    if (!dataset) {
+        throw std::runtime_error(name + ": cannot read as GeoTIFF: " + errors.message());
+    }
+    GDALDatasetH ds = dataset.get();
+    if (GDALGetRasterCount(ds) < 1) throw std::runtime_error(name + ": the GeoTIFF has no bands");
+    const int width = GDALGetRasterXSize(ds);
+    const int height = GDALGetRasterYSize(ds);
+    check_raster_size(static_cast<std::uint64_t>(std::max(width, 0)),
+                      static_cast<std::uint64_t>(std::max(height, 0)), name, limits);
+
+    HeightRaster r;
+    r.width = static_cast<std::uint32_t>(width);
+    r.height = static_cast<std::uint32_t>(height);
+    r.source_format = "geotiff";
+    std::array<double, 6> gt{};
+    if (GDALGetGeoTransform(ds, gt.data()) == CE_None) {
+        if (gt[2] != 0.0 || gt[4] != 0.0) {
+            throw std::runtime_error(name +
+                                     ": the GeoTIFF is rotated or sheared; sandtin needs "
+                                     "a north-up raster");
+        }
+        const double dx = std::abs(gt[1]);
+        const double dy = std::abs(gt[5]);
+        if (!(dx > 0.0) || std::abs(dx - dy) > 1e-9 * dx) {
+            if (!pixel_size_override) {
+                throw std::runtime_error(name + ": the GeoTIFF's pixels are not square (" +
+                                         std::to_string(dx) + " x " + std::to_string(dy) +
+                                         "); give the pixel size in metres");
+            }
+        }
+        r.cell_size = dx;
+        r.georeference.known = true;
+        r.georeference.west = gt[0] + 0.5 * gt[1];
+        r.georeference.south = gt[3] + (height - 0.5) * gt[5];
+        if (const char* wkt = GDALGetProjectionRef(ds); wkt != nullptr && *wkt != '\0') {
+            r.georeference.crs = wkt;
+            OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
+            const bool geographic = srs != nullptr && OSRIsGeographic(srs) != 0;
+            if (srs != nullptr) OSRDestroySpatialReference(srs);
+            if (geographic && !pixel_size_override) {
+                throw std::runtime_error(name +
+                                         ": the GeoTIFF is in geographic coordinates "
+                                         "(degrees); give the pixel size in metres");
+            }
+        }
+    }
+
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    int has_nodata = 0;
+    const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
+    r.heights.resize(r.size());
+    if (GDALRasterIO(band, GF_Read, 0, 0, width, height, r.heights.data(), width, height,
+                     GDT_Float64, 0, 0) != CE_None) {
+        throw std::runtime_error(name + ": cannot read the GeoTIFF's samples: " + errors.message());
+    }
+    const bool nan_nodata = has_nodata != 0 && std::isnan(nodata);
+    std::vector<std::uint8_t> valid(r.size(), 1);
+    bool any_nodata = false;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const double h = r.heights[i];
+        const bool missing = (has_nodata != 0 && h == nodata) || (std::isnan(h) && nan_nodata) ||
+                             (!std::isfinite(h) && nonfinite_as_nodata);
+        if (missing) {
+            valid[i] = 0;
+            any_nodata = true;
+            r.heights[i] = 0.0;
+        } else if (!std::isfinite(h)) {
+            throw std::runtime_error(
+                name + ": the sample at row " + std::to_string(i / r.width) + ", column " +
+                std::to_string(i % r.width) + " is not finite (" + std::to_string(h) +
+                "); declare a no-data value or import with non-finite heights as no-data");
+        }
+    }
+    if (any_nodata) r.valid = std::move(valid);
+    return r;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,121 @@
+#include "io/heightmap_exr.hpp"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace sandtin {
+
+namespace {
+
+constexpr const char* kCellSizeAttribute = "sandtin:cell_size";
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_exr_heightmap(const HeightRaster& raster) {
+    const auto w = static_cast<int>(raster.width);
+    const auto h = static_cast<int>(raster.height);
+    std::vector<float> pixels(raster.size());
+    for (std::size_t i = 0; i < raster.size(); ++i) {
+        pixels[i] = raster.is_valid(i) ? static_cast<float>(raster.heights[i])
+                                       : std::numeric_limits<float>::quiet_NaN();
+    }
+    Imf::Header header(w, h);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    header.insert(kCellSizeAttribute, Imf::DoubleAttribute(raster.cell_size));
+    Imf::StdOSStream stream;
+    {
+        Imf::OutputFile file(stream, header);
+        Imf::FrameBuffer fb;
+        fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels.data()), sizeof(float),
+                                  sizeof(float) * raster.width));
+        file.setFrameBuffer(fb);
+        file.writePixels(h);
+    }
+    const std::string bytes = stream.str();
+    return {bytes.begin(), bytes.end()};
+}
+
+HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std::string& name,
+                                  const RasterLimits& limits, bool nonfinite_as_nodata) {
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    HeightRaster r;
+    try {
+        Imf::StdISStream stream;
+        stream.str(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+        Imf::InputFile file(stream);
+        const Imath::Box2i window = file.header().dataWindow();
+        const std::int64_t w = static_cast<std::int64_t>(window.max.x) - window.min.x + 1;
+        const std::int64_t h = static_cast<std::int64_t>(window.max.y) - window.min.y + 1;
+        check_raster_size(static_cast<std::uint64_t>(std::max<std::int64_t>(w, 0)),
+                          static_cast<std::uint64_t>(std::max<std::int64_t>(h, 0)), name, limits);
+        const Imf::ChannelList& channels = file.header().channels();
+        std::string channel;
+        for (const char* c : {"Y", "Z", "R", "height"}) {
+            if (channels.findChannel(c) != nullptr) {
+                channel = c;
+                break;
+            }
+        }
+        if (channel.empty()) {
+            auto it = channels.begin();
+            if (it == channels.end() || ++channels.begin() != channels.end()) {
+                throw std::runtime_error(name +
+                                         ": the EXR has no Y, Z, R or height channel and "
+                                         "not exactly one channel");
+            }
+            channel = channels.begin().name();
+        }
+        r.width = static_cast<std::uint32_t>(w);
+        r.height = static_cast<std::uint32_t>(h);
+        std::vector<float> pixels(r.size());
+        Imf::FrameBuffer fb;
+        // Slices address pixel (x, y) at base + x * xStride + y * yStride over the data window.
+        char* base = reinterpret_cast<char*>(pixels.data()) -
+                     (static_cast<std::ptrdiff_t>(window.min.x) +
+                      static_cast<std::ptrdiff_t>(window.min.y) * w) *
+                         static_cast<std::ptrdiff_t>(sizeof(float));
+        fb.insert(channel, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                      sizeof(float) * static_cast<std::size_t>(w)));
+        file.setFrameBuffer(fb);
+        file.readPixels(window.min.y, window.max.y);
+        if (const auto* cs =
+                file.header().findTypedAttribute<Imf::DoubleAttribute>(kCellSizeAttribute);
+            cs != nullptr && std::isfinite(cs->value()) && cs->value() > 0.0) {
+            r.cell_size = cs->value();
+        }
+        r.heights.assign(pixels.begin(), pixels.end());
+    } catch (const std::runtime_error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw std::runtime_error(name + ": cannot read as OpenEXR: " + e.what());
+    }
+    r.source_format = "exr";
+    std::vector<std::uint8_t> valid(r.size(), 1);
+    bool any_nodata = false;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        if (std::isfinite(r.heights[i])) continue;
+        if (!nonfinite_as_nodata) {
+            throw std::runtime_error(name + ": the sample at row " + std::to_string(i / r.width) +
+                                     ", column " + std::to_string(i % r.width) + " is " +
+                                     (std::isnan(r.heights[i]) ? "NaN" : "infinite") +
+                                     "; import with non-finite heights as no-data");
+        }
+        valid[i] = 0;
+        any_nodata = true;
+        r.heights[i] = 0.0;
+    }
+    if (any_nodata) r.valid = std::move(valid);
+    return r;
+}
+
+}  // namespace sandtin

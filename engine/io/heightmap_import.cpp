@@ -1,0 +1,162 @@
+#include "io/heightmap_import.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "io/esri_ascii_grid.hpp"
+#include "io/geotiff_gdal.hpp"
+#include "io/heightmap_exr.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+
+namespace {
+
+enum class Format { Png, Tiff, Ascii, Exr, Unknown };
+
+Format detect(std::span<const std::uint8_t> b) {
+    auto starts = [&](std::initializer_list<std::uint8_t> magic) {
+        return b.size() >= magic.size() && std::equal(magic.begin(), magic.end(), b.begin());
+    };
+    if (starts({0x89, 'P', 'N', 'G'})) return Format::Png;
+    if (starts({'I', 'I', 42, 0}) || starts({'M', 'M', 0, 42}) || starts({'I', 'I', 43, 0}) ||
+        starts({'M', 'M', 0, 43})) {
+        return Format::Tiff;
+    }
+    if (starts({0x76, 0x2f, 0x31, 0x01})) return Format::Exr;
+    // An ASCII grid opens with one of its header keys.
+    std::size_t i = 0;
+    while (i < b.size() && std::isspace(b[i]))
+        ++i;
+    std::string word;
+    while (i < b.size() && std::isalpha(b[i]) && word.size() < 16)
+        word += static_cast<char>(std::tolower(b[i++]));
+    for (const char* key : {"ncols", "nrows", "xllcorner", "yllcorner", "xllcenter", "yllcenter",
+                            "xllcentre", "yllcentre", "cellsize", "nodata"}) {
+        if (word == key) return Format::Ascii;
+    }
+    return Format::Unknown;
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+        .count();
+}
+
+void check_option(std::optional<double> v, bool positive, const char* what) {
+    if (v && (!std::isfinite(*v) || (positive && !(*v > 0.0)))) {
+        throw std::invalid_argument(std::string(what) + " must be a finite" +
+                                    (positive ? " positive" : "") + " number");
+    }
+}
+
+}  // namespace
+
+HeightRaster decode_heightmap(std::span<const std::uint8_t> bytes, const std::string& name,
+                              const HeightmapReadOptions& options) {
+    check_option(options.pixel_size, true, "the pixel size");
+    check_option(options.z_scale, false, "the z-scale");
+    check_option(options.z_offset, false, "the z-offset");
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    HeightRaster r;
+    double z_scale = 1.0;
+    double z_offset = 0.0;
+    switch (detect(bytes)) {
+        case Format::Png: {
+            PngHeightmap png =
+                decode_png_heightmap(bytes, name, options.png_encoding, options.limits);
+            r = std::move(png.raster);
+            if (png.z_range && png.z_offset) {
+                z_scale = *png.z_range;
+                z_offset = *png.z_offset;
+            }
+            if (png.cell_size) r.cell_size = *png.cell_size;
+            break;
+        }
+        case Format::Tiff:
+            r = decode_geotiff(bytes, name, options.limits, options.nonfinite_as_nodata,
+                               options.pixel_size.has_value());
+            break;
+        case Format::Ascii:
+            r = parse_esri_ascii_grid(bytes, name, options.limits, options.nonfinite_as_nodata);
+            break;
+        case Format::Exr:
+            r = decode_exr_heightmap(bytes, name, options.limits, options.nonfinite_as_nodata);
+            break;
+        case Format::Unknown:
+            throw std::runtime_error(name +
+                                     ": not a heightmap sandtin can read (expected PNG, "
+                                     "GeoTIFF, ESRI ASCII grid or OpenEXR)");
+    }
+    if (options.pixel_size) r.cell_size = *options.pixel_size;
+    // Explicit options win over a sandtin PNG's own scale.
+    z_scale = options.z_scale.value_or(z_scale);
+    z_offset = options.z_offset.value_or(z_offset);
+    if (z_scale != 1.0 || z_offset != 0.0) {
+        for (std::size_t i = 0; i < r.size(); ++i) {
+            if (r.is_valid(i)) r.heights[i] = r.heights[i] * z_scale + z_offset;
+        }
+    }
+    check_raster(r, name, options.limits);
+    return r;
+}
+
+HeightRaster read_heightmap(const std::filesystem::path& path,
+                            const HeightmapReadOptions& options) {
+    const std::vector<std::uint8_t> bytes = read_file(path);
+    return decode_heightmap(bytes, path.string(), options);
+}
+
+ImportResult import_heightmap(const std::filesystem::path& path, const ImportOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    HeightRaster raster = read_heightmap(path, options.read);
+    ImportReport report;
+    report.source = path.string();
+    report.format = raster.source_format;
+    report.width = raster.width;
+    report.height = raster.height;
+    report.cell_size = raster.cell_size;
+    report.georeference = raster.georeference;
+    report.nodata_samples = fill_nodata(raster);
+    report.read_ms = elapsed_ms(start);
+    report.greedy = options.greedy;
+    GreedyResult result = greedy_tin(raster, options.greedy);
+    report.stats = result.stats;
+    report.total_ms = elapsed_ms(start);
+    return {std::move(result.tin), std::move(report)};
+}
+
+nlohmann::json to_json(const ImportReport& r) {
+    nlohmann::json j;
+    j["source"] = r.source;
+    j["format"] = r.format;
+    j["raster"] = {{"width", r.width},
+                   {"height", r.height},
+                   {"cell_size", r.cell_size},
+                   {"nodata_samples", r.nodata_samples},
+                   {"nodata_policy", "filled from the nearest valid sample; not measured"}};
+    if (r.georeference.known) {
+        j["georeference"] = {{"west", r.georeference.west},
+                             {"south", r.georeference.south},
+                             {"crs", r.georeference.crs}};
+    }
+    j["max_error_target"] = r.greedy.max_error;
+    j["max_points"] = r.greedy.max_points;
+    j["points"] = r.stats.points;
+    j["triangles"] = r.stats.triangles;
+    j["max_error"] = r.stats.max_error;
+    j["rmsd"] = r.stats.rmsd;
+    j["reached_error"] = r.stats.reached_error;
+    j["fix_up_points"] = r.stats.fix_up_points;
+    j["read_ms"] = r.read_ms;
+    j["build_ms"] = r.stats.build_ms;
+    j["measure_ms"] = r.stats.measure_ms;
+    j["total_ms"] = r.total_ms;
+    return j;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,86 @@
+#include "io/heightmap_png.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+
+namespace sandtin {
+
+namespace {
+
+std::optional<double> text_number(const PngImage& image, const char* key, const std::string& name) {
+    for (const auto& [k, v] : image.text) {
+        if (k != key) continue;
+        double x = 0.0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+        if (ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x)) {
+            throw std::runtime_error(name + ": the PNG text chunk '" + k + "' holds '" + v +
+                                     "', not a finite number");
+        }
+        return x;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std::string& name,
+                                  PngHeightEncoding encoding, const RasterLimits& limits) {
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    PngLimits png_limits;
+    png_limits.max_width = limits.max_width;
+    png_limits.max_height = limits.max_height;
+    const PngImage image = decode_png(bytes, name, png_limits);
+    check_raster_size(image.width, image.height, name, limits);
+
+    const bool gray = image.channels <= 2;
+    if (encoding == PngHeightEncoding::Gray && !gray) {
+        throw std::runtime_error(name + ": a grayscale heightmap was expected, but the PNG has " +
+                                 std::to_string(image.channels) + " channels");
+    }
+    if (encoding == PngHeightEncoding::TerrainRgb && (gray || image.bit_depth != 8)) {
+        throw std::runtime_error(name +
+                                 ": Terrain-RGB needs an 8-bit RGB or RGBA PNG, but this one has " +
+                                 std::to_string(image.channels) + " channel(s) of " +
+                                 std::to_string(image.bit_depth) + " bits");
+    }
+    if (!gray && image.bit_depth != 8) {
+        throw std::runtime_error(name +
+                                 ": a 16-bit colour PNG is not a heightmap encoding "
+                                 "sandtin knows (use 8/16-bit gray or 8-bit Terrain-RGB)");
+    }
+
+    PngHeightmap out;
+    HeightRaster& r = out.raster;
+    r.width = image.width;
+    r.height = image.height;
+    r.heights.resize(r.size());
+    const bool has_alpha = image.channels == 2 || image.channels == 4;
+    if (has_alpha) r.valid.assign(r.size(), 1);
+
+    if (gray) {
+        out.z_offset = text_number(image, kPngKeyZOffset, name);
+        out.z_range = text_number(image, kPngKeyZRange, name);
+    }
+    out.cell_size = text_number(image, kPngKeyCellSize, name);
+    if (out.cell_size && !(*out.cell_size > 0.0)) {
+        throw std::runtime_error(name + ": the PNG's cell size must be positive");
+    }
+
+    const auto channels = static_cast<std::size_t>(image.channels);
+    const double max_value = image.max_value();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+        const std::uint16_t* px = image.samples.data() + i * channels;
+        if (has_alpha && px[channels - 1] == 0) r.valid[i] = 0;
+        if (gray) {
+            r.heights[i] = px[0] / max_value;
+        } else {
+            const double code = px[0] * 65536.0 + px[1] * 256.0 + px[2];
+            r.heights[i] = -10000.0 + code * 0.1;
+        }
+    }
+    r.source_format = gray ? (image.bit_depth == 16 ? "png-gray16" : "png-gray8") : "terrain-rgb";
+    return out;
+}
+
+}  // namespace sandtin

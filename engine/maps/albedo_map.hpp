@@ -1,0 +1,27 @@
+#pragma once
+// CPU albedo bake: each vertex's material colour, darkened by its moisture (wet sand is
+// darker), interpolated across the triangles.
+
+#include <span>
+#include <vector>
+
+#include "geom/vec3.hpp"
+#include "maps/map_grid.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin {
+
+/// Colour of a material index, sRGB components in [0, 1]. Indices past the end use the last.
+struct MaterialColours {
+    std::vector<Vec3> colours;
+    /// Reflectance kept at full moisture: colour * (1 - (1 - wet_factor) * moisture).
+    double wet_factor = 0.6;
+};
+
+/// Dry sand, wet sand, gravel: the colours of the default material presets.
+MaterialColours default_material_colours();
+
+/// Three channels (r, g, b) in [0, 1].
+MapImage bake_albedo_map(const Tin& tin, const MapGrid& grid, const MaterialColours& palette);
+
+}  // namespace sandtin

@@ -1,0 +1,196 @@
+#include "bench_import.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/greedy_tin.hpp"
+#include "io/heightmap_import.hpp"
+
+namespace sandtin::bench {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The tile ships with the tests (tests/data); ../shared/data is where it came from.
+fs::path tile_path() {
+    for (const fs::path& p :
+         {fs::path(SANDTIN_TEST_DATA_DIR) / "bay-hills-terrain-rgb.png",
+          fs::path(SANDTIN_SOURCE_DIR) / ".." / "shared" / "data" / "bay-hills-terrain-rgb.png"}) {
+        if (fs::exists(p)) return p;
+    }
+    throw std::runtime_error("bench import: bay-hills-terrain-rgb.png not found in " +
+                             std::string(SANDTIN_TEST_DATA_DIR));
+}
+
+// Runs delatin over raw little-endian doubles and prints one JSON object. The timed part is
+// exactly what delatin's own benchmark times: construction plus run(maxError).
+constexpr const char* kDelatinScript = R"JS(
+import fs from 'fs';
+import path from 'path';
+import { createRequire } from 'module';
+import { pathToFileURL } from 'url';
+const [file, w, h, reps, ...errors] = process.argv.slice(2);
+function locate() {
+  if (process.env.SANDTIN_DELATIN_DIR) return path.join(process.env.SANDTIN_DELATIN_DIR, 'index.js');
+  const require = createRequire(path.join(process.cwd(), 'x.js'));
+  const globalDir = path.join(path.dirname(process.execPath), '..', 'lib', 'node_modules');
+  const pkg = require.resolve('delatin/package.json', { paths: [process.cwd(), globalDir] });
+  return path.join(path.dirname(pkg), 'index.js');
+}
+let entry;
+try { entry = locate(); fs.accessSync(entry); } catch (e) {
+  console.log(JSON.stringify({ available: false, reason: 'delatin not found: ' + e.message }));
+  process.exit(0);
+}
+const Delatin = (await import(pathToFileURL(entry).href)).default;
+const version = JSON.parse(fs.readFileSync(path.join(path.dirname(entry), 'package.json'))).version;
+const buf = fs.readFileSync(file);
+const data = new Float64Array(buf.buffer, buf.byteOffset, buf.length / 8);
+const levels = [];
+for (const e of errors.map(Number)) {
+  const times = [];
+  const cpu = [];
+  let t;
+  for (let k = 0; k < Number(reps); k++) {
+    const c0 = process.cpuUsage();
+    const s = performance.now();
+    t = new Delatin(data, Number(w), Number(h));
+    t.run(e);
+    times.push(performance.now() - s);
+    const c = process.cpuUsage(c0);
+    cpu.push((c.user + c.system) / 1000);
+  }
+  const median = (v) => [...v].sort((a, b) => a - b)[v.length >> 1];
+  levels.push({ max_error_target: e, points: t.coords.length / 2, triangles: t.triangles.length / 3,
+                max_error: t.getMaxError(), median_ms: median(times), median_cpu_ms: median(cpu),
+                times_ms: times, cpu_ms: cpu });
+}
+console.log(JSON.stringify({ available: true, version, node: process.version, levels }));
+)JS";
+
+nlohmann::json run_delatin(const HeightRaster& raster, const std::vector<double>& errors,
+                           int reps) {
+    if (std::system("command -v node >/dev/null 2>&1") != 0) {
+        return {{"available", false}, {"reason", "node is not installed"}};
+    }
+    const fs::path dir =
+        fs::temp_directory_path() / ("sandtin-bench-import-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const fs::path heights = dir / "heights.f64";
+    const fs::path script = dir / "delatin.mjs";
+    {
+        std::ofstream out(heights, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(raster.heights.data()),
+                  static_cast<std::streamsize>(raster.heights.size() * sizeof(double)));
+        std::ofstream js(script);
+        js << kDelatinScript;
+    }
+    // Temporary paths hold no quotes; quoting keeps spaces in TMPDIR harmless.
+    std::string command = "node '" + script.string() + "' '" + heights.string() + "' " +
+                          std::to_string(raster.width) + " " + std::to_string(raster.height) + " " +
+                          std::to_string(reps);
+    for (double e : errors)
+        command += " " + std::to_string(e);
+    std::string output;
+    {
+        std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
+        if (pipe) {
+            char buffer[4096];
+            while (std::fgets(buffer, sizeof buffer, pipe.get()) != nullptr)
+                output += buffer;
+        }
+    }
+    fs::remove_all(dir);
+    try {
+        return nlohmann::json::parse(output);
+    } catch (const std::exception&) {
+        return {{"available", false}, {"reason", "delatin run failed: " + output.substr(0, 400)}};
+    }
+}
+
+}  // namespace
+
+nlohmann::json bench_import(const BenchConfig& config) {
+    const fs::path tile = tile_path();
+    Stopwatch read_watch;
+    const HeightRaster raster = read_heightmap(tile);
+    const double read_ms = read_watch.ms();
+    const std::vector<double> errors = {10.0, 1.0, 0.2};
+    const int reps = config.quick ? 1 : 7;
+
+    nlohmann::json j;
+    j["bench"] = "import";
+    j["quick"] = config.quick;
+    j["tile"] = tile.filename().string();
+    j["raster"] = {{"width", raster.width}, {"height", raster.height}, {"read_ms", read_ms}};
+    j["repetitions"] = reps;
+    // delatin's published point counts for this tile (../shared/data/README.md).
+    const std::map<double, int> published = {{10.0, 190}, {1.0, 2705}, {0.2, 16257}};
+
+    nlohmann::json levels = nlohmann::json::array();
+    for (double e : errors) {
+        std::vector<double> build;
+        std::vector<double> total;
+        std::vector<double> cpu;
+        GreedyStats stats;
+        for (int r = 0; r < reps; ++r) {
+            Stopwatch w;
+            CpuStopwatch c;
+            GreedyResult result = greedy_tin(raster, {e, 0});
+            cpu.push_back(c.ms());
+            total.push_back(w.ms());
+            build.push_back(result.stats.build_ms);
+            stats = result.stats;
+        }
+        levels.push_back(
+            {{"max_error_target", e},
+             {"points", stats.points},
+             {"triangles", stats.triangles},
+             {"max_error", stats.max_error},
+             {"rmsd", stats.rmsd},
+             {"fix_up_points", stats.fix_up_points},
+             {"bound_met", stats.max_error <= e},
+             {"delatin_published_points", published.at(e)},
+             {"points_within_published", stats.points <= static_cast<std::size_t>(published.at(e))},
+             {"median_build_ms", median(build)},
+             {"median_total_ms", median(total)},
+             {"median_total_cpu_ms", median(cpu)},
+             {"build_ms", build},
+             {"total_cpu_ms", cpu}});
+    }
+    j["sandtin"] = levels;
+
+    nlohmann::json delatin = run_delatin(raster, errors, reps);
+    if (delatin.value("available", false)) {
+        nlohmann::json ratios = nlohmann::json::array();
+        for (std::size_t k = 0; k < errors.size(); ++k) {
+            const nlohmann::json& d = delatin["levels"][k];
+            const nlohmann::json& s = levels[k];
+            // Wall time compares like with like (delatin's run against the TIN build); CPU
+            // time is steadier on a shared machine and charges sandtin its final measurement
+            // pass too, which delatin does not do.
+            const double ours = s["median_build_ms"].get<double>();
+            const double ours_cpu = s["median_total_cpu_ms"].get<double>();
+            ratios.push_back({{"max_error_target", errors[k]},
+                              {"delatin_ms_over_sandtin_ms",
+                               ours > 0.0 ? d["median_ms"].get<double>() / ours : 0.0},
+                              {"delatin_cpu_over_sandtin_cpu",
+                               ours_cpu > 0.0 ? d["median_cpu_ms"].get<double>() / ours_cpu : 0.0},
+                              {"sandtin_points_minus_delatin_points",
+                               s["points"].get<long long>() - d["points"].get<long long>()}});
+        }
+        delatin["comparison"] = ratios;
+    }
+    j["delatin"] = delatin;
+    return j;
+}
+
+}  // namespace sandtin::bench

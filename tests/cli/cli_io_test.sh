@@ -1,0 +1,166 @@
+#!/usr/bin/env bash
+# End-to-end tests of `sandtin import`, `sandtin export` and `sandtin bench import`.
+# usage: cli_io_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get <data-dir>
+#   scenarios: import, export, import_bad, export_bad, bench_import
+set -uo pipefail
+
+SANDTIN=${1:?path to the sandtin binary}
+SCENARIO=${2:?scenario}
+WORK=${3:?work directory}
+JSON_GET=${4:?path to json_get}
+DATA=${5:?test data directory}
+TILE="$DATA/bay-hills-terrain-rgb.png"
+
+rm -rf "$WORK"
+mkdir -p "$WORK"
+cd "$WORK" || exit 1
+# shellcheck source=cli_lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/cli_lib.sh"
+
+scenario_import() {
+    expect_ok imp10 import "$TILE" --max-error 10 -o bay10.sandtin --json || return
+    holds "points at 10 m (delatin: 190)" "a <= 190 && a >= 4" "$(json imp10.out /points)"
+    holds "max error at 10 m" "a <= 10" "$(json imp10.out /max_error)"
+    check_eq "format" "$(json imp10.out /format)" terrain-rgb
+    check_eq "raster" "$(json imp10.out /raster/width /raster/height | tr '\n' ' ')" "512 512 "
+    check_eq "reached" "$(json imp10.out /reached_error)" true
+    holds "rmsd" "a > 0 && a < b" "$(json imp10.out /rmsd)" "$(json imp10.out /max_error)"
+    # The session holds what the import reported.
+    expect_ok info10 info bay10.sandtin --json || return
+    check_eq "info vertices" "$(json info10.out /vertices)" "$(json imp10.out /points)"
+    check_eq "info triangles" "$(json info10.out /triangles)" "$(json imp10.out /triangles)"
+    check_eq "info valid" "$(json info10.out /valid)" true
+    check_eq "bbox" "$(json info10.out /bbox/max/0 /bbox/max/1 | tr '\n' ' ')" "511.0 511.0 "
+
+    # Point limit, pixel size and z-scale.
+    expect_ok imp_n import "$TILE" --max-error 0.2 --max-points 300 --pixel-size 2 \
+        --z-scale 0.5 -o n.sandtin --json || return
+    check_eq "point limit" "$(json imp_n.out /points)" 300
+    check_eq "not reached" "$(json imp_n.out /reached_error)" false
+    expect_ok info_n info n.sandtin --json || return
+    check_eq "pixel size" "$(json info_n.out /bbox/max/0)" 1022.0
+    holds "z-scale halves heights" "a < 130" "$(json info_n.out /bbox/max/2)"
+
+    # An ASCII grid with a no-data hole, and plain output.
+    {
+        echo "ncols 6"; echo "nrows 5"; echo "xllcorner 100"; echo "yllcorner 200"
+        echo "cellsize 2"; echo "NODATA_value -9999"
+        echo "1 2 3 4 5 6"; echo "2 3 4 5 6 7"; echo "3 4 -9999 6 7 8"
+        echo "4 5 6 7 8 9"; echo "5 6 7 8 9 10"
+    } >grid.asc
+    expect_ok asc import grid.asc --max-error 0 -o grid.sandtin --json || return
+    check_eq "asc no-data" "$(json asc.out /raster/nodata_samples)" 1
+    check_eq "asc georeference" "$(json asc.out /georeference/west)" 101.0
+    holds "asc exact" "a <= 1e-9" "$(json asc.out /max_error)"
+    expect_ok asc_plain import grid.asc --max-error 0.5 -o grid2.sandtin || return
+    grep -q "points" asc_plain.out || fail "plain import output lacks points"
+}
+
+scenario_export() {
+    expect_ok imp import "$TILE" --max-error 5 -o bay.sandtin --json || return
+    local points triangles
+    points=$(json imp.out /points)
+    triangles=$(json imp.out /triangles)
+    for ext in obj ply stl gltf glb; do
+        expect_ok "exp_$ext" export bay.sandtin -o "bay.$ext" --json || continue
+        check_eq "$ext vertices" "$(json "exp_$ext.out" /vertices)" "$points"
+        check_eq "$ext triangles" "$(json "exp_$ext.out" /triangles)" "$triangles"
+        [[ -s "bay.$ext" ]] || fail "$ext: no file"
+    done
+    [[ -s bay.mtl && -s bay_albedo.png && -s bay_normal.png ]] || fail "obj companions missing"
+    # Solid base for printing, in millimetres.
+    expect_ok solid export bay.sandtin -o solid.stl --base 20 --units mm --json || return
+    holds "solid adds walls and bottom" "a > b" "$(json solid.out /triangles)" "$triangles"
+    check_eq "solid bottom in mm" "$(json solid.out /bbox/max/0)" 511000.0
+    # Height map: the import grid by default, and it re-imports.
+    expect_ok hpng export bay.sandtin -o h.png --json || return
+    check_eq "height map size" "$(json hpng.out /map/width /map/height | tr '\n' ' ')" "512 512 "
+    expect_ok reimp import h.png --max-error 5 -o re.sandtin --json || return
+    check_eq "re-import size" "$(json reimp.out /raster/width)" 512
+    check_eq "re-import cell" "$(json reimp.out /raster/cell_size)" 1.0
+    expect_ok hexr export bay.sandtin -o h.exr --json || return
+    expect_ok reexr import h.exr --max-error 5 -o re2.sandtin --json || return
+    check_eq "exr re-import size" "$(json reexr.out /raster/width)" 512
+    expect_ok nmap export bay.sandtin -o n.png --map normal --size 256 --json || return
+    check_eq "normal map" "$(json nmap.out /format)" normal-png
+    expect_ok amap export bay.sandtin -o a.png --map albedo --size 64 || return
+    # Simplify on export.
+    expect_ok simp export bay.sandtin -o s.ply --max-error 20 --json || return
+    holds "simplified" "a < b" "$(json simp.out /vertices)" "$points"
+    holds "simplified error" "a <= 20" "$(json simp.out /simplified/max_error)"
+    expect_ok plain export bay.sandtin -o p.obj --no-textures --up z || return
+    grep -q "wrote p.obj" plain.out || fail "plain export output lacks the file"
+    [[ -e p_albedo.png ]] && fail "--no-textures still wrote textures"
+    return 0
+}
+
+scenario_import_bad() {
+    : >empty.png
+    expect_error empty "empty" import empty.png --max-error 1 -o x.sandtin
+    head -c 5000 "$TILE" >truncated.png
+    expect_error truncated "PNG" import truncated.png --max-error 1 -o x.sandtin
+    echo "not a picture" >text.png
+    expect_error text "not a heightmap" import text.png --max-error 1 -o x.sandtin
+    expect_error missing "missing.png" import missing.png --max-error 1 -o x.sandtin
+    printf 'ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 nan 6\n' >nan.asc
+    expect_error nan "not finite" import nan.asc --max-error 1 -o x.sandtin
+    expect_ok nan_ok import nan.asc --max-error 1 --nonfinite-as-nodata -o ok.sandtin --json
+    printf 'ncols 3\nrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n' >hdr.asc
+    expect_error header "'rows' is not an ESRI ASCII grid header key" import hdr.asc --max-error 1 -o x.sandtin
+    printf 'ncols 0\nnrows 0\nxllcorner 0\nyllcorner 0\ncellsize 1\n' >zero.asc
+    expect_error zero "empty" import zero.asc --max-error 1 -o x.sandtin
+    expect_error too_big "exceeds the limit of 100 x 100" import "$TILE" --max-error 1 --max-size 100 100 -o x.sandtin
+    expect_error no_error "--max-error" import "$TILE" -o x.sandtin
+    expect_error neg_error "max-error" import "$TILE" --max-error -1 -o x.sandtin
+    expect_error nan_error "not a finite number" import "$TILE" --max-error nan -o x.sandtin
+    expect_error few_points "at least 4" import "$TILE" --max-error 1 --max-points 3 -o x.sandtin
+    expect_error bad_pixel "pixel-size" import "$TILE" --max-error 1 --pixel-size 0 -o x.sandtin
+    expect_error bad_encoding "encoding" import "$TILE" --max-error 1 --encoding jpeg -o x.sandtin
+    expect_error gray_forced "grayscale" import "$TILE" --max-error 1 --encoding gray -o x.sandtin
+    expect_error no_output "-o" import "$TILE" --max-error 1
+    expect_error no_dir "nosuchdir" import "$TILE" --max-error 1 -o nosuchdir/x.sandtin
+    [[ -e x.sandtin ]] && fail "a failed import left x.sandtin behind"
+    return 0
+}
+
+scenario_export_bad() {
+    expect_ok new new --flat 10 10 --points 50 -o s.sandtin || return
+    expect_error ext "unknown output type" export s.sandtin -o s.fbx
+    expect_error map "unknown map" export s.sandtin -o s.png --map curvature
+    expect_error map_obj "--map applies" export s.sandtin -o s.obj --map normal
+    expect_error gltf_z "Y-up" export s.sandtin -o s.glb --up z
+    expect_error up "--up" export s.sandtin -o s.obj --up x
+    expect_error units "unit" export s.sandtin -o s.obj --units furlong
+    expect_error both "at most one" export s.sandtin -o s.stl --base 1 --skirt 1
+    expect_error depth "positive" export s.sandtin -o s.stl --base -1
+    expect_error map_base "meshes" export s.sandtin -o s.png --base 1
+    expect_error size "--size" export s.sandtin -o s.png --size 1
+    expect_error missing "missing.sandtin" export missing.sandtin -o s.obj
+    echo "garbage" >g.sandtin
+    expect_error garbage "not a sandtin" export g.sandtin -o s.obj
+    expect_error no_dir "nosuchdir" export s.sandtin -o nosuchdir/s.stl
+    return 0
+}
+
+scenario_bench_import() {
+    # A smoke test of the driver (delatin is left out: its timing is not judged here).
+    SANDTIN_DELATIN_DIR=/nonexistent expect_ok bench bench import --quick --json || return
+    check_eq "bench name" "$(json bench.out /bench)" import
+    holds "10 m points" "a <= 190" "$(json bench.out /sandtin/0/points)"
+    holds "0.2 m points" "a <= 16257" "$(json bench.out /sandtin/2/points)"
+    check_eq "0.2 m bound" "$(json bench.out /sandtin/2/bound_met)" true
+    check_eq "delatin skipped" "$(json bench.out /delatin/available)" false
+}
+
+case "$SCENARIO" in
+    import) scenario_import ;;
+    export) scenario_export ;;
+    import_bad) scenario_import_bad ;;
+    export_bad) scenario_export_bad ;;
+    bench_import) scenario_bench_import ;;
+    *)
+        echo "unknown scenario $SCENARIO" >&2
+        exit 2
+        ;;
+esac
+finish "$SCENARIO"

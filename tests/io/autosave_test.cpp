@@ -1,0 +1,162 @@
+// Autosave and recovery: the autosave sits next to the scene, a crash during an autosave
+// keeps the previous one, recovery is offered only for a loadable autosave newer than the
+// scene, and an explicit save retires the autosave.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "io/autosave.hpp"
+#include "support/tin_oracles.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+namespace {
+
+namespace fs = std::filesystem;
+
+Session session_with(std::size_t points, double height) {
+    Session s;
+    s.terrain = Tin::random_points(Rect::from_size(3.0, 2.0), points, points, [height](Vec2) {
+                    return height;
+                }).snapshot();
+    s.metadata_json = R"({"name":"beach"})";
+    return s;
+}
+
+class Autosave : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("sandtin-autosave-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        scene_ = dir_ / "beach.sandtin";
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    /// File times have coarse resolution on some file systems: make "later" unambiguous.
+    static void age(const fs::path& p, int seconds) {
+        fs::last_write_time(p, fs::last_write_time(p) - std::chrono::seconds(seconds));
+    }
+
+    fs::path dir_;
+    fs::path scene_;
+};
+
+TEST_F(Autosave, PathSitsNextToTheScene) {
+    EXPECT_EQ(autosave_path("/a/b/beach.sandtin"), fs::path("/a/b/beach.sandtin.autosave"));
+    EXPECT_EQ(autosave_path("untitled"), fs::path("untitled.autosave"));
+}
+
+TEST_F(Autosave, NoAutosaveNothingToRecover) {
+    save_session(scene_, session_with(20, 1.0));
+    EXPECT_FALSE(find_autosave(scene_).has_value());
+    EXPECT_FALSE(discard_autosave(scene_));
+}
+
+TEST_F(Autosave, NewerAutosaveIsOfferedAndRecovers) {
+    const Session saved = session_with(20, 1.0);
+    const Session edited = session_with(50, 2.0);
+    save_session(scene_, saved);
+    age(scene_, 60);
+    write_autosave(scene_, edited);
+    EXPECT_EQ(read_file(scene_), encode_session(saved)) << "autosave must not touch the scene";
+    const auto info = find_autosave(scene_);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_TRUE(info->scene_exists);
+    EXPECT_TRUE(info->newer_than_scene);
+    EXPECT_EQ(info->problem, "");
+    EXPECT_TRUE(info->offer_recovery());
+    const Session recovered = recover_autosave(scene_);
+    test::expect_snapshots_equal(recovered.terrain, edited.terrain, 1.0);
+    EXPECT_EQ(recovered.metadata_json, edited.metadata_json);
+}
+
+TEST_F(Autosave, UnsavedNewSceneIsOffered) {
+    write_autosave(scene_, session_with(10, 0.5));
+    const auto info = find_autosave(scene_);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_FALSE(info->scene_exists);
+    EXPECT_TRUE(info->offer_recovery());
+}
+
+TEST_F(Autosave, OlderAutosaveIsNotOffered) {
+    write_autosave(scene_, session_with(10, 0.5));
+    age(autosave_path(scene_), 60);
+    save_session(scene_, session_with(20, 1.0));
+    const auto info = find_autosave(scene_);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_FALSE(info->newer_than_scene);
+    EXPECT_FALSE(info->offer_recovery());
+}
+
+TEST_F(Autosave, DamagedAutosaveIsReportedNotOffered) {
+    save_session(scene_, session_with(20, 1.0));
+    age(scene_, 60);
+    write_autosave(scene_, session_with(30, 1.5));
+    std::vector<std::uint8_t> bytes = read_file(autosave_path(scene_));
+    bytes.resize(bytes.size() / 2);
+    {
+        std::ofstream out(autosave_path(scene_), std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(bytes.data()),
+                  static_cast<std::streamsize>(bytes.size()));
+    }
+    const auto info = find_autosave(scene_);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_NE(info->problem.find("truncated"), std::string::npos) << info->problem;
+    EXPECT_FALSE(info->offer_recovery());
+    EXPECT_THROW(recover_autosave(scene_), std::runtime_error);
+    EXPECT_TRUE(discard_autosave(scene_));
+    EXPECT_FALSE(find_autosave(scene_).has_value());
+}
+
+TEST_F(Autosave, InterruptedAutosaveKeepsThePreviousAutosave) {
+    const Session first = session_with(40000, 1.0);  // > 1 MiB: the hook sees a partial write
+    write_autosave(scene_, first);
+    const std::vector<std::uint8_t> before = read_file(autosave_path(scene_));
+    EXPECT_THROW(
+        write_autosave(scene_, session_with(40000, 2.0), [](std::size_t) { return false; }),
+        std::runtime_error);
+    EXPECT_EQ(read_file(autosave_path(scene_)), before);
+    EXPECT_EQ(find_autosave(scene_)->problem, "");
+}
+
+TEST_F(Autosave, ExplicitSaveRetiresTheAutosave) {
+    write_autosave(scene_, session_with(10, 0.5));
+    const Session s = session_with(20, 1.0);
+    save_session_clearing_autosave(scene_, s);
+    EXPECT_FALSE(fs::exists(autosave_path(scene_)));
+    test::expect_snapshots_equal(load_session(scene_).terrain, s.terrain, 1.0);
+    // An interrupted explicit save keeps both the old scene and the autosave.
+    write_autosave(scene_, session_with(30, 1.5));
+    EXPECT_THROW(save_session_clearing_autosave(scene_, session_with(40000, 2.0),
+                                                [](std::size_t) { return false; }),
+                 std::runtime_error);
+    EXPECT_TRUE(fs::exists(autosave_path(scene_)));
+    test::expect_snapshots_equal(load_session(scene_).terrain, s.terrain, 1.0);
+}
+
+TEST(AutosaveSchedule, DueOnlyAfterAnEditAndTheInterval) {
+    using namespace std::chrono_literals;
+    AutosaveSchedule schedule(60s);
+    const auto t0 = AutosaveSchedule::Clock::time_point{} + 1000s;
+    EXPECT_FALSE(schedule.due(t0 + 3600s)) << "nothing changed: no autosave";
+    schedule.edited(t0);
+    EXPECT_FALSE(schedule.due(t0 + 59s));
+    schedule.edited(t0 + 30s);  // later edits do not postpone it
+    EXPECT_TRUE(schedule.due(t0 + 60s));
+    schedule.saved(t0 + 61s);
+    EXPECT_FALSE(schedule.dirty());
+    EXPECT_FALSE(schedule.due(t0 + 500s));
+    schedule.edited(t0 + 500s);
+    EXPECT_FALSE(schedule.due(t0 + 559s));
+    EXPECT_TRUE(schedule.due(t0 + 560s));
+}
+
+}  // namespace
+}  // namespace sandtin

@@ -1,0 +1,456 @@
+// Mesh and map export: every file parsed back by an independent reader (tests/support
+// readers; tinygltf's loader for glTF) must match the TIN; winding and watertightness are
+// checked by edge counting; a height map re-imports within its quantisation.
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "io/export_terrain.hpp"
+#include "io/heightmap_import.hpp"
+#include "support/mesh_readers.hpp"
+#include "support/tin_oracles.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+namespace {
+
+namespace fs = std::filesystem;
+
+double hills(Vec2 p) {
+    return 2.0 + std::sin(p.x * 0.7) * std::cos(p.y * 0.5) + 0.1 * p.x;
+}
+
+Tin test_tin() {
+    Tin tin = Tin::random_points(Rect{{0.0, 0.0}, {12.0, 8.0}}, 400, 5, hills);
+    // Materials and moisture vary, so the albedo has something to show.
+    for (VertexId v : test::live_ids(tin)) {
+        if (tin.position(v).x > 6.0) tin.set_material(v, 1);
+        if (tin.position(v).y > 4.0) tin.set_moisture(v, 0.5f);
+    }
+    return tin;
+}
+
+class Export : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("sandtin-export-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::vector<std::uint8_t> run(const Tin& tin, const std::string& name, ExportOptions o = {},
+                                  const std::string& map = "") {
+        const fs::path p = dir_ / name;
+        report_ = export_terrain(tin, p, export_format_for(p, map), o);
+        return read_file(p);
+    }
+    static std::string text(const std::vector<std::uint8_t>& b) { return {b.begin(), b.end()}; }
+
+    fs::path dir_;
+    ExportReport report_;
+};
+
+/// Vertex and triangle counts, and bounds, of a surface-only mesh against the TIN (terrain
+/// frame: Z-up, metres; `to_terrain` maps a file vertex back).
+void expect_matches_tin(const test::SimpleMesh& m, const Tin& tin, bool y_up, double scale,
+                        double tolerance) {
+    EXPECT_EQ(m.vertices.size(), tin.vertex_count());
+    EXPECT_EQ(m.triangles.size(), tin.triangle_count());
+    const test::Bounds b = test::bounds_of(m);
+    double zmin = 1e300;
+    double zmax = -1e300;
+    for (VertexId v : test::live_ids(tin)) {
+        zmin = std::min(zmin, tin.height(v));
+        zmax = std::max(zmax, tin.height(v));
+    }
+    const Rect d = tin.domain();
+    // Terrain (x, y, z) is (x, z, -y) when Y is up.
+    const std::array<double, 3> lo = y_up ? std::array<double, 3>{d.min.x, zmin, -d.max.y}
+                                          : std::array<double, 3>{d.min.x, d.min.y, zmin};
+    const std::array<double, 3> hi = y_up ? std::array<double, 3>{d.max.x, zmax, -d.min.y}
+                                          : std::array<double, 3>{d.max.x, d.max.y, zmax};
+    for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_NEAR(b.min[k], lo[k] * scale, tolerance * scale) << "axis " << k;
+        EXPECT_NEAR(b.max[k], hi[k] * scale, tolerance * scale) << "axis " << k;
+    }
+}
+
+/// Every triangle's normal points up (+z, or +y when Y is up).
+void expect_upward(const test::SimpleMesh& m, bool y_up) {
+    std::size_t down = 0;
+    for (const auto& t : m.triangles) {
+        const auto n = test::face_cross(m, t);
+        if (!((y_up ? n[1] : n[2]) > 0.0)) ++down;
+    }
+    EXPECT_EQ(down, 0u) << "triangles facing down";
+    const test::EdgeCount c = test::count_edges(test::welded(m));
+    EXPECT_EQ(c.inconsistent, 0u) << "inconsistent winding";
+    EXPECT_EQ(c.non_manifold, 0u);
+}
+
+/// The file's triangles are the TIN's triangles (matched by exact corner positions).
+void expect_same_triangles(const test::SimpleMesh& m, const Tin& tin) {
+    using P = std::array<double, 2>;
+    std::set<std::array<P, 3>> expected;
+    auto canon = [](std::array<P, 3> t) {
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        return t;
+    };
+    for (const auto& t : tin.triangles()) {
+        std::array<P, 3> tri;
+        for (std::size_t k = 0; k < 3; ++k)
+            tri[k] = {tin.position(t[k]).x, tin.position(t[k]).y};
+        expected.insert(canon(tri));
+    }
+    std::set<std::array<P, 3>> got;
+    for (const auto& t : m.triangles) {
+        std::array<P, 3> tri;
+        for (std::size_t k = 0; k < 3; ++k)
+            tri[k] = {m.vertices[t[k]][0], m.vertices[t[k]][1]};
+        got.insert(canon(tri));
+    }
+    EXPECT_EQ(got, expected);
+}
+
+TEST_F(Export, ObjRoundTrip) {
+    const Tin tin = test_tin();
+    const auto bytes = run(tin, "t.obj");  // Y-up by default
+    const test::SimpleMesh m = test::read_obj_text(text(bytes));
+    expect_matches_tin(m, tin, true, 1.0, 0.0);
+    expect_upward(m, true);
+    // Back to the terrain frame: exact positions (shortest round-trip decimals).
+    test::SimpleMesh z_up = m;
+    for (auto& v : z_up.vertices)
+        v = {v[0], -v[2], v[1]};
+    expect_same_triangles(z_up, tin);
+    EXPECT_EQ(m.normals.size(), tin.vertex_count());
+    ASSERT_EQ(m.uvs.size(), tin.vertex_count());
+    for (const auto& uv : m.uvs) {
+        EXPECT_GE(uv[0], 0.0);
+        EXPECT_LE(uv[1], 1.0);
+    }
+    // MTL and both textures were written next to it and are referenced.
+    const std::string mtl = text(read_file(dir_ / "t.mtl"));
+    EXPECT_NE(text(bytes).find("mtllib t.mtl"), std::string::npos);
+    EXPECT_NE(mtl.find("map_Kd t_albedo.png"), std::string::npos);
+    EXPECT_NE(mtl.find("map_Bump t_normal.png"), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir_ / "t_albedo.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "t_normal.png"));
+    EXPECT_EQ(report_.files.size(), 4u);
+}
+
+TEST_F(Export, PlyRoundTrip) {
+    const Tin tin = test_tin();
+    const test::SimpleMesh m = test::read_ply_binary(run(tin, "t.ply"));  // Z-up by default
+    expect_matches_tin(m, tin, false, 1.0, 1e-6);
+    expect_upward(m, false);
+    ASSERT_EQ(m.normals.size(), m.vertices.size());
+    for (const auto& n : m.normals) {
+        EXPECT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 1e-6);
+        EXPECT_GT(n[2], 0.0);
+    }
+}
+
+TEST_F(Export, StlRoundTrip) {
+    const Tin tin = test_tin();
+    std::vector<std::array<double, 3>> facet_normals;
+    const test::SimpleMesh m = test::read_stl_binary(run(tin, "t.stl"), &facet_normals);
+    expect_matches_tin(m, tin, false, 1.0, 1e-6);
+    expect_upward(m, false);
+    // The stored facet normals agree with the winding.
+    for (std::size_t k = 0; k < m.triangles.size(); ++k) {
+        const auto n = test::face_cross(m, m.triangles[k]);
+        const double dot =
+            n[0] * facet_normals[k][0] + n[1] * facet_normals[k][1] + n[2] * facet_normals[k][2];
+        EXPECT_GT(dot, 0.0);
+    }
+}
+
+/// Loads a .glb or .gltf with tinygltf and flattens its one primitive.
+struct LoadedGltf {
+    tinygltf::Model model;
+    test::SimpleMesh mesh;
+};
+
+LoadedGltf load_gltf(const std::vector<std::uint8_t>& bytes, bool binary) {
+    LoadedGltf out;
+    tinygltf::TinyGLTF loader;
+    std::string err;
+    std::string warn;
+    const bool ok = binary
+                        ? loader.LoadBinaryFromMemory(&out.model, &err, &warn, bytes.data(),
+                                                      static_cast<unsigned int>(bytes.size()))
+                        : loader.LoadASCIIFromString(&out.model, &err, &warn,
+                                                     reinterpret_cast<const char*>(bytes.data()),
+                                                     static_cast<unsigned int>(bytes.size()), "");
+    EXPECT_TRUE(ok) << err;
+    EXPECT_EQ(err, "");
+    if (!ok) return out;
+    const tinygltf::Primitive& prim = out.model.meshes.at(0).primitives.at(0);
+    auto floats = [&](int accessor, int n) {
+        const tinygltf::Accessor& a = out.model.accessors.at(static_cast<std::size_t>(accessor));
+        const tinygltf::BufferView& v =
+            out.model.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+        const auto* data = reinterpret_cast<const float*>(
+            out.model.buffers.at(static_cast<std::size_t>(v.buffer)).data.data() + v.byteOffset +
+            a.byteOffset);
+        return std::vector<float>(data, data + a.count * static_cast<std::size_t>(n));
+    };
+    const std::vector<float> p = floats(prim.attributes.at("POSITION"), 3);
+    const std::vector<float> n = floats(prim.attributes.at("NORMAL"), 3);
+    const std::vector<float> uv = floats(prim.attributes.at("TEXCOORD_0"), 2);
+    for (std::size_t i = 0; i < p.size() / 3; ++i) {
+        out.mesh.vertices.push_back({p[3 * i], p[3 * i + 1], p[3 * i + 2]});
+        out.mesh.normals.push_back({n[3 * i], n[3 * i + 1], n[3 * i + 2]});
+        out.mesh.uvs.push_back({uv[2 * i], uv[2 * i + 1]});
+    }
+    const tinygltf::Accessor& ia = out.model.accessors.at(static_cast<std::size_t>(prim.indices));
+    EXPECT_EQ(ia.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+    const tinygltf::BufferView& iv =
+        out.model.bufferViews.at(static_cast<std::size_t>(ia.bufferView));
+    const auto* idx = reinterpret_cast<const std::uint32_t*>(out.model.buffers.at(0).data.data() +
+                                                             iv.byteOffset + ia.byteOffset);
+    for (std::size_t k = 0; k + 2 < ia.count; k += 3)
+        out.mesh.triangles.push_back({idx[k], idx[k + 1], idx[k + 2]});
+    return out;
+}
+
+TEST_F(Export, GlbRoundTripThroughTinygltf) {
+    const Tin tin = test_tin();
+    const LoadedGltf g = load_gltf(run(tin, "t.glb"), true);
+    expect_matches_tin(g.mesh, tin, true, 1.0, 1e-5);
+    expect_upward(g.mesh, true);
+    // Accessor bounds as the spec requires, normals of unit length pointing up.
+    const tinygltf::Accessor& pa = g.model.accessors.at(
+        static_cast<std::size_t>(g.model.meshes[0].primitives[0].attributes.at("POSITION")));
+    ASSERT_EQ(pa.minValues.size(), 3u);
+    EXPECT_NEAR(pa.maxValues[0], 12.0, 1e-6);
+    for (const auto& n : g.mesh.normals) {
+        EXPECT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 1e-5);
+        EXPECT_GT(n[1], 0.0);
+    }
+    EXPECT_TRUE(g.model.meshes[0].primitives[0].attributes.count("TANGENT"));
+    // The material carries the albedo and normal textures; tinygltf decodes both PNGs.
+    ASSERT_EQ(g.model.materials.size(), 1u);
+    const tinygltf::Material& mat = g.model.materials[0];
+    ASSERT_GE(mat.pbrMetallicRoughness.baseColorTexture.index, 0);
+    ASSERT_GE(mat.normalTexture.index, 0);
+    ASSERT_EQ(g.model.images.size(), 2u);
+    for (const tinygltf::Image& image : g.model.images) {
+        EXPECT_EQ(image.mimeType, "image/png");
+        EXPECT_EQ(image.width, 1024);
+        EXPECT_EQ(image.height, 683);  // 1024 * 8 / 12, rounded
+        EXPECT_FALSE(image.image.empty());
+    }
+    // uv (0, 0) is the north-west corner.
+    for (std::size_t i = 0; i < g.mesh.vertices.size(); ++i) {
+        const auto& v = g.mesh.vertices[i];
+        EXPECT_NEAR(g.mesh.uvs[i][0], v[0] / 12.0, 1e-6);
+        EXPECT_NEAR(g.mesh.uvs[i][1], (8.0 + v[2]) / 8.0, 1e-6);
+    }
+}
+
+TEST_F(Export, GltfTextIsSelfContainedAndMatchesGlb) {
+    const Tin tin = test_tin();
+    const LoadedGltf text_version = load_gltf(run(tin, "t.gltf"), false);
+    const LoadedGltf binary_version = load_gltf(run(tin, "u.glb"), true);
+    EXPECT_EQ(text_version.mesh.vertices, binary_version.mesh.vertices);
+    EXPECT_EQ(text_version.mesh.triangles, binary_version.mesh.triangles);
+    EXPECT_EQ(report_.files.size(), 1u) << "one self-contained file";
+}
+
+TEST_F(Export, SolidBaseIsAClosedTwoManifoldInEveryFormat) {
+    const Tin tin = test_tin();
+    ExportOptions o;
+    o.base = BaseKind::Solid;
+    o.base_depth = 0.5;
+    o.textures = false;
+    std::vector<std::pair<std::string, test::SimpleMesh>> meshes;
+    meshes.emplace_back("obj", test::read_obj_text(text(run(tin, "s.obj", o))));
+    meshes.emplace_back("ply", test::read_ply_binary(run(tin, "s.ply", o)));
+    meshes.emplace_back("stl", test::read_stl_binary(run(tin, "s.stl", o)));
+    meshes.emplace_back("glb", load_gltf(run(tin, "s.glb", o), true).mesh);
+    double zmin = 1e300;
+    for (VertexId v : test::live_ids(tin))
+        zmin = std::min(zmin, tin.height(v));
+    // The enclosed volume is the volume between the surface and the bottom plane.
+    const double expected = test::brute_force_volume(tin, zmin - 0.5);
+    for (const auto& [format, mesh] : meshes) {
+        SCOPED_TRACE(format);
+        const test::SimpleMesh w = test::welded(mesh);
+        EXPECT_EQ(test::join(test::closed_manifold_problems(w)), "");
+        // Euler: V - E + F = 2 for a closed surface of genus 0.
+        const test::EdgeCount c = test::count_edges(w);
+        EXPECT_EQ(static_cast<long>(w.vertices.size()) - static_cast<long>(c.edges) +
+                      static_cast<long>(w.triangles.size()),
+                  2);
+        EXPECT_NEAR(test::enclosed_volume(w), expected, 1e-4 * expected) << "outward winding";
+    }
+}
+
+TEST_F(Export, SkirtHangsWallsWithoutClosingTheBottom) {
+    const Tin tin = test_tin();
+    ExportOptions o;
+    o.base = BaseKind::Skirt;
+    o.base_depth = 2.0;
+    const test::SimpleMesh m = test::welded(test::read_ply_binary(run(tin, "k.ply", o)));
+    const test::EdgeCount c = test::count_edges(m);
+    EXPECT_EQ(c.inconsistent, 0u);
+    EXPECT_EQ(c.non_manifold, 0u);
+    // The open edges are exactly the bottom ring: one per border edge of the TIN.
+    EXPECT_EQ(c.boundary, test::border_vertex_count(tin));
+    EXPECT_NEAR(test::bounds_of(m).min[2], report_.min.z, 1e-5);
+}
+
+TEST_F(Export, UnitsAndUpAxis) {
+    const Tin tin = test_tin();
+    ExportOptions mm;
+    mm.units = "mm";
+    const test::SimpleMesh m = test::read_ply_binary(run(tin, "mm.ply", mm));
+    expect_matches_tin(m, tin, false, 1000.0, 1e-6);
+    ExportOptions y;
+    y.up = UpAxis::Y;
+    y.units = "cm";
+    const test::SimpleMesh my = test::read_stl_binary(run(tin, "y.stl", y));
+    expect_matches_tin(my, tin, true, 100.0, 1e-6);
+    expect_upward(my, true);
+    ExportOptions z;
+    z.up = UpAxis::Z;
+    EXPECT_THROW(run(tin, "z.glb", z), std::invalid_argument);
+    ExportOptions bad;
+    bad.units = "furlong";
+    EXPECT_THROW(run(tin, "f.obj", bad), std::invalid_argument);
+}
+
+TEST_F(Export, SimplifyingOnExportKeepsTheErrorBound) {
+    // A domain away from the origin: the simplified mesh must stay where the terrain is.
+    const Tin tin = Tin::regular_grid(Rect{{3, -2}, {23, 8}}, 80, 40, hills);
+    ExportOptions o;
+    o.max_error = 0.05;
+    o.cell_size = 0.25;  // the grid's own spacing
+    const test::SimpleMesh m = test::read_ply_binary(run(tin, "s.ply", o));
+    ASSERT_TRUE(report_.simplified.has_value());
+    EXPECT_LT(m.vertices.size(), tin.vertex_count());
+    EXPECT_LE(report_.simplified->max_error, 0.05);
+    // Independently: rebuild the exported surface and compare it with the TIN at every grid
+    // vertex (a brute-force search in the exported triangles).
+    std::size_t checked = 0;
+    double worst = 0.0;
+    for (VertexId v : test::live_ids(tin)) {
+        const Vec2 p = tin.position(v);
+        for (const auto& t : m.triangles) {
+            const auto& a = m.vertices[t[0]];
+            const auto& b = m.vertices[t[1]];
+            const auto& c = m.vertices[t[2]];
+            const auto w = test::barycentric(p, {a[0], a[1]}, {b[0], b[1]}, {c[0], c[1]});
+            if (w[0] < -1e-9L || w[1] < -1e-9L || w[2] < -1e-9L) continue;
+            const double z = static_cast<double>(w[0] * a[2] + w[1] * b[2] + w[2] * c[2]);
+            worst = std::max(worst, std::abs(z - tin.height(v)));
+            ++checked;
+            break;
+        }
+    }
+    EXPECT_EQ(checked, tin.vertex_count());
+    EXPECT_LE(worst, 0.05 + 1e-5);  // float positions in the file
+    const test::Bounds b = test::bounds_of(m);
+    EXPECT_NEAR(b.min[0], 3.0, 1e-6);
+    EXPECT_NEAR(b.min[1], -2.0, 1e-6);
+    EXPECT_NEAR(b.max[0], 23.0, 1e-6);
+    EXPECT_NEAR(b.max[1], 8.0, 1e-6);
+}
+
+TEST_F(Export, HeightPngReimportsWithinTheQuantisation) {
+    // An imported terrain: the export grid is the import grid, so every sample is a TIN point.
+    HeightRaster raster;
+    raster.width = 33;
+    raster.height = 21;
+    raster.cell_size = 0.5;
+    for (std::uint32_t row = 0; row < raster.height; ++row) {
+        for (std::uint32_t col = 0; col < raster.width; ++col)
+            raster.heights.push_back(hills(raster.position(col, row)) * 10.0);
+    }
+    const Tin tin = greedy_tin(raster, {0.01, 0}).tin;
+    ExportOptions o;
+    o.cell_size = 0.5;
+    run(tin, "h.png", o);
+    EXPECT_EQ(report_.map_width, 33u);
+    EXPECT_EQ(report_.map_height, 21u);
+    const HeightRaster back = read_heightmap(dir_ / "h.png");
+    ASSERT_EQ(back.width, 33u);
+    ASSERT_EQ(back.height, 21u);
+    EXPECT_EQ(back.cell_size, 0.5);
+    EXPECT_EQ(back.domain(), tin.domain());
+    const double step = report_.height_step;
+    EXPECT_GT(step, 0.0);
+    for (std::uint32_t row = 0; row < back.height; ++row) {
+        for (std::uint32_t col = 0; col < back.width; ++col) {
+            const double z = test::brute_force_height(tin, back.position(col, row));
+            ASSERT_NEAR(back.at(col, row), z, 0.5 * step + 1e-9) << col << ", " << row;
+        }
+    }
+    // EXR keeps float precision.
+    run(tin, "h.exr", o);
+    const HeightRaster exr = read_heightmap(dir_ / "h.exr");
+    for (std::uint32_t row = 0; row < exr.height; ++row) {
+        for (std::uint32_t col = 0; col < exr.width; ++col) {
+            const double z = test::brute_force_height(tin, exr.position(col, row));
+            ASSERT_NEAR(exr.at(col, row), z, 1e-6 * std::max(1.0, std::abs(z)));
+        }
+    }
+}
+
+TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
+    const Tin tin = test_tin();
+    ExportOptions o;
+    o.map_size = 64;
+    const auto n = run(tin, "n.png", o, "normal");
+    EXPECT_EQ(report_.map_width, 64u);
+    EXPECT_EQ(report_.map_height, 43u);
+    const PngImage normal = decode_png(n);
+    EXPECT_EQ(normal.channels, 3);
+    // Every texel decodes to an upward unit vector.
+    for (std::size_t i = 0; i < normal.samples.size(); i += 3) {
+        const double x = normal.samples[i] / 127.5 - 1.0;
+        const double y = normal.samples[i + 1] / 127.5 - 1.0;
+        const double z = normal.samples[i + 2] / 127.5 - 1.0;
+        EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 0.02);
+        EXPECT_GT(z, 0.0);
+    }
+    const PngImage albedo = decode_png(run(tin, "a.png", o, "albedo"));
+    EXPECT_EQ(albedo.channels, 3);
+    // Wet sand (north half) is darker than dry sand of the same material (south-west).
+    const auto luminance = [&](std::uint32_t col, std::uint32_t row) {
+        return albedo.sample(col, row, 0) + albedo.sample(col, row, 1) + albedo.sample(col, row, 2);
+    };
+    EXPECT_LT(luminance(10, 5), luminance(10, 38));
+}
+
+TEST_F(Export, BadExportRequests) {
+    const Tin tin = test_tin();
+    EXPECT_THROW(export_format_for("x.fbx"), std::invalid_argument);
+    EXPECT_THROW(export_format_for("x.png", "curvature"), std::invalid_argument);
+    EXPECT_THROW(export_format_for("x.obj", "normal"), std::invalid_argument);
+    ExportOptions o;
+    o.base = BaseKind::Solid;
+    o.base_depth = -1.0;
+    EXPECT_THROW(run(tin, "b.stl", o), std::invalid_argument);
+    ExportOptions maps;
+    maps.base = BaseKind::Solid;
+    EXPECT_THROW(run(tin, "b.png", maps), std::invalid_argument);
+    ExportOptions cell;
+    cell.cell_size = 1e-6;
+    EXPECT_THROW(run(tin, "c.png", cell), std::invalid_argument);
+    EXPECT_THROW(export_terrain(tin, dir_ / "no" / "such" / "dir.stl", ExportFormat::Stl),
+                 std::runtime_error);
+}
+
+}  // namespace
+}  // namespace sandtin

@@ -1,0 +1,451 @@
+// Heightmap readers: every format decodes what it should, and every kind of bad input is
+// rejected with a message that names the problem, never a crash.
+
+#include <gdal.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "formats/png_image.hpp"
+#include "io/heightmap_exr.hpp"
+#include "io/heightmap_import.hpp"
+#include "util/atomic_file.hpp"
+
+namespace sandtin {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::uint8_t> bytes_of(const std::string& s) {
+    return {s.begin(), s.end()};
+}
+
+/// Expects decode_heightmap to throw std::runtime_error (not crash, not another type) with a
+/// message holding every keyword (case-sensitive) and the input's name.
+void expect_rejected(const std::vector<std::uint8_t>& bytes, const std::vector<std::string>& words,
+                     const HeightmapReadOptions& options = {}) {
+    try {
+        (void)decode_heightmap(bytes, "input.xyz", options);
+        ADD_FAILURE() << "accepted; expected an error with '" << words.front() << "'";
+    } catch (const std::runtime_error& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("input.xyz"), std::string::npos) << "message lacks the file: " << msg;
+        for (const std::string& w : words)
+            EXPECT_NE(msg.find(w), std::string::npos) << "message lacks '" << w << "': " << msg;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "wrong exception type: " << e.what();
+    }
+}
+
+PngImage gray_image(std::uint32_t w, std::uint32_t h, int depth, int channels = 1) {
+    PngImage image;
+    image.width = w;
+    image.height = h;
+    image.bit_depth = depth;
+    image.channels = channels;
+    image.samples.resize(static_cast<std::size_t>(w) * h * static_cast<std::size_t>(channels));
+    for (std::size_t i = 0; i < image.samples.size(); ++i)
+        image.samples[i] = static_cast<std::uint16_t>((i * 37) % (depth == 16 ? 65536 : 256));
+    return image;
+}
+
+/// A PNG whose IHDR declares width x height (CRCs valid), with no image data after it.
+std::vector<std::uint8_t> png_with_header(std::uint32_t width, std::uint32_t height) {
+    std::vector<std::uint8_t> b = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    auto be32 = [&](std::uint32_t v) {
+        for (int s = 24; s >= 0; s -= 8)
+            b.push_back(static_cast<std::uint8_t>(v >> s));
+    };
+    auto chunk = [&](const char* type, const std::vector<std::uint8_t>& data) {
+        be32(static_cast<std::uint32_t>(data.size()));
+        const std::size_t start = b.size();
+        b.insert(b.end(), type, type + 4);
+        b.insert(b.end(), data.begin(), data.end());
+        be32(static_cast<std::uint32_t>(
+            crc32(0, b.data() + start, static_cast<uInt>(b.size() - start))));
+    };
+    std::vector<std::uint8_t> ihdr;
+    for (std::uint32_t v : {width, height})
+        for (int s = 24; s >= 0; s -= 8)
+            ihdr.push_back(static_cast<std::uint8_t>(v >> s));
+    ihdr.insert(ihdr.end(), {8, 0, 0, 0, 0});
+    chunk("IHDR", ihdr);
+    chunk("IEND", {});
+    return b;
+}
+
+class HeightmapFiles : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("sandtin-import-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+/// A GeoTIFF of float samples written through GDAL itself.
+std::vector<std::uint8_t> geotiff(const fs::path& path, int w, int h, const std::vector<float>& v,
+                                  std::array<double, 6> transform, const char* wkt,
+                                  std::optional<double> nodata) {
+    GDALAllRegister();
+    GDALDriverH driver = GDALGetDriverByName("GTiff");
+    GDALDatasetH ds = GDALCreate(driver, path.c_str(), w, h, 1, GDT_Float32, nullptr);
+    EXPECT_NE(ds, nullptr);
+    GDALSetGeoTransform(ds, transform.data());
+    if (wkt != nullptr) GDALSetProjection(ds, wkt);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    if (nodata) GDALSetRasterNoDataValue(band, *nodata);
+    std::vector<float> copy = v;
+    EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, w, h, copy.data(), w, h, GDT_Float32, 0, 0),
+              CE_None);
+    GDALClose(ds);
+    return read_file(path);
+}
+
+constexpr const char* kUtm33 =
+    R"(PROJCS["WGS 84 / UTM zone 33N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",15],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1]])";
+constexpr const char* kWgs84 =
+    R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";
+
+// ---- What each format decodes ----------------------------------------------------------------
+
+TEST(HeightmapImport, TerrainRgbFollowsTheMapboxFormula) {
+    PngImage image;
+    image.width = 2;
+    image.height = 2;
+    image.channels = 3;
+    image.bit_depth = 8;
+    image.samples = {1, 134, 160, 0, 0, 0, 255, 255, 255, 1, 135, 0};
+    const HeightRaster r = decode_heightmap(encode_png(image), "rgb.png");
+    EXPECT_EQ(r.source_format, "terrain-rgb");
+    EXPECT_DOUBLE_EQ(r.at(0, 0), -10000.0 + (1 * 65536 + 134 * 256 + 160) * 0.1);  // 0 m
+    EXPECT_DOUBLE_EQ(r.at(1, 0), -10000.0);
+    EXPECT_DOUBLE_EQ(r.at(0, 1), -10000.0 + 16777215 * 0.1);
+    EXPECT_NEAR(r.at(0, 0), 0.0, 1e-9);
+}
+
+TEST(HeightmapImport, GrayPngScalesToMetres) {
+    PngImage image = gray_image(3, 2, 16);
+    image.samples = {0, 65535, 32768, 1, 2, 3};
+    HeightmapReadOptions o;
+    o.z_scale = 100.0;
+    o.z_offset = -5.0;
+    o.pixel_size = 2.5;
+    const HeightRaster r = decode_heightmap(encode_png(image), "g16.png", o);
+    EXPECT_EQ(r.source_format, "png-gray16");
+    EXPECT_DOUBLE_EQ(r.at(0, 0), -5.0);
+    EXPECT_DOUBLE_EQ(r.at(1, 0), 95.0);
+    EXPECT_DOUBLE_EQ(r.at(2, 0), -5.0 + 100.0 * 32768.0 / 65535.0);
+    EXPECT_EQ(r.cell_size, 2.5);
+    EXPECT_EQ(r.domain(), (Rect{{0, 0}, {5.0, 2.5}}));
+    // 8-bit: full white is z_scale.
+    PngImage g8 = gray_image(2, 2, 8);
+    g8.samples = {255, 0, 51, 102};
+    const HeightRaster r8 = decode_heightmap(encode_png(g8), "g8.png", o);
+    EXPECT_DOUBLE_EQ(r8.at(0, 0), 95.0);
+    EXPECT_DOUBLE_EQ(r8.at(0, 1), -5.0 + 20.0);
+}
+
+TEST(HeightmapImport, AlphaZeroIsNoData) {
+    PngImage image = gray_image(3, 3, 8, 2);
+    for (std::size_t i = 0; i < 9; ++i)
+        image.samples[2 * i + 1] = i == 4 ? 0 : 255;
+    HeightRaster r = decode_heightmap(encode_png(image), "ga.png");
+    EXPECT_EQ(r.nodata_count(), 1u);
+    EXPECT_FALSE(r.is_valid(4));
+    EXPECT_EQ(fill_nodata(r), 1u);
+    EXPECT_EQ(r.heights[4], r.heights[1]) << "filled from a nearest neighbour";
+}
+
+TEST(HeightmapImport, EncodingCanBeForced) {
+    expect_rejected(encode_png(gray_image(4, 4, 8)), {"Terrain-RGB"},
+                    {{}, {}, {}, {}, false, PngHeightEncoding::TerrainRgb});
+    PngImage rgb = gray_image(4, 4, 8, 3);
+    expect_rejected(encode_png(rgb), {"grayscale"},
+                    {{}, {}, {}, {}, false, PngHeightEncoding::Gray});
+    PngImage rgb16 = gray_image(4, 4, 16, 3);
+    expect_rejected(encode_png(rgb16), {"16-bit colour"});
+}
+
+TEST(HeightmapImport, AsciiGridReadsHeaderAndValues) {
+    const std::string text =
+        "NCOLS 3\nnrows 2\nxllcorner 1000\nyllcenter 2000.5\ncellsize 10\nNODATA_value -9999\n"
+        "1 2 3\n4 -9999 +6e0\n";
+    const HeightRaster r = decode_heightmap(bytes_of(text), "g.asc");
+    EXPECT_EQ(r.width, 3u);
+    EXPECT_EQ(r.height, 2u);
+    EXPECT_EQ(r.cell_size, 10.0);
+    EXPECT_EQ(r.at(2, 0), 3.0);
+    EXPECT_EQ(r.at(2, 1), 6.0);
+    EXPECT_FALSE(r.is_valid(r.index(1, 1)));
+    EXPECT_EQ(r.nodata_count(), 1u);
+    EXPECT_TRUE(r.georeference.known);
+    EXPECT_EQ(r.georeference.west, 1005.0);   // corner + half a cell
+    EXPECT_EQ(r.georeference.south, 2000.5);  // already a centre
+}
+
+TEST_F(HeightmapFiles, GeoTiffReadsSamplesCellSizeNoDataAndGeoreference) {
+    const std::vector<float> v = {1, 2, 3, 4, -32768, 6};
+    const auto bytes =
+        geotiff(dir_ / "a.tif", 3, 2, v, {500000, 30, 0, 4000000, 0, -30}, kUtm33, -32768.0);
+    const HeightRaster r = decode_heightmap(bytes, "a.tif");
+    EXPECT_EQ(r.source_format, "geotiff");
+    EXPECT_EQ(r.cell_size, 30.0);
+    EXPECT_EQ(r.at(0, 0), 1.0);
+    EXPECT_EQ(r.at(2, 1), 6.0);
+    EXPECT_FALSE(r.is_valid(r.index(1, 1)));
+    EXPECT_EQ(r.georeference.west, 500015.0);
+    EXPECT_EQ(r.georeference.south, 4000000.0 - 45.0);
+    EXPECT_NE(r.georeference.crs.find("UTM zone 33N"), std::string::npos);
+    HeightmapReadOptions scaled;
+    scaled.z_scale = 2.0;
+    EXPECT_EQ(decode_heightmap(bytes, "a.tif", scaled).at(2, 1), 12.0);
+}
+
+TEST(HeightmapImport, ExrRoundTripsFloatHeights) {
+    HeightRaster r;
+    r.width = 5;
+    r.height = 3;
+    r.cell_size = 0.25;
+    for (int i = 0; i < 15; ++i)
+        r.heights.push_back(std::sin(i) * 1000.0);
+    const HeightRaster back = decode_heightmap(encode_exr_heightmap(r), "h.exr");
+    EXPECT_EQ(back.cell_size, 0.25);
+    for (std::size_t i = 0; i < 15; ++i)
+        EXPECT_EQ(back.heights[i], static_cast<double>(static_cast<float>(r.heights[i])));
+}
+
+// ---- Bad input ---------------------------------------------------------------------------------
+
+TEST(BadHeightmap, EmptyFile) {
+    expect_rejected({}, {"empty"});
+}
+
+TEST_F(HeightmapFiles, MissingFileAndDirectory) {
+    EXPECT_THROW((void)read_heightmap(dir_ / "none.png"), std::runtime_error);
+    EXPECT_THROW((void)read_heightmap(dir_), std::runtime_error);
+}
+
+TEST(BadHeightmap, NotAHeightmapAtAll) {
+    expect_rejected(bytes_of("hello, this is a text file\n"), {"not a heightmap"});
+    std::vector<std::uint8_t> noise(4096);
+    for (std::size_t i = 0; i < noise.size(); ++i)
+        noise[i] = static_cast<std::uint8_t>((i * 7919) >> 3);
+    expect_rejected(noise, {"not a heightmap"});
+    // PNG magic but garbage after it.
+    std::vector<std::uint8_t> fake = {0x89, 'P', 'N', 'G', 1, 2, 3, 4, 5, 6, 7, 8, 9};
+    expect_rejected(fake, {"PNG"});
+}
+
+TEST(BadHeightmap, TruncatedPng) {
+    const std::vector<std::uint8_t> good = encode_png(gray_image(64, 64, 16));
+    for (std::size_t cut : {std::size_t{8}, std::size_t{20}, std::size_t{40}, good.size() / 2,
+                            good.size() - 13, good.size() - 1}) {
+        expect_rejected({good.begin(), good.begin() + static_cast<std::ptrdiff_t>(cut)}, {"PNG"});
+    }
+}
+
+TEST(BadHeightmap, ZeroByZeroRasters) {
+    expect_rejected(png_with_header(0, 0), {"PNG"});
+    expect_rejected(bytes_of("ncols 0\nnrows 0\nxllcorner 0\nyllcorner 0\ncellsize 1\n"),
+                    {"empty", "0 x 0"});
+    // One row or column spans no area.
+    expect_rejected(encode_png(gray_image(1, 5, 8)), {"at least 2 x 2"});
+    expect_rejected(bytes_of("ncols 4\nnrows 1\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3 4\n"),
+                    {"at least 2 x 2"});
+}
+
+/// A little-endian TIFF whose only IFD declares width x height float samples, no strips.
+std::vector<std::uint8_t> tiff_with_size(std::uint16_t width, std::uint16_t height) {
+    std::vector<std::uint8_t> b = {'I', 'I', 42, 0, 8, 0, 0, 0};
+    const std::vector<std::array<std::uint16_t, 2>> entries = {
+        {256, width}, {257, height}, {258, 32}, {277, 1}, {339, 3}};
+    b.push_back(static_cast<std::uint8_t>(entries.size()));
+    b.push_back(0);
+    for (const auto& [tag, value] : entries) {
+        for (std::uint16_t v : {tag, std::uint16_t{3}}) {  // type SHORT
+            b.push_back(static_cast<std::uint8_t>(v));
+            b.push_back(static_cast<std::uint8_t>(v >> 8));
+        }
+        b.insert(b.end(), {1, 0, 0, 0});  // count 1
+        b.push_back(static_cast<std::uint8_t>(value));
+        b.push_back(static_cast<std::uint8_t>(value >> 8));
+        b.insert(b.end(), {0, 0});
+    }
+    b.insert(b.end(), {0, 0, 0, 0});  // no next IFD
+    return b;
+}
+
+TEST(BadHeightmap, ZeroByZeroGeoTiff) {
+    try {
+        (void)decode_heightmap(tiff_with_size(0, 0), "input.xyz");
+        ADD_FAILURE() << "a 0 x 0 TIFF was accepted";
+    } catch (const std::runtime_error& e) {
+        const std::string msg = e.what();
+        EXPECT_TRUE(msg.find("GeoTIFF") != std::string::npos ||
+                    msg.find("empty") != std::string::npos)
+            << msg;
+    }
+}
+
+TEST(BadHeightmap, TruncatedExr) {
+    HeightRaster r;
+    r.width = 2;
+    r.height = 2;
+    r.heights = {1, 2, 3, 4};
+    const std::vector<std::uint8_t> exr = encode_exr_heightmap(r);
+    for (std::size_t cut : {std::size_t{4}, std::size_t{40}, exr.size() / 2, exr.size() - 1}) {
+        expect_rejected({exr.begin(), exr.begin() + static_cast<std::ptrdiff_t>(cut)}, {"EXR"});
+    }
+}
+
+TEST_F(HeightmapFiles, LargerThanTheLimit) {
+    // The default limit is 16k x 16k: one sample more is refused before the samples are read.
+    expect_rejected(encode_png(gray_image(16385, 2, 8)), {"exceeds the limit of 16384 x 16384"});
+    expect_rejected(bytes_of("ncols 20000\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n1\n"),
+                    {"exceeds the limit"});
+    const auto tif = geotiff(dir_ / "wide.tif", 16385, 2, std::vector<float>(16385 * 2, 1.0f),
+                             {0, 1, 0, 0, 0, -1}, kUtm33, std::nullopt);
+    expect_rejected(tif, {"exceeds the limit"});
+    // The limit is configurable.
+    HeightmapReadOptions small;
+    small.limits = {100, 50};
+    expect_rejected(encode_png(gray_image(101, 10, 8)), {"exceeds the limit of 100 x 50"}, small);
+    expect_rejected(encode_png(gray_image(10, 51, 16)), {"exceeds the limit"}, small);
+    HeightRaster r;
+    r.width = 60;
+    r.height = 60;
+    r.heights.assign(3600, 1.0);
+    expect_rejected(encode_exr_heightmap(r), {"exceeds the limit"}, small);
+    EXPECT_NO_THROW((void)decode_heightmap(encode_png(gray_image(100, 50, 8)), "ok.png", small));
+}
+
+TEST_F(HeightmapFiles, NanAndInfHeights) {
+    // ASCII grid: rejected with the sample named, or no-data on request.
+    const std::string nan_grid =
+        "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2 3\n4 nan 6\n";
+    expect_rejected(bytes_of(nan_grid), {"row 1, column 1", "not finite"});
+    const std::string inf_grid =
+        "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 -inf 3\n4 5 6\n";
+    expect_rejected(bytes_of(inf_grid), {"row 0, column 1", "not finite"});
+    HeightmapReadOptions as_nodata;
+    as_nodata.nonfinite_as_nodata = true;
+    EXPECT_EQ(decode_heightmap(bytes_of(nan_grid), "g.asc", as_nodata).nodata_count(), 1u);
+    EXPECT_EQ(decode_heightmap(bytes_of(inf_grid), "g.asc", as_nodata).nodata_count(), 1u);
+    // GeoTIFF: NaN without a NaN no-data value is an error; declared NaN no-data is masked.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const auto t1 =
+        geotiff(dir_ / "n.tif", 2, 2, {1, nan, 3, 4}, {0, 1, 0, 2, 0, -1}, kUtm33, std::nullopt);
+    expect_rejected(t1, {"not finite"});
+    const auto t2 =
+        geotiff(dir_ / "i.tif", 2, 2, {1, 2, inf, 4}, {0, 1, 0, 2, 0, -1}, kUtm33, std::nullopt);
+    expect_rejected(t2, {"not finite"});
+    const auto t3 =
+        geotiff(dir_ / "d.tif", 2, 2, {1, nan, 3, 4}, {0, 1, 0, 2, 0, -1}, kUtm33, std::nan(""));
+    EXPECT_EQ(decode_heightmap(t3, "d.tif").nodata_count(), 1u);
+    EXPECT_EQ(decode_heightmap(t2, "i.tif", as_nodata).nodata_count(), 1u);
+    // EXR.
+    HeightRaster r;
+    r.width = 2;
+    r.height = 2;
+    r.heights = {1, 2, 3, 4};
+    r.valid = {1, 1, 0, 1};  // written as NaN
+    const auto exr = encode_exr_heightmap(r);
+    expect_rejected(exr, {"NaN"});
+    EXPECT_EQ(decode_heightmap(exr, "n.exr", as_nodata).nodata_count(), 1u);
+    // Every sample no-data: nothing to mesh.
+    const std::string all_nodata =
+        "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\nnodata_value 0\n0 0\n0 0\n";
+    expect_rejected(bytes_of(all_nodata), {"every sample is no-data"});
+    // Non-finite scale options.
+    HeightmapReadOptions bad_scale;
+    bad_scale.z_scale = std::numeric_limits<double>::infinity();
+    EXPECT_THROW((void)decode_heightmap(encode_png(gray_image(2, 2, 8)), "s.png", bad_scale),
+                 std::invalid_argument);
+}
+
+TEST(BadHeightmap, WrongAsciiHeaders) {
+    const std::string values = "1 2\n3 4\n";
+    struct Case {
+        std::string header;
+        std::vector<std::string> words;
+    };
+    const std::vector<Case> cases = {
+        {"nrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n", {"lacks 'ncols'"}},
+        {"ncols 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n", {"lacks 'nrows'"}},
+        {"ncols 2\nnrows 2\nyllcorner 0\ncellsize 1\n", {"lacks 'xllcorner or xllcenter'"}},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n", {"lacks 'cellsize'"}},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\ncolour blue\n",
+         {"line 6", "'colour' is not an ESRI ASCII grid header key"}},
+        {"ncols 2\nncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n", {"given twice"}},
+        {"ncols two\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n",
+         {"line 1", "'ncols' needs a finite number"}},
+        {"ncols 2.5\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n", {"whole number"}},
+        {"ncols -2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n", {"whole number"}},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize -1\n",
+         {"'cellsize' must be positive"}},
+        {"ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 0\n",
+         {"'cellsize' must be positive"}},
+        {"ncols 2\nnrows 2\nxllcorner nan\nyllcorner 0\ncellsize 1\n", {"finite number"}},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.header);
+        expect_rejected(bytes_of(c.header + values), c.words);
+    }
+    const std::string header = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+    expect_rejected(bytes_of(header + "1 2\n3\n"), {"truncated", "expected 4 heights", "found 3"});
+    expect_rejected(bytes_of(header + "1 2\n3 4 5\n"), {"more heights"});
+    expect_rejected(bytes_of(header + "1 2\n3 x4\n"), {"row 1, column 1", "not a number"});
+}
+
+TEST_F(HeightmapFiles, BadGeoTiffs) {
+    const std::vector<float> v(16, 1.0f);
+    const auto good = geotiff(dir_ / "g.tif", 4, 4, v, {0, 2, 0, 8, 0, -2}, kUtm33, std::nullopt);
+    expect_rejected({good.begin(), good.begin() + 16}, {"GeoTIFF"});
+    expect_rejected({good.begin(), good.begin() + static_cast<std::ptrdiff_t>(good.size() / 2)},
+                    {"GeoTIFF"});
+    const auto rotated =
+        geotiff(dir_ / "r.tif", 4, 4, v, {0, 2, 0.5, 8, 0.5, -2}, kUtm33, std::nullopt);
+    expect_rejected(rotated, {"rotated"});
+    const auto skewed = geotiff(dir_ / "s.tif", 4, 4, v, {0, 2, 0, 8, 0, -3}, kUtm33, std::nullopt);
+    expect_rejected(skewed, {"not square"});
+    const auto degrees =
+        geotiff(dir_ / "d.tif", 4, 4, v, {10, 0.001, 0, 50, 0, -0.001}, kWgs84, std::nullopt);
+    expect_rejected(degrees, {"degrees"});
+    HeightmapReadOptions metres;
+    metres.pixel_size = 90.0;
+    EXPECT_EQ(decode_heightmap(degrees, "d.tif", metres).cell_size, 90.0);
+}
+
+TEST_F(HeightmapFiles, HeightmapExportImportRoundTripsWithinTheQuantisation) {
+    // Covered end to end (TIN -> 16-bit PNG -> raster) in export_test; here the PNG tEXt
+    // scale alone: explicit options override it.
+    PngImage image = gray_image(3, 3, 16);
+    image.text = {{kPngKeyZOffset, "-12.5"}, {kPngKeyZRange, "200"}, {kPngKeyCellSize, "0.5"}};
+    image.samples[0] = 65535;
+    const HeightRaster r = decode_heightmap(encode_png(image), "t.png");
+    EXPECT_DOUBLE_EQ(r.at(0, 0), 187.5);
+    EXPECT_EQ(r.cell_size, 0.5);
+    HeightmapReadOptions o;
+    o.z_scale = 1.0;
+    EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png", o).at(0, 0), -12.5 + 1.0);
+    image.text = {{kPngKeyZOffset, "lots"}};
+    expect_rejected(encode_png(image), {"not a finite number"});
+}
+
+}  // namespace
+}  // namespace sandtin
