@@ -1,0 +1,152 @@
+#include "haptics/force_loop.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace sandtin::haptics {
+
+std::int64_t monotonic_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+namespace {
+
+std::int64_t checked_period(const ForceLoopConfig& c) {
+    if (!(c.rate_hz > 0.0) || !(c.rate_hz <= kMaxLoopRateHz)) {
+        throw std::invalid_argument("force loop: rate_hz must be in (0, 4000], got " +
+                                    std::to_string(c.rate_hz));
+    }
+    const auto period = static_cast<std::int64_t>(std::llround(1e9 / c.rate_hz));
+    if (c.spin_ns < 0 || c.spin_ns >= period)
+        throw std::invalid_argument("force loop: spin_ns must be in [0, period)");
+    return period;
+}
+
+ForceLoopConfig with_rate(ForceLoopConfig c) {
+    c.renderer.rate_hz = c.rate_hz;
+    return c;
+}
+
+bool request_realtime() {
+    sched_param p{};
+    p.sched_priority = sched_get_priority_min(SCHED_FIFO) + 10;
+    return pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+}
+
+}  // namespace
+
+ForceLoop::ForceLoop(HapticDevice& device, ForceLoopConfig config)
+    : device_(device),
+      config_(with_rate(config)),
+      period_ns_(checked_period(config_)),
+      periods_(period_ns_) {
+    ForceRenderer check(config_.renderer);  // validates the renderer settings now
+    records_.reserve(config_.record_capacity);
+}
+
+ForceLoop::~ForceLoop() {
+    stop();
+}
+
+void ForceLoop::start() {
+    if (thread_.joinable() || opened_) throw std::logic_error("force loop: already started");
+    device_.open();
+    opened_ = true;
+    stop_requested_.store(false);
+    running_.store(true, std::memory_order_release);
+    thread_ = std::thread([this] { run(); });
+}
+
+void ForceLoop::stop() {
+    stop_requested_.store(true, std::memory_order_release);
+    if (thread_.joinable()) thread_.join();
+    running_.store(false, std::memory_order_release);
+    if (opened_) {
+        device_.close();
+        opened_ = false;
+    }
+}
+
+void ForceLoop::publish(HapticSnapshot snapshot) {
+    snapshot.sequence = next_sequence_++;
+    snapshot.published_ns = monotonic_ns();
+    snapshots_.write(snapshot);
+}
+
+bool ForceLoop::poll(TickRecord& latest) {
+    if (!ticks_.update()) return false;
+    latest = ticks_.front();
+    return true;
+}
+
+ForceLoopReport ForceLoop::report() const {
+    ForceLoopReport r = report_;
+    r.periods = periods_.summary();
+    return r;
+}
+
+void ForceLoop::run() {
+    ForceLoopReport report;
+    if (config_.try_realtime) report.realtime = request_realtime();
+    ForceRenderer renderer(config_.renderer);
+    periods_.clear();
+    DeviceState state;
+    Vec3 last_force;
+    std::int64_t previous_start = 0;
+    std::int64_t deadline = monotonic_ns() + period_ns_;
+    for (std::uint64_t tick = 0; !stop_requested_.load(std::memory_order_acquire); ++tick) {
+        // Sleep, then spin to the deadline.
+        const auto sleep_until = deadline - config_.spin_ns;
+        if (monotonic_ns() < sleep_until) {
+            std::this_thread::sleep_until(
+                std::chrono::steady_clock::time_point(std::chrono::nanoseconds(sleep_until)));
+        }
+        std::int64_t now = monotonic_ns();
+        while (now < deadline)
+            now = monotonic_ns();
+        if (tick > 0) periods_.add(now - previous_start);
+        previous_start = now;
+
+        if (device_.read(state) == ReadStatus::Lost) {
+            report.device_lost = true;
+            break;
+        }
+        const bool fresh = snapshots_.update();
+        if (fresh) ++report.snapshots_taken;
+        TickOutput out;
+        if (state.valid) {
+            out = renderer.tick(state.position, now, fresh ? &snapshots_.front() : nullptr);
+        }
+        device_.write_force({out.force, out.contact, out.stale});
+
+        TickRecord& record = ticks_.back();
+        record = {tick, now, state, out.force, out.contact, out.stale, out.snapshot_sequence};
+        if (records_.size() < records_.capacity()) records_.push_back(record);
+        ticks_.publish();
+
+        const double magnitude = length(out.force);
+        report.max_force = std::max(report.max_force, magnitude);
+        const double jump = length(out.force - last_force);
+        report.max_force_jump = std::max(report.max_force_jump, jump);
+        if (jump > 0.5) ++report.force_jumps_over_half_newton;
+        if (out.stale) ++report.stale_ticks;
+        last_force = out.force;
+        report.ticks = tick + 1;
+
+        deadline += period_ns_;
+        // Ticks missed entirely are not made up: when the next deadline has already passed,
+        // the schedule restarts from now.
+        if (deadline <= now) deadline = now + period_ns_;
+    }
+    device_.write_force({});
+    report_ = report;
+    running_.store(false, std::memory_order_release);
+}
+
+}  // namespace sandtin::haptics

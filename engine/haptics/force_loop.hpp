@@ -1,0 +1,113 @@
+#pragma once
+// The haptic thread: ticks at a fixed rate (default 1 kHz, up to 4 kHz) on the monotonic
+// clock, waiting for each deadline by sleeping until shortly before it and spinning the rest
+// (the OS wakes sleepers late by tens to hundreds of microseconds; spinning absorbs that).
+//
+// Each tick: read the device; take the newest snapshot the simulation published (lock-free
+// triple buffer, never a mutex); render the force (force_renderer.hpp); write it; publish the
+// device state and force back to the simulation (a second triple buffer); record the period.
+//
+// It stops cleanly when stop() is called (or on destruction) and by itself when the device is
+// lost; the last force it writes is zero. A late tick is not made up: the schedule restarts
+// from now, so a stall never causes a burst of catch-up ticks.
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "haptics/force_renderer.hpp"
+#include "haptics/haptic_device.hpp"
+#include "haptics/haptic_snapshot.hpp"
+#include "haptics/period_stats.hpp"
+#include "haptics/triple_buffer.hpp"
+
+namespace sandtin::haptics {
+
+inline constexpr double kMaxLoopRateHz = 4000.0;
+
+struct ForceLoopConfig {
+    double rate_hz = 1000.0;  ///< (0, 4000]
+    /// Spin this long before each deadline instead of sleeping (ns). Must be < one period.
+    std::int64_t spin_ns = 300'000;
+    ForceRendererConfig renderer;  ///< its rate_hz is overwritten with rate_hz
+    /// Keep a record of every tick (up to this many; preallocated, so recording never
+    /// allocates in the loop). 0 = no record.
+    std::size_t record_capacity = 0;
+    /// Ask for SCHED_FIFO; refused without privileges, which is reported, not an error.
+    bool try_realtime = true;
+};
+
+/// One tick, as the simulation sees it and as recordings store it.
+struct TickRecord {
+    std::uint64_t tick = 0;
+    std::int64_t time_ns = 0;  ///< monotonic clock at the start of the tick
+    DeviceState device;
+    Vec3 force;  ///< N, as written to the device
+    bool contact = false;
+    bool stale = false;
+    std::uint64_t snapshot_sequence = 0;
+};
+
+struct ForceLoopReport {
+    PeriodSummary periods;
+    std::uint64_t ticks = 0;
+    bool device_lost = false;
+    bool realtime = false;        ///< SCHED_FIFO was granted
+    double max_force = 0.0;       ///< N, largest |F| written
+    double max_force_jump = 0.0;  ///< N, largest |F_t - F_(t-1)| between consecutive ticks
+    std::uint64_t force_jumps_over_half_newton = 0;
+    std::uint64_t stale_ticks = 0;
+    std::uint64_t snapshots_taken = 0;
+};
+
+/// Monotonic clock in nanoseconds (steady_clock).
+std::int64_t monotonic_ns();
+
+class ForceLoop {
+  public:
+    /// Throws std::invalid_argument for a rate outside (0, 4000] Hz or a spin >= one period.
+    ForceLoop(HapticDevice& device, ForceLoopConfig config);
+    ~ForceLoop();
+    ForceLoop(const ForceLoop&) = delete;
+    ForceLoop& operator=(const ForceLoop&) = delete;
+
+    /// Opens the device (its exceptions propagate) and starts the thread.
+    void start();
+    /// Stops the thread (if running), writes a zero force, closes the device. Idempotent.
+    void stop();
+    /// False once the thread has ended by itself (device lost) or after stop().
+    bool running() const { return running_.load(std::memory_order_acquire); }
+
+    // ---- Simulation thread (a single producer/consumer) ----
+    /// Publishes a snapshot: sets its sequence and publication time, wait-free.
+    void publish(HapticSnapshot snapshot);
+    /// The newest tick the loop has published back, if there is a newer one than last time.
+    bool poll(TickRecord& latest);
+
+    // ---- After stop() ----
+    ForceLoopReport report() const;
+    const std::vector<TickRecord>& records() const { return records_; }
+    const ForceLoopConfig& config() const { return config_; }
+
+  private:
+    void run();
+
+    HapticDevice& device_;
+    ForceLoopConfig config_;
+    std::int64_t period_ns_;
+    TripleBuffer<HapticSnapshot> snapshots_;
+    TripleBuffer<TickRecord> ticks_;
+    std::uint64_t next_sequence_ = 1;  // simulation thread
+    std::atomic<bool> stop_requested_{false};
+    std::atomic<bool> running_{false};
+    std::thread thread_;
+    bool opened_ = false;
+    // Owned by the loop thread while it runs; read after join.
+    PeriodStats periods_;
+    std::vector<TickRecord> records_;
+    ForceLoopReport report_;
+};
+
+}  // namespace sandtin::haptics

@@ -1,0 +1,113 @@
+// The loop thread end to end with a simulated device: it stops by itself when the device is
+// lost, renders exactly what the renderer computes offline from the same inputs, and stops
+// cleanly on request. No assertion on timing.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "haptics/force_loop.hpp"
+#include "haptics/simulated_device.hpp"
+
+namespace sandtin::haptics {
+namespace {
+
+HapticSnapshot flat_snapshot(double h) {
+    HapticSnapshot s;
+    s.centre = {0.5, 0.5};
+    s.centre_height = h;
+    s.control_count = 6;
+    for (std::size_t i = 0; i < 6; ++i) {
+        const double a = 1.0471975511965976 * static_cast<double>(i);
+        s.control[i] = {0.5 + 0.03 * std::cos(a), 0.5 + 0.03 * std::sin(a)};
+        s.control_height[i] = h;
+    }
+    return s;
+}
+
+TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
+    StrokeTrajectorySpec spec;
+    spec.start_x = 0.5;
+    spec.end_x = 0.5 + 1e-9;
+    spec.dwell = 0.1;
+    const Trajectory trajectory = make_stroke_trajectory(spec);
+    SimulatedDevice device = SimulatedDevice::replay(trajectory);
+    ForceLoopConfig config;
+    config.rate_hz = 4000.0;  // fast, to keep the test short
+    config.spin_ns = 50'000;
+    config.record_capacity = trajectory.samples.size();
+    config.renderer.stale_after_ns = 3'600'000'000'000;  // never stale in this test
+    config.renderer.ramp_ns = 1'000'000;
+    config.try_realtime = false;
+    ForceLoop loop(device, config);
+    loop.publish(flat_snapshot(0.0));  // before start: the first tick takes it
+    loop.start();
+    while (loop.running())
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    loop.stop();
+
+    const ForceLoopReport report = loop.report();
+    EXPECT_TRUE(report.device_lost);
+    EXPECT_EQ(report.ticks, trajectory.samples.size());
+    ASSERT_EQ(loop.records().size(), trajectory.samples.size());
+    // One period per tick, counting the last one, whose read found the device gone.
+    EXPECT_EQ(report.periods.count, trajectory.samples.size());
+    EXPECT_EQ(report.snapshots_taken, 1u);
+    // The device got one force per sample plus the final zero.
+    ASSERT_EQ(device.forces().size(), trajectory.samples.size() + 1);
+    EXPECT_EQ(device.forces().back(), (Vec3{}));
+
+    // Offline: the same renderer over the same positions and times gives the same forces.
+    ForceRenderer offline(loop.config().renderer);
+    HapticSnapshot s = flat_snapshot(0.0);
+    s.sequence = 1;
+    double max_force = 0.0;
+    for (std::size_t i = 0; i < loop.records().size(); ++i) {
+        const TickRecord& r = loop.records()[i];
+        EXPECT_EQ(r.device.position, trajectory.samples[i].position);
+        const TickOutput o = offline.tick(r.device.position, r.time_ns, i == 0 ? &s : nullptr);
+        EXPECT_EQ(o.force, r.force) << i;
+        EXPECT_EQ(device.forces()[i], r.force) << i;
+        max_force = std::max(max_force, length(r.force));
+    }
+    // 4 mm deep on flat sand: 800 (0.004 + 0.000625) = 3.7 N once blended and ramped in.
+    EXPECT_NEAR(max_force, 3.7, 1e-9);
+}
+
+TEST(ForceLoop, StopsCleanlyOnRequestAndRejectsBadRates) {
+    SimulatedDevice device = SimulatedDevice::spring({}, {0.5, 0.5, 1.0});
+    ForceLoopConfig config;
+    config.try_realtime = false;
+    {
+        ForceLoop loop(device, config);
+        loop.start();
+        EXPECT_THROW(loop.start(), std::logic_error);
+        HapticSnapshot s = flat_snapshot(0.0);
+        TickRecord latest;
+        for (int i = 0; i < 20; ++i) {
+            loop.publish(s);
+            loop.poll(latest);
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        EXPECT_TRUE(loop.running());
+        loop.stop();
+        EXPECT_FALSE(loop.running());
+        loop.stop();  // idempotent
+        EXPECT_FALSE(loop.report().device_lost);
+    }
+    {
+        ForceLoop loop(device, config);
+        loop.start();
+    }  // destructor stops it
+    config.rate_hz = 4001.0;
+    EXPECT_THROW(ForceLoop(device, config), std::invalid_argument);
+    config.rate_hz = 0.0;
+    EXPECT_THROW(ForceLoop(device, config), std::invalid_argument);
+    config.rate_hz = 1000.0;
+    config.spin_ns = 1'000'000;
+    EXPECT_THROW(ForceLoop(device, config), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sandtin::haptics

@@ -1,0 +1,168 @@
+// The force model against values computed by hand from the seeds' formulas
+// (force_model.hpp): F_p = k (h - z + δ), F_r = -(μ k / N) Σ u_i m_i, gel 0.2 N, clamp F_M.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "haptics/force_model.hpp"
+
+namespace sandtin::haptics {
+namespace {
+
+constexpr double kK = 800.0;  // N/m
+constexpr double kMu = 0.55;
+constexpr double kDelta = 0.000625;
+
+// A ring of n control points of radius r around (0.5, 0.5), all on terrain height h.
+HapticSnapshot flat_ring(double h, int n = 12, double r = 0.04) {
+    HapticSnapshot s;
+    s.sequence = 1;
+    s.centre = {0.5, 0.5};
+    s.centre_height = h;
+    s.control_count = static_cast<std::uint32_t>(n);
+    for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / n;
+        s.control[static_cast<std::size_t>(i)] = {0.5 + r * std::cos(a), 0.5 + r * std::sin(a)};
+        s.control_height[static_cast<std::size_t>(i)] = h;
+    }
+    s.stiffness = kK;
+    s.friction = kMu;
+    return s;
+}
+
+ForceModelParams params() {
+    ForceModelParams p;
+    p.contact_offset = kDelta;
+    return p;
+}
+
+TEST(ForceModel, ZeroAboveTheSurface) {
+    const HapticSnapshot s = flat_ring(0.1);
+    for (double above : {kDelta * 1.0001, 0.001, 0.01, 1.0}) {
+        const ForceSample f =
+            evaluate_force(s, {0.5, 0.5, 0.1 + above}, {0.3, -0.2, 0.0}, params());
+        EXPECT_FALSE(f.contact) << above;
+        EXPECT_EQ(f.force, (Vec3{})) << above;
+    }
+    // Off-centre and moving: still nothing.
+    EXPECT_EQ(evaluate_force(s, {0.52, 0.49, 0.2}, {1, 1, 1}, params()).force, (Vec3{}));
+}
+
+TEST(ForceModel, NoSnapshotNoForce) {
+    HapticSnapshot s = flat_ring(0.1);
+    s.sequence = 0;
+    EXPECT_EQ(evaluate_force(s, {0.5, 0.5, 0.0}, {}, params()).force, (Vec3{}));
+}
+
+TEST(ForceModel, PenetrationMatchesHandValues) {
+    const HapticSnapshot s = flat_ring(0.1);
+    // depth 2 mm: k (0.002 + 0.000625) = 800 * 0.002625 = 2.1 N, straight up.
+    const ForceSample f = evaluate_force(s, {0.5, 0.5, 0.098}, {}, params());
+    EXPECT_TRUE(f.contact);
+    EXPECT_NEAR(f.force.z, 2.1, 1e-9);
+    EXPECT_NEAR(f.force.x, 0.0, 1e-12);
+    EXPECT_NEAR(f.force.y, 0.0, 1e-12);
+    EXPECT_NEAR(f.immersion, 0.002, 1e-12);
+    // At exact contact: k δ = 0.5 N (seed 004: 0.05 units x 10 N).
+    EXPECT_NEAR(evaluate_force(s, {0.5, 0.5, 0.1}, {}, params()).force.z, 0.5, 1e-9);
+}
+
+TEST(ForceModel, GrowsWithDepth) {
+    const HapticSnapshot s = flat_ring(0.0);
+    double previous = -1.0;
+    for (int i = 0; i <= 20; ++i) {
+        const double depth = -kDelta + 0.0005 * i + 1e-7;
+        const double fz = evaluate_force(s, {0.5, 0.5, -depth}, {}, params()).force.z;
+        EXPECT_GE(fz, previous) << depth;
+        if (fz > 0.2 + 1e-9 && fz < 10.0 - 1e-9) {
+            EXPECT_NEAR(fz, kK * (depth + kDelta), 1e-9);
+            EXPECT_GT(fz, previous) << depth;
+        }
+        previous = fz;
+    }
+}
+
+TEST(ForceModel, GelMinimumOnContact) {
+    const HapticSnapshot s = flat_ring(0.0);
+    // Just inside the onset band: k (δ - 0.6 mm) = 800 * 0.000025 = 0.02 N -> raised to 0.2 N.
+    const ForceSample f = evaluate_force(s, {0.5, 0.5, 0.0006}, {}, params());
+    EXPECT_TRUE(f.contact);
+    EXPECT_NEAR(length(f.force), 0.2, 1e-12);
+    EXPECT_NEAR(f.force.z, 0.2, 1e-12);
+}
+
+TEST(ForceModel, NeverExceedsTheClamp) {
+    const HapticSnapshot s = flat_ring(0.5);
+    for (double depth : {0.0125, 0.02, 0.1, 1.0, 100.0}) {
+        for (Vec3 v : {Vec3{}, Vec3{50, -50, 0}, Vec3{1e6, 0, 0}}) {
+            const ForceSample f = evaluate_force(s, {0.51, 0.5, 0.5 - depth}, v, params());
+            EXPECT_LE(length(f.force), 10.0 + 1e-12) << depth;
+        }
+    }
+    // 1.2 cm deep on flat sand: k (0.012 + δ) = 10.1 N -> clamped to exactly 10 N.
+    EXPECT_NEAR(evaluate_force(s, {0.5, 0.5, 0.488}, {}, params()).force.z, 10.0, 1e-9);
+    ForceModelParams small = params();
+    small.max_force = 3.3;
+    EXPECT_NEAR(length(evaluate_force(s, {0.5, 0.5, 0.49}, {}, small).force), 3.3, 1e-12);
+}
+
+TEST(ForceModel, DirectionalTermSymmetricAtRestOnFlatSand) {
+    for (int n : {3, 4, 12, 13, 64}) {
+        const HapticSnapshot s = flat_ring(0.2, n);
+        const ForceSample f = evaluate_force(s, {0.5, 0.5, 0.197}, {}, params());
+        EXPECT_NEAR(f.force.x, 0.0, 1e-12) << n;
+        EXPECT_NEAR(f.force.y, 0.0, 1e-12) << n;
+        EXPECT_NEAR(f.force.z, kK * (0.003 + kDelta), 1e-9) << n;
+        // The pen wandering inside the ring between snapshots changes nothing sideways.
+        const ForceSample g = evaluate_force(s, {0.51, 0.495, 0.197}, {}, params());
+        EXPECT_NEAR(g.force.x, 0.0, 1e-12) << n;
+        EXPECT_NEAR(g.force.y, 0.0, 1e-12) << n;
+    }
+}
+
+TEST(ForceModel, DirectionalTermPushesAwayFromMaterial) {
+    // Four control points on the axes; only the +x one is on a 4 mm higher step.
+    HapticSnapshot s = flat_ring(0.0, 4);
+    s.control_height[0] = 0.004;  // the point at +x
+    // Tool bottom 1 mm below the flat part: m = 0.001 + δ on three points, 0.005 + δ on +x.
+    // Σ u_i m_i = (+x)(0.005625) + (-x)(0.001625) + (±y)(0.001625) = (0.004, 0) m;
+    // F_r = -(μ k / 4) (0.004, 0) = -(0.55 * 800 / 4) * 0.004 = -0.44 N along x.
+    const ForceSample f = evaluate_force(s, {0.5, 0.5, -0.001}, {}, params());
+    EXPECT_NEAR(f.force.x, -0.44, 1e-9);
+    EXPECT_NEAR(f.force.y, 0.0, 1e-12);
+    EXPECT_NEAR(f.force.z, kK * (0.001 + kDelta), 1e-9);
+    // Only the wall touches (tool above the flat part): still in contact, pushed away from it.
+    const ForceSample w = evaluate_force(s, {0.5, 0.5, 0.002}, {}, params());
+    EXPECT_TRUE(w.contact);
+    // m = 0.002 + δ on +x: F_x = -(440 / 4) * 0.002625 = -0.28875 N; F_z = 0.
+    EXPECT_NEAR(w.force.x, -0.28875, 1e-9);
+    EXPECT_NEAR(w.force.z, 0.0, 1e-12);
+}
+
+TEST(ForceModel, StiffnessAndFrictionComeFromTheSnapshotMaterial) {
+    HapticSnapshot s = flat_ring(0.0, 4);
+    s.control_height[0] = 0.004;
+    s.stiffness = 1600.0;
+    s.friction = 0.8;
+    const ForceSample f = evaluate_force(s, {0.5, 0.5, -0.001}, {}, params());
+    EXPECT_NEAR(f.force.z, 1600.0 * (0.001 + kDelta), 1e-9);
+    EXPECT_NEAR(f.force.x, -(0.8 * 1600.0 / 4.0) * 0.004, 1e-9);
+}
+
+TEST(ForceModel, GelDragOpposesHorizontalMotion) {
+    const HapticSnapshot s = flat_ring(0.0);
+    // 0.01 N s/m at 0.5 m/s = 0.005 N against the motion.
+    const ForceSample f = evaluate_force(s, {0.5, 0.5, -0.002}, {0.5, 0.0, 0.0}, params());
+    EXPECT_NEAR(f.force.x, -0.005, 1e-12);
+}
+
+TEST(ForceModel, NonFiniteInputGivesZero) {
+    const HapticSnapshot s = flat_ring(0.0);
+    EXPECT_EQ(evaluate_force(s, {NAN, 0.5, -0.1}, {}, params()).force, (Vec3{}));
+    EXPECT_EQ(evaluate_force(s, {0.5, 0.5, -0.1}, {INFINITY, 0, 0}, params()).force, (Vec3{}));
+}
+
+}  // namespace
+}  // namespace sandtin::haptics
