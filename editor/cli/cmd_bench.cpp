@@ -4,6 +4,7 @@
 
 #include "arguments.hpp"
 #include "bench_groove.hpp"
+#include "bench_history.hpp"
 #include "bench_import.hpp"
 #include "bench_tin.hpp"
 #include "commands.hpp"
@@ -12,7 +13,8 @@ namespace sandtin::cli {
 
 int run_bench(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
-    args.require_positionals(1, "sandtin bench (tin | groove | import) [--quick] [--json]");
+    args.require_positionals(
+        1, "sandtin bench (tin | groove | import | history) [--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
     const std::string which = args.positionals()[0];
@@ -23,8 +25,11 @@ int run_bench(const std::vector<std::string>& raw) {
         result = bench::bench_groove(config);
     } else if (which == "import") {
         result = bench::bench_import(config);
+    } else if (which == "history") {
+        result = bench::bench_history(config);
     } else {
-        throw UsageError("unknown benchmark '" + which + "' (available: tin, groove, import)");
+        throw UsageError("unknown benchmark '" + which +
+                         "' (available: tin, groove, import, history)");
     }
     std::cout << result.dump(2) << "\n";
     return 0;

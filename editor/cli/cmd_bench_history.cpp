@@ -1,0 +1,72 @@
+#include <cmath>
+#include <vector>
+
+#include "bench_history.hpp"
+#include "history/history.hpp"
+#include "tools/stroke.hpp"
+#include "tools/tool_json.hpp"
+
+namespace sandtin::bench {
+
+nlohmann::json bench_history(const BenchConfig& config) {
+    const std::size_t points = config.quick ? 100000 : 1000000;
+    const int repeats = config.quick ? 3 : 7;
+    const Rect domain{{0.0, 0.0}, {1.0, 1.0}};
+    Tin tin = Tin::random_points(domain, points, 11, [](Vec2 p) {
+        return 0.05 + 0.02 * std::sin(7.0 * p.x) * std::cos(5.0 * p.y);
+    });
+    tin.take_changes();
+    Stopwatch attach_clock;
+    History history(tin);
+    const double attach_ms = attach_clock.ms();
+
+    SculptContext context(domain);
+    const Tool tool = Tool::build(load_tool_asset("circle"));
+    StrokeSettings settings;
+    settings.depth = 0.01;
+    // A 10 cm stroke: 11 stamps of the 4 cm circle tool.
+    std::vector<Vec2> path;
+    for (int i = 0; i <= 10; ++i)
+        path.push_back({0.45 + 0.01 * i, 0.5 + 0.02 * std::sin(0.3 * i)});
+
+    std::vector<double> record_ms, undo_ms, redo_ms;
+    std::size_t level_bytes = 0;
+    std::size_t changed = 0;
+    bool exact = true;
+    for (int r = 0; r < repeats; ++r) {
+        // A fresh stroke each round (a new generation), as an artist would draw it.
+        if (r > 0) history.undo();
+        apply_stroke(tin, tool, path, settings, context);
+        Stopwatch rec;
+        history.record("stroke");
+        record_ms.push_back(rec.ms());
+        level_bytes = history.bytes();
+        Stopwatch u;
+        const HistoryStep undo = history.undo();
+        undo_ms.push_back(u.ms());
+        changed = undo.report.vertices_removed + undo.report.vertices_inserted +
+                  undo.report.vertices_updated;
+        Stopwatch re;
+        const HistoryStep redo = history.redo();
+        redo_ms.push_back(re.ms());
+        exact = exact && undo.report.exact() && redo.report.exact();
+    }
+    nlohmann::json out;
+    out["benchmark"] = "history";
+    out["vertices"] = tin.vertex_count();
+    out["stroke_stamps"] = path.size();
+    out["attach_ms"] = attach_ms;
+    out["record_ms_median"] = median(record_ms);
+    out["undo_ms_median"] = median(undo_ms);
+    out["redo_ms_median"] = median(redo_ms);
+    out["undo_ms_max"] = *std::max_element(undo_ms.begin(), undo_ms.end());
+    out["level_bytes"] = level_bytes;
+    out["vertices_restored_per_undo"] = changed;
+    out["full_vertex_copy_bytes"] = tin.vertex_count() * sizeof(VertexRecord);
+    out["exact"] = exact;
+    out["target_undo_ms"] = 50.0;
+    out["repeats"] = repeats;
+    return out;
+}
+
+}  // namespace sandtin::bench
