@@ -6,6 +6,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "haptics/recording_replay.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
 #include "terrain_report.hpp"
@@ -14,7 +15,8 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage = "sandtin run script.json [-i in.sandtin] -o out.sandtin [--json]";
+constexpr const char* kUsage = 
+    "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin [--json]";
 }
 
 int run_run(const std::vector<std::string>& raw) {
@@ -25,7 +27,11 @@ int run_run(const std::vector<std::string>& raw) {
     const std::vector<std::uint8_t> bytes = read_file(script_path, 1u << 28);
     const std::string text(bytes.begin(), bytes.end());
     // Parse everything before touching any terrain: a bad script changes nothing.
-    const Script script = parse_script(text, script_path.string(), script_path.parent_path());
+    // A recorded haptic session replays like a script (engine/haptics/recording_replay.hpp).
+    const Script script =
+        haptics::is_haptic_recording(text)
+            ? haptics::recording_script(text, script_path.string(), script_path.parent_path())
+            : parse_script(text, script_path.string(), script_path.parent_path());
 
     Session session;
     TinOptions options;

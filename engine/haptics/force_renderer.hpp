@@ -30,9 +30,12 @@ struct ForceRendererConfig {
     double rate_hz = 1000.0;  ///< tick rate; the gel drag's velocity uses the nominal period
     std::int64_t stale_after_ns = 100'000'000;  ///< 100 ms: six missed 60 Hz frames
     std::int64_t ramp_ns = 200'000'000;         ///< 200 ms from full force to zero
-    /// Bounds on it_p (ticks). The lower bound 1 is the seed's; the upper bound keeps a long
-    /// stall from making the next update blend in for seconds.
-    std::uint32_t min_blend_ticks = 1;
+    /// Bounds on it_p (ticks). The seed blends over the interval between the last two
+    /// updates, about 17 ticks at its 60 Hz geometry rate; the lower bound keeps at least that
+    /// much smoothing when our simulation publishes faster (a stamp that digs away the sand
+    /// under the tool drops the force by several newtons in one snapshot). The upper bound
+    /// keeps a long stall from making the next update blend in for seconds.
+    std::uint32_t min_blend_ticks = 16;
     std::uint32_t max_blend_ticks = 250;
     /// it_p for the first snapshot (no previous interval): one 60 Hz frame at 1 kHz.
     std::uint32_t first_blend_ticks = 16;

@@ -1,0 +1,47 @@
+#include "haptics/snapshot_builder.hpp"
+
+#include <algorithm>
+
+namespace sandtin::haptics {
+
+namespace {
+Vec2 clamp_to(const Rect& d, Vec2 p) {
+    return {std::clamp(p.x, d.min.x, d.max.x), std::clamp(p.y, d.min.y, d.max.y)};
+}
+}  // namespace
+
+HapticSnapshot build_snapshot(const Tin& tin, const Tool& tool, const ToolPlacement& at,
+                              const MaterialTable& materials, LocateHint* hint) {
+    const Rect domain = tin.domain();
+    HapticSnapshot s;
+    s.centre = clamp_to(domain, at.centre);
+    const Location loc = tin.locate(s.centre, hint);
+    double centre_height = 0.0;
+    std::uint16_t material = 0;
+    if (loc.inside()) {
+        std::size_t best = 0;
+        for (std::size_t i = 0; i < 3; ++i) {
+            centre_height += loc.barycentric[i] * tin.height(loc.corners[i]);
+            if (loc.barycentric[i] > loc.barycentric[best]) best = i;
+        }
+        material = tin.vertices().material[loc.corners[best].index()];
+    }
+    s.centre_height = centre_height;
+    const Material fallback;
+    const Material& m = materials.size() > 0 ? materials.at(material) : fallback;
+    s.stiffness = m.haptic_stiffness;
+    s.friction = m.haptic_friction;
+
+    const std::vector<Vec2>& ring = tool.shape().outer;
+    const std::size_t n = std::min(ring.size(), kMaxControlPoints);
+    s.control_count = static_cast<std::uint32_t>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 local = ring[i * ring.size() / n];
+        const Vec2 p = clamp_to(domain, tool.to_world(at, local));
+        s.control[i] = p;
+        s.control_height[i] = tin.height_at(p, hint).value_or(centre_height);
+    }
+    return s;
+}
+
+}  // namespace sandtin::haptics
