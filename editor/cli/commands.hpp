@@ -12,6 +12,7 @@ int run_info(const std::vector<std::string>& args);
 int run_run(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_bench_haptics(const std::vector<std::string>& args);
+int run_haptics(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 int run_import(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);

@@ -21,6 +21,8 @@ commands:
   import  heightmap to TIN:   sandtin import FILE --max-error E [--max-points N] -o scene.sandtin
   export  mesh or map:        sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr)
   bench   benchmarks (JSON):  sandtin bench (tin | groove | import) [--quick]
+  haptics live editing with a haptic device driven over UDP by a driver process:
+                              sandtin haptics serve -o out.sandtin [--port P] [--record R]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
 Errors go to stderr and the exit code is non-zero.
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
         if (command == "demo") return sandtin::cli::run_demo(args);
         if (command == "import") return sandtin::cli::run_import(args);
         if (command == "export") return sandtin::cli::run_export(args);
+        if (command == "haptics") return sandtin::cli::run_haptics(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::cout << kHelp;
             return 0;

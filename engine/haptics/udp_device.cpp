@@ -106,8 +106,9 @@ void UdpDevice::write_force(const ForceCommand& command) {
     f.ack = latest_.sequence;
     f.flags = (command.contact ? kForceFlagContact : 0u) | (command.stale ? kForceFlagStale : 0u);
     f.force = command.force;
-    const std::vector<std::uint8_t> bytes = encode_packet({++sequence_out_, f});
-    if (socket_->send_to(bytes, *peer_)) {
+    std::array<std::uint8_t, kMaxPacketSize> bytes{};
+    const std::size_t n = encode_packet({++sequence_out_, f}, bytes);
+    if (socket_->send_to(std::span<const std::uint8_t>(bytes.data(), n), *peer_)) {
         forces_sent_.fetch_add(1, std::memory_order_relaxed);
     } else {
         send_failures_.fetch_add(1, std::memory_order_relaxed);

@@ -1,5 +1,6 @@
 #include "haptics/udp_protocol.hpp"
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -8,19 +9,25 @@ namespace sandtin::haptics {
 
 namespace {
 
-void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i)
-        out.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-}
-void put_u16(std::vector<std::uint8_t>& out, std::uint16_t v) {
-    out.push_back(static_cast<std::uint8_t>(v & 0xFFu));
-    out.push_back(static_cast<std::uint8_t>(v >> 8));
-}
-void put_f64(std::vector<std::uint8_t>& out, double v) {
-    const auto bits = std::bit_cast<std::uint64_t>(v);
-    for (int i = 0; i < 8; ++i)
-        out.push_back(static_cast<std::uint8_t>(bits >> (8 * i)));
-}
+// Appends little-endian bytes to a fixed buffer (sizes are checked by the caller's layout).
+struct Writer {
+    std::span<std::uint8_t, kMaxPacketSize> out;
+    std::size_t at = 0;
+    void byte(std::uint8_t v) { out[at++] = v; }
+    void u16(std::uint16_t v) {
+        byte(static_cast<std::uint8_t>(v & 0xFFu));
+        byte(static_cast<std::uint8_t>(v >> 8));
+    }
+    void u32(std::uint32_t v) {
+        for (int i = 0; i < 4; ++i)
+            byte(static_cast<std::uint8_t>(v >> (8 * i)));
+    }
+    void f64(double v) {
+        const auto bits = std::bit_cast<std::uint64_t>(v);
+        for (int i = 0; i < 8; ++i)
+            byte(static_cast<std::uint8_t>(bits >> (8 * i)));
+    }
+};
 std::uint32_t get_u32(std::span<const std::uint8_t> b, std::size_t at) {
     std::uint32_t v = 0;
     for (int i = 3; i >= 0; --i)
@@ -66,30 +73,36 @@ std::string_view to_string(DecodeError error) {
     return "unknown error";
 }
 
-std::vector<std::uint8_t> encode_packet(const Packet& packet) {
-    std::vector<std::uint8_t> out;
-    out.reserve(kMaxPacketSize);
-    out.insert(out.end(), std::begin(kProtocolMagic), std::end(kProtocolMagic));
-    out.push_back(kProtocolVersion);
-    out.push_back(static_cast<std::uint8_t>(packet.type()));
+std::size_t encode_packet(const Packet& packet, std::span<std::uint8_t, kMaxPacketSize> out) {
+    Writer w{out};
+    for (std::uint8_t m : kProtocolMagic)
+        w.byte(m);
+    w.byte(kProtocolVersion);
+    w.byte(static_cast<std::uint8_t>(packet.type()));
     std::uint16_t length = 0;
     if (std::holds_alternative<PosePacket>(packet.body)) length = kPosePayloadSize;
     if (std::holds_alternative<ForcePacket>(packet.body)) length = kForcePayloadSize;
-    put_u16(out, length);
-    put_u32(out, packet.sequence);
+    w.u16(length);
+    w.u32(packet.sequence);
     if (const auto* pose = std::get_if<PosePacket>(&packet.body)) {
-        put_f64(out, pose->position.x);
-        put_f64(out, pose->position.y);
-        put_f64(out, pose->position.z);
-        put_u32(out, pose->buttons);
+        w.f64(pose->position.x);
+        w.f64(pose->position.y);
+        w.f64(pose->position.z);
+        w.u32(pose->buttons);
     } else if (const auto* force = std::get_if<ForcePacket>(&packet.body)) {
-        put_u32(out, force->ack);
-        put_u32(out, force->flags);
-        put_f64(out, force->force.x);
-        put_f64(out, force->force.y);
-        put_f64(out, force->force.z);
+        w.u32(force->ack);
+        w.u32(force->flags);
+        w.f64(force->force.x);
+        w.f64(force->force.y);
+        w.f64(force->force.z);
     }
-    return out;
+    return w.at;
+}
+
+std::vector<std::uint8_t> encode_packet(const Packet& packet) {
+    std::array<std::uint8_t, kMaxPacketSize> buffer{};
+    const std::size_t n = encode_packet(packet, buffer);
+    return {buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(n)};
 }
 
 std::optional<Packet> decode_packet(std::span<const std::uint8_t> b, DecodeError* error) {

@@ -88,6 +88,9 @@ std::string_view to_string(DecodeError error);
 
 /// Encodes a packet (header + payload), little-endian whatever the host order.
 std::vector<std::uint8_t> encode_packet(const Packet& packet);
+/// The same into a caller's buffer, without allocating (the force loop's path); returns the
+/// packet's size.
+std::size_t encode_packet(const Packet& packet, std::span<std::uint8_t, kMaxPacketSize> out);
 /// Decodes one datagram. On failure returns nullopt and, when `error` is given, sets it.
 std::optional<Packet> decode_packet(std::span<const std::uint8_t> bytes,
                                     DecodeError* error = nullptr);

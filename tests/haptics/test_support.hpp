@@ -2,8 +2,8 @@
 // Helpers for the TIN-side haptics tests: the test tool and terrain, terrain equality, and
 // running a child process (sandtin, sandtin-haptic-replay).
 
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -58,10 +58,9 @@ inline void expect_same_terrain(const Tin& a, const Tin& b) {
     EXPECT_EQ(a.volume(), b.volume());
 }
 
-/// Runs argv[0] with the arguments, stdout and stderr to files; returns the exit code (or
-/// -1 when it did not exit normally).
-inline int run_process(const std::vector<std::string>& args, const std::filesystem::path& out,
-                       const std::filesystem::path& err) {
+/// Starts argv[0] with the arguments, stdout and stderr to files; returns its pid (or -1).
+inline pid_t start_process(const std::vector<std::string>& args, const std::filesystem::path& out,
+                           const std::filesystem::path& err) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -73,10 +72,21 @@ inline int run_process(const std::vector<std::string>& args, const std::filesyst
     pid_t pid = 0;
     const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return -1;
+    return rc == 0 ? pid : -1;
+}
+
+/// Waits for a started process; its exit code, or -1 when it did not exit normally.
+inline int wait_process(pid_t pid) {
+    if (pid <= 0) return -1;
     int status = 0;
     if (waitpid(pid, &status, 0) != pid) return -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// Runs a process to completion (see start_process).
+inline int run_process(const std::vector<std::string>& args, const std::filesystem::path& out,
+                       const std::filesystem::path& err) {
+    return wait_process(start_process(args, out, err));
 }
 
 /// A fresh directory under the build tree for one test.
