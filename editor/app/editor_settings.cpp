@@ -1,0 +1,82 @@
+#include "editor_settings.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "util/atomic_file.hpp"
+
+namespace sandtin::editor {
+
+namespace {
+
+// One table drives both directions so a new field cannot be saved but not loaded.
+template <class F>
+void fields(EditorSettings& s, F&& f) {
+    f("tool", s.tool);
+    f("tool_radius", s.tool_radius);
+    f("tool_depth", s.tool_depth);
+    f("stroke_spacing", s.stroke_spacing);
+    f("extrude", s.extrude);
+    f("follow_path", s.follow_path);
+    f("tool_angle", s.tool_angle);
+    f("brush_strength", s.brush_strength);
+    f("pour_volume", s.pour_volume);
+    f("material", s.material);
+    f("erosion_running", s.erosion_running);
+    f("erosion_steps", s.erosion_steps);
+    f("simplify_tolerance", s.simplify_tolerance);
+    f("relocation_radius", s.relocation_radius);
+    f("overlay_wireframe", s.overlay_wireframe);
+    f("overlay_active", s.overlay_active);
+    f("overlay_thickness", s.overlay_thickness);
+    f("overlay_slope", s.overlay_slope);
+    f("contrast", s.contrast);
+    f("vsync", s.vsync);
+}
+
+}  // namespace
+
+std::filesystem::path default_settings_path() {
+    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x != nullptr && *x != '\0')
+        return std::filesystem::path(x) / "sandtin" / "editor.json";
+    if (const char* h = std::getenv("HOME"); h != nullptr && *h != '\0')
+        return std::filesystem::path(h) / ".config" / "sandtin" / "editor.json";
+    return "sandtin-editor.json";
+}
+
+EditorSettings load_settings(const std::filesystem::path& path, std::string* problem) {
+    EditorSettings s;
+    std::ifstream in(path);
+    if (!in) return s;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        if (!j.is_object()) throw std::runtime_error("not a JSON object");
+        EditorSettings loaded;
+        fields(loaded, [&](const char* key, auto& value) {
+            if (j.contains(key)) value = j.at(key).get<std::decay_t<decltype(value)>>();
+        });
+        s = loaded;
+    } catch (const std::exception& e) {
+        if (problem != nullptr)
+            *problem = "settings file " + path.string() + " ignored: " + e.what();
+    }
+    return s;
+}
+
+void save_settings(const std::filesystem::path& path, const EditorSettings& settings) {
+    nlohmann::json j = nlohmann::json::object();
+    EditorSettings copy = settings;
+    fields(copy, [&](const char* key, auto& value) { j[key] = value; });
+    std::error_code ec;
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+    const std::string text = j.dump(2) + "\n";
+    write_file_atomically(
+        path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()),
+                                            text.size()));
+}
+
+}  // namespace sandtin::editor

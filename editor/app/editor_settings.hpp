@@ -1,0 +1,41 @@
+#pragma once
+// Values the artist sets in the panels, persisted as JSON between sessions
+// ($XDG_CONFIG_HOME/sandtin/editor.json, else ~/.config/sandtin/editor.json, or --settings).
+
+#include <filesystem>
+#include <string>
+
+namespace sandtin::editor {
+
+struct EditorSettings {
+    int tool = 0;                  ///< index into the editor's tool list
+    double tool_radius = 0.04;     ///< metres
+    double tool_depth = 0.01;      ///< metres below the terrain ahead of the tool
+    double stroke_spacing = 0.01;  ///< metres between stamps
+    bool extrude = true;           ///< push displaced sand into a rim
+    bool follow_path = true;       ///< tool heading follows the stroke
+    double tool_angle = 0.0;       ///< degrees, when not following the path
+    double brush_strength = 0.004;
+    double pour_volume = 2e-5;  ///< m³ per click / per 10 ms of drag
+    int material = 0;           ///< material painted and poured
+    bool erosion_running = true;
+    int erosion_steps = 20;              ///< relaxation iterations per frame
+    double simplify_tolerance = 0.0005;  ///< metres
+    double relocation_radius = 0.01;     ///< r_S, metres
+    bool overlay_wireframe = false;
+    bool overlay_active = false;
+    bool overlay_thickness = false;
+    bool overlay_slope = false;
+    double contrast = 0.5;  ///< strength of the height contrast curve, [0, 1]
+    bool vsync = true;
+
+    friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
+};
+
+std::filesystem::path default_settings_path();
+/// Missing file: defaults. Unreadable or invalid JSON: defaults, with `problem` set to why.
+EditorSettings load_settings(const std::filesystem::path& path, std::string* problem = nullptr);
+/// Written atomically; throws std::runtime_error naming the path on failure.
+void save_settings(const std::filesystem::path& path, const EditorSettings& settings);
+
+}  // namespace sandtin::editor

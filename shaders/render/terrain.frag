@@ -1,0 +1,102 @@
+#version 450
+// Terrain shading: the interpolated smooth normal perturbed by a procedural sand-grain detail
+// normal whose texture coordinates slide with the material (texture-sliding offsets), the
+// material albedo, a contrast curve (histogram stretch of the height range, seed 004 §5.2.4),
+// optional overlays and the tool cursor ring.
+
+layout(push_constant) uniform Push {
+    mat4 view_projection;
+    vec4 light_dir;
+    vec4 cursor;
+    vec4 overlays;
+    vec4 contrast;
+} pc;
+
+layout(location = 0) in vec3 v_world;
+layout(location = 1) in vec3 v_normal;
+layout(location = 2) in vec3 v_albedo;
+layout(location = 3) in vec3 v_bary;
+layout(location = 4) flat in float v_edge_mask;
+layout(location = 5) in vec3 v_overlay;
+layout(location = 6) in vec2 v_slide;
+
+layout(location = 0) out vec4 out_colour;
+
+// Integer hash (no transcendental functions: cheap on software rasterisers).
+float hash(vec2 p) {
+    uvec2 q = uvec2(ivec2(floor(p)) + 32768);
+    uint h = q.x * 1597334677u ^ q.y * 3812015801u;
+    h = (h ^ (h >> 16)) * 2246822519u;
+    return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+float value_noise(vec2 p) {
+    vec2 i = floor(p);
+    vec2 f = fract(p);
+    vec2 u = f * f * (3.0 - 2.0 * f);
+    return mix(mix(hash(i), hash(i + vec2(1, 0)), u.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), u.x), u.y);
+}
+
+// Bump mapping from screen-space derivatives (Mikkelsen 2010): perturbs the normal by the
+// gradient of a height field h over the surface, with one evaluation of h per pixel.
+vec3 bump(vec3 n, vec3 position, float h) {
+    vec3 dpdx = dFdx(position);
+    vec3 dpdy = dFdy(position);
+    vec3 r1 = cross(dpdy, n);
+    vec3 r2 = cross(n, dpdx);
+    float det = dot(dpdx, r1);
+    vec3 grad = sign(det) * (dFdx(h) * r1 + dFdy(h) * r2);
+    return normalize(abs(det) * n - grad);
+}
+
+void main() {
+    vec3 n = normalize(v_normal);
+    // Detail normal: sand grains about 2.5 mm across, offset by the sliding texture
+    // coordinates so the grain pattern moves with transported material.
+    vec2 uv = v_world.xy * 400.0 + v_slide * 64.0;
+    float grains = value_noise(uv) + 0.5 * value_noise(uv * 2.7 + 17.0);
+    n = bump(n, v_world, grains * 0.0006);
+
+    vec3 l = normalize(pc.light_dir.xyz);
+    float diffuse = max(dot(n, l), 0.0);
+    float grain = 0.88 + 0.16 * grains;
+    // Sun plus a blue-ish sky term that keeps shadowed slopes readable.
+    float sky = 0.5 + 0.5 * n.z;
+    vec3 colour = v_albedo * grain * (vec3(1.0, 0.97, 0.9) * diffuse + vec3(0.16, 0.18, 0.22) * sky);
+
+    // Contrast curve: stretch the visible height range and blend it in as shading.
+    float span = max(pc.contrast.y - pc.contrast.x, 1e-6);
+    float t = clamp((v_world.z - pc.contrast.x) / span, 0.0, 1.0);
+    float curve = t * t * (3.0 - 2.0 * t);
+    colour *= mix(1.0, 0.6 + 0.6 * curve, pc.light_dir.w);
+
+    if (pc.overlays.y > 0.5 && v_overlay.z > 0.5) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
+    if (pc.overlays.z > 0.5) {
+        float s = clamp(v_overlay.y / 0.05, 0.0, 1.0);  // 0 .. 5 cm of sand
+        colour = mix(colour, mix(vec3(0.1, 0.2, 0.8), vec3(0.9, 0.9, 0.2), s), 0.5);
+    }
+    if (pc.overlays.w > 0.5) {
+        float r = v_overlay.x;  // slope / tan(angle of repose)
+        vec3 c = r < 0.8 ? vec3(0.2, 0.7, 0.3) : (r <= 1.02 ? vec3(0.95, 0.8, 0.1) : vec3(0.9, 0.1, 0.1));
+        colour = mix(colour, c, 0.55);
+    }
+    if (pc.overlays.x > 0.5) {
+        // Edge i is opposite corner i; the mask flags constrained edges.
+        vec3 w = fwidth(v_bary);
+        vec3 edge = 1.0 - smoothstep(vec3(0.0), w * 1.2, v_bary);
+        int mask = int(v_edge_mask + 0.5);
+        float plain = max(max(edge.x, edge.y), edge.z);
+        float constrained = max(max((mask & 1) != 0 ? edge.x : 0.0, (mask & 2) != 0 ? edge.y : 0.0),
+                                (mask & 4) != 0 ? edge.z : 0.0);
+        colour = mix(colour, vec3(0.05), plain * 0.6);
+        colour = mix(colour, vec3(1.0, 0.1, 0.6), constrained);
+    }
+    if (pc.cursor.w > 0.5) {
+        float d = length(v_world.xy - pc.cursor.xy);
+        float w = max(fwidth(d), 1e-5) * 1.5;
+        float ring = 1.0 - smoothstep(0.0, w, abs(d - pc.cursor.z));
+        float dot_ = 1.0 - smoothstep(0.0, w, d - pc.cursor.z * 0.06);
+        colour = mix(colour, vec3(0.1, 0.9, 1.0), max(ring, dot_));
+    }
+    out_colour = vec4(colour, 1.0);
+}
