@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -25,6 +26,7 @@ std::int64_t checked_period(const ForceLoopConfig& c) {
     const auto period = static_cast<std::int64_t>(std::llround(1e9 / c.rate_hz));
     if (c.spin_ns < 0 || c.spin_ns >= period)
         throw std::invalid_argument("force loop: spin_ns must be in [0, period)");
+    if (c.stop_ramp_ns < 0) throw std::invalid_argument("force loop: stop_ramp_ns must be >= 0");
     return period;
 }
 
@@ -100,7 +102,14 @@ void ForceLoop::run() {
     Vec3 last_force;
     std::int64_t previous_start = 0;
     std::int64_t deadline = monotonic_ns() + period_ns_;
-    for (std::uint64_t tick = 0; !stop_requested_.load(std::memory_order_acquire); ++tick) {
+    double fade = 1.0;  // the stop ramp
+    const double fade_step =
+        config_.stop_ramp_ns > 0
+            ? static_cast<double>(period_ns_) / static_cast<double>(config_.stop_ramp_ns)
+            : 1.0;
+    for (std::uint64_t tick = 0;; ++tick) {
+        const bool stopping = stop_requested_.load(std::memory_order_acquire);
+        if (stopping && (fade <= 0.0 || length(last_force) == 0.0)) break;
         // Sleep, then spin to the deadline.
         const auto sleep_until = deadline - config_.spin_ns;
         if (monotonic_ns() < sleep_until) {
@@ -122,6 +131,10 @@ void ForceLoop::run() {
         TickOutput out;
         if (state.valid) {
             out = renderer.tick(state.position, now, fresh ? &snapshots_.front() : nullptr);
+        }
+        if (stopping) {
+            fade = std::max(0.0, fade - fade_step);
+            out.force = out.force * fade;
         }
         device_.write_force({out.force, out.contact, out.stale});
 

@@ -7,9 +7,10 @@
 // triple buffer, never a mutex); render the force (force_renderer.hpp); write it; publish the
 // device state and force back to the simulation (a second triple buffer); record the period.
 //
-// It stops cleanly when stop() is called (or on destruction) and by itself when the device is
-// lost; the last force it writes is zero. A late tick is not made up: the schedule restarts
-// from now, so a stall never causes a burst of catch-up ticks.
+// It stops cleanly when stop() is called (or on destruction): the force fades linearly to zero
+// over `stop_ramp_ns` first, so quitting never jerks the user's hand. It stops by itself when
+// the device is lost. The last force it writes is zero. A late tick is not made up: the schedule
+// restarts from now, so a stall never causes a burst of catch-up ticks.
 
 #include <atomic>
 #include <cstdint>
@@ -35,6 +36,9 @@ struct ForceLoopConfig {
     /// Keep a record of every tick (up to this many; preallocated, so recording never
     /// allocates in the loop). 0 = no record.
     std::size_t record_capacity = 0;
+    /// On stop(), fade the force to zero over this long before the thread ends (ns; 0 = at
+    /// once). 50 ms takes 10 N down in steps of 0.2 N at 1 kHz.
+    std::int64_t stop_ramp_ns = 50'000'000;
     /// Ask for SCHED_FIFO; refused without privileges, which is reported, not an error.
     bool try_realtime = true;
 };

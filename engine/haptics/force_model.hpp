@@ -7,10 +7,15 @@
 //  1. Penetration (seed 004 §5.3.2-5.3.3, "early force"): vertical,
 //        F_p = k (h_centre - z + δ)         while h_centre - z > -δ, else 0,
 //     so the resistance grows with immersion depth and starts δ before contact.
-//  2. Directional resistance (seed 004 §5.3.4-5.3.5, seed 000 Eqs. 7.10-7.11): for each
-//     control point c_i of the ring, the material in the direction u_i from the tool centre to
-//     c_i is m_i = max(0, h_i - z + δ) and pushes back along -u_i:
+//  2. Directional resistance (seed 004 §5.3.4-5.3.5, seed 000 Eqs. 7.10-7.11): consecutive
+//     control points are joined by "fictitious edges"; for each control point c_i, a 2D ray is
+//     cast from the tool centre in the direction u_i towards c_i, the first fictitious edge it
+//     crosses gives the terrain height H_i there (linear interpolation between the edge's two
+//     end heights), and the material in that direction, m_i = max(0, H_i - z + δ), pushes back
+//     along -u_i:
 //        F_r = -(μ k / N) Σ_i u_i m_i      (mean over all N control points; seed 000 Eq. 7.8).
+//     For a convex ring the ray's first crossing is c_i itself (H_i = h_i); for a concave one
+//     a nearer edge can hide c_i.
 //     Averaging over the whole ring instead of querying the motion direction is the seeds'
 //     anti-jitter fix: at rest the terms balance, so the pen does not vibrate.
 //     u_i is measured from the snapshot's centre (where the ring was cast), not from the
@@ -26,6 +31,9 @@
 //
 // Interpolation between geometry updates (seed 000 Eq. 7.15) and the stale-snapshot ramp are
 // in force_renderer.hpp; this file is the memoryless model.
+
+#include <array>
+#include <optional>
 
 #include "geom/vec2.hpp"
 #include "geom/vec3.hpp"
@@ -54,8 +62,26 @@ struct ForceSample {
     double immersion = 0.0;  ///< h_centre - z (m): positive when the tool is below the surface
 };
 
+/// What the force loop derives from a snapshot once, when it arrives: the unit direction from
+/// the centre to each control point and the ray-cast height H_i in that direction. Evaluating
+/// the model is then O(N) per tick.
+struct PreparedSnapshot {
+    HapticSnapshot snapshot;
+    std::array<Vec2, kMaxControlPoints> direction{};  ///< unit u_i; zero for a point at the centre
+    std::array<double, kMaxControlPoints> height_along{};  ///< H_i (m)
+};
+PreparedSnapshot prepare_snapshot(const HapticSnapshot& snapshot);
+
+/// The seed's "material in a direction" query (seed 004 §5.3.4): the height where a ray from
+/// the snapshot centre along `direction` first crosses the control-point ring, interpolated
+/// along the crossed edge; nullopt when it crosses none (fewer than two points, zero direction).
+std::optional<double> ring_height_along(const HapticSnapshot& snapshot, Vec2 direction);
+
 /// The model of the header comment for a device point at `position` (m) moving at `velocity`
 /// (m/s). A snapshot with sequence 0 (none yet) gives zero force. Non-finite inputs give zero.
+ForceSample evaluate_force(const PreparedSnapshot& prepared, const Vec3& position,
+                           const Vec3& velocity, const ForceModelParams& params);
+/// The same, preparing the snapshot on the fly (tests and one-off queries).
 ForceSample evaluate_force(const HapticSnapshot& snapshot, const Vec3& position,
                            const Vec3& velocity, const ForceModelParams& params);
 

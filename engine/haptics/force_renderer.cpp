@@ -36,7 +36,7 @@ TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
     };
 
     if (fresh != nullptr && fresh->sequence != 0 &&
-        (!has_snapshot_ || fresh->sequence != current_.sequence)) {
+        (!has_snapshot_ || fresh->sequence != current_.snapshot.sequence)) {
         // What the old regime would output now (zero before the first snapshot).
         Vec3 old_out;
         if (has_snapshot_) {
@@ -49,7 +49,7 @@ TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
             has_snapshot_ ? tick_ - last_arrival_tick_ : config_.first_blend_ticks;
         blend_ticks_ = static_cast<std::uint32_t>(
             std::clamp<std::uint64_t>(interval, config_.min_blend_ticks, config_.max_blend_ticks));
-        current_ = *fresh;
+        current_ = prepare_snapshot(*fresh);
         has_snapshot_ = true;
         last_arrival_tick_ = tick_;
         const ForceSample now_model = evaluate_force(current_, position, velocity, config_.model);
@@ -57,7 +57,7 @@ TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
     }
 
     TickOutput out;
-    out.snapshot_sequence = has_snapshot_ ? current_.sequence : 0;
+    out.snapshot_sequence = has_snapshot_ ? current_.snapshot.sequence : 0;
     Vec3 force;
     if (has_snapshot_) {
         const ForceSample model = evaluate_force(current_, position, velocity, config_.model);
@@ -67,7 +67,7 @@ TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
             force = clamp_magnitude(force, config_.model.max_force);
         }
     }
-    out.stale = !has_snapshot_ || now_ns - current_.published_ns > config_.stale_after_ns;
+    out.stale = !has_snapshot_ || now_ns - current_.snapshot.published_ns > config_.stale_after_ns;
     const double target_gain = out.stale ? 0.0 : 1.0;
     gain_ = target_gain > gain_ ? std::min(target_gain, gain_ + gain_step_)
                                 : std::max(target_gain, gain_ - gain_step_);

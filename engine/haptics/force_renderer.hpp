@@ -65,7 +65,7 @@ class ForceRenderer {
 
   private:
     ForceRendererConfig config_;
-    HapticSnapshot current_{};
+    PreparedSnapshot current_{};
     bool has_snapshot_ = false;
     std::uint64_t tick_ = 0;
     std::uint64_t last_arrival_tick_ = 0;

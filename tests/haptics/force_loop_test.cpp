@@ -75,6 +75,39 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
     EXPECT_NEAR(max_force, 3.7, 1e-9);
 }
 
+TEST(ForceLoop, StopFadesTheForceOutInsteadOfDroppingIt) {
+    // Pressed 4 mm into flat sand for a minute: a steady 3.7 N until we stop the loop.
+    Trajectory t;
+    t.samples.assign(60000, {{0.5, 0.5, -0.004}, 0});
+    SimulatedDevice device = SimulatedDevice::replay(t);
+    ForceLoopConfig config;
+    config.try_realtime = false;
+    config.renderer.ramp_ns = 1'000'000;
+    config.renderer.stale_after_ns = 3'600'000'000'000;
+    config.stop_ramp_ns = 50'000'000;  // 50 ticks
+    ForceLoop loop(device, config);
+    loop.publish(flat_snapshot(0.0));
+    loop.start();
+    TickRecord latest;
+    while (!(loop.poll(latest) && latest.tick >= 100 && length(latest.force) > 3.6)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    loop.stop();
+    const std::vector<Vec3>& f = device.forces();
+    ASSERT_GT(f.size(), 60u);
+    EXPECT_EQ(f.back(), (Vec3{}));
+    // From the last full-force tick to the end: monotone, steps of 3.7 / 50 N, about 50 ticks.
+    std::size_t last_full = f.size() - 1;
+    while (last_full > 0 && std::abs(length(f[last_full]) - 3.7) > 1e-9)
+        --last_full;
+    EXPECT_GE(f.size() - 1 - last_full, 49u);
+    EXPECT_LE(f.size() - 1 - last_full, 52u);
+    for (std::size_t i = last_full + 1; i < f.size(); ++i) {
+        EXPECT_LE(length(f[i]), length(f[i - 1]) + 1e-12) << i;
+        EXPECT_LE(length(f[i - 1]) - length(f[i]), 3.7 / 50.0 + 1e-9) << i;
+    }
+}
+
 TEST(ForceLoop, StopsCleanlyOnRequestAndRejectsBadRates) {
     SimulatedDevice device = SimulatedDevice::spring({}, {0.5, 0.5, 1.0});
     ForceLoopConfig config;

@@ -158,6 +158,50 @@ TEST(ForceModel, GelDragOpposesHorizontalMotion) {
     EXPECT_NEAR(f.force.x, -0.005, 1e-12);
 }
 
+TEST(ForceModel, MaterialInADirectionInterpolatesAlongTheCrossedEdge) {
+    // A square ring of half-width 4 cm around the centre, corner heights 0, 1, 2, 3 mm.
+    HapticSnapshot s;
+    s.sequence = 1;
+    s.centre = {0.5, 0.5};
+    s.control_count = 4;
+    s.control[0] = {0.54, 0.46};
+    s.control[1] = {0.54, 0.54};
+    s.control[2] = {0.46, 0.54};
+    s.control[3] = {0.46, 0.46};
+    s.control_height = {0.0, 0.001, 0.002, 0.003};
+    // +x crosses edge 0-1 halfway: 0.5 mm; +y crosses edge 1-2 halfway: 1.5 mm; towards a
+    // corner: that corner's height.
+    EXPECT_NEAR(*ring_height_along(s, {1.0, 0.0}), 0.0005, 1e-15);
+    EXPECT_NEAR(*ring_height_along(s, {0.0, 2.0}), 0.0015, 1e-15);
+    EXPECT_NEAR(*ring_height_along(s, {-1.0, -1.0}), 0.003, 1e-15);
+    // A quarter of the way along edge 3-0 (from (0.46, 0.46) to (0.54, 0.46)): direction
+    // (-0.02, -0.04); height 3 + (0 - 3) / 4 = 2.25 mm.
+    EXPECT_NEAR(*ring_height_along(s, {-0.02, -0.04}), 0.00225, 1e-15);
+    EXPECT_FALSE(ring_height_along(s, {0.0, 0.0}).has_value());
+}
+
+TEST(ForceModel, ConcaveRingHidesAControlPointBehindANearerEdge) {
+    // c4 dents the ring so the ray from the centre towards c0 first crosses edge c3-c4, at
+    // u = 0.04 / 0.045 (where that edge meets y = 0): H_0 = 1 + (4 - 1) u mm.
+    HapticSnapshot s;
+    s.sequence = 1;
+    s.centre = {0.0, 0.0};
+    s.control_count = 5;
+    s.control[0] = {0.04, 0.0};
+    s.control[1] = {0.0, 0.04};
+    s.control[2] = {-0.04, 0.0};
+    s.control[3] = {0.0, -0.04};
+    s.control[4] = {0.02, 0.005};
+    s.control_height = {0.010, 0.0, 0.0, 0.001, 0.004};
+    const double u = 0.04 / 0.045;
+    const double h0 = 0.001 + 0.003 * u;
+    EXPECT_NEAR(*ring_height_along(s, {1.0, 0.0}), h0, 1e-15);
+    const PreparedSnapshot p = prepare_snapshot(s);
+    EXPECT_NEAR(p.height_along[0], h0, 1e-15);
+    EXPECT_NEAR(p.height_along[1], 0.0, 1e-15);
+    EXPECT_NEAR(p.direction[0].x, 1.0, 1e-15);
+}
+
 TEST(ForceModel, NonFiniteInputGivesZero) {
     const HapticSnapshot s = flat_ring(0.0);
     EXPECT_EQ(evaluate_force(s, {NAN, 0.5, -0.1}, {}, params()).force, (Vec3{}));
