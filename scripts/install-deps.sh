@@ -16,6 +16,8 @@ packages=(
   libglfw3-dev libimgui-dev libstb-dev
   # tests: GoogleTest, a virtual X server for the editor tests
   libgtest-dev libgmock-dev xvfb xauth
+  # fuzzing and sanitizers: clang with libFuzzer and its runtimes
+  clang-14 libclang-rt-14-dev
 )
 
 missing=()

@@ -15,7 +15,7 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage = 
+constexpr const char* kUsage =
     "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin [--json]";
 }
 
@@ -46,11 +46,7 @@ int run_run(const std::vector<std::string>& raw) {
                 "no terrain: give -i in.sandtin or a \"terrain\" object in the script\nusage: " +
                 std::string(kUsage));
         }
-        const ScriptTerrain& t = *script.terrain;
-        const Rect domain = Rect::from_size(t.size.x, t.size.y);
-        if (t.points == 0) return Tin::flat_rectangle(domain, t.height, options);
-        return Tin::random_points(
-            domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
+        return make_script_terrain(*script.terrain, options);
     }();
     SculptContext context(tin.domain());
     context.set_next_generation(session.next_generation);

@@ -16,5 +16,6 @@ int run_haptics(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 int run_import(const std::vector<std::string>& args);
 int run_export(const std::vector<std::string>& args);
+int run_stress(const std::vector<std::string>& args);
 
 }  // namespace sandtin::cli

@@ -23,6 +23,8 @@ commands:
   bench   benchmarks (JSON):  sandtin bench (tin | groove | import) [--quick]
   haptics live editing with a haptic device driven over UDP by a driver process:
                               sandtin haptics serve -o out.sandtin [--port P] [--record R]
+  stress  random operations, invariants checked after each:
+                              sandtin stress [--seed S] [--ops N] [--json]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
 Errors go to stderr and the exit code is non-zero.
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
         if (command == "import") return sandtin::cli::run_import(args);
         if (command == "export") return sandtin::cli::run_export(args);
         if (command == "haptics") return sandtin::cli::run_haptics(args);
+        if (command == "stress") return sandtin::cli::run_stress(args);
         if (command == "help" || command == "--help" || command == "-h") {
             std::cout << kHelp;
             return 0;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iterator>
 
+#include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
@@ -287,6 +288,11 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         f.reject_unknown();
         return e;
     }
+    if (op == "save") {
+        const std::string path = f.text("path", "");
+        if (path.empty()) f.fail("missing required field 'path'");
+        return SaveOp{base_dir / path};
+    }
     if (op == "simplify") {
         SimplifyOp s;
         if (f.has("tolerance")) s.tolerance = f.positive("tolerance", 0.0);
@@ -298,6 +304,12 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
             return std::move(*custom);
     }
     f.fail_field("op", "names an unknown operation '" + op + "'");
+}
+
+bool step_uses_physics(const ScriptStep& step) {
+    if (std::holds_alternative<ErodeOp>(step.operation)) return true;
+    const auto* stroke = std::get_if<StrokeOp>(&step.operation);
+    return stroke != nullptr && stroke->erode_iterations > 0;
 }
 
 }  // namespace
@@ -374,11 +386,7 @@ Script parse_script(std::string_view text, const std::string& name,
         f.get("op");
         ScriptStep step{parse_operation(op, f, object, base_dir, extensions, script.physics), op,
                         line};
-        if (std::holds_alternative<ErodeOp>(step.operation)) script.uses_physics = true;
-        if (const auto* stroke = std::get_if<StrokeOp>(&step.operation);
-            stroke != nullptr && stroke->erode_iterations > 0) {
-            script.uses_physics = true;
-        }
+        if (step_uses_physics(step)) script.uses_physics = true;
         script.steps.push_back(std::move(step));
     }
     return script;
@@ -402,113 +410,148 @@ nlohmann::json stamp_json(const StampReport& r) {
 
 }  // namespace
 
-nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context) {
+ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
+                           bool with_physics)
+    : tin_(tin), context_(context), physics_settings_(script.physics) {
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
     // The physics follows the TIN from the start, so it sees every change the script makes.
-    std::unique_ptr<SandPhysics> physics;
-    if (script.uses_physics)
-        physics = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), script.physics);
+    if (script.uses_physics || with_physics)
+        physics_ = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), script.physics);
+}
+
+ScriptRunner::~ScriptRunner() = default;
+
+nlohmann::json ScriptRunner::run(const ScriptStep& step) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    if (!physics_ && step_uses_physics(step)) {
+        throw std::logic_error("ScriptRunner: step '" + step.op_name +
+                               "' needs the physics, which this runner was created without");
+    }
     std::vector<VertexId> eroded;
+    // Relaxation, then the simplification of what it touched. Both conserve volume.
     auto erode = [&](int iterations, bool until_rest) {
         eroded.clear();
-        const PhysicsStepReport r = until_rest ? physics->run_to_rest(iterations, &eroded)
-                                               : physics->step(iterations, &eroded);
+        const PhysicsStepReport r = until_rest ? physics_->run_to_rest(iterations, &eroded)
+                                               : physics_->step(iterations, &eroded);
         context.simplifier.enqueue(eroded);
         if (context.settings.simplify_after_edit)
             context.simplifier.run(tin, context.settings.simplify);
         return r;
     };
-    nlohmann::json reports = nlohmann::json::array();
-    for (const ScriptStep& step : script.steps) {
-        const auto t0 = std::chrono::steady_clock::now();
-        nlohmann::json r = std::visit(
-            [&](const auto& op) -> nlohmann::json {
-                using T = std::decay_t<decltype(op)>;
-                if constexpr (std::is_same_v<T, StampOp>) {
-                    ToolPlacement at{op.at, op.angle, op.depth};
-                    if (op.depth_mode == DepthMode::Relative) {
-                        const Rect d = tin.domain();
-                        const Vec2 c{std::clamp(op.at.x, d.min.x, d.max.x),
-                                     std::clamp(op.at.y, d.min.y, d.max.y)};
-                        at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
-                    }
-                    return stamp_json(stamp(tin, *op.tool, at, context));
-                } else if constexpr (std::is_same_v<T, StrokeOp>) {
-                    std::vector<StampReport> per;
-                    PhysicsStepReport physics_total;
-                    std::function<void(const StampReport&)> after_stamp;
-                    if (op.erode_iterations > 0) {
-                        after_stamp = [&](const StampReport&) {
-                            physics_total.accumulate(erode(op.erode_iterations, false));
-                        };
-                    }
-                    const StampReport total = apply_stroke(tin, *op.tool, op.path, op.settings,
-                                                           context, &per, after_stamp);
-                    nlohmann::json j = stamp_json(total);
-                    j["stamps_applied"] = per.size();
-                    if (op.erode_iterations > 0) {
-                        j["erosion_iterations"] = physics_total.iterations;
-                        j["erosion_ms"] = physics_total.ms;
-                    }
-                    return j;
-                } else if constexpr (std::is_same_v<T, ErodeOp>) {
-                    const TalusSettings saved = physics->settings();
-                    if (op.settings) physics->settings() = *op.settings;
-                    const PhysicsStepReport pr = op.until_rest ? erode(op.max_iterations, true)
-                                                               : erode(op.iterations, false);
-                    physics->settings() = saved;
-                    return {{"iterations", pr.iterations}, {"vertex_updates", pr.vertex_updates},
-                            {"refined", pr.refined},       {"volume_moved", pr.volume_moved},
-                            {"at_rest", pr.at_rest},       {"erosion_ms", pr.ms}};
-                } else if constexpr (std::is_same_v<T, PourOp>) {
-                    const double each =
-                        op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
-                    double moved = 0.0;
-                    for (Vec2 p : op.points) {
-                        const PourReport pr = op.remove
-                                                  ? remove_sand(tin, p, each, op.settings, context)
-                                                  : pour_sand(tin, p, each, op.settings, context);
-                        moved += pr.volume;
-                    }
-                    if (context.settings.simplify_after_edit)
-                        context.simplifier.run(tin, context.settings.simplify);
-                    return {{"volume", moved}, {"points", op.points.size()}};
-                } else if constexpr (std::is_same_v<T, BrushOp>) {
-                    std::size_t changed = 0;
-                    double dv = 0.0;
-                    for (Vec2 p : op.points) {
-                        const BrushReport br = apply_brush(tin, p, op.settings, context);
-                        changed += br.vertices_changed;
-                        dv += br.volume_change;
-                    }
-                    return {{"dabs", op.points.size()},
-                            {"vertices_changed", changed},
-                            {"volume_change", dv}};
-                } else if constexpr (std::is_same_v<T, SimplifyOp>) {
-                    SimplifySettings s = context.settings.simplify;
-                    if (op.tolerance) s.tolerance = *op.tolerance;
-                    // An explicit simplify tests every vertex, not only the queue.
-                    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
-                        if (tin.is_alive(VertexId{i})) context.simplifier.enqueue(VertexId{i});
-                    }
-                    const SimplifyReport sr = context.simplifier.run(tin, s);
-                    return {{"tested", sr.tested},
-                            {"removed", sr.removed},
-                            {"volume_change", sr.volume_change},
-                            {"max_volume_change", sr.max_volume_change}};
-                } else {
-                    return op.run(tin, context);
+    const auto t0 = std::chrono::steady_clock::now();
+    nlohmann::json r = std::visit(
+        [&](const auto& op) -> nlohmann::json {
+            using T = std::decay_t<decltype(op)>;
+            if constexpr (std::is_same_v<T, StampOp>) {
+                ToolPlacement at{op.at, op.angle, op.depth};
+                if (op.depth_mode == DepthMode::Relative) {
+                    const Rect d = tin.domain();
+                    const Vec2 c{std::clamp(op.at.x, d.min.x, d.max.x),
+                                 std::clamp(op.at.y, d.min.y, d.max.y)};
+                    at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
                 }
-            },
-            step.operation);
-        r["op"] = step.op_name;
-        r["line"] = step.line;
-        r["ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                      .count();
-        reports.push_back(std::move(r));
-    }
+                return stamp_json(stamp(tin, *op.tool, at, context));
+            } else if constexpr (std::is_same_v<T, StrokeOp>) {
+                std::vector<StampReport> per;
+                PhysicsStepReport physics_total;
+                std::function<void(const StampReport&)> after_stamp;
+                if (op.erode_iterations > 0) {
+                    after_stamp = [&](const StampReport&) {
+                        physics_total.accumulate(erode(op.erode_iterations, false));
+                    };
+                }
+                const StampReport total =
+                    apply_stroke(tin, *op.tool, op.path, op.settings, context, &per, after_stamp);
+                nlohmann::json j = stamp_json(total);
+                j["stamps_applied"] = per.size();
+                if (op.erode_iterations > 0) {
+                    j["erosion_iterations"] = physics_total.iterations;
+                    j["erosion_ms"] = physics_total.ms;
+                }
+                return j;
+            } else if constexpr (std::is_same_v<T, ErodeOp>) {
+                const TalusSettings saved = physics_->settings();
+                if (op.settings) physics_->settings() = *op.settings;
+                const PhysicsStepReport pr =
+                    op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
+                physics_->settings() = saved;
+                return {{"iterations", pr.iterations}, {"vertex_updates", pr.vertex_updates},
+                        {"refined", pr.refined},       {"volume_moved", pr.volume_moved},
+                        {"at_rest", pr.at_rest},       {"erosion_ms", pr.ms},
+                        {"volume_change", 0.0}};
+            } else if constexpr (std::is_same_v<T, PourOp>) {
+                const double each =
+                    op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
+                double moved = 0.0;
+                for (Vec2 p : op.points) {
+                    const PourReport pr = op.remove
+                                              ? remove_sand(tin, p, each, op.settings, context)
+                                              : pour_sand(tin, p, each, op.settings, context);
+                    moved += pr.volume;
+                }
+                if (context.settings.simplify_after_edit)
+                    context.simplifier.run(tin, context.settings.simplify);
+                return {{"volume", moved}, {"points", op.points.size()}, {"volume_change", moved}};
+            } else if constexpr (std::is_same_v<T, BrushOp>) {
+                std::size_t changed = 0;
+                double dv = 0.0;
+                for (Vec2 p : op.points) {
+                    const BrushReport br = apply_brush(tin, p, op.settings, context);
+                    changed += br.vertices_changed;
+                    dv += br.volume_change;
+                }
+                return {{"dabs", op.points.size()},
+                        {"vertices_changed", changed},
+                        {"volume_change", dv}};
+            } else if constexpr (std::is_same_v<T, SimplifyOp>) {
+                SimplifySettings s = context.settings.simplify;
+                if (op.tolerance) s.tolerance = *op.tolerance;
+                // An explicit simplify tests every vertex, not only the queue.
+                for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+                    if (tin.is_alive(VertexId{i})) context.simplifier.enqueue(VertexId{i});
+                }
+                const SimplifyReport sr = context.simplifier.run(tin, s);
+                // Removals shift their neighbours to conserve volume (VolumePolicy::Conserve);
+                // "retriangulation_volume" is what they changed before that compensation.
+                return {{"tested", sr.tested},
+                        {"removed", sr.removed},
+                        {"retriangulation_volume", sr.volume_change},
+                        {"max_retriangulation_volume", sr.max_volume_change},
+                        {"volume_change",
+                         s.volume_policy == VolumePolicy::Conserve ? 0.0 : sr.volume_change}};
+            } else if constexpr (std::is_same_v<T, SaveOp>) {
+                Session session;
+                session.terrain = tin.snapshot();
+                session.next_generation = context.peek_generation();
+                save_session(op.path, session);
+                return {{"file", op.path.string()}, {"volume_change", 0.0}};
+            } else {
+                return op.run(tin, context);
+            }
+        },
+        step.operation);
+    r["op"] = step.op_name;
+    r["line"] = step.line;
+    r["ms"] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
+    const Rect domain = Rect::from_size(t.size.x, t.size.y);
+    if (t.points == 0) return Tin::flat_rectangle(domain, t.height, options);
+    return Tin::random_points(
+        domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
+}
+
+nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context) {
+    ScriptRunner runner(script, tin, context);
+    nlohmann::json reports = nlohmann::json::array();
+    for (const ScriptStep& step : script.steps)
+        reports.push_back(runner.run(step));
     return reports;
 }
 

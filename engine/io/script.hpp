@@ -13,7 +13,8 @@
 //       { "op": "remove", "path": [[x, y], ...], "volume": 1e-4, "radius": 0.02, "spacing": 0.01 },
 //       { "op": "brush",  "kind": "raise", "at": [x, y], "radius": 0.05, "strength": 0.002 },
 //       { "op": "erode", "until_rest": true },
-//       { "op": "simplify", "tolerance": 0.001 } ] }
+//       { "op": "simplify", "tolerance": 0.001 },
+//       { "op": "save", "path": "checkpoint.sandtin" } ] }
 //
 // A bare array of operations is accepted too. All lengths are metres, angles radians, volumes
 // m³. See README.md ("Scripts") for every field. Parsing checks the whole script before anything
@@ -80,6 +81,11 @@ struct SimplifyOp {
     std::optional<double> tolerance;
 };
 
+/// Writes the session as it stands (atomically) to `path`: a checkpoint in a long script.
+struct SaveOp {
+    std::filesystem::path path;  ///< resolved against the script's directory
+};
+
 /// Extension point for operations defined outside the sculpting tools (erosion, recorded
 /// haptic sessions): a name and a callable that runs it and reports JSON.
 struct CustomOp {
@@ -88,7 +94,7 @@ struct CustomOp {
 };
 
 using ScriptOperation =
-    std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp, CustomOp>;
+    std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp, SaveOp, CustomOp>;
 
 struct ScriptStep {
     ScriptOperation operation;
@@ -104,6 +110,9 @@ struct ScriptTerrain {
     std::uint64_t seed = 1;
     double height = 0.0;
 };
+
+/// Builds the terrain a "terrain" object describes.
+Tin make_script_terrain(const ScriptTerrain& terrain, TinOptions options = {});
 
 struct Script {
     std::vector<ScriptStep> steps;
@@ -125,6 +134,33 @@ using ScriptExtension = std::function<std::optional<CustomOp>(
 Script parse_script(std::string_view text, const std::string& name,
                     const std::filesystem::path& base_dir,
                     const std::vector<ScriptExtension>& extensions = {});
+
+class SandPhysics;
+
+/// Runs the steps of a script one at a time against a terrain, keeping the sand physics (which
+/// follows every change to the TIN) alive between steps. run_script is a loop over it; the
+/// stress runner feeds it generated steps.
+class ScriptRunner {
+  public:
+    /// Applies the script's settings to the context. The physics is created now, so it sees
+    /// every change, when the script uses it or `with_physics` is set.
+    ScriptRunner(const Script& script, Tin& tin, SculptContext& context, bool with_physics = false);
+    ~ScriptRunner();
+    ScriptRunner(const ScriptRunner&) = delete;
+    ScriptRunner& operator=(const ScriptRunner&) = delete;
+
+    /// Runs one step; returns its JSON report ("op", "line", "ms" and the op's own fields;
+    /// "volume_change" is the m³ the step added to the terrain by its own account).
+    nlohmann::json run(const ScriptStep& step);
+
+    SandPhysics* physics() { return physics_.get(); }
+
+  private:
+    Tin& tin_;
+    SculptContext& context_;
+    TalusSettings physics_settings_;
+    std::unique_ptr<SandPhysics> physics_;
+};
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
 /// per step.

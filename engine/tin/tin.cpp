@@ -168,10 +168,13 @@ class EditFinisher {
     void mark_vertex(std::uint32_t id) { impl_.note_attribute(id); }
 
     /// Gives the vertices CGAL created in this edit their position and default attributes.
-    /// Their heights are NaN until the edit resolves them.
+    /// Their heights are NaN until the edit resolves them. Batch edits call it once per inserted
+    /// point, so it resumes where it stopped instead of rescanning the whole batch.
     void prepare_born() {
         impl_.ensure_vertex_capacity();
-        for (std::uint32_t id : impl_.events.born_vertices) {
+        const std::vector<std::uint32_t>& born = impl_.events.born_vertices;
+        for (; prepared_born_ < born.size(); ++prepared_born_) {
+            const std::uint32_t id = born[prepared_born_];
             if (impl_.events.vertex_of_id[id] == nullptr) continue;
             const Vh v = impl_.handle(id);
             VertexArrays& va = impl_.va;
@@ -306,7 +309,9 @@ class EditFinisher {
         // Vertices a rounding error apart (CGAL's crossings of nearly coincident constraints)
         // cannot be merged, so they must share one height, or the sliver between them is a
         // vertical wall: a new vertex takes its old neighbour's height, and a compensation
-        // shift carries over to such neighbours. The volume this moves is below rounding.
+        // shift carries over to such neighbours. Under VolumePolicy::Conserve the pair meets at
+        // its area-weighted mean height instead, so levelling moves no volume: the physics moves
+        // the two vertices independently, and a copy would leak what it moved between them.
         const double snap2 = m.snap_distance * m.snap_distance;
         auto level_slivers = [&](std::uint32_t id, bool take_neighbour) {
             auto vc = m.cdt.incident_vertices(m.handle(id));
@@ -318,8 +323,22 @@ class EditFinisher {
                 const std::uint32_t from = take_neighbour ? w : id;
                 const std::uint32_t to = take_neighbour ? id : w;
                 if (va.height[to] == va.height[from]) continue;
-                net_change += va.lumped_area[to] * (va.height[from] - va.height[to]);
-                va.height[to] = va.height[from];
+                if (policy == VolumePolicy::Conserve) {
+                    const double a_from = va.lumped_area[from];
+                    const double a_to = va.lumped_area[to];
+                    const double mean =
+                        a_from + a_to > 0.0
+                            ? (a_from * va.height[from] + a_to * va.height[to]) / (a_from + a_to)
+                            : 0.5 * (va.height[from] + va.height[to]);
+                    net_change += a_from * (mean - va.height[from]) + a_to * (mean - va.height[to]);
+                    va.height[from] = mean;
+                    va.height[to] = mean;
+                    clamp_bedrock(from);
+                    mark_vertex(from);
+                } else {
+                    net_change += va.lumped_area[to] * (va.height[from] - va.height[to]);
+                    va.height[to] = va.height[from];
+                }
                 clamp_bedrock(to);
                 mark_vertex(to);
             } while (++vc != done);
@@ -335,6 +354,7 @@ class EditFinisher {
         m.volume_ledger.add(net_change);
         affected_.clear();
         m.events.born_vertices.clear();
+        prepared_born_ = 0;
         m.events.died_vertices.clear();
         if (!m.options.track_changes) {
             m.events.vertex_ids.flush_deferred();
@@ -369,6 +389,7 @@ class EditFinisher {
     }
 
     Tin::Impl& impl_;
+    std::size_t prepared_born_ = 0;  ///< born_vertices[0, prepared_born_) are initialised
     static thread_local DirtySet affected_;
 };
 
@@ -1128,6 +1149,26 @@ std::vector<VertexId> Tin::insert_points(std::span<const Vec2> points,
     return ids;
 }
 
+namespace {
+
+/// Whether splitting edge (f, i) at p leaves every triangle around it counterclockwise (exact
+/// predicate).
+bool split_keeps_orientation(const Tin::Impl& m, Fh f, int i, const detail::Point& p) {
+    const auto orientation = detail::Kernel().orientation_2_object();
+    auto side_ok = [&](Fh face, int k) {
+        const Vh c = face->vertex(k);
+        if (m.cdt.is_infinite(c)) return true;
+        const Vh u = face->vertex(CdtPlus::ccw(k));
+        const Vh w = face->vertex(CdtPlus::cw(k));
+        return orientation(c->point(), u->point(), p) == CGAL::LEFT_TURN &&
+               orientation(c->point(), p, w->point()) == CGAL::LEFT_TURN;
+    };
+    const Fh g = f->neighbor(i);
+    return side_ok(f, i) && side_ok(g, g->index(f));
+}
+
+}  // namespace
+
 std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, VolumePolicy policy,
                                        EditReport* report) {
     Impl& m = *impl_;
@@ -1154,7 +1195,13 @@ std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, Volume
         }
         // Inserted into the edge itself (CGAL trusts the locate type), so the surface is unchanged
         // and a constrained edge is split like any other, even when rounding puts p a hair off
-        // the segment.
+        // the segment. Trusting it is only safe while both halves of both triangles keep their
+        // orientation: next to a sliver, the rounded p can fall on the far side of the opposite
+        // vertex and fold a face over (found by `sandtin stress`). Such a split is skipped.
+        if (!split_keeps_orientation(m, f, i, to_point(p))) {
+            ids.push_back(VertexId{});
+            continue;
+        }
         const Vh v = m.cdt.insert(to_point(p), CdtPlus::EDGE, f, i);
         // p may sit a rounding error off the segment, so an edge from it may miss the
         // Delaunay criterion that CGAL's flips around a new vertex do not look at.

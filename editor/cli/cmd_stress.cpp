@@ -1,0 +1,64 @@
+// sandtin stress: random operations with invariant checks after each; on the first failure,
+// a minimal reproducing script.
+
+#include <fstream>
+#include <iostream>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "stress/stress_runner.hpp"
+
+namespace sandtin::cli {
+
+namespace {
+constexpr const char* kUsage =
+    "sandtin stress [--seed S] [--ops N] [--points P] [--work-dir DIR] [--no-minimise] "
+    "[--repro FILE] [--json]";
+}
+
+int run_stress(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"--seed", 1},
+                               {"--ops", 1},
+                               {"--points", 1},
+                               {"--work-dir", 1},
+                               {"--no-minimise", 0},
+                               {"--repro", 1},
+                               {"--json", 0}});
+    if (!args.positionals().empty()) {
+        throw UsageError("unexpected argument '" + args.positionals()[0] + "'\nusage: " + kUsage);
+    }
+    StressOptions options;
+    options.seed = args.count_or("--seed", 1);
+    options.operations = args.count_or("--ops", 1000);
+    options.terrain_points = args.count_or("--points", 3000);
+    if (options.terrain_points > 10'000'000) throw UsageError("--points must be at most 10000000");
+    options.work_dir = args.text_or("--work-dir", "");
+    options.minimise = !args.has("--no-minimise");
+    const bool json = args.has("--json");
+    const StressReport report = run_stress(options, [&](std::size_t done) {
+        if (!json && done % 1000 == 0) std::cerr << "  " << done << " operations\n";
+    });
+    if (report.failure && args.has("--repro")) {
+        std::ofstream(args.text("--repro")) << report.failure->script.dump(2) << "\n";
+    }
+    if (json) {
+        std::cout << report.to_json().dump(2) << "\n";
+    } else if (report.failure) {
+        const StressFailure& f = *report.failure;
+        std::cout << "stress seed " << report.seed << ": FAILED at operation " << f.operation
+                  << " (" << f.invariant << "): " << f.detail << "\n"
+                  << "reproducing script (" << f.script_operations
+                  << " operations; replay with `sandtin run script.json -o out.sandtin`):\n"
+                  << f.script.dump(2) << "\n";
+    } else {
+        std::cout << "stress seed " << report.seed << ": " << report.operations_run
+                  << " operations, all invariants held (" << report.rejected
+                  << " degenerate operations rejected cleanly); max " << report.max_vertices
+                  << " vertices, " << report.max_constraints
+                  << " constraints; max relative volume residual " << report.max_volume_residual
+                  << "; " << report.seconds << " s\n";
+    }
+    return report.failure ? 1 : 0;
+}
+
+}  // namespace sandtin::cli
