@@ -163,6 +163,20 @@ TEST(HapticRecording, ThreadedSessionReplaysIntoTheSameTerrain) {
     test::expect_same_terrain(live, replayed);
 }
 
+TEST(HapticRecording, TheCommittedSampleRecordingReplays) {
+    // Whether it still reproduces the recorded result depends on the tools' code at the time;
+    // here only that it loads, replays onto its terrain, digs and leaves a valid TIN.
+    const HapticRecording rec = load_recording(SANDTIN_HAPTICS_ASSETS "/stroke.haptic.json");
+    ASSERT_TRUE(rec.terrain.has_value());
+    EXPECT_GT(rec.ticks.size(), 4000u);
+    Tin tin = make_recording_terrain(*rec.terrain, test::headless());
+    SculptContext context(tin.domain());
+    const nlohmann::json report = replay_recording(rec, tin, context, SANDTIN_HAPTICS_ASSETS);
+    EXPECT_GT(report["stamps_applied"].get<int>(), 40);
+    EXPECT_LT(report["volume_change"].get<double>(), 0.0);
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+}
+
 TEST(HapticRecording, BadRecordingsAreRejectedWithTheField) {
     const auto error_of = [](const std::string& text) -> std::string {
         try {
