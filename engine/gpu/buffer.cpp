@@ -1,5 +1,7 @@
 #include "gpu/buffer.hpp"
 
+#include <cstring>
+
 #include "gpu/gpu_error.hpp"
 #include "gpu/vulkan_context.hpp"
 
@@ -94,6 +96,23 @@ void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccess
     b.srcAccessMask = src_access;
     b.dstAccessMask = dst_access;
     vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer buffer,
+                                       VkDeviceSize offset, VkDeviceSize bytes) {
+    std::vector<unsigned char> out(bytes);
+    if (bytes == 0) return out;
+    Buffer host(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
+    context.submit_and_wait([&](VkCommandBuffer cb) {
+        memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        VkBufferCopy c{offset, 0, bytes};
+        vkCmdCopyBuffer(cb, buffer, host.get(), 1, &c);
+    });
+    host.invalidate(context);
+    std::memcpy(out.data(), host.mapped(), bytes);
+    return out;
 }
 
 }  // namespace sandtin::gpu

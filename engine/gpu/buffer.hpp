@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "gpu/vk_handle.hpp"
 
@@ -53,5 +54,10 @@ void buffer_barrier(VkCommandBuffer cb, VkBuffer buffer, VkPipelineStageFlags sr
 // Global memory barrier: all writes of src_stage/src_access visible to dst.
 void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                     VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
+
+// Copies bytes [offset, offset + bytes) of a device buffer to the host and waits (after a
+// barrier making earlier shader and transfer writes visible). For read-backs and tests.
+std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer buffer,
+                                       VkDeviceSize offset, VkDeviceSize bytes);
 
 }  // namespace sandtin::gpu

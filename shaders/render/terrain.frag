@@ -2,7 +2,7 @@
 // Terrain shading: the interpolated smooth normal perturbed by a procedural sand-grain detail
 // normal whose texture coordinates slide with the material (texture-sliding offsets), the
 // material albedo, a contrast curve (histogram stretch of the height range, seed 004 §5.2.4),
-// optional overlays and the tool cursor ring.
+// optional overlays and the tool cursor ring. The wireframe is a separate line pass.
 
 layout(push_constant) uniform Push {
     mat4 view_projection;
@@ -15,10 +15,8 @@ layout(push_constant) uniform Push {
 layout(location = 0) in vec3 v_world;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec3 v_albedo;
-layout(location = 3) in vec3 v_bary;
-layout(location = 4) flat in float v_edge_mask;
-layout(location = 5) in vec3 v_overlay;
-layout(location = 6) in vec2 v_slide;
+layout(location = 3) in vec3 v_overlay;  // x: slope / repose, y: sand thickness, z: active
+layout(location = 4) in vec2 v_slide;
 
 layout(location = 0) out vec4 out_colour;
 
@@ -79,17 +77,6 @@ void main() {
         float r = v_overlay.x;  // slope / tan(angle of repose)
         vec3 c = r < 0.8 ? vec3(0.2, 0.7, 0.3) : (r <= 1.02 ? vec3(0.95, 0.8, 0.1) : vec3(0.9, 0.1, 0.1));
         colour = mix(colour, c, 0.55);
-    }
-    if (pc.overlays.x > 0.5) {
-        // Edge i is opposite corner i; the mask flags constrained edges.
-        vec3 w = fwidth(v_bary);
-        vec3 edge = 1.0 - smoothstep(vec3(0.0), w * 1.2, v_bary);
-        int mask = int(v_edge_mask + 0.5);
-        float plain = max(max(edge.x, edge.y), edge.z);
-        float constrained = max(max((mask & 1) != 0 ? edge.x : 0.0, (mask & 2) != 0 ? edge.y : 0.0),
-                                (mask & 4) != 0 ? edge.z : 0.0);
-        colour = mix(colour, vec3(0.05), plain * 0.6);
-        colour = mix(colour, vec3(1.0, 0.1, 0.6), constrained);
     }
     if (pc.cursor.w > 0.5) {
         float d = length(v_world.xy - pc.cursor.xy);

@@ -2,14 +2,22 @@
 
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 #include "gpu/gpu_error.hpp"
+#include "lines_frag.spv.h"
+#include "lines_vert.spv.h"
 #include "terrain_frag.spv.h"
 #include "terrain_vert.spv.h"
 
 namespace sandtin::render {
 
 namespace {
+
+struct LinesPush {
+    float view_projection[16];
+    float colour[4];
+};
 
 gpu::UniqueShaderModule make_module(VkDevice device, const std::uint32_t* code, std::size_t bytes) {
     VkShaderModuleCreateInfo info{};
@@ -21,56 +29,53 @@ gpu::UniqueShaderModule make_module(VkDevice device, const std::uint32_t* code, 
     return gpu::UniqueShaderModule(device, module);
 }
 
-}  // namespace
-
-TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass render_pass)
-    : context_(context) {
-    const VkDevice device = context.device();
+gpu::UniquePipelineLayout make_layout(VkDevice device, std::uint32_t push_bytes) {
     VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                              sizeof(TerrainPush)};
-    VkPipelineLayoutCreateInfo layout_info{};
-    layout_info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-    layout_info.pushConstantRangeCount = 1;
-    layout_info.pPushConstantRanges = &range;
+                              push_bytes};
+    VkPipelineLayoutCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    info.pushConstantRangeCount = 1;
+    info.pPushConstantRanges = &range;
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    gpu::check(vkCreatePipelineLayout(device, &layout_info, nullptr, &layout),
-               "vkCreatePipelineLayout");
-    layout_ = gpu::UniquePipelineLayout(device, layout);
+    gpu::check(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
+    return gpu::UniquePipelineLayout(device, layout);
+}
 
-    const gpu::UniqueShaderModule vert =
-        make_module(device, kSpv_terrain_vert, sizeof(kSpv_terrain_vert));
-    const gpu::UniqueShaderModule frag =
-        make_module(device, kSpv_terrain_frag, sizeof(kSpv_terrain_frag));
+struct PipelineDesc {
+    std::span<const std::uint32_t> vert;
+    std::span<const std::uint32_t> frag;
+    std::uint32_t attribute_count;  ///< leading attributes of RenderVertex the shader reads
+    VkPrimitiveTopology topology;
+};
+
+gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout,
+                                  const PipelineDesc& d) {
+    const gpu::UniqueShaderModule vert = make_module(device, d.vert.data(), d.vert.size_bytes());
+    const gpu::UniqueShaderModule frag = make_module(device, d.frag.data(), d.frag.size_bytes());
     VkPipelineShaderStageCreateInfo stages[2]{};
-    stages[0] = {};
-    stages[0].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vert.get();
-    stages[0].pName = "main";
-    stages[1] = {};
-    stages[1].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = frag.get();
-    stages[1].pName = "main";
-
-    VkVertexInputBindingDescription binding{0, sizeof(TerrainVertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    for (int i = 0; i < 2; ++i) {
+        stages[i].sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+        stages[i].stage = i == 0 ? VK_SHADER_STAGE_VERTEX_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+        stages[i].module = i == 0 ? vert.get() : frag.get();
+        stages[i].pName = "main";
+    }
+    VkVertexInputBindingDescription binding{0, sizeof(RenderVertex), VK_VERTEX_INPUT_RATE_VERTEX};
     const VkVertexInputAttributeDescription attributes[] = {
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TerrainVertex, position)},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TerrainVertex, normal)},
-        {2, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TerrainVertex, albedo)},
-        {3, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(TerrainVertex, barycentric)},
-        {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(TerrainVertex, overlay)},
-        {5, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(TerrainVertex, slide)},
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, position)},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, normal)},
+        {2, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, albedo)},
+        {3, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, overlay)},
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(RenderVertex, slide)},
     };
     VkPipelineVertexInputStateCreateInfo input{};
     input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
     input.vertexBindingDescriptionCount = 1;
     input.pVertexBindingDescriptions = &binding;
-    input.vertexAttributeDescriptionCount = 6;
+    input.vertexAttributeDescriptionCount = d.attribute_count;
     input.pVertexAttributeDescriptions = attributes;
     VkPipelineInputAssemblyStateCreateInfo assembly{};
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    assembly.topology = d.topology;
     VkPipelineViewportStateCreateInfo viewport{};
     viewport.sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO;
     viewport.viewportCount = 1;
@@ -78,7 +83,7 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     VkPipelineRasterizationStateCreateInfo raster{};
     raster.sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO;
     raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;  // the camera may look from below the edge of the domain
+    raster.cullMode = VK_CULL_MODE_NONE;  // the camera may look from below the domain's edge
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     VkPipelineMultisampleStateCreateInfo multisample{};
@@ -87,8 +92,8 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     VkPipelineDepthStencilStateCreateInfo depth{};
     depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
     depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    depth.depthCompareOp = VK_COMPARE_OP_LESS;
+    depth.depthWriteEnable = d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
     VkPipelineColorBlendAttachmentState blend_attachment{};
     blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
@@ -103,7 +108,6 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     dynamic.pDynamicStates = dynamic_states;
 
     VkGraphicsPipelineCreateInfo info{};
-
     info.sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO;
     info.stageCount = 2;
     info.pStages = stages;
@@ -115,46 +119,140 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     info.pDepthStencilState = &depth;
     info.pColorBlendState = &blend;
     info.pDynamicState = &dynamic;
-    info.layout = layout_.get();
-    info.renderPass = render_pass;
+    info.layout = layout;
+    info.renderPass = pass;
     VkPipeline pipeline = VK_NULL_HANDLE;
     gpu::check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-               "vkCreateGraphicsPipelines (terrain)");
-    pipeline_ = gpu::UniquePipeline(device, pipeline);
+               "vkCreateGraphicsPipelines");
+    return gpu::UniquePipeline(device, pipeline);
 }
 
-void TerrainRenderer::upload(std::span<const TerrainVertex> vertices) {
-    const VkDeviceSize bytes = vertices.size_bytes();
-    if (bytes == 0) {
-        vertex_count_ = 0;
-        return;
+template <std::size_t N>
+std::span<const std::uint32_t> spirv(const std::uint32_t (&code)[N]) {
+    return {code, N};
+}
+
+}  // namespace
+
+TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass render_pass)
+    : context_(context) {
+    const VkDevice device = context.device();
+    terrain_layout_ = make_layout(device, sizeof(TerrainPush));
+    terrain_pipeline_ = make_pipeline(device, render_pass, terrain_layout_.get(),
+                                      {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 5,
+                                       VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST});
+    lines_layout_ = make_layout(device, sizeof(LinesPush));
+    lines_pipeline_ = make_pipeline(
+        device, render_pass, lines_layout_.get(),
+        {spirv(kSpv_lines_vert), spirv(kSpv_lines_frag), 1, VK_PRIMITIVE_TOPOLOGY_LINE_LIST});
+}
+
+void TerrainRenderer::ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
+    if (buffer && buffer.size() >= bytes) return;
+    // Grow by half again so a terrain that gains vertices does not reallocate every edit.
+    buffer = gpu::Buffer(context_, std::max<VkDeviceSize>(bytes + bytes / 2, 256), usage,
+                         gpu::MemoryUse::Upload);
+}
+
+void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) {
+    const auto& v = mesh.vertices();
+    const auto& idx = mesh.indices();
+    if (v.empty() || idx.empty()) return;
+    const VkDeviceSize vbytes = v.size() * sizeof(RenderVertex);
+    const VkDeviceSize ibytes = idx.size() * sizeof(std::uint32_t);
+    const bool grew =
+        !vertices_ || vertices_.size() < vbytes || !indices_ || indices_.size() < ibytes;
+    ensure(vertices_, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    ensure(indices_, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    auto* vdst = static_cast<std::uint8_t*>(vertices_.mapped());
+    auto* idst = static_cast<std::uint8_t*>(indices_.mapped());
+    if (grew || update.resized) {
+        std::memcpy(vdst, v.data(), vbytes);
+        std::memcpy(idst, idx.data(), ibytes);
+        bytes_uploaded_ += vbytes + ibytes;
+    } else {
+        for (const IdRange& r : update.vertices) {
+            const std::size_t at = std::size_t{r.begin} * sizeof(RenderVertex);
+            std::memcpy(vdst + at, v.data() + r.begin,
+                        std::size_t{r.size()} * sizeof(RenderVertex));
+        }
+        for (const IdRange& r : update.slots) {
+            const std::size_t at = std::size_t{r.begin} * 3 * sizeof(std::uint32_t);
+            std::memcpy(idst + at, idx.data() + std::size_t{r.begin} * 3,
+                        std::size_t{r.size()} * 3 * sizeof(std::uint32_t));
+        }
+        bytes_uploaded_ += update.bytes();
     }
-    if (!vertices_ || vertices_.size() < bytes) {
-        // Grow by half again so a terrain that gains vertices does not reallocate every edit.
-        vertices_ = gpu::Buffer(context_, bytes + bytes / 2, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                gpu::MemoryUse::Upload);
-    }
-    std::memcpy(vertices_.mapped(), vertices.data(), bytes);
     vertices_.flush(context_);
-    vertex_count_ = vertices.size();
-    bytes_uploaded_ += bytes;
+    indices_.flush(context_);
+    index_count_ = static_cast<std::uint32_t>(idx.size());
+    if (update.edges_changed || update.resized || grew) {
+        const auto& e = mesh.constrained_edges();
+        constrained_count_ = static_cast<std::uint32_t>(e.size());
+        if (!e.empty()) {
+            ensure(constrained_, e.size() * sizeof(std::uint32_t),
+                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            std::memcpy(constrained_.mapped(), e.data(), e.size() * sizeof(std::uint32_t));
+            constrained_.flush(context_);
+            bytes_uploaded_ += e.size() * sizeof(std::uint32_t);
+        }
+    }
+    if (!update.slots.empty() || update.resized || grew) wire_stale_ = true;
 }
 
-void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent) const {
-    if (vertex_count_ == 0) return;
+void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
+                           const TerrainMesh& mesh) {
+    if (index_count_ == 0) return;
     VkViewport viewport{
         0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
         0.0f, 1.0f};
     VkRect2D scissor{{0, 0}, extent};
     vkCmdSetViewport(cb, 0, 1, &viewport);
     vkCmdSetScissor(cb, 0, 1, &scissor);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-    vkCmdPushConstants(cb, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                       0, sizeof(TerrainPush), &push);
-    const VkBuffer buffer = vertices_.get();
+    const VkBuffer vb = vertices_.get();
     const VkDeviceSize offset = 0;
-    vkCmdBindVertexBuffers(cb, 0, 1, &buffer, &offset);
-    vkCmdDraw(cb, static_cast<std::uint32_t>(vertex_count_), 1, 0, 0);
+    vkCmdBindVertexBuffers(cb, 0, 1, &vb, &offset);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_pipeline_.get());
+    vkCmdPushConstants(cb, terrain_layout_.get(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(TerrainPush), &push);
+    vkCmdBindIndexBuffer(cb, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cb, index_count_, 1, 0, 0, 0);
+
+    if (push.overlays[0] < 0.5f) return;  // the wireframe passes cost nothing when off
+    if (wire_stale_) {
+        const std::vector<std::uint32_t> edges = mesh.all_edges();
+        wire_count_ = static_cast<std::uint32_t>(edges.size());
+        if (!edges.empty()) {
+            // Rebuilt between frames: the caller waited for the previous frame in upload().
+            ensure(wire_, edges.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            std::memcpy(wire_.mapped(), edges.data(), edges.size() * sizeof(std::uint32_t));
+            wire_.flush(context_);
+        }
+        wire_stale_ = false;
+    }
+    LinesPush lp{};
+    std::memcpy(lp.view_projection, push.view_projection, sizeof(lp.view_projection));
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_pipeline_.get());
+    if (wire_count_ > 0) {
+        lp.colour[0] = lp.colour[1] = lp.colour[2] = 0.08f;
+        lp.colour[3] = 1.0f;
+        vkCmdPushConstants(cb, lines_layout_.get(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(LinesPush), &lp);
+        vkCmdBindIndexBuffer(cb, wire_.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cb, wire_count_, 1, 0, 0, 0);
+    }
+    if (constrained_count_ > 0) {
+        lp.colour[0] = 1.0f;
+        lp.colour[1] = 0.1f;
+        lp.colour[2] = 0.6f;
+        vkCmdPushConstants(cb, lines_layout_.get(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(LinesPush), &lp);
+        vkCmdBindIndexBuffer(cb, constrained_.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cb, constrained_count_, 1, 0, 0, 0);
+    }
 }
 
 }  // namespace sandtin::render

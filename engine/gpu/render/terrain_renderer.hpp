@@ -1,7 +1,9 @@
 #pragma once
-// Draws the terrain (one pipeline: lit, detail-normal, material albedo, contrast curve,
-// overlays and the tool cursor, all in terrain.frag) inside a render pass the caller owns, so
-// it serves a swapchain and an offscreen target alike.
+// Draws the terrain inside a render pass the caller owns (so it serves a swapchain and an
+// offscreen target alike): one indexed draw of the lit surface (detail normal, material albedo,
+// contrast curve, overlays and tool cursor, all in terrain.frag), then, only when the wireframe
+// overlay is on, a line pass over every edge and one over the constrained edges. Buffers mirror
+// TerrainMesh and receive only the ranges an update names.
 
 #include <vulkan/vulkan.h>
 
@@ -9,7 +11,7 @@
 #include <span>
 
 #include "gpu/buffer.hpp"
-#include "gpu/render/terrain_vertices.hpp"
+#include "gpu/render/terrain_mesh.hpp"
 #include "gpu/vulkan_context.hpp"
 
 namespace sandtin::render {
@@ -29,20 +31,32 @@ class TerrainRenderer {
     /// The render pass must have one colour attachment and a depth attachment.
     TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass render_pass);
 
-    /// Replaces the vertex data. The previous buffer must no longer be in use by the GPU.
-    void upload(std::span<const TerrainVertex> vertices);
-    /// Records the draw (viewport and scissor are dynamic).
-    void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent) const;
+    /// Copies the ranges `update` names from `mesh` (everything when it says resized). The GPU
+    /// must not be reading the buffers (the caller waits for the previous frame).
+    void upload(const TerrainMesh& mesh, const MeshUpdate& update);
+    /// Records the draws (viewport and scissor are dynamic). With the wireframe overlay on,
+    /// the edge list is rebuilt from `mesh` when its triangles changed since the last call.
+    void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
+              const TerrainMesh& mesh);
 
-    std::size_t vertex_count() const { return vertex_count_; }
     std::uint64_t bytes_uploaded() const { return bytes_uploaded_; }
 
   private:
+    void ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage);
+
     const gpu::VulkanContext& context_;
-    gpu::UniquePipelineLayout layout_;
-    gpu::UniquePipeline pipeline_;
+    gpu::UniquePipelineLayout terrain_layout_;
+    gpu::UniquePipeline terrain_pipeline_;
+    gpu::UniquePipelineLayout lines_layout_;
+    gpu::UniquePipeline lines_pipeline_;
     gpu::Buffer vertices_;
-    std::size_t vertex_count_ = 0;
+    gpu::Buffer indices_;
+    gpu::Buffer constrained_;
+    gpu::Buffer wire_;
+    std::uint32_t index_count_ = 0;
+    std::uint32_t constrained_count_ = 0;
+    std::uint32_t wire_count_ = 0;
+    bool wire_stale_ = true;
     std::uint64_t bytes_uploaded_ = 0;
 };
 

@@ -1,0 +1,19 @@
+#pragma once
+// The embedded SPIR-V of sandtin's compute shaders (compiled from shaders/*.comp at build time).
+
+#include <cstdint>
+#include <span>
+
+namespace sandtin::gpu::shaders {
+
+std::span<const uint32_t> talus_outflow();
+std::span<const uint32_t> talus_gather();
+std::span<const uint32_t> talus_age();
+std::span<const uint32_t> talus_activate();
+std::span<const uint32_t> talus_control();
+std::span<const uint32_t> talus_pack();
+std::span<const uint32_t> vertex_normals();
+std::span<const uint32_t> corner_normals();
+std::span<const uint32_t> bake_maps();
+
+}  // namespace sandtin::gpu::shaders

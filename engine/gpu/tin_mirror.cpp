@@ -1,0 +1,310 @@
+#include "gpu/tin_mirror.hpp"
+
+#include <algorithm>
+
+#include "gpu/gpu_error.hpp"
+#include "gpu/vulkan_context.hpp"
+
+namespace sandtin::gpu {
+
+namespace {
+
+// Ranges closer than this many elements are uploaded as one (a few clean bytes for fewer copy
+// regions).
+constexpr uint32_t kMergeGap = 16;
+
+constexpr VkBufferUsageFlags kUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+    VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+    VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
+
+uint32_t grown(uint32_t have, uint32_t need) {
+    if (need <= have) return have;
+    const uint64_t g = std::max<uint64_t>({uint64_t{need}, uint64_t{have} + have / 2, 64});
+    return static_cast<uint32_t>(std::min<uint64_t>(g, 0xFFFFFFFFu));
+}
+
+// Replaces `buffer` by one of `bytes`, copying the old contents on the GPU and zeroing the rest.
+void reallocate(const VulkanContext& ctx, Buffer& buffer, VkDeviceSize bytes) {
+    Buffer fresh(ctx, bytes, kUsage, MemoryUse::Device);
+    const VkDeviceSize old = buffer ? buffer.size() : 0;
+    ctx.submit_and_wait([&](VkCommandBuffer cb) {
+        if (old > 0) {
+            VkBufferCopy c{0, 0, old};
+            vkCmdCopyBuffer(cb, buffer.get(), fresh.get(), 1, &c);
+        }
+        // Fill sizes must be multiples of 4; all element sizes are.
+        vkCmdFillBuffer(cb, fresh.get(), old, bytes - old, 0);
+    });
+    buffer = std::move(fresh);
+}
+
+}  // namespace
+
+uint32_t element_size(VertexBuffer b) {
+    switch (b) {
+        case VertexBuffer::Position:
+        case VertexBuffer::Slide:
+            return 8;
+        default:
+            return 4;
+    }
+}
+uint32_t element_size(SlotBuffer b) {
+    return b == SlotBuffer::Triangles ? 12 : 4;
+}
+uint32_t element_size(EdgeBuffer) {
+    return 4;
+}
+
+TinMirror::TinMirror(VulkanContext& context, MaterialTable materials, VkDeviceSize staging_bytes)
+    : context_(context), materials_(std::move(materials)), ring_(context, staging_bytes) {
+    if (materials_.size() == 0) throw GpuError("TinMirror: the material table is empty");
+}
+
+TinMirror::~TinMirror() {
+    ring_.wait_idle();
+}
+
+void TinMirror::set_materials(MaterialTable materials) {
+    if (materials.size() == 0) throw GpuError("TinMirror: the material table is empty");
+    materials_ = std::move(materials);
+    materials_dirty_ = true;
+}
+
+VkBuffer TinMirror::vertex_buffer(VertexBuffer b) const {
+    return vertex_[static_cast<size_t>(b)].get();
+}
+VkBuffer TinMirror::slot_buffer(SlotBuffer b) const {
+    return slot_[static_cast<size_t>(b)].get();
+}
+VkBuffer TinMirror::edge_buffer(EdgeBuffer b) const {
+    return edge_[static_cast<size_t>(b)].get();
+}
+
+uint64_t TinMirror::mirrored_bytes() const {
+    uint64_t total = 0;
+    for (const Buffer& b : vertex_)
+        total += b ? b.size() : 0;
+    for (const Buffer& b : slot_)
+        total += b ? b.size() : 0;
+    for (const Buffer& b : edge_)
+        total += b ? b.size() : 0;
+    return total;
+}
+
+void TinMirror::grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStats& stats) {
+    const uint32_t nv = grown(vertex_capacity_, std::max(vertices, 1u));
+    const uint32_t ns = grown(slot_capacity_, std::max(slots, 1u));
+    const uint32_t ne = grown(edge_capacity_, std::max(edges, 1u));
+    if (nv == vertex_capacity_ && ns == slot_capacity_ && ne == edge_capacity_) return;
+    // Queued copies target the old buffers: land them first.
+    ring_.flush();
+    ring_.wait_idle();
+    if (nv != vertex_capacity_) {
+        for (uint32_t i = 0; i < static_cast<uint32_t>(VertexBuffer::Count); ++i) {
+            reallocate(context_, vertex_[i],
+                       VkDeviceSize{nv} * element_size(static_cast<VertexBuffer>(i)));
+        }
+        vertex_capacity_ = nv;
+        tan_alpha_cpu_.resize(nv, 0.0f);
+    }
+    if (ns != slot_capacity_) {
+        for (uint32_t i = 0; i < static_cast<uint32_t>(SlotBuffer::Count); ++i) {
+            reallocate(context_, slot_[i],
+                       VkDeviceSize{ns} * element_size(static_cast<SlotBuffer>(i)));
+        }
+        slot_capacity_ = ns;
+    }
+    if (ne != edge_capacity_) {
+        for (uint32_t i = 0; i < static_cast<uint32_t>(EdgeBuffer::Count); ++i) {
+            reallocate(context_, edge_[i],
+                       VkDeviceSize{ne} * element_size(static_cast<EdgeBuffer>(i)));
+        }
+        edge_capacity_ = ne;
+    }
+    ++generation_;
+    stats.reallocated = true;
+}
+
+void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
+    const VertexArrays& va = tin.vertices();
+    const uint32_t n = r.size();
+    auto put = [&](VertexBuffer b, const void* data, uint32_t elem) {
+        ring_.upload(vertex_[static_cast<size_t>(b)].get(), VkDeviceSize{r.begin} * elem, data,
+                     VkDeviceSize{n} * elem);
+    };
+    f2_.resize(2 * size_t{n});
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec2 p = va.position[r.begin + i];
+        f2_[2 * i] = static_cast<float>(p.x - origin_.x);
+        f2_[2 * i + 1] = static_cast<float>(p.y - origin_.y);
+    }
+    put(VertexBuffer::Position, f2_.data(), 8);
+    f_.resize(n);
+    auto floats = [&](VertexBuffer b, const std::vector<double>& src) {
+        for (uint32_t i = 0; i < n; ++i)
+            f_[i] = static_cast<float>(src[r.begin + i]);
+        put(b, f_.data(), 4);
+    };
+    floats(VertexBuffer::Height, va.height);
+    floats(VertexBuffer::Bedrock, va.bedrock);
+    floats(VertexBuffer::Area, va.lumped_area);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t v = r.begin + i;
+        tan_alpha_cpu_[v] =
+            va.alive[v]
+                ? static_cast<float>(materials_.at(va.material[v]).talus_slope(va.moisture[v]))
+                : 0.0f;
+    }
+    put(VertexBuffer::TanAlpha, tan_alpha_cpu_.data() + r.begin, 4);
+    u_.resize(n);
+    for (uint32_t i = 0; i < n; ++i)
+        u_[i] = va.material[r.begin + i];
+    put(VertexBuffer::Material, u_.data(), 4);
+    put(VertexBuffer::Moisture, va.moisture.data() + r.begin, 4);
+    static_assert(sizeof(Vec2f) == 8);
+    put(VertexBuffer::Slide, va.slide.data() + r.begin, 8);
+}
+
+void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows) {
+    if (rows.empty()) return;
+    // Per-vertex row data, by id ranges (small gaps merged: fewer copy regions).
+    for (const IdRange r : merge_into_ranges(rows, kMergeGap)) {
+        const uint32_t n = r.size();
+        u_.resize(n);
+        for (uint32_t i = 0; i < n; ++i)
+            u_[i] = graph_.offset(r.begin + i);
+        ring_.upload(vertex_buffer(VertexBuffer::RowOffset), VkDeviceSize{r.begin} * 4, u_.data(),
+                     VkDeviceSize{n} * 4);
+        for (uint32_t i = 0; i < n; ++i)
+            u_[i] = graph_.degree(r.begin + i);
+        ring_.upload(vertex_buffer(VertexBuffer::RowDegree), VkDeviceSize{r.begin} * 4, u_.data(),
+                     VkDeviceSize{n} * 4);
+        f_.resize(n);
+        for (uint32_t i = 0; i < n; ++i)
+            f_[i] = static_cast<float>(graph_.longest_edge(r.begin + i));
+        ring_.upload(vertex_buffer(VertexBuffer::Longest), VkDeviceSize{r.begin} * 4, f_.data(),
+                     VkDeviceSize{n} * 4);
+    }
+    // The rows' edge slots in pool order, merged into ranges across small gaps (slack slots in
+    // a gap are copied too; nothing reads them).
+    std::vector<uint32_t> order;
+    for (uint32_t v : rows)
+        if (graph_.degree(v) > 0) order.push_back(v);
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return graph_.offset(a) < graph_.offset(b); });
+    size_t i = 0;
+    while (i < order.size()) {
+        const uint32_t begin = graph_.offset(order[i]);
+        uint32_t end = begin + graph_.degree(order[i]);
+        size_t j = i + 1;
+        while (j < order.size() && graph_.offset(order[j]) <= end + kMergeGap) {
+            end = std::max(end, graph_.offset(order[j]) + graph_.degree(order[j]));
+            ++j;
+        }
+        const uint32_t n = end - begin;
+        ring_.upload(edge_buffer(EdgeBuffer::Target), VkDeviceSize{begin} * 4,
+                     graph_.targets().data() + begin, VkDeviceSize{n} * 4);
+        ring_.upload(edge_buffer(EdgeBuffer::Reverse), VkDeviceSize{begin} * 4,
+                     graph_.reverses().data() + begin, VkDeviceSize{n} * 4);
+        f_.resize(n);
+        for (uint32_t k = 0; k < n; ++k)
+            f_[k] = static_cast<float>(graph_.lengths()[begin + k]);
+        ring_.upload(edge_buffer(EdgeBuffer::Length), VkDeviceSize{begin} * 4, f_.data(),
+                     VkDeviceSize{n} * 4);
+        // Constrained flags of the rows in this range (gap slots: 0).
+        u_.assign(n, 0u);
+        for (size_t r = i; r < j; ++r) {
+            const uint32_t v = order[r];
+            const uint32_t b = graph_.offset(v);
+            for (uint32_t k = 0; k < graph_.degree(v); ++k) {
+                const VertexId w{graph_.targets()[b + k]};
+                u_[b - begin + k] = tin.is_constrained_edge(VertexId{v}, w) ? 1u : 0u;
+            }
+        }
+        ring_.upload(edge_buffer(EdgeBuffer::EdgeFlags), VkDeviceSize{begin} * 4, u_.data(),
+                     VkDeviceSize{n} * 4);
+        i = j;
+    }
+}
+
+SyncStats TinMirror::sync(Tin& tin) {
+    if (!tin.tracks_changes()) {
+        throw GpuError(
+            "TinMirror::sync: the TIN does not track changes (TinOptions::track_changes)");
+    }
+    SyncStats stats;
+    const ChangeSet changes = tin.take_changes();
+    std::vector<uint32_t> rows;
+    std::vector<uint32_t> dirty;  // vertices to report (activation)
+    if (first_sync_) {
+        origin_ = tin.domain().min;
+        graph_.rebuild(tin);
+        rows = graph_.take_dirty_rows();
+    } else if (!changes.empty()) {
+        // Vertices whose star changed: corners of dirty slots (every re-triangulated star has
+        // a new triangle) and vertices that died.
+        std::vector<VertexId> star;
+        for (const IdRange r : changes.triangles) {
+            for (uint32_t s = r.begin; s < r.end; ++s) {
+                for (VertexId c : tin.slot_triangle(s))
+                    if (c.valid()) star.push_back(c);
+            }
+        }
+        for (const IdRange r : changes.vertices) {
+            for (uint32_t v = r.begin; v < r.end; ++v)
+                if (!tin.is_alive(VertexId{v})) star.push_back(VertexId{v});
+        }
+        graph_.update(tin, star);
+        rows = graph_.take_dirty_rows();
+        for (VertexId v : star)
+            if (tin.is_alive(v)) dirty.push_back(v.value);
+    }
+    const uint32_t edges = static_cast<uint32_t>(graph_.slot_count());
+    grow(changes.vertex_capacity, changes.slot_capacity, edges, stats);
+
+    const VertexArrays& va = tin.vertices();
+    std::vector<IdRange> vranges = changes.vertices;
+    if (materials_dirty_) {
+        vranges = {IdRange{0, static_cast<uint32_t>(va.size())}};
+        materials_dirty_ = false;
+    }
+    for (const IdRange r : vranges) {
+        if (r.size() == 0) continue;
+        upload_vertex_range(tin, r);
+        ++stats.vertex_ranges;
+        for (uint32_t v = r.begin; v < r.end; ++v)
+            if (va.alive[v]) dirty.push_back(v);
+    }
+    for (const IdRange r : changes.triangles) {
+        const uint32_t n = r.size();
+        if (n == 0) continue;
+        u_.resize(3 * size_t{n});
+        std::vector<uint32_t> flags(n);
+        for (uint32_t i = 0; i < n; ++i) {
+            const auto t = tin.slot_triangle(r.begin + i);
+            const bool live = t[0].valid();
+            for (int c = 0; c < 3; ++c)
+                u_[3 * i + static_cast<uint32_t>(c)] = live ? t[c].value : 0u;
+            flags[i] = live ? (tin.slot_constraint_mask(r.begin + i) & 7u) | 8u : 0u;
+        }
+        ring_.upload(slot_buffer(SlotBuffer::Triangles), VkDeviceSize{r.begin} * 12, u_.data(),
+                     VkDeviceSize{n} * 12);
+        ring_.upload(slot_buffer(SlotBuffer::SlotFlags), VkDeviceSize{r.begin} * 4, flags.data(),
+                     VkDeviceSize{n} * 4);
+        ++stats.slot_ranges;
+    }
+    upload_rows(tin, rows);
+    stats.rows = static_cast<uint32_t>(rows.size());
+    ring_.flush();
+    first_sync_ = false;
+
+    std::sort(dirty.begin(), dirty.end());
+    dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+    stats.dirty_vertices = std::move(dirty);
+    stats.bytes = ring_.take_frame_bytes();
+    return stats;
+}
+
+}  // namespace sandtin::gpu

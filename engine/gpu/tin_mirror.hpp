@@ -1,0 +1,140 @@
+#pragma once
+// The GPU copy of the TIN, fed by its change journal (Tin::take_changes): only dirty vertex
+// ranges, dirty triangle slots and the adjacency rows around them are uploaded, through a
+// staging ring. Buffers are indexed exactly like the CPU arrays and grow by reallocation (×1.5,
+// old contents copied on the GPU), so growth never re-uploads from the CPU.
+//
+// Device buffers (all storage buffers; std430 arrays):
+//   per vertex id v (capacity vertex_capacity()):
+//     position  vec2  metres, relative to origin() (float keeps µm precision near the terrain)
+//     height    float metres          bedrock float metres (-1e30: none)
+//     area      float m², lumped      tan_alpha float (tan of the angle of repose, from materials)
+//     material  uint                  moisture float [0, 1]
+//     slide     vec2  texture units in [0, 1), written by the relaxation (texture sliding)
+//     row_offset, row_degree uint (CSR)   longest float metres (longest edge of the row)
+//   per triangle slot s (capacity slot_capacity()):
+//     triangles uint[3] counter-clockwise corners (0, 0, 0 for a free slot: degenerate), also
+//               usable as an index buffer
+//     slot_flags uint: bits 0-2 = edge opposite corner i constrained, bit 3 = live
+//   per directed edge k of the CSR pool (capacity edge_capacity()):
+//     target uint, reverse uint (slot of the opposite direction), length float metres,
+//     edge_flags uint (bit 0: constrained edge)
+// Rows list neighbours counter-clockwise (AdjacencyGraph's invariant), which the normal kernels
+// rely on.
+//
+// Invariant after sync(): every buffer equals the TIN (converted to float) for all live ids and
+// slots; the CPU-side graph() equals the GPU CSR.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geom/vec2.hpp"
+#include "gpu/buffer.hpp"
+#include "gpu/staging_ring.hpp"
+#include "physics/adjacency_graph.hpp"
+#include "physics/material.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin::gpu {
+
+class VulkanContext;
+
+enum class VertexBuffer : uint32_t {
+    Position,
+    Height,
+    Bedrock,
+    Area,
+    TanAlpha,
+    Material,
+    Moisture,
+    Slide,
+    RowOffset,
+    RowDegree,
+    Longest,
+    Count
+};
+enum class SlotBuffer : uint32_t { Triangles, SlotFlags, Count };
+enum class EdgeBuffer : uint32_t { Target, Reverse, Length, EdgeFlags, Count };
+
+// What one sync() did.
+struct SyncStats {
+    uint64_t bytes = 0;  // staged for upload
+    uint32_t vertex_ranges = 0;
+    uint32_t slot_ranges = 0;
+    uint32_t rows = 0;                     // adjacency rows uploaded
+    bool reallocated = false;              // some buffer grew
+    std::vector<uint32_t> dirty_vertices;  // live vertices whose data changed (activation)
+};
+
+class TinMirror {
+  public:
+    // `materials` gives tan(angle of repose) per vertex; `staging_bytes` sizes the ring.
+    TinMirror(VulkanContext& context, MaterialTable materials = MaterialTable::presets(),
+              VkDeviceSize staging_bytes = VkDeviceSize{8} << 20);
+    ~TinMirror();
+    TinMirror(const TinMirror&) = delete;
+    TinMirror& operator=(const TinMirror&) = delete;
+
+    // Uploads what changed since the previous sync (everything the first time: the journal
+    // reports everything on its first take). The TIN must track changes and this mirror must be
+    // the only consumer of take_changes(). Submits the copies without waiting.
+    SyncStats sync(Tin& tin);
+    // Materials changed: tan_alpha of every live vertex is re-uploaded at the next sync.
+    void set_materials(MaterialTable materials);
+
+    VkBuffer vertex_buffer(VertexBuffer b) const;
+    VkBuffer slot_buffer(SlotBuffer b) const;
+    VkBuffer edge_buffer(EdgeBuffer b) const;
+    uint32_t vertex_capacity() const { return vertex_capacity_; }
+    uint32_t slot_capacity() const { return slot_capacity_; }
+    uint32_t edge_capacity() const { return edge_capacity_; }
+    // Bumped whenever a buffer is reallocated: descriptor sets must be rebound.
+    uint64_t generation() const { return generation_; }
+    Vec2 origin() const { return origin_; }
+
+    // Sum of the sizes of the mirrored buffers (bytes), the denominator of upload ratios.
+    uint64_t mirrored_bytes() const;
+    // Every byte staged since construction (per-sync figures are in SyncStats::bytes).
+    uint64_t total_uploaded_bytes() const { return ring_.total_bytes(); }
+
+    // The CSR graph as on the GPU (CPU copy, for the CPU reference and the physics).
+    const AdjacencyGraph& graph() const { return graph_; }
+    const std::vector<float>& tan_alpha() const { return tan_alpha_cpu_; }
+    const MaterialTable& materials() const { return materials_; }
+
+    VulkanContext& context() const { return context_; }
+    StagingRing& staging() { return ring_; }
+
+  private:
+    void grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStats& stats);
+    void upload_vertex_range(const Tin& tin, IdRange r);
+    void upload_rows(const Tin& tin, const std::vector<uint32_t>& rows);
+
+    VulkanContext& context_;
+    MaterialTable materials_;
+    StagingRing ring_;
+    AdjacencyGraph graph_;
+    bool first_sync_ = true;
+    bool materials_dirty_ = false;
+    Vec2 origin_{};
+    uint32_t vertex_capacity_ = 0;
+    uint32_t slot_capacity_ = 0;
+    uint32_t edge_capacity_ = 0;
+    uint64_t generation_ = 0;
+    std::array<Buffer, static_cast<size_t>(VertexBuffer::Count)> vertex_;
+    std::array<Buffer, static_cast<size_t>(SlotBuffer::Count)> slot_;
+    std::array<Buffer, static_cast<size_t>(EdgeBuffer::Count)> edge_;
+    std::vector<float> tan_alpha_cpu_;
+    // Scratch for conversions, kept to avoid reallocating per range.
+    std::vector<float> f_;
+    std::vector<float> f2_;
+    std::vector<uint32_t> u_;
+};
+
+// Element size (bytes) of each buffer.
+uint32_t element_size(VertexBuffer b);
+uint32_t element_size(SlotBuffer b);
+uint32_t element_size(EdgeBuffer b);
+
+}  // namespace sandtin::gpu

@@ -1,0 +1,83 @@
+// Talus relaxation on the GPU: the buffers and control block shared by its kernels. The
+// arithmetic transcribes engine/physics/talus_kernel.hpp (CPU Jacobi schedule) in float.
+#ifndef SANDTIN_TALUS_COMMON_GLSL
+#define SANDTIN_TALUS_COMMON_GLSL
+
+#include "common.glsl"
+
+// Control block (uint words). Lists live in `lists` at region * capacity.
+#define C_ACTIVE 0      // entries in the current active list
+#define C_NEXT 1        // entries appended to the next active list
+#define C_RECEIVERS 2
+#define C_CHANGED 3
+#define C_SPLIT 4
+#define C_PARITY 5      // which half of lists[0..2 capacity) is current
+#define C_TOUCHED 6
+#define C_PROCESSED_LO 7
+#define C_PROCESSED_HI 8
+#define C_CHANGED_TOTAL_LO 9
+#define C_CHANGED_TOTAL_HI 10
+#define C_ARGS_ACTIVE 16    // 3 words: indirect dispatch of the active list
+#define C_ARGS_RECEIVERS 20
+#define C_ARGS_CHANGED 24
+
+#define R_RECEIVERS 2u
+#define R_CHANGED 3u
+#define R_SPLIT 4u
+#define R_TOUCHED 5u
+
+struct VertexState {
+    uint source;    // iteration stamp: computed an outflow
+    uint receiver;  // iteration stamp: in the receiver list
+    uint changed;   // iteration stamp: height changed
+    uint split;     // iteration stamp: in the split list
+    uint quiet;     // still iterations while active
+    uint in_list;   // 1 while in the active list
+    uint touched;   // 1 while in the touched list (changed since the last read-back)
+    float residual; // m³ the last height update could not represent (compensated sum)
+};
+
+layout(std430, binding = 0) buffer Control { uint ctl[]; };
+layout(std430, binding = 1) buffer Heights { float height[]; };
+layout(std430, binding = 2) readonly buffer Areas { float area[]; };
+layout(std430, binding = 3) readonly buffer Bedrock { float bedrock[]; };
+layout(std430, binding = 4) readonly buffer TanAlpha { float tan_alpha[]; };
+layout(std430, binding = 5) readonly buffer RowOffset { uint row_offset[]; };
+layout(std430, binding = 6) readonly buffer RowDegree { uint row_degree[]; };
+layout(std430, binding = 7) readonly buffer Target { uint target[]; };
+layout(std430, binding = 8) readonly buffer Reverse { uint reverse_slot[]; };
+layout(std430, binding = 9) readonly buffer Length { float edge_length[]; };
+layout(std430, binding = 10) readonly buffer Longest { float longest[]; };
+layout(std430, binding = 11) buffer Flow { float q[]; };
+layout(std430, binding = 12) buffer Out { float outflow[]; };
+layout(std430, binding = 13) buffer State { VertexState vs[]; };
+layout(std430, binding = 14) buffer Lists { uint lists[]; };
+layout(std430, binding = 15) readonly buffer Position { vec2 position[]; };
+layout(std430, binding = 16) buffer Slide { vec2 slide[]; };
+layout(std430, binding = 17) buffer Packed { uvec4 packed_out[]; };
+
+layout(push_constant) uniform Push {
+    uint iter;          // iteration stamp (>= 1), unique per iteration
+    uint capacity;      // vertex capacity: size of each list region
+    uint mode;          // kernel-specific
+    uint quiet_limit;   // K
+    float damping;
+    float rest_tolerance;
+    float r_limit;      // relocation radius (1 + 1e-9 slack applied on the host); 1e30 = none
+    float slide_gain;   // gamma: texture units per metre of transported height; 0 = off
+} pc;
+
+void set_args(uint word, uint threads) {
+    uint groups = (threads + LOCAL_SIZE - 1) / LOCAL_SIZE;
+    uint x = min(groups, 65535u);
+    ctl[word] = x;
+    ctl[word + 1] = x == 0u ? 0u : (groups + x - 1u) / x;
+    ctl[word + 2] = 1u;
+}
+
+void append(uint region, uint counter, uint v) {
+    uint slot = atomicAdd(ctl[counter], 1u);
+    if (slot < pc.capacity) lists[region * pc.capacity + slot] = v;
+}
+
+#endif

@@ -1,0 +1,82 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Phase 1 of a Jacobi relaxation iteration: the outflow of every active vertex along each of
+// its directed edges, from the old heights (engine/physics/talus_kernel.hpp, in float). A
+// vertex that sends anything enters the receiver list with all its neighbours.
+#include "talus_common.glsl"
+
+const float kFloatEpsilon = 1.1920929e-7;
+
+void mark_receiver(uint v) {
+    if (atomicExchange(vs[v].receiver, pc.iter) != pc.iter) append(R_RECEIVERS, C_RECEIVERS, v);
+}
+
+void request_split(uint v) {
+    if (atomicExchange(vs[v].split, pc.iter) != pc.iter) append(R_SPLIT, C_SPLIT, v);
+}
+
+void main() {
+    uint idx = thread_index();
+    if (idx >= ctl[C_ACTIVE]) return;
+    uint i = lists[ctl[C_PARITY] * pc.capacity + idx];
+    uint begin = row_offset[i];
+    uint degree = row_degree[i];
+    vs[i].source = pc.iter;
+    float sent = 0.0;
+    if (degree > 0u) {
+        float hi = height[i];
+        float tan_a = tan_alpha[i];
+        float largest = 0.0;
+        float sum = 0.0;
+        // The CPU uses 64 double ulps; in float, 4 ulps of the height is the rounding noise
+        // below which two nearly coincident vertices would trade the last bit forever.
+        float noise_floor = 4.0 * kFloatEpsilon * abs(hi);
+        for (uint k = begin; k < begin + degree; ++k) {
+            float r = edge_length[k];
+            float slope = r * tan_a;
+            uint t = target[k];
+            float e = (hi - height[t]) - slope;
+            q[k] = 0.0;
+            if (!(e > pc.rest_tolerance * slope) || !(e > noise_floor)) continue;
+            if (r > pc.r_limit) {
+                request_split(i);
+                continue;
+            }
+            if (longest[t] > pc.r_limit) {
+                request_split(t);
+                continue;
+            }
+            q[k] = e;
+            sum += e;
+            largest = max(largest, e);
+        }
+        if (sum > 0.0) {
+            float inv_ai = 1.0 / area[i];
+            float levelling = 0.0;
+            for (uint k = begin; k < begin + degree; ++k) {
+                if (q[k] > 0.0) {
+                    float v = q[k] / (inv_ai + 1.0 / area[target[k]]);
+                    q[k] = v;
+                    levelling += v;
+                }
+            }
+            float scale = pc.damping;
+            float cap = pc.damping * largest * area[i];
+            if (scale * levelling > cap) scale = cap / levelling;
+            float available = area[i] * (hi - bedrock[i]);
+            if (scale * levelling > available) scale = max(available, 0.0) / levelling;
+            for (uint k = begin; k < begin + degree; ++k) {
+                if (q[k] > 0.0) {
+                    float v = q[k] * scale;
+                    q[k] = v;
+                    sent += v;
+                }
+            }
+        }
+    }
+    outflow[i] = sent;
+    if (sent > 0.0) {
+        mark_receiver(i);
+        for (uint k = begin; k < begin + degree; ++k) mark_receiver(target[k]);
+    }
+}
