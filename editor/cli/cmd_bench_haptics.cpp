@@ -19,13 +19,18 @@ namespace sandtin::cli {
 
 namespace {
 constexpr const char* kUsage =
-    "sandtin bench haptics [--seconds S] [--rate HZ] [--points N] [--quick] [--json]";
+    "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
+    "[--json]";
 }
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
     using namespace sandtin::haptics;
-    const Arguments args(
-        raw, {{"--seconds", 1}, {"--rate", 1}, {"--points", 1}, {"--quick", 0}, {"--json", 0}});
+    const Arguments args(raw, {{"--seconds", 1},
+                               {"--rate", 1},
+                               {"--points", 1},
+                               {"--spin-us", 1},
+                               {"--quick", 0},
+                               {"--json", 0}});
     args.require_positionals(0, kUsage);
     const double seconds = args.number_or("--seconds", args.has("--quick") ? 2.0 : 10.0);
     const double rate = args.number_or("--rate", 1000.0);
@@ -91,6 +96,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     j["wall_seconds"] = wall;
     j["ticks"] = report.ticks;
     j["realtime_priority"] = report.realtime;
+    j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
     j["period_ms"] = {{"p50", report.periods.p50_ms},
                       {"p99", report.periods.p99_ms},
                       {"max", report.periods.max_ms},
