@@ -18,9 +18,12 @@ constexpr VkBufferUsageFlags kUsage =
     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
     VK_BUFFER_USAGE_INDEX_BUFFER_BIT;
 
+// New capacity for `need` elements: 1/8 headroom over the need (so the first edits after a
+// load do not reallocate) and at least x1.5 of the old capacity (amortised growth).
 uint32_t grown(uint32_t have, uint32_t need) {
     if (need <= have) return have;
-    const uint64_t g = std::max<uint64_t>({uint64_t{need}, uint64_t{have} + have / 2, 64});
+    const uint64_t g =
+        std::max<uint64_t>({uint64_t{need} + need / 8, uint64_t{have} + have / 2, 64});
     return static_cast<uint32_t>(std::min<uint64_t>(g, 0xFFFFFFFFu));
 }
 

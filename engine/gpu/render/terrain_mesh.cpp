@@ -144,6 +144,8 @@ MeshUpdate TerrainMesh::update(const Tin& tin, const ChangeSet& changes,
     }
     for (VertexId v : active_flipped)
         seeds.push_back(v.value);
+    std::sort(seeds.begin(), seeds.end());
+    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
     mark_.resize(vertices_.size(), 0);
     std::vector<std::uint32_t> dirty;
     std::vector<VertexId> ring;
