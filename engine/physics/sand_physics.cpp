@@ -2,8 +2,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace sandtin {
+
+namespace {
+
+/// Spacing of the refinement lattice as a fraction of r_S: Delaunay edges between lattice
+/// neighbours are s long, and those next to skipped points stay below about 1.3 s <= r_S.
+constexpr double kLatticeSpacing = 0.75;
+/// Largest displacement of a lattice point, as a fraction of the spacing: neighbours stay at
+/// least (1 - 2 * 0.25) s apart.
+constexpr double kLatticeJitter = 0.25;
+
+}  // namespace
 
 void PhysicsStepReport::accumulate(const PhysicsStepReport& o) {
     iterations += o.iterations;
@@ -92,28 +104,111 @@ std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
     const double rs = solver_.settings().parameters.relocation_radius;
     const VertexArrays& va = tin_.vertices();
     if (split_requested_.size() < va.size()) split_requested_.resize(va.size(), 0);
-    std::vector<EdgeSplit> splits;
+    const std::size_t before = tin_.vertex_count();
+    // New vertices come from one hexagonal lattice of spacing s over the whole domain (seed 000
+    // §7.2 puts them on the circle of radius r_S around each eroding vertex instead; done for
+    // every vertex that meets sand, those circles and the fans of edges they leave towards far
+    // vertices put new vertices a fraction of a millimetre apart (measured: 0.05 mm edges with
+    // r_S = 1 cm), and the stiff, irregular graph then creeps towards rest thousands of times
+    // slower). Lattice points are at least s apart, so the refined region is well shaped
+    // whichever vertices asked first. Lattice points within s / 2 of a corner are skipped;
+    // when that leaves an edge longer than r_S, it is bisected instead.
+    const double s = kLatticeSpacing * rs;
+    const double row = s * 0.8660254037844386;
+    const Rect domain = tin_.domain();
+    std::vector<VertexId> ring;
+    std::vector<Vec2> points;
+    std::vector<EdgeSplit> bisect;
     for (std::uint32_t v : around) {
-        if (split_requested_[v] || !va.alive[v]) continue;
+        if (v >= split_requested_.size() || split_requested_[v] || !va.alive[v]) continue;
         split_requested_[v] = 1;
-        const std::uint32_t begin = graph_.offset(v);
-        for (std::uint32_t k = begin; k < begin + graph_.degree(v); ++k) {
-            const double len = graph_.lengths()[k];
-            if (!(len > rs * (1.0 + 1e-9))) continue;
-            // On the circle of radius r_S around v (seed 000 §7.2), or halfway when the edge
-            // is shorter than 2 r_S, so no piece stays longer than r_S and no new vertex lands
-            // next to an old one.
-            splits.push_back(
-                {VertexId{v}, VertexId{graph_.targets()[k]}, std::min(rs, 0.5 * len) / len});
+        tin_.neighbours(VertexId{v}, ring);
+        const Vec2 pv = va.position[v];
+        points.clear();
+        bool long_edge = false;
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+            const Vec2 a = va.position[ring[k].value];
+            const Vec2 b = va.position[ring[(k + 1) % ring.size()].value];
+            long_edge = long_edge || distance(pv, a) > rs * (1.0 + 1e-9);
+            // The fan triangle (v, a, b); the gap of a border vertex is not a triangle.
+            if (!(cross(a - pv, b - pv) > 0.0)) continue;
+            if (std::max(distance(pv, a), distance(pv, b)) <= rs * (1.0 + 1e-9)) continue;
+            // Lattice points of the triangle within 1.5 r_S of v: enough for v's new
+            // neighbours to be lattice-close, without filling a huge far triangle.
+            const double reach = 1.5 * rs;
+            const double x0 = std::max({std::min({pv.x, a.x, b.x}), pv.x - reach, domain.min.x});
+            const double x1 = std::min({std::max({pv.x, a.x, b.x}), pv.x + reach, domain.max.x});
+            const double y0 = std::max({std::min({pv.y, a.y, b.y}), pv.y - reach, domain.min.y});
+            const double y1 = std::min({std::max({pv.y, a.y, b.y}), pv.y + reach, domain.max.y});
+            const auto j0 = static_cast<long long>(std::ceil((y0 - domain.min.y) / row));
+            const auto j1 = static_cast<long long>(std::floor((y1 - domain.min.y) / row));
+            for (long long j = j0 - 1; j <= j1 + 1; ++j) {  // +-1: the jitter
+                const double y = domain.min.y + static_cast<double>(j) * row;
+                const double shift = (j & 1) != 0 ? 0.5 * s : 0.0;
+                const auto i0 = static_cast<long long>(std::ceil((x0 - domain.min.x - shift) / s));
+                const auto i1 = static_cast<long long>(std::floor((x1 - domain.min.x - shift) / s));
+                for (long long i = i0 - 1; i <= i1 + 1; ++i) {
+                    // A fixed pseudo-random jitter of each lattice point: a regular lattice
+                    // has six edge directions, and a pile resting on it is a hexagonal
+                    // pyramid whose faces are steeper than alpha between them (measured: the
+                    // apex 4-5 % above the cone's, at any r_S).
+                    const auto key = static_cast<std::uint64_t>(i) * 0x100000001B3ull ^
+                                     static_cast<std::uint64_t>(j);
+                    const Vec2 p{domain.min.x + shift + static_cast<double>(i) * s +
+                                     kLatticeJitter * s * signed_unit_hash(0x5A17, key, 1),
+                                 y + kLatticeJitter * s * signed_unit_hash(0x5A17, key, 2)};
+                    if (distance(p, pv) > reach) continue;
+                    // Strictly inside (v, a, b), and not crowding a corner.
+                    if (!(cross(a - pv, p - pv) > 0.0 && cross(b - a, p - a) > 0.0 &&
+                          cross(pv - b, p - b) > 0.0))
+                        continue;
+                    if (distance(p, pv) < 0.5 * s || distance(p, a) < 0.5 * s ||
+                        distance(p, b) < 0.5 * s)
+                        continue;
+                    points.push_back(p);
+                }
+            }
+        }
+        if (!points.empty()) {
+            // One call per vertex: the compensation for the Delaunay flips is shared by these
+            // new vertices only, all within 1.5 r_S of v (a call over many piles would move
+            // volume from a tall pile onto new vertices far away at another's toe).
+            tin_.insert_points_on_surface(points, &hint_, VolumePolicy::Conserve);
+        } else if (long_edge) {
+            for (std::size_t k = 0; k < ring.size(); ++k) {
+                if (distance(pv, va.position[ring[k].value]) > rs * (1.0 + 1e-9))
+                    bisect.push_back({VertexId{v}, ring[k], 0.5});
+            }
         }
     }
-    for (std::uint32_t v : around)
-        split_requested_[v] = 0;
+    for (std::uint32_t v : around) {
+        if (v < split_requested_.size()) split_requested_[v] = 0;
+    }
     around.clear();
-    if (splits.empty()) return 0;
-    const std::size_t before = tin_.vertex_count();
-    tin_.split_edges(splits, VolumePolicy::Conserve);
+    // One edge at a time, for the same reason as above.
+    for (const EdgeSplit& e : bisect)
+        tin_.split_edges(std::span<const EdgeSplit>(&e, 1), VolumePolicy::Conserve);
     return tin_.vertex_count() - before;
+}
+
+std::size_t SandPhysics::refine_around(std::span<const VertexId> vertices) {
+    if (!(solver_.settings().parameters.relocation_radius > 0.0)) return 0;
+    const double rs = solver_.settings().parameters.relocation_radius;
+    std::size_t inserted = 0;
+    // Bisection halves the longest edges each round, so this takes log2(longest / r_S) rounds.
+    for (;;) {
+        sync();
+        std::vector<std::uint32_t> around;
+        for (VertexId v : vertices) {
+            if (tin_.is_alive(v) && graph_.longest_edge(v.value) > rs * (1.0 + 1e-9))
+                around.push_back(v.value);
+        }
+        const std::size_t added = refine(around);
+        inserted += added;
+        if (added == 0) break;
+    }
+    sync();
+    return inserted;
 }
 
 PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* changed_out) {

@@ -51,14 +51,21 @@ class SandPhysics {
     /// Iterates until nothing is active or `max_iterations` ran.
     PhysicsStepReport run_to_rest(int max_iterations, std::vector<VertexId>* changed = nullptr);
 
+    /// Splits the edges around `vertices` until none is longer than the relocation radius
+    /// (the same refinement the relaxation asks for when sand meets a long edge), so a pour at
+    /// a single vertex of a coarse terrain starts from a star of radius r_S. Returns the
+    /// vertices inserted; no-op without a relocation radius.
+    std::size_t refine_around(std::span<const VertexId> vertices);
+
     const AdjacencyGraph& graph() const { return graph_; }
     /// tan(angle of repose) of each vertex, from its material and moisture.
     const std::vector<double>& talus_slopes() const { return tan_alpha_; }
 
   private:
     void sync();
-    /// Splits every edge longer than r_S of the given vertices (seed 000 §7.2, "prevention of
-    /// long edges"), at r_S from the vertex or halfway when the edge is shorter than 2 r_S.
+    /// Refines around the given vertices until their edges are at most r_S (seed 000 §7.2,
+    /// "prevention of long edges"): points of a hexagonal lattice of spacing 0.75 r_S inside
+    /// their stars, or, where no lattice point fits, the midpoints of their long edges.
     std::size_t refine(std::vector<std::uint32_t>& around);
 
     Tin& tin_;

@@ -1,5 +1,6 @@
 #include "physics/talus_solver.hpp"
 
+#include <algorithm>
 #include <memory>
 
 namespace sandtin {
@@ -73,6 +74,9 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
         if (sent <= 0.0) continue;
         // Gauss-Seidel: apply at once, so the next vertex sees the new heights.
         a.height[i] -= sent / a.area[i];
+        // When the sand ran out, h - (A (h - b)) / A can round to an ulp below b; the sand
+        // thickness must never be negative, and an ulp of volume is far inside the drift bound.
+        if (a.height[i] < a.bedrock[i]) a.height[i] = a.bedrock[i];
         auto mark = [&](std::uint32_t v) {
             if (!changed_[v]) {
                 changed_[v] = 1;
@@ -165,7 +169,8 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
                 const std::uint32_t w = target[k];
                 if (source_[w]) delta += q[reverse[k]];
             }
-            new_height_[v] = a.height[v] + delta / a.area[v];
+            // Clamped for the same rounding reason as in the sequential schedule.
+            new_height_[v] = std::max(a.height[v] + delta / a.area[v], a.bedrock[v]);
         }
     });
     for (std::uint32_t v : receivers_) {

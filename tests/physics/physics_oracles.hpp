@@ -1,0 +1,81 @@
+#pragma once
+// Independent checks of sand-physics results, computed from the TIN alone (never from the
+// solver's own bookkeeping): steepest edge, the pile's apex and toe, and a point pour.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "physics/sand_physics.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin::test {
+
+/// Largest |h_i - h_j| / (r_ij tan(alpha)) over the TIN's edges (1 = exactly at repose).
+/// Edges where both ends sit on bedrock-limited sand are skipped when `skip_bedrock` is set.
+inline double steepest_edge_ratio(const Tin& tin, double tan_alpha) {
+    const VertexArrays& va = tin.vertices();
+    std::vector<VertexId> ring;
+    double worst = 0.0;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        tin.neighbours(VertexId{v}, ring);
+        for (VertexId w : ring) {
+            const double r = distance(va.position[v], va.position[w.value]);
+            worst = std::max(worst, (va.height[v] - va.height[w.value]) / (r * tan_alpha));
+        }
+    }
+    return worst;
+}
+
+struct PileShape {
+    double apex = 0.0;        ///< highest vertex (m)
+    double toe_radius = 0.0;  ///< mean distance from the centre at which the surface drops to
+                              ///< `toe_level` along 32 rays (m)
+    double toe_spread = 0.0;  ///< largest minus smallest of those distances (m)
+};
+
+/// The pile around `centre`: apex height, and where the surface falls to `toe_level` along
+/// rays (from the exact piecewise-linear section of the TIN).
+inline PileShape measure_pile(const Tin& tin, Vec2 centre, double reach, double toe_level) {
+    PileShape s;
+    const VertexArrays& va = tin.vertices();
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v]) s.apex = std::max(s.apex, va.height[v]);
+    }
+    double lo = 1e300, hi = 0.0, sum = 0.0;
+    constexpr int kRays = 32;
+    for (int k = 0; k < kRays; ++k) {
+        const double a = 2.0 * std::numbers::pi * (k + 0.5) / kRays;
+        const Vec2 end{centre.x + reach * std::cos(a), centre.y + reach * std::sin(a)};
+        const auto sec = tin.section(centre, end);
+        double r = reach;
+        for (std::size_t i = 1; i < sec.size(); ++i) {
+            const auto [t0, z0] = sec[i - 1];
+            const auto [t1, z1] = sec[i];
+            if (z0 > toe_level && z1 <= toe_level) {
+                r = reach * (t0 + (t1 - t0) * (z0 - toe_level) / (z0 - z1));
+                break;
+            }
+        }
+        lo = std::min(lo, r);
+        hi = std::max(hi, r);
+        sum += r;
+    }
+    s.toe_radius = sum / kRays;
+    s.toe_spread = hi - lo;
+    return s;
+}
+
+/// Pours `volume` m³ onto the vertex at `at` (inserted if needed): first the edges around it
+/// are split at r_S so the pour has a star of radius r_S, then the vertex rises by V / A.
+inline VertexId pour_at_point(Tin& tin, SandPhysics& physics, Vec2 at, double volume) {
+    const VertexId v = tin.insert_point_on_surface(at);
+    const VertexId one[] = {v};
+    physics.refine_around(one);
+    tin.set_height(v, tin.height(v) + volume / tin.vertices().lumped_area[v.value]);
+    return v;
+}
+
+}  // namespace sandtin::test
