@@ -102,6 +102,7 @@ void ForceLoop::run() {
     Vec3 last_force;
     std::int64_t previous_start = 0;
     std::int64_t deadline = monotonic_ns() + period_ns_;
+    bool unseen_snapshot = false;
     double fade = 1.0;  // the stop ramp
     const double fade_step =
         config_.stop_ramp_ns > 0
@@ -126,11 +127,16 @@ void ForceLoop::run() {
             report.device_lost = true;
             break;
         }
-        const bool fresh = snapshots_.update();
-        if (fresh) ++report.snapshots_taken;
+        // A snapshot taken while the device has no pose yet is handed over at its first pose.
+        if (snapshots_.update()) {
+            ++report.snapshots_taken;
+            unseen_snapshot = true;
+        }
         TickOutput out;
         if (state.valid) {
-            out = renderer.tick(state.position, now, fresh ? &snapshots_.front() : nullptr);
+            out =
+                renderer.tick(state.position, now, unseen_snapshot ? &snapshots_.front() : nullptr);
+            unseen_snapshot = false;
         }
         if (stopping) {
             fade = std::max(0.0, fade - fade_step);

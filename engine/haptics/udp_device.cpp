@@ -52,6 +52,7 @@ UdpDeviceCounters UdpDevice::counters() const {
     c.out_of_order = out_of_order_.load(std::memory_order_relaxed);
     c.forces_sent = forces_sent_.load(std::memory_order_relaxed);
     c.send_failures = send_failures_.load(std::memory_order_relaxed);
+    c.driver_changes = driver_changes_.load(std::memory_order_relaxed);
     c.bye = bye_.load(std::memory_order_relaxed);
     c.timed_out = timed_out_.load(std::memory_order_relaxed);
     return c;
@@ -74,6 +75,11 @@ ReadStatus UdpDevice::read(DeviceState& state) {
         if (!p || p->type() == PacketType::Force) {
             malformed_.fetch_add(1, std::memory_order_relaxed);
             continue;
+        }
+        if (peer_ && from != *peer_) {
+            filter_.reset();  // a new driver: its own sequence numbers
+            peer_ = from;
+            driver_changes_.fetch_add(1, std::memory_order_relaxed);
         }
         if (!filter_.accept(p->sequence)) {
             out_of_order_.fetch_add(1, std::memory_order_relaxed);

@@ -4,10 +4,12 @@
 // sender with a force packet that acknowledges the newest pose we used.
 //
 // Each read() drains every datagram waiting (up to a bound), so the loop always uses the
-// newest pose. Malformed packets and packets older than the newest accepted one are dropped
-// and counted. The device is Lost (the loop stops) on a bye packet, or when no valid pose has
-// arrived for `loss_timeout_ns` after the first one. Before the first pose the state is
-// invalid and the loop renders no force.
+// newest pose. One driver at a time: a well-formed packet from another address or port than
+// the current driver's starts a new stream (a restarted driver numbers from 1 again), and
+// forces go to the new sender. Malformed packets and packets older than the newest accepted one are
+// dropped and counted. The device is Lost (the loop stops) on a bye packet, or when no valid pose
+// has arrived for `loss_timeout_ns` after the first one. Before the first pose the state is invalid
+// and the loop renders no force.
 
 #include <atomic>
 #include <cstdint>
@@ -35,6 +37,7 @@ struct UdpDeviceCounters {
     std::uint64_t out_of_order = 0;  ///< dropped as late or duplicated
     std::uint64_t forces_sent = 0;
     std::uint64_t send_failures = 0;
+    std::uint64_t driver_changes = 0;  ///< streams started by a new sender after the first
     bool bye = false;
     bool timed_out = false;
 };
@@ -66,7 +69,7 @@ class UdpDevice final : public HapticDevice {
     std::int64_t last_pose_ns_ = 0;
     std::uint32_t sequence_out_ = 0;
     std::atomic<std::uint64_t> received_{0}, poses_{0}, malformed_{0}, out_of_order_{0},
-        forces_sent_{0}, send_failures_{0};
+        forces_sent_{0}, send_failures_{0}, driver_changes_{0};
     std::atomic<bool> bye_{false}, timed_out_{false};
 };
 

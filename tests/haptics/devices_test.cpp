@@ -113,6 +113,34 @@ TEST(UdpDevice, LoopbackRoundTripDropsMalformedAndLatePackets) {
     device.close();
 }
 
+TEST(UdpDevice, ARestartedDriverStartsANewStream) {
+    UdpDevice device;
+    device.open();
+    const UdpEndpoint to{0x7F000001u, device.port()};
+    DeviceState s;
+    {
+        UdpSocket first = UdpSocket::bind(0);
+        ASSERT_TRUE(first.send_to(encode_packet({900, PosePacket{{0.1, 0.1, 0.1}, 0}}), to));
+        for (int i = 0; i < 200 && device.counters().poses < 1; ++i) {
+            ASSERT_EQ(device.read(s), ReadStatus::Ok);
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    UdpSocket second = UdpSocket::bind(0);  // numbers from 1 again
+    ASSERT_TRUE(second.send_to(encode_packet({1, PosePacket{{0.2, 0.2, 0.2}, 0}}), to));
+    for (int i = 0; i < 200 && device.counters().poses < 2; ++i) {
+        ASSERT_EQ(device.read(s), ReadStatus::Ok);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    EXPECT_EQ(device.counters().poses, 2u);
+    EXPECT_EQ(device.counters().driver_changes, 1u);
+    EXPECT_EQ(s.position, (Vec3{0.2, 0.2, 0.2}));
+    device.write_force({{0, 0, 1}, true, false});
+    const std::optional<Packet> reply = receive_packet(second);
+    ASSERT_TRUE(reply.has_value());
+    EXPECT_EQ(std::get<ForcePacket>(reply->body).ack, 1u);
+}
+
 TEST(UdpDevice, SilenceAfterTheFirstPoseIsDeviceLoss) {
     UdpDeviceConfig config;
     config.loss_timeout_ns = 20'000'000;

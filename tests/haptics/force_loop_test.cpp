@@ -108,6 +108,45 @@ TEST(ForceLoop, StopFadesTheForceOutInsteadOfDroppingIt) {
     }
 }
 
+// A device with no pose for its first ticks (a network device before the driver connects).
+class LateDevice final : public HapticDevice {
+  public:
+    void open() override {}
+    ReadStatus read(DeviceState& state) override {
+        if (reads_ == 300) return ReadStatus::Lost;
+        state = {};
+        if (reads_++ >= 20) state = {{0.5, 0.5, -0.004}, 0, 0, true};
+        return ReadStatus::Ok;
+    }
+    void write_force(const ForceCommand& c) override { forces_.push_back(c.force); }
+    void close() override {}
+    double max_force() const override { return 10.0; }
+    std::string name() const override { return "late"; }
+    std::vector<Vec3> forces_;
+
+  private:
+    int reads_ = 0;
+};
+
+TEST(ForceLoop, ASnapshotPublishedBeforeTheFirstPoseIsUsed) {
+    LateDevice device;
+    ForceLoopConfig config;
+    config.rate_hz = 4000.0;
+    config.spin_ns = 50'000;
+    config.try_realtime = false;
+    config.renderer.ramp_ns = 1'000'000;
+    config.renderer.stale_after_ns = 3'600'000'000'000;
+    ForceLoop loop(device, config);
+    loop.publish(flat_snapshot(0.0));  // the only snapshot, taken while there is no pose
+    loop.start();
+    while (loop.running())
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    loop.stop();
+    ASSERT_EQ(device.forces_.size(), 301u);   // 300 ticks and the final zero
+    EXPECT_EQ(device.forces_[19], (Vec3{}));  // no pose, no force
+    EXPECT_NEAR(length(device.forces_[299]), 3.7, 1e-9);
+}
+
 TEST(ForceLoop, StopsCleanlyOnRequestAndRejectsBadRates) {
     SimulatedDevice device = SimulatedDevice::spring({}, {0.5, 0.5, 1.0});
     ForceLoopConfig config;
