@@ -12,6 +12,7 @@
 namespace sandtin::cli {
 
 int run_bench(const std::vector<std::string>& raw) {
+    if (!raw.empty() && raw[0] == "erosion") return run_bench_erosion(raw);
     // The haptic loop benchmark has its own options (cmd_bench_haptics.cpp).
     if (!raw.empty() && raw.front() == "haptics")
         return run_bench_haptics(std::vector<std::string>(raw.begin() + 1, raw.end()));

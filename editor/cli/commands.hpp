@@ -11,6 +11,8 @@ int run_new(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_run(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
+/// `sandtin bench erosion`: TIN vs grid run time against error (cmd_bench_erosion.cpp).
+int run_bench_erosion(const std::vector<std::string>& args);
 int run_bench_haptics(const std::vector<std::string>& args);
 int run_haptics(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);

@@ -1,0 +1,388 @@
+// sandtin bench erosion: run time to rest against error, TIN versus the regular-grid baseline
+// (issue 4; the seeds' Fig. 8.4a compares the same two), and CPU Jacobi throughput.
+//
+//   sandtin bench erosion [--json] [--quick] [--out DIR]
+//
+// Scenes:
+//  - cone: V = 0.01 m³ poured at the centre of a flat 1 m square (dry sand, 32°). The TIN
+//    starts from two triangles and refines through r_S; the grid pours into its centre cell.
+//    Reference: the analytic cone.
+//  - dunes: a sinusoidal field with slopes up to 2x the angle of repose over the whole square
+//    (uniform detail). TINs of random points of several densities and grids of several
+//    resolutions; reference: the 256 x 256 grid run to rest.
+// Error, sampled on a 200 x 200 lattice: mean |z - z_ref| (the mean absolute volume
+// difference per unit area, Fig. 8.4a's metric) and max |z - z_ref|. Times are thread CPU
+// time (other agents share this 2-core machine; wall time is also given), each the median of
+// `repeats` runs. CSV and an SVG plot go to DIR.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "arguments.hpp"
+#include "bench_common.hpp"
+#include "commands.hpp"
+#include "physics/cone.hpp"
+#include "physics/grid_erosion.hpp"
+#include "physics/sand_physics.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin::cli {
+
+namespace {
+
+using bench::CpuStopwatch;
+using bench::Stopwatch;
+using HeightAt = std::function<double(Vec2)>;
+
+constexpr double kVolume = 0.01;
+constexpr int kSamples = 200;
+
+struct Row {
+    std::string scene, method, level;
+    std::size_t vertices = 0;
+    long iterations = 0;
+    double cpu_ms = 0.0, wall_ms = 0.0;
+    double mean_error = 0.0, max_error = 0.0;
+    bool at_rest = false;
+};
+
+void measure_error(Row& row, const HeightAt& z, const HeightAt& reference) {
+    double sum = 0.0, worst = 0.0;
+    for (int j = 0; j < kSamples; ++j) {
+        for (int i = 0; i < kSamples; ++i) {
+            const Vec2 p{(i + 0.5) / kSamples, (j + 0.5) / kSamples};
+            const double d = std::abs(z(p) - reference(p));
+            sum += d;
+            worst = std::max(worst, d);
+        }
+    }
+    row.mean_error = sum / (kSamples * kSamples);
+    row.max_error = worst;
+}
+
+double dunes(Vec2 p) {
+    // Slope amplitude 0.05 * 2 pi * 4 = 1.26, twice tan(32°).
+    return 0.2 + 0.05 * std::sin(2.0 * std::numbers::pi * 4.0 * p.x) *
+                     std::sin(2.0 * std::numbers::pi * 3.0 * p.y + 0.5);
+}
+
+double tan_alpha() {
+    return MaterialTable::presets().at(0).talus_slope(0.0);
+}
+
+/// Runs `run` `repeats` times and keeps the row with the median CPU time.
+Row median_of(int repeats, const std::function<Row()>& run) {
+    std::vector<Row> rows;
+    for (int r = 0; r < repeats; ++r)
+        rows.push_back(run());
+    std::sort(rows.begin(), rows.end(),
+              [](const Row& a, const Row& b) { return a.cpu_ms < b.cpu_ms; });
+    return rows[rows.size() / 2];
+}
+
+Row tin_cone(double rs) {
+    Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0), 0.0, TinOptions{false});
+    TalusSettings settings;
+    settings.parameters.relocation_radius = rs;
+    Row row{"cone", "tin", "r_S=" + std::to_string(rs)};
+    CpuStopwatch cpu;
+    Stopwatch wall;
+    SandPhysics physics(tin, MaterialTable::presets(), settings);
+    // Poured in 100 portions at one vertex, as from a nozzle (see tests/physics/cone_test).
+    const VertexId apex = tin.insert_point_on_surface({0.5, 0.5});
+    const VertexId one[] = {apex};
+    physics.refine_around(one);
+    PhysicsStepReport r;
+    for (int k = 0; k < 100; ++k) {
+        tin.set_height(apex,
+                       tin.height(apex) + kVolume / 100 / tin.vertices().lumped_area[apex.value]);
+        r.accumulate(physics.step(50));
+    }
+    r.accumulate(physics.run_to_rest(400000));
+    row.cpu_ms = cpu.ms();
+    row.wall_ms = wall.ms();
+    row.iterations = r.iterations;
+    row.at_rest = r.at_rest;
+    row.vertices = tin.vertex_count();
+    const Cone cone = Cone::from_volume(kVolume, tan_alpha());
+    LocateHint hint;
+    measure_error(
+        row, [&](Vec2 p) { return *tin.height_at(p, &hint); },
+        [&](Vec2 p) {
+            return cone.surface(distance(p, {0.5, 0.5}));
+        });
+    return row;
+}
+
+Row grid_cone(int n) {
+    Row row{"cone", "grid", std::to_string(n) + "x" + std::to_string(n)};
+    CpuStopwatch cpu;
+    Stopwatch wall;
+    GridErosion grid(Rect::from_size(1.0, 1.0), n, n, tan_alpha());
+    grid.pour({0.5, 0.5}, kVolume);
+    row.iterations = grid.run_to_rest(400000);
+    row.cpu_ms = cpu.ms();
+    row.wall_ms = wall.ms();
+    row.at_rest = grid.active_count() == 0;
+    row.vertices = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+    // The poured cell's centre is the apex; compare against the cone centred there.
+    const int c = std::clamp(static_cast<int>(0.5 * n), 0, n - 1);
+    const Vec2 apex = grid.centre(c, c);
+    const Cone cone = Cone::from_volume(kVolume, tan_alpha());
+    measure_error(
+        row, [&](Vec2 p) { return grid.height_at(p); },
+        [&](Vec2 p) { return cone.surface(distance(p, apex)); });
+    return row;
+}
+
+Row tin_dunes(std::size_t points, const HeightAt& reference) {
+    Row row{"dunes", "tin", std::to_string(points) + " points"};
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), points, 21, dunes, TinOptions{false});
+    CpuStopwatch cpu;
+    Stopwatch wall;
+    SandPhysics physics(tin, MaterialTable::presets(), {});
+    physics.activate_all();
+    const PhysicsStepReport r = physics.run_to_rest(400000);
+    row.cpu_ms = cpu.ms();
+    row.wall_ms = wall.ms();
+    row.iterations = r.iterations;
+    row.at_rest = r.at_rest;
+    row.vertices = tin.vertex_count();
+    LocateHint hint;
+    measure_error(
+        row, [&](Vec2 p) { return *tin.height_at(p, &hint); }, reference);
+    return row;
+}
+
+struct GridRun {
+    Row row;
+    std::unique_ptr<GridErosion> grid;
+};
+
+GridRun grid_dunes(int n) {
+    GridRun g{{"dunes", "grid", std::to_string(n) + "x" + std::to_string(n)}, nullptr};
+    CpuStopwatch cpu;
+    Stopwatch wall;
+    g.grid = std::make_unique<GridErosion>(Rect::from_size(1.0, 1.0), n, n, tan_alpha());
+    for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i)
+            g.grid->height(i, j) = dunes(g.grid->centre(i, j));
+    }
+    g.grid->activate_all();
+    g.row.iterations = g.grid->run_to_rest(400000);
+    g.row.cpu_ms = cpu.ms();
+    g.row.wall_ms = wall.ms();
+    g.row.at_rest = g.grid->active_count() == 0;
+    g.row.vertices = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+    return g;
+}
+
+nlohmann::json to_json(const Row& r) {
+    return {{"scene", r.scene},       {"method", r.method},           {"level", r.level},
+            {"vertices", r.vertices}, {"iterations", r.iterations},   {"cpu_ms", r.cpu_ms},
+            {"wall_ms", r.wall_ms},   {"mean_error_m", r.mean_error}, {"max_error_m", r.max_error},
+            {"at_rest", r.at_rest}};
+}
+
+/// Jacobi throughput on a 1000 x 1000 regular-grid TIN (10⁶ vertices) with a rough surface:
+/// vertex updates per second of one iteration, median over iterations, all vertices active.
+nlohmann::json jacobi_throughput(bool quick, int threads) {
+    const int n = quick ? 200 : 999;
+    Tin tin = Tin::regular_grid(
+        Rect::from_size(1.0, 1.0), n, n,
+        [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
+        TinOptions{false});
+    AdjacencyGraph graph;
+    graph.rebuild(tin);
+    const VertexArrays& va = tin.vertices();
+    std::vector<double> height = va.height;
+    std::vector<double> tan(va.size(), tan_alpha());
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    settings.threads = threads;
+    TalusSolver solver(settings);
+    const TalusArrays arrays{height.data(), va.lumped_area.data(), va.bedrock.data(), tan.data(),
+                             height.size()};
+    std::vector<double> rates;
+    std::size_t processed = 0;
+    for (int it = 0; it < 7; ++it) {
+        ActiveSet active;  // everything active each time: a fully active scene
+        for (std::uint32_t v = 0; v < va.size(); ++v)
+            active.activate(v);
+        Stopwatch wall;
+        const IterationStats st = solver.iterate(graph, arrays, active);
+        const double s = wall.ms() * 1e-3;
+        processed = st.processed;
+        rates.push_back(static_cast<double>(st.processed) / s);
+    }
+    const double rate = bench::median(rates);
+    return {{"vertices", tin.vertex_count()},
+            {"threads", threads},
+            {"processed_per_iteration", processed},
+            {"vertex_updates_per_s", rate},
+            {"vertex_updates_per_s_per_core", rate / threads},
+            {"iterations_measured", rates.size()},
+            {"timer", "wall, median of 7 iterations (other agents share the 2 cores)"}};
+}
+
+void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+    out << "scene,method,level,vertices,iterations,cpu_ms,wall_ms,mean_error_m,max_error_m,at_"
+           "rest\n";
+    for (const Row& r : rows) {
+        out << r.scene << ',' << r.method << ',' << r.level << ',' << r.vertices << ','
+            << r.iterations << ',' << r.cpu_ms << ',' << r.wall_ms << ',' << r.mean_error << ','
+            << r.max_error << ',' << (r.at_rest ? 1 : 0) << '\n';
+    }
+}
+
+/// Log-log plot of CPU time to rest (x) against mean error (y), one panel per scene.
+void write_svg(const std::filesystem::path& path, const std::vector<Row>& rows) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+    const int w = 420, h = 320, m = 50;
+    out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << 2 * w << "' height='" << h
+        << "' font-family='sans-serif' font-size='11'>\n";
+    int panel = 0;
+    for (const std::string scene : {"cone", "dunes"}) {
+        double tx0 = 1e300, tx1 = 0, ey0 = 1e300, ey1 = 0;
+        for (const Row& r : rows) {
+            if (r.scene != scene) continue;
+            tx0 = std::min(tx0, r.cpu_ms), tx1 = std::max(tx1, r.cpu_ms);
+            ey0 = std::min(ey0, r.mean_error), ey1 = std::max(ey1, r.mean_error);
+        }
+        if (tx1 <= 0) continue;
+        const double lx0 = std::log10(tx0) - 0.2, lx1 = std::log10(tx1) + 0.2;
+        const double ly0 = std::log10(std::max(ey0, 1e-12)) - 0.2, ly1 = std::log10(ey1) + 0.2;
+        const int ox = panel * w;
+        auto X = [&](double t) {
+            return ox + m + (std::log10(t) - lx0) / (lx1 - lx0) * (w - 2 * m);
+        };
+        auto Y = [&](double e) {
+            return h - m - (std::log10(std::max(e, 1e-12)) - ly0) / (ly1 - ly0) * (h - 2 * m);
+        };
+        out << "<rect x='" << ox + m << "' y='" << m << "' width='" << w - 2 * m << "' height='"
+            << h - 2 * m << "' fill='none' stroke='black'/>\n";
+        out << "<text x='" << ox + w / 2 << "' y='20' text-anchor='middle'>" << scene
+            << ": CPU ms to rest (log) vs mean |dz| m (log)</text>\n";
+        out << "<text x='" << ox + m << "' y='" << h - m + 15 << "'>" << tx0 << " ms</text>\n";
+        out << "<text x='" << ox + w - m << "' y='" << h - m + 15 << "' text-anchor='end'>" << tx1
+            << " ms</text>\n";
+        out << "<text x='" << ox + 2 << "' y='" << m + 10 << "'>" << ey1 << "</text>\n";
+        out << "<text x='" << ox + 2 << "' y='" << h - m << "'>" << ey0 << "</text>\n";
+        for (const std::string method : {"tin", "grid"}) {
+            const char* colour = method == "tin" ? "#c0392b" : "#2c3e50";
+            std::string poly;
+            for (const Row& r : rows) {
+                if (r.scene != scene || r.method != method) continue;
+                poly += std::to_string(X(r.cpu_ms)) + "," + std::to_string(Y(r.mean_error)) + " ";
+                out << "<circle cx='" << X(r.cpu_ms) << "' cy='" << Y(r.mean_error)
+                    << "' r='4' fill='" << colour << "'><title>" << r.level << ", " << r.vertices
+                    << " vertices</title></circle>\n";
+            }
+            out << "<polyline points='" << poly << "' fill='none' stroke='" << colour << "'/>\n";
+        }
+        out << "<text x='" << ox + w - m - 60 << "' y='" << m + 15 << "' fill='#c0392b'>TIN</text>"
+            << "<text x='" << ox + w - m - 60 << "' y='" << m + 30
+            << "' fill='#2c3e50'>grid</text>\n";
+        ++panel;
+    }
+    out << "</svg>\n";
+}
+
+}  // namespace
+
+int run_bench_erosion(const std::vector<std::string>& raw) {
+    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--out", 1}});
+    args.require_positionals(1, "sandtin bench erosion [--quick] [--json] [--out DIR]");
+    const bool quick = args.has("--quick");
+    const int repeats = quick ? 1 : 3;
+    std::vector<Row> rows;
+
+    const std::vector<double> tin_rs =
+        quick ? std::vector<double>{0.04} : std::vector<double>{0.04, 0.02, 0.01};
+    const std::vector<int> grid_n =
+        quick ? std::vector<int>{32} : std::vector<int>{32, 64, 128, 256};
+    for (double rs : tin_rs)
+        rows.push_back(median_of(repeats, [&] { return tin_cone(rs); }));
+    for (int n : grid_n)
+        rows.push_back(median_of(repeats, [&] { return grid_cone(n); }));
+
+    // Dunes: the finest grid is the reference.
+    const int ref_n = quick ? 64 : 256;
+    GridRun ref = grid_dunes(ref_n);
+    const GridErosion& ref_grid = *ref.grid;
+    const HeightAt reference = [&](Vec2 p) { return ref_grid.height_at(p); };
+    const std::vector<std::size_t> tin_points =
+        quick ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{2000, 8000, 32000};
+    const std::vector<int> dune_n = quick ? std::vector<int>{16} : std::vector<int>{32, 64, 128};
+    for (std::size_t pts : tin_points)
+        rows.push_back(median_of(repeats, [&] { return tin_dunes(pts, reference); }));
+    for (int n : dune_n) {
+        rows.push_back(median_of(repeats, [&] {
+            GridRun g = grid_dunes(n);
+            measure_error(
+                g.row, [&](Vec2 p) { return g.grid->height_at(p); }, reference);
+            return g.row;
+        }));
+    }
+
+    nlohmann::json j;
+    j["bench"] = "erosion";
+    j["repeats"] = repeats;
+    j["timer"] = "thread CPU time, median of repeats; wall time alongside";
+    j["dunes_reference"] = {{"grid", ref_n}, {"cpu_ms", ref.row.cpu_ms}};
+    nlohmann::json list = nlohmann::json::array();
+    for (const Row& r : rows)
+        list.push_back(to_json(r));
+    j["runs"] = list;
+
+    // Cone target: the TIN's cheapest run reaching the grid's best error.
+    const Row* best_grid = nullptr;
+    for (const Row& r : rows) {
+        if (r.scene == "cone" && r.method == "grid" &&
+            (best_grid == nullptr || r.mean_error < best_grid->mean_error))
+            best_grid = &r;
+    }
+    const Row* tin_match = nullptr;
+    for (const Row& r : rows) {
+        if (r.scene == "cone" && r.method == "tin" && best_grid != nullptr &&
+            r.mean_error <= best_grid->mean_error &&
+            (tin_match == nullptr || r.cpu_ms < tin_match->cpu_ms))
+            tin_match = &r;
+    }
+    nlohmann::json target = {{"grid_best", best_grid ? to_json(*best_grid) : nlohmann::json()}};
+    if (tin_match != nullptr && best_grid != nullptr) {
+        target["tin_match"] = to_json(*tin_match);
+        target["time_ratio"] = tin_match->cpu_ms / best_grid->cpu_ms;
+        target["vertex_ratio"] =
+            static_cast<double>(tin_match->vertices) / static_cast<double>(best_grid->vertices);
+        target["met"] = tin_match->cpu_ms <= best_grid->cpu_ms / 5.0 &&
+                        tin_match->vertices * 10 <= best_grid->vertices;
+    } else {
+        target["tin_match"] = nullptr;
+        target["met"] = false;
+    }
+    j["cone_target"] = target;
+    j["jacobi_throughput"] = {jacobi_throughput(quick, 1), jacobi_throughput(quick, 2)};
+
+    if (args.has("--out")) {
+        const std::filesystem::path dir = args.text("--out");
+        std::filesystem::create_directories(dir);
+        write_csv(dir / "erosion.csv", rows);
+        write_svg(dir / "erosion.svg", rows);
+        j["csv"] = (dir / "erosion.csv").string();
+        j["svg"] = (dir / "erosion.svg").string();
+    }
+    std::cout << j.dump(2) << "\n";
+    return 0;
+}
+
+}  // namespace sandtin::cli
