@@ -21,11 +21,6 @@ ForceRenderer::ForceRenderer(const ForceRendererConfig& config) : config_(config
     gain_step_ = std::min(1.0, period_ns / static_cast<double>(config_.ramp_ns));
 }
 
-void ForceRenderer::reset_motion() {
-    has_previous_ = false;
-    blend_offset_ = {};
-}
-
 TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
                                const HapticSnapshot* fresh) {
     const Vec3 velocity =
@@ -53,7 +48,9 @@ TickOutput ForceRenderer::tick(const Vec3& position, std::int64_t now_ns,
         has_snapshot_ = true;
         last_arrival_tick_ = tick_;
         const ForceSample now_model = evaluate_force(current_, position, velocity, config_.model);
-        blend_offset_ = old_out - now_model.force;
+        // Out of contact under the new snapshot the output is zero anyway (the seeds' rule);
+        // no offset is kept that could add force when the pen re-enters the sand.
+        blend_offset_ = now_model.contact ? old_out - now_model.force : Vec3{};
     }
 
     TickOutput out;

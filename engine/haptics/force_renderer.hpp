@@ -60,8 +60,6 @@ class ForceRenderer {
 
     const ForceRendererConfig& config() const { return config_; }
     std::uint64_t ticks() const { return tick_; }
-    /// Zero velocity and no blending; keeps the snapshot (the device was re-homed).
-    void reset_motion();
 
   private:
     ForceRendererConfig config_;

@@ -34,7 +34,7 @@ LiveEditor::LiveEditor(Tin& tin, std::shared_ptr<const Tool> tool, SculptContext
 LiveEditor::~LiveEditor() = default;
 
 bool LiveEditor::touches_sand(const ToolPlacement& at) {
-    // The tool's lowest point against the terrain under its centre and its outer contour.
+    // The tool's lowest point against the terrain under its centre and its inner contour.
     const Rect d = tin_.domain();
     const auto below = [&](Vec2 p) {
         const Vec2 q{std::clamp(p.x, d.min.x, d.max.x), std::clamp(p.y, d.min.y, d.max.y)};
