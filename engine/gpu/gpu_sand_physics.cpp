@@ -1,0 +1,139 @@
+#include "gpu/gpu_sand_physics.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "gpu/gpu_error.hpp"
+
+namespace sandtin::gpu {
+
+namespace {
+
+GpuRelaxationSettings relaxation_settings(const TalusSettings& s, double slide_gain) {
+    GpuRelaxationSettings g;
+    g.parameters = s.parameters;
+    g.quiet_iterations = s.quiet_iterations;
+    g.slide_gain = slide_gain;
+    return g;
+}
+
+TalusSettings checked(TalusSettings s) {
+    if (s.randomness > 0.0) {
+        throw GpuError(
+            "GPU physics: randomised outflow (randomness > 0) is only available on the "
+            "CPU physics");
+    }
+    return s;
+}
+
+}  // namespace
+
+GpuSandPhysics::GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
+                               TalusSettings settings, double slide_gain)
+    : tin_(tin),
+      settings_(checked(settings)),
+      mirror_(context, std::move(materials)),
+      relax_((mirror_.sync(tin), mirror_), relaxation_settings(settings_, slide_gain)) {}
+
+void GpuSandPhysics::activate(std::span<const VertexId> vertices) {
+    for (VertexId v : vertices)
+        if (tin_.is_alive(v)) pending_.push_back(v.value);
+}
+
+void GpuSandPhysics::activate_all() {
+    const VertexArrays& va = tin_.vertices();
+    for (uint32_t v = 0; v < va.size(); ++v)
+        if (va.alive[v]) pending_.push_back(v);
+}
+
+void GpuSandPhysics::sync() {
+    checked(settings_);
+    const double gain = relax_.settings().slide_gain;
+    relax_.settings() = relaxation_settings(settings_, gain);
+    const SyncStats s = mirror_.sync(tin_);
+    last_sync_bytes_ = s.bytes;
+    // Whatever changed on the CPU side (tools, write-backs, refinement) may now have excess.
+    relax_.activate(s.dirty_vertices);
+    relax_.activate(pending_);
+    pending_.clear();
+}
+
+std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed) {
+    const std::vector<TouchedVertex> touched = relax_.read_back();
+    std::vector<VertexId> ids;
+    std::vector<double> heights;
+    ids.reserve(touched.size());
+    heights.reserve(touched.size());
+    for (const TouchedVertex& t : touched) {
+        const VertexId v{t.id};
+        if (!tin_.is_alive(v)) continue;
+        ids.push_back(v);
+        heights.push_back(static_cast<double>(t.height));
+        const Vec2f slide{t.slide_x, t.slide_y};
+        if (!(tin_.vertices().slide[t.id] == slide)) tin_.set_slide(v, slide);
+    }
+    tin_.set_heights(ids, heights);
+    if (changed != nullptr) changed->insert(changed->end(), ids.begin(), ids.end());
+    return ids.size();
+}
+
+std::size_t GpuSandPhysics::refine() {
+    const double rs = settings_.parameters.relocation_radius;
+    if (!(rs > 0.0)) return 0;
+    const std::vector<uint32_t> around = relax_.take_split_requests();
+    if (around.empty()) return 0;
+    // As SandPhysics::refine: split every edge longer than r_S at r_S from the vertex, or
+    // halfway when it is shorter than 2 r_S.
+    const AdjacencyGraph& g = mirror_.graph();
+    std::vector<EdgeSplit> splits;
+    for (uint32_t v : around) {
+        if (!tin_.is_alive(VertexId{v}) || v >= g.vertex_capacity()) continue;
+        for (uint32_t k = g.offset(v); k < g.offset(v) + g.degree(v); ++k) {
+            const double len = g.lengths()[k];
+            if (!(len > rs * (1.0 + 1e-9))) continue;
+            splits.push_back(
+                {VertexId{v}, VertexId{g.targets()[k]}, std::min(rs, 0.5 * len) / len});
+        }
+    }
+    if (splits.empty()) return 0;
+    const std::size_t before = tin_.vertex_count();
+    tin_.split_edges(splits, VolumePolicy::Conserve);
+    return tin_.vertex_count() - before;
+}
+
+PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* changed) {
+    PhysicsStepReport report;
+    const auto t0 = std::chrono::steady_clock::now();
+    constexpr int kBatch = 64;
+    int left = iterations;
+    while (left > 0) {
+        sync();
+        if (relax_.at_rest()) break;
+        const int n = std::min(left, kBatch);
+        const GpuRunStats s = relax_.run(n);
+        left -= n;
+        report.iterations += s.iterations;
+        report.vertex_updates += s.vertex_updates;
+        report.changed += s.changed;
+        write_back(changed);
+        report.refined += refine();
+    }
+    sync();  // refinement and write-backs are on the GPU before the next caller looks
+    report.at_rest = at_rest();
+    report.ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return report;
+}
+
+PhysicsStepReport GpuSandPhysics::run_to_rest(int max_iterations, std::vector<VertexId>* changed) {
+    PhysicsStepReport total;
+    while (total.iterations < max_iterations) {
+        const PhysicsStepReport r = step(std::min(256, max_iterations - total.iterations), changed);
+        total.accumulate(r);
+        if (r.at_rest || r.iterations == 0) break;
+    }
+    total.at_rest = at_rest();
+    return total;
+}
+
+}  // namespace sandtin::gpu

@@ -1,0 +1,66 @@
+#pragma once
+// Sand physics with the relaxation on the GPU: the same interface as physics/SandPhysics
+// (step, run_to_rest, settings, activate), so a caller picks CPU or GPU at run time
+// (`--physics cpu|gpu`) and gets the same terrain within float tolerance.
+//
+// Each step: the TinMirror uploads what changed in the TIN since the last step (those vertices
+// become active), the GPU runs the iterations, and the vertices whose height or texture-slide
+// offset changed are read back into the TIN (set_heights / set_slide), so exports, saves and
+// haptic snapshots always see the current terrain. Edges longer than the relocation radius are
+// split on the CPU between GPU submissions (as SandPhysics does between iterations).
+//
+// Differences from the CPU physics, all documented in the step report: volume_moved is not
+// measured on the GPU (reported as 0); randomised outflow is not supported (the constructor
+// throws GpuError when TalusSettings::randomness > 0); the schedule is always Jacobi.
+
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "gpu/gpu_relaxation.hpp"
+#include "gpu/tin_mirror.hpp"
+#include "physics/material.hpp"
+#include "physics/sand_physics.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin::gpu {
+
+class VulkanContext;
+
+class GpuSandPhysics {
+  public:
+    // The TIN must track changes (TinOptions::track_changes) and outlive the physics; this
+    // object becomes the consumer of Tin::take_changes().
+    GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
+                   TalusSettings settings = {}, double slide_gain = 0.0);
+
+    TalusSettings& settings() { return settings_; }
+    void activate(std::span<const VertexId> vertices);
+    void activate_all();
+    bool at_rest() const { return relax_.at_rest() && pending_.empty(); }
+    std::size_t active_count() const { return relax_.active_count() + pending_.size(); }
+
+    // As SandPhysics::step / run_to_rest. Iterations run on the GPU in batches of up to 64
+    // per submission; a batch that starts at rest records nothing.
+    PhysicsStepReport step(int iterations = 1, std::vector<VertexId>* changed = nullptr);
+    PhysicsStepReport run_to_rest(int max_iterations, std::vector<VertexId>* changed = nullptr);
+
+    TinMirror& mirror() { return mirror_; }
+    GpuRelaxation& relaxation() { return relax_; }
+    uint64_t last_sync_bytes() const { return last_sync_bytes_; }
+
+  private:
+    void sync();
+    // Writes the GPU's changed vertices into the TIN; returns how many.
+    std::size_t write_back(std::vector<VertexId>* changed);
+    std::size_t refine();
+
+    Tin& tin_;
+    TalusSettings settings_;
+    TinMirror mirror_;
+    GpuRelaxation relax_;
+    std::vector<uint32_t> pending_;
+    uint64_t last_sync_bytes_ = 0;
+};
+
+}  // namespace sandtin::gpu
