@@ -16,6 +16,8 @@ int run_bench(const std::vector<std::string>& raw) {
     // The haptic loop benchmark has its own options (cmd_bench_haptics.cpp).
     if (!raw.empty() && raw.front() == "haptics")
         return run_bench_haptics(std::vector<std::string>(raw.begin() + 1, raw.end()));
+    if (!raw.empty() && raw.front() == "gpu")
+        return run_bench_gpu(std::vector<std::string>(raw.begin() + 1, raw.end()));
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
     args.require_positionals(
         1, "sandtin bench (tin | groove | import | history) [--quick] [--json]");

@@ -14,6 +14,8 @@ int run_bench(const std::vector<std::string>& args);
 /// `sandtin bench erosion`: TIN vs grid run time against error (cmd_bench_erosion.cpp).
 int run_bench_erosion(const std::vector<std::string>& args);
 int run_bench_haptics(const std::vector<std::string>& args);
+/// `sandtin bench gpu`: GPU relaxation, uploads, kernel times (cmd_bench_gpu.cpp).
+int run_bench_gpu(const std::vector<std::string>& args);
 int run_haptics(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 int run_import(const std::vector<std::string>& args);
