@@ -14,7 +14,7 @@ void main() {
     float delta = is_source ? -outflow[v] : 0.0;
     vec2 transport = vec2(0.0);
     uint begin = row_offset[v];
-    vec2 pv = position[v];
+    vec2 pv = pc.slide_gain > 0.0 ? position[v] : vec2(0.0);
     for (uint k = begin; k < begin + row_degree[v]; ++k) {
         uint w = target[k];
         float net = is_source ? q[k] : 0.0;  // out along v -> w
@@ -23,7 +23,9 @@ void main() {
             delta += qin;
             net -= qin;
         }
-        if (net != 0.0) transport += net * (position[w] - pv) / edge_length[k];
+        // Texture sliding only when enabled (a uniform branch: no position reads otherwise).
+        if (pc.slide_gain > 0.0 && net != 0.0)
+            transport += net * (position[w] - pv) / edge_length[k];
     }
     // Compensated update: the residual (m³) carries whatever the float height could not take,
     // including the error of the division (SPIR-V division is not correctly rounded), so

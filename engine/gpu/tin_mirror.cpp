@@ -265,10 +265,18 @@ SyncStats TinMirror::sync(Tin& tin) {
             if (tin.is_alive(v)) dirty.push_back(v.value);
     }
     const uint32_t edges = static_cast<uint32_t>(graph_.slot_count());
-    grow(changes.vertex_capacity, changes.slot_capacity, edges, stats);
+    grow(std::max<uint32_t>(changes.vertex_capacity, static_cast<uint32_t>(tin.vertices().size())),
+         std::max(changes.slot_capacity, tin.slot_capacity()), edges, stats);
 
     const VertexArrays& va = tin.vertices();
     std::vector<IdRange> vranges = changes.vertices;
+    std::vector<IdRange> sranges = changes.triangles;
+    if (first_sync_) {
+        // Everything, whatever the journal says: it reports everything only on its very first
+        // take, and another mirror may have taken that one.
+        vranges = {IdRange{0, static_cast<uint32_t>(va.size())}};
+        sranges = {IdRange{0, tin.slot_capacity()}};
+    }
     if (materials_dirty_) {
         vranges = {IdRange{0, static_cast<uint32_t>(va.size())}};
         materials_dirty_ = false;
@@ -280,7 +288,7 @@ SyncStats TinMirror::sync(Tin& tin) {
         for (uint32_t v = r.begin; v < r.end; ++v)
             if (va.alive[v]) dirty.push_back(v);
     }
-    for (const IdRange r : changes.triangles) {
+    for (const IdRange r : sranges) {
         const uint32_t n = r.size();
         if (n == 0) continue;
         u_.resize(3 * size_t{n});

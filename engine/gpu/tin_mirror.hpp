@@ -76,9 +76,9 @@ class TinMirror {
     TinMirror(const TinMirror&) = delete;
     TinMirror& operator=(const TinMirror&) = delete;
 
-    // Uploads what changed since the previous sync (everything the first time: the journal
-    // reports everything on its first take). The TIN must track changes and this mirror must be
-    // the only consumer of take_changes(). Submits the copies without waiting.
+    // Uploads what changed since the previous sync (everything the first time). The TIN must
+    // track changes and, from then on, this mirror must be the only consumer of
+    // take_changes(). Submits the copies without waiting.
     SyncStats sync(Tin& tin);
     // Materials changed: tan_alpha of every live vertex is re-uploaded at the next sync.
     void set_materials(MaterialTable materials);

@@ -122,6 +122,18 @@ TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
     EXPECT_EQ(mirror.total_uploaded_bytes(), first.bytes + edit.bytes + grown.bytes);
 }
 
+// A mirror created after another one took the journal's first (complete) report still
+// uploads everything.
+TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {
+    Tin tin = Tin::random_points(kUnitSquare, 2000, 19, [](Vec2 p) { return 0.3 * p.x * p.y; });
+    TinMirror first(ctx());
+    first.sync(tin);
+    TinMirror second(ctx());
+    const SyncStats s = second.sync(tin);
+    EXPECT_GT(s.bytes, second.mirrored_bytes() / 2);
+    expect_mirror_equals_tin(ctx(), second, tin);
+}
+
 // The acceptance figure: one stamp (r = 0.04, 12 control points) on a 10^6-vertex terrain
 // uploads less than 1 % of the mirrored bytes.
 TEST_F(GpuTest, OneStampOn1e6VerticesUploadsUnderOnePercentOfTheMirror) {
