@@ -2,10 +2,14 @@
 
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "gpu/gpu_error.hpp"
+#include "gpu/gpu_sand_physics.hpp"
+#include "gpu/vulkan_context.hpp"
 #include "haptics/recording_replay.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
@@ -16,11 +20,12 @@ namespace sandtin::cli {
 
 namespace {
 constexpr const char* kUsage =
-    "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin [--json]";
+    "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin "
+    "[--physics cpu|gpu] [--json]";
 }
 
 int run_run(const std::vector<std::string>& raw) {
-    const Arguments args(raw, {{"-i", 1}, {"-o", 1}, {"--json", 0}});
+    const Arguments args(raw, {{"-i", 1}, {"-o", 1}, {"--json", 0}, {"--physics", 1}});
     args.require_positionals(1, kUsage);
     const std::filesystem::path script_path = args.positionals()[0];
     const std::string out = args.text("-o");
@@ -33,9 +38,35 @@ int run_run(const std::vector<std::string>& raw) {
             ? haptics::recording_script(text, script_path.string(), script_path.parent_path())
             : parse_script(text, script_path.string(), script_path.parent_path());
 
+    // --physics gpu: the relaxation runs on the GPU (engine/gpu), fed by the TIN's journal.
+    const std::string physics = args.text_or("--physics", "cpu");
+    if (physics != "cpu" && physics != "gpu") {
+        throw UsageError("--physics must be cpu or gpu, not '" + physics +
+                         "'\nusage: " + std::string(kUsage));
+    }
+    std::unique_ptr<gpu::VulkanContext> gpu_context;
+    PhysicsBackendFactory backend;
+    if (physics == "gpu") {
+        try {
+            gpu_context = std::make_unique<gpu::VulkanContext>(gpu::ContextOptions{});
+        } catch (const gpu::GpuUnavailable& e) {
+            throw std::runtime_error(std::string("--physics gpu: no Vulkan device (") + e.what() +
+                                     "); use --physics cpu");
+        }
+        backend = [&gpu_context](Tin& t, const TalusSettings& s) {
+            auto p =
+                std::make_shared<gpu::GpuSandPhysics>(t, *gpu_context, MaterialTable::presets(), s);
+            PhysicsBackend b;
+            b.settings = [p]() -> TalusSettings& { return p->settings(); };
+            b.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
+            b.run_to_rest = [p](int n, std::vector<VertexId>* c) { return p->run_to_rest(n, c); };
+            return b;
+        };
+    }
+
     Session session;
     TinOptions options;
-    options.track_changes = false;
+    options.track_changes = physics == "gpu";  // the GPU mirror follows the change journal
     Tin tin = [&] {
         if (args.has("-i")) {
             session = load_session(args.text("-i"));
@@ -51,7 +82,7 @@ int run_run(const std::vector<std::string>& raw) {
     SculptContext context(tin.domain());
     context.set_next_generation(session.next_generation);
     const double volume_before = tin.volume();
-    const nlohmann::json steps = run_script(script, tin, context);
+    const nlohmann::json steps = run_script(script, tin, context, backend);
 
     session.terrain = tin.snapshot();
     session.next_generation = context.peek_generation();
@@ -60,6 +91,8 @@ int run_run(const std::vector<std::string>& raw) {
     j["steps"] = steps;
     j["terrain"] = describe_terrain(tin);
     j["volume_before"] = volume_before;
+    j["physics"] = physics;
+    if (gpu_context) j["device"] = gpu_context->describe();
     j["file"] = out;
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";

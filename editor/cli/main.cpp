@@ -17,7 +17,7 @@ usage: sandtin <command> [options]
 commands:
   new     create a terrain:   sandtin new --flat W H [--points N] [--seed S] -o scene.sandtin
   info    describe a session: sandtin info scene.sandtin [--json]
-  run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--json]
+  run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--physics cpu|gpu] [--json]
   import  heightmap to TIN:   sandtin import FILE --max-error E [--max-points N] -o scene.sandtin
   export  mesh or map:        sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr)
   bench   benchmarks (JSON):  sandtin bench (tin | groove | import | erosion | gpu) [--quick]

@@ -411,14 +411,23 @@ nlohmann::json stamp_json(const StampReport& r) {
 }  // namespace
 
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
-                           bool with_physics)
+                           bool with_physics, const PhysicsBackendFactory& backend)
     : tin_(tin), context_(context), physics_settings_(script.physics) {
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
     // The physics follows the TIN from the start, so it sees every change the script makes.
-    if (script.uses_physics || with_physics)
+    if ((script.uses_physics || with_physics) && backend) {
+        backend_ = backend(tin, script.physics);
+    } else if (script.uses_physics || with_physics) {
         physics_ = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), script.physics);
+        SandPhysics* p = physics_.get();
+        backend_.settings = [p]() -> TalusSettings& { return p->settings(); };
+        backend_.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
+        backend_.run_to_rest = [p](int n, std::vector<VertexId>* c) {
+            return p->run_to_rest(n, c);
+        };
+    }
 }
 
 ScriptRunner::~ScriptRunner() = default;
@@ -426,7 +435,7 @@ ScriptRunner::~ScriptRunner() = default;
 nlohmann::json ScriptRunner::run(const ScriptStep& step) {
     Tin& tin = tin_;
     SculptContext& context = context_;
-    if (!physics_ && step_uses_physics(step)) {
+    if (!backend_.step && step_uses_physics(step)) {
         throw std::logic_error("ScriptRunner: step '" + step.op_name +
                                "' needs the physics, which this runner was created without");
     }
@@ -434,8 +443,8 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
     // Relaxation, then the simplification of what it touched. Both conserve volume.
     auto erode = [&](int iterations, bool until_rest) {
         eroded.clear();
-        const PhysicsStepReport r = until_rest ? physics_->run_to_rest(iterations, &eroded)
-                                               : physics_->step(iterations, &eroded);
+        const PhysicsStepReport r = until_rest ? backend_.run_to_rest(iterations, &eroded)
+                                               : backend_.step(iterations, &eroded);
         context.simplifier.enqueue(eroded);
         if (context.settings.simplify_after_edit)
             context.simplifier.run(tin, context.settings.simplify);
@@ -473,11 +482,11 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                 }
                 return j;
             } else if constexpr (std::is_same_v<T, ErodeOp>) {
-                const TalusSettings saved = physics_->settings();
-                if (op.settings) physics_->settings() = *op.settings;
+                const TalusSettings saved = backend_.settings();
+                if (op.settings) backend_.settings() = *op.settings;
                 const PhysicsStepReport pr =
                     op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
-                physics_->settings() = saved;
+                backend_.settings() = saved;
                 return {{"iterations", pr.iterations}, {"vertex_updates", pr.vertex_updates},
                         {"refined", pr.refined},       {"volume_moved", pr.volume_moved},
                         {"at_rest", pr.at_rest},       {"erosion_ms", pr.ms},
@@ -547,8 +556,9 @@ Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
         domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
 }
 
-nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context) {
-    ScriptRunner runner(script, tin, context);
+nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
+                          const PhysicsBackendFactory& backend) {
+    ScriptRunner runner(script, tin, context, false, backend);
     nlohmann::json reports = nlohmann::json::array();
     for (const ScriptStep& step : script.steps)
         reports.push_back(runner.run(step));

@@ -32,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
 #include "tin/tin.hpp"
 #include "tools/brushes.hpp"
@@ -137,6 +138,19 @@ Script parse_script(std::string_view text, const std::string& name,
 
 class SandPhysics;
 
+/// The relaxation a script's erosion runs on: by default the CPU SandPhysics; `sandtin run
+/// --physics gpu` supplies the GPU one (engine/gpu/gpu_sand_physics.hpp) through these calls,
+/// which own its state.
+struct PhysicsBackend {
+    std::function<TalusSettings&()> settings;
+    std::function<PhysicsStepReport(int iterations, std::vector<VertexId>* changed)> step;
+    std::function<PhysicsStepReport(int max_iterations, std::vector<VertexId>* changed)>
+        run_to_rest;
+};
+/// Creates a backend that follows `tin` from now on, with the script's settings.
+using PhysicsBackendFactory =
+    std::function<PhysicsBackend(Tin& tin, const TalusSettings& settings)>;
+
 /// Runs the steps of a script one at a time against a terrain, keeping the sand physics (which
 /// follows every change to the TIN) alive between steps. run_script is a loop over it; the
 /// stress runner feeds it generated steps.
@@ -144,7 +158,9 @@ class ScriptRunner {
   public:
     /// Applies the script's settings to the context. The physics is created now, so it sees
     /// every change, when the script uses it or `with_physics` is set.
-    ScriptRunner(const Script& script, Tin& tin, SculptContext& context, bool with_physics = false);
+    /// `backend` replaces the CPU physics when given.
+    ScriptRunner(const Script& script, Tin& tin, SculptContext& context, bool with_physics = false,
+                 const PhysicsBackendFactory& backend = {});
     ~ScriptRunner();
     ScriptRunner(const ScriptRunner&) = delete;
     ScriptRunner& operator=(const ScriptRunner&) = delete;
@@ -153,17 +169,19 @@ class ScriptRunner {
     /// "volume_change" is the m³ the step added to the terrain by its own account).
     nlohmann::json run(const ScriptStep& step);
 
-    SandPhysics* physics() { return physics_.get(); }
+    SandPhysics* physics() { return physics_.get(); }  ///< null with another backend
 
   private:
     Tin& tin_;
     SculptContext& context_;
     TalusSettings physics_settings_;
     std::unique_ptr<SandPhysics> physics_;
+    PhysicsBackend backend_;
 };
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
 /// per step.
-nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context);
+nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
+                          const PhysicsBackendFactory& backend = {});
 
 }  // namespace sandtin
