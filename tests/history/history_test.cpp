@@ -122,6 +122,39 @@ TEST(History, BrushesPourAndErosionUndoExactly) {
     EXPECT_TRUE(tin.check_valid().ok());
 }
 
+TEST(History, BrushOverAStrokeUndoesBothExactly) {
+    // The brush refines edges of the stroke's rim, which splits its constraints: the brush's
+    // level changes constraints the stroke's level created.
+    for (const char* asset : {"circle", "ball"}) {
+        SCOPED_TRACE(asset);
+        Tin tin = dune_terrain(20000, 12);
+        History history(tin);
+        SculptContext context(kDomain);
+        const TinState s0 = capture(tin);
+        const Tool tool = Tool::build(load_tool_asset(asset));
+        StrokeSettings settings;
+        settings.depth = 0.012;
+        apply_stroke(tin, tool, std::vector<Vec2>{{0.3, 0.5}, {0.7, 0.45}}, settings, context);
+        ASSERT_TRUE(history.record("stroke"));
+        const TinState s1 = capture(tin);
+        BrushSettings b;
+        b.radius = 0.05;
+        for (int i = 0; i < 8; ++i)
+            apply_brush(tin, {0.45 + 0.02 * i, 0.48 + 0.01 * i}, b, context);
+        ASSERT_TRUE(history.record("brush"));
+        const TinState s2 = capture(tin);
+        HistoryStep u = history.undo();
+        EXPECT_TRUE(u.report.exact());
+        EXPECT_TRUE(same_state(capture(tin), s1));
+        u = history.undo();
+        EXPECT_TRUE(u.report.exact()) << u.report.unrestored.size() << " unrestored";
+        EXPECT_TRUE(same_state(capture(tin), s0));
+        history.redo();
+        history.redo();
+        EXPECT_TRUE(same_state(capture(tin), s2));
+    }
+}
+
 TEST(History, HundredsOfLevelsUndoToTheStart) {
     Tin tin = dune_terrain(2000, 9);
     History history(tin);

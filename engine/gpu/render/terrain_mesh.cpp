@@ -24,7 +24,7 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     // Faces around the vertex: consecutive counter-clockwise neighbours. Around a border vertex
     // the ring has a gap (the outside), where the pair turns clockwise or straight: skipped.
     tin.neighbours(VertexId{id}, ring);
-    double nx = 0.0, ny = 0.0, nz = 0.0, steepest = 0.0;
+    double nx = 0.0, ny = 0.0, nz = 0.0;
     for (std::size_t k = 0; k < ring.size(); ++k) {
         const std::size_t a = ring[k].index(), b = ring[(k + 1) % ring.size()].index();
         const Vec2 ea = va.position[a] - p, eb = va.position[b] - p;
@@ -36,7 +36,6 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
         nx += cx;
         ny += cy;
         nz += det;
-        steepest = std::max(steepest, std::hypot(cx, cy) / det);  // |grad z| of the face
     }
     const double n = std::sqrt(nx * nx + ny * ny + nz * nz);
     if (n > 0.0) {
@@ -53,8 +52,11 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     const float wet = 1.0f - 0.4f * std::clamp(va.moisture[id], 0.0f, 1.0f);
     for (int j = 0; j < 3; ++j)
         out.albedo[j] = m.colour[j] * wet;
+    // Slope of the area-weighted mean plane around the vertex (|grad z| = |n_xy| / n_z): a
+    // sliver's steep but tiny face does not flag its corners.
     const double talus = m.talus_slope(va.moisture[id]);
-    out.overlay[0] = static_cast<float>(talus > 0.0 ? steepest / talus : 0.0);
+    const double slope = nz > 0.0 ? std::hypot(nx, ny) / nz : 0.0;
+    out.overlay[0] = static_cast<float>(talus > 0.0 ? slope / talus : 0.0);
     out.overlay[1] =
         va.bedrock[id] <= kNoBedrock ? 0.0f : static_cast<float>(std::max(0.0, h - va.bedrock[id]));
     out.overlay[2] = id < active_.size() && active_[id] ? 1.0f : 0.0f;

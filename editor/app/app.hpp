@@ -1,0 +1,177 @@
+#pragma once
+// The editor application: one window, one document, panels, input, scripted mode. Its member
+// functions are spread over app_*.cpp by job (set-up and main loop, input, script, per-frame
+// update, panels).
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <fstream>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "camera.hpp"
+#include "editor_settings.hpp"
+#include "formats/png_image.hpp"
+#include "gpu/gpu_error.hpp"
+#include "gpu/render/terrain_mesh.hpp"
+#include "gpu/render/terrain_renderer.hpp"
+#include "gpu/vulkan_context.hpp"
+#include "history/history.hpp"
+#include "io/autosave.hpp"
+#include "io/export_terrain.hpp"
+#include "io/heightmap_import.hpp"
+#include "io/session_file.hpp"
+#include "physics/sand_physics.hpp"
+#include "picking.hpp"
+#include "swapchain.hpp"
+#include "tools/brushes.hpp"
+#include "tools/sand.hpp"
+#include "tools/stroke.hpp"
+#include "tools/tool_json.hpp"
+
+#include "document.hpp"
+#include "editor_app.hpp"
+#include "haptics_session.hpp"
+#include "stage_times.hpp"
+#include "tool_palette.hpp"
+
+namespace sandtin::editor {
+
+using Clock = std::chrono::steady_clock;
+
+/// Milliseconds of relaxation per frame at most (the rest waits for the next frame).
+inline constexpr double kErosionBudgetMs = 25.0;
+
+inline double ms_since(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+/// Every control explains itself on hover.
+inline void tip(const char* text) {
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+class App {
+  public:
+    explicit App(const EditorOptions& o) : options_(o) {}
+    int run();
+
+    void load_initial_scene();
+    void init_window_and_gpu();
+    void init_imgui();
+    void shutdown();
+    bool frame(bool capture);
+    void update_simulation();
+    void update_mesh();
+    void draw_panels();
+    void panel_tools();
+    void panel_materials();
+    void panel_erosion();
+    void panel_haptics();
+    void panel_stats();
+    void panel_file();
+    void recovery_prompt();
+
+    // Input, shared by GLFW callbacks and the script.
+    void mouse_button(int button, bool down, double x, double y);
+    void mouse_move(double x, double y);
+    void scroll(double dy);
+    void key(int key, bool ctrl);
+    void run_script_op(const nlohmann::json& op);
+
+    std::optional<Vec3> pick(double x, double y) const;
+    void tool_at(Vec3 point);
+    void end_action();
+    void undo();
+    void redo();
+    void save(const std::filesystem::path& p);
+    void open(const std::filesystem::path& p);
+    void frame_terrain();
+    /// After doc_ holds a new terrain: per-terrain state restarts.
+    void document_replaced() {
+        mesh_stale_ = true;
+        active_.clear();
+        active_ids_.clear();
+        active_flipped_.clear();
+        physics_kick_ = true;
+    }
+    void report(const std::string& message) {
+        status_ = message;
+        if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
+            std::fprintf(stderr, "sandtin-editor: %s\n", message.c_str());
+    }
+    Tool build_tool() const;
+
+    EditorOptions options_;
+    std::filesystem::path settings_path_;
+    EditorSettings settings_;
+    EditorSettings saved_settings_;
+    GLFWwindow* window_ = nullptr;
+    std::unique_ptr<gpu::VulkanContext> context_;
+    std::unique_ptr<Swapchain> swapchain_;
+    std::unique_ptr<render::TerrainRenderer> renderer_;
+    std::unique_ptr<render::TerrainMesh> mesh_;
+    std::vector<VertexId> active_ids_;      ///< vertices flagged active now
+    std::vector<VertexId> active_flipped_;  ///< flags that changed since the last mesh update
+    std::uint64_t last_upload_bytes_ = 0;
+    std::uint64_t mesh_updates_ = 0, mesh_rebuilds_ = 0, mesh_recomputed_ = 0;
+    gpu::UniqueDescriptorPool imgui_pool_;
+    bool imgui_ready_ = false;
+    Document doc_;
+    OrbitCamera camera_;
+    StageTimes times_;
+    std::string status_;
+
+    // Interaction state.
+    bool left_down_ = false, right_down_ = false, middle_down_ = false;
+    double mouse_x_ = 0.0, mouse_y_ = 0.0;
+    std::optional<Vec3> cursor_;
+    std::optional<StrokeSampler> sampler_;
+    std::optional<Tool> active_tool_;
+    std::optional<Vec2> last_dab_;
+    std::string pending_label_;
+    bool erosion_pending_ = false;
+    bool physics_kick_ = true;
+    std::vector<std::uint8_t> active_;
+    double tool_ms_ = 0.0;
+    bool mesh_stale_ = true;
+    int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)
+    std::optional<std::filesystem::path> recovery_for_;
+
+    // Haptics panel.
+    std::unique_ptr<HapticsSession> haptics_;
+    int haptic_device_ = 0;  ///< HapticDeviceKind
+    int haptic_rate_hz_ = 1000;
+    int haptic_udp_port_ = 0;
+    std::string haptics_error_;
+    std::optional<Tool> haptic_tool_;
+    int haptic_tool_index_ = -1;
+    double haptic_tool_radius_ = 0.0;
+    std::deque<float> haptic_forces_;
+    void update_haptics();
+
+    // Scripted mode.
+    std::vector<nlohmann::json> script_;
+    std::size_t script_pos_ = 0;
+    int script_wait_ = 0;
+    bool ctrl_ = false;
+    char path_buf_[512] = "scene.sandtin";
+    char import_buf_[512] = "";
+    char export_buf_[512] = "terrain.glb";
+};
+
+}  // namespace sandtin::editor

@@ -1,0 +1,171 @@
+// One frame: physics within its budget, mesh update from the journal, drawing.
+
+#include "app.hpp"
+
+namespace sandtin::editor {
+
+// ---- Per frame ------------------------------------------------------------------------------
+
+void App::update_simulation() {
+    const auto t0 = Clock::now();
+    // The physics learns about edits when it steps, so an edit "kicks" it.
+    if (settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest())) {
+        physics_kick_ = false;
+        doc_.physics->settings().parameters.relocation_radius = settings_.relocation_radius;
+        // Up to the chosen iterations, but within a time budget so the editor stays responsive
+        // while a large region slides.
+        std::vector<VertexId> changed;
+        for (int i = 0; i < settings_.erosion_steps; ++i) {
+            doc_.physics->step(1, &changed);
+            if (doc_.physics->at_rest() || ms_since(t0) > kErosionBudgetMs) break;
+        }
+        std::sort(changed.begin(), changed.end());
+        changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+        // Active flags for the overlay: clear the old ones, set the new ones; the mesh
+        // recomputes only the flags that flipped.
+        if (active_.size() < doc_.tin->vertex_capacity())
+            active_.resize(doc_.tin->vertex_capacity(), 0);
+        for (VertexId v : active_ids_) {
+            active_[v.index()] = 0;
+            active_flipped_.push_back(v);
+        }
+        active_ids_.clear();
+        for (VertexId v : changed) {
+            if (v.index() < active_.size() && !active_[v.index()]) {
+                active_[v.index()] = 1;
+                active_ids_.push_back(v);
+                active_flipped_.push_back(v);
+            }
+        }
+        if (!changed.empty() && !left_down_) erosion_pending_ = true;
+        if (doc_.physics->at_rest() && erosion_pending_ && !left_down_) end_action();
+    } else if (!active_ids_.empty()) {
+        for (VertexId v : active_ids_) {
+            active_[v.index()] = 0;
+            active_flipped_.push_back(v);
+        }
+        active_ids_.clear();
+    }
+    times_.push(times_.physics, ms_since(t0));
+    times_.push(times_.tool, tool_ms_);
+    tool_ms_ = 0.0;
+    // Autosave a dirty document every minute.
+    if (doc_.dirty && !doc_.path.empty() && !options_.scripted() &&
+        Clock::now() - doc_.last_autosave > std::chrono::seconds(60)) {
+        write_autosave(doc_.path, doc_.session());
+        doc_.last_autosave = Clock::now();
+    }
+}
+
+void App::update_haptics() {
+    if (!haptics_ || !cursor_) return;
+    const ToolEntry& t = kTools[settings_.tool];
+    if (!haptic_tool_ || haptic_tool_index_ != settings_.tool ||
+        haptic_tool_radius_ != settings_.tool_radius) {
+        // Brushes and the pour are felt as a round tool of their radius.
+        if (t.kind == ToolKind::Stamp) {
+            haptic_tool_ = build_tool();
+        } else {
+            ToolSpec spec;
+            spec.radius = settings_.tool_radius;
+            haptic_tool_ = Tool::build(spec);
+        }
+        haptic_tool_index_ = settings_.tool;
+        haptic_tool_radius_ = settings_.tool_radius;
+    }
+    // The pen rests at the cursor, its tip the tool depth below the surface there.
+    const double bottom = cursor_->z - settings_.tool_depth;
+    const ToolPlacement at{{cursor_->x, cursor_->y}, 0.0, bottom};
+    haptics_->update(*doc_.tin, *haptic_tool_, at, doc_.materials,
+                     {cursor_->x, cursor_->y, bottom});
+}
+
+void App::update_mesh() {
+    // The journal says what changed; nothing changed means no recomputation and no upload.
+    const ChangeSet changes = doc_.tin->take_changes();
+    if (!mesh_stale_ && changes.empty() && active_flipped_.empty()) {
+        times_.push(times_.mesh, 0.0);
+        times_.push(times_.upload, 0.0);
+        last_upload_bytes_ = 0;
+        return;
+    }
+    const auto t0 = Clock::now();
+    mesh_->set_active(active_);
+    const render::MeshUpdate update = mesh_stale_
+                                          ? mesh_->rebuild(*doc_.tin)
+                                          : mesh_->update(*doc_.tin, changes, active_flipped_);
+    active_flipped_.clear();
+    mesh_stale_ = false;
+    ++mesh_updates_;
+    mesh_recomputed_ += count_in_ranges(update.vertices);
+    if (update.resized) ++mesh_rebuilds_;
+    times_.push(times_.mesh, ms_since(t0));
+    const auto t1 = Clock::now();
+    swapchain_->wait_idle();
+    const std::uint64_t before = renderer_->bytes_uploaded();
+    renderer_->upload(*mesh_, update);
+    last_upload_bytes_ = renderer_->bytes_uploaded() - before;
+    times_.push(times_.upload, ms_since(t1));
+}
+
+bool App::frame(bool capture) {
+    const auto t0 = Clock::now();
+    update_simulation();
+    update_haptics();
+    update_mesh();
+
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    draw_panels();
+    ImGui::Render();
+
+    const auto t1 = Clock::now();
+    const float clear[3] = {0.09f, 0.10f, 0.12f};
+    if (!swapchain_->begin_frame(clear)) {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        if (w > 0 && h > 0)
+            swapchain_->recreate({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
+                                 settings_.vsync);
+        return false;
+    }
+    const VkExtent2D extent = swapchain_->extent();
+    render::TerrainPush push{};
+    const Mat4 vp = camera_.view_projection(static_cast<double>(extent.width) / extent.height);
+    std::copy(vp.begin(), vp.end(), push.view_projection);
+    const float l[3] = {0.55f, -0.45f, 0.5f};  // low sun: sand relief reads well
+    const float ln = std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+    push.light_dir[0] = l[0] / ln;
+    push.light_dir[1] = l[1] / ln;
+    push.light_dir[2] = l[2] / ln;
+    push.light_dir[3] = static_cast<float>(settings_.contrast);
+    const Vec2 c = doc_.tin->domain().centre();
+    if (cursor_) {
+        push.cursor[0] = static_cast<float>(cursor_->x - c.x);
+        push.cursor[1] = static_cast<float>(cursor_->y - c.y);
+        push.cursor[2] = static_cast<float>(settings_.tool_radius);
+        push.cursor[3] = 1.0f;
+    }
+    push.overlays[0] = settings_.overlay_wireframe ? 1.0f : 0.0f;
+    push.overlays[1] = settings_.overlay_active ? 1.0f : 0.0f;
+    push.overlays[2] = settings_.overlay_thickness ? 1.0f : 0.0f;
+    push.overlays[3] = settings_.overlay_slope ? 1.0f : 0.0f;
+    push.contrast[0] = 0.0f;
+    push.contrast[1] = 0.12f;
+    renderer_->draw(swapchain_->command_buffer(), push, extent, *mesh_);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), swapchain_->command_buffer());
+    const bool ok = swapchain_->end_frame(capture);
+    times_.push(times_.render, ms_since(t1));
+    times_.push(times_.frame, ms_since(t0));
+    if (!ok) {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        if (w > 0 && h > 0)
+            swapchain_->recreate({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
+                                 settings_.vsync);
+    }
+    return true;
+}
+
+}  // namespace sandtin::editor

@@ -1,0 +1,134 @@
+// Mouse and keyboard: camera moves, tools along the stroke, undo and redo.
+
+#include "app.hpp"
+
+namespace sandtin::editor {
+
+// ---- Input ----------------------------------------------------------------------------------
+
+std::optional<Vec3> App::pick(double x, double y) const {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    const Ray ray = camera_.pixel_ray(x, y, w, h);
+    const Rect d = doc_.tin->domain();
+    const double step = std::max(d.width(), d.height()) / 2000.0;
+    const auto hit = pick_terrain(*doc_.tin, ray, d.centre(), step, camera_.distance * 4.0);
+    if (!hit) return std::nullopt;
+    return hit->point;
+}
+
+void App::tool_at(Vec3 p) {
+    const auto t0 = Clock::now();
+    const ToolEntry& t = kTools[settings_.tool];
+    const Vec2 xy{p.x, p.y};
+    switch (t.kind) {
+        case ToolKind::Stamp: {
+            if (!sampler_) {
+                active_tool_ = build_tool();
+                sampler_.emplace(settings_.stroke_spacing);
+            }
+            StrokeSettings ss;
+            ss.depth = settings_.tool_depth;
+            ss.follow_path = settings_.follow_path;
+            ss.angle = settings_.tool_angle * 3.14159265358979 / 180.0;
+            if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
+                std::fprintf(stderr, "pick %.4f %.4f\n", xy.x, xy.y);
+            for (const StrokeSample& s : sampler_->add_point(xy)) {
+                const ToolPlacement at =
+                    placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
+                stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+            }
+            pending_label_ = std::string("stroke (") + t.label + ")";
+            break;
+        }
+        case ToolKind::Brush: {
+            if (last_dab_ && distance(*last_dab_, xy) < settings_.tool_radius * 0.25) break;
+            BrushSettings b;
+            b.kind = t.brush;
+            b.radius = settings_.tool_radius;
+            b.strength = t.brush == BrushKind::Raise ? settings_.brush_strength : 0.5;
+            b.material = static_cast<std::uint16_t>(settings_.material);
+            apply_brush(*doc_.tin, xy, b, *doc_.context);
+            last_dab_ = xy;
+            pending_label_ = std::string("brush (") + t.label + ")";
+            break;
+        }
+        case ToolKind::Pour:
+        case ToolKind::Remove: {
+            PourSettings ps;
+            ps.radius = settings_.tool_radius * 0.5;
+            if (t.kind == ToolKind::Pour) {
+                pour_sand(*doc_.tin, xy, settings_.pour_volume, ps, *doc_.context);
+                pending_label_ = "pour";
+            } else {
+                remove_sand(*doc_.tin, xy, settings_.pour_volume, ps, *doc_.context);
+                pending_label_ = "remove sand";
+            }
+            break;
+        }
+    }
+    tool_ms_ += ms_since(t0);
+    physics_kick_ = true;
+}
+
+void App::mouse_button(int button, bool down, double x, double y) {
+    mouse_x_ = x;
+    mouse_y_ = y;
+    redraw_frames_ = 3;
+    if (button == GLFW_MOUSE_BUTTON_LEFT) {
+        left_down_ = down;
+        if (down) {
+            if (erosion_pending_) end_action();  // erosion so far is its own undo level
+            last_dab_.reset();
+            if (const auto p = pick(x, y)) tool_at(*p);
+        } else {
+            end_action();
+        }
+    } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+        right_down_ = down;
+    } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
+        middle_down_ = down;
+    }
+}
+
+void App::mouse_move(double x, double y) {
+    const double dx = x - mouse_x_, dy = y - mouse_y_;
+    mouse_x_ = x;
+    mouse_y_ = y;
+    redraw_frames_ = 3;
+    if (right_down_) camera_.orbit(dx, dy);
+    if (middle_down_) {
+        int w = 0, h = 0;
+        glfwGetWindowSize(window_, &w, &h);
+        camera_.pan(dx, dy, h);
+    }
+    cursor_ = pick(x, y);
+    if (left_down_ && cursor_) tool_at(*cursor_);
+}
+
+void App::scroll(double dy) {
+    camera_.zoom(dy);
+    redraw_frames_ = 3;
+}
+
+void App::key(int k, bool ctrl) {
+    redraw_frames_ = 3;
+    if (ctrl && k == GLFW_KEY_Z)
+        undo();
+    else if (ctrl && k == GLFW_KEY_Y)
+        redo();
+    else if (ctrl && k == GLFW_KEY_S) {
+        try {
+            save(doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path);
+        } catch (const std::exception& e) {
+            report(std::string("save failed: ") + e.what());
+        }
+    } else if (k >= GLFW_KEY_0 && k <= GLFW_KEY_9) {
+        end_action();
+        settings_.tool = k == GLFW_KEY_0 ? 9 : k - GLFW_KEY_1;
+    } else if (k == GLFW_KEY_F) {
+        frame_terrain();
+    }
+}
+
+}  // namespace sandtin::editor

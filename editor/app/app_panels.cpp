@@ -1,0 +1,309 @@
+// The ImGui panels: File, Tools, Materials, Erosion, Haptics, Stats, recovery prompt.
+
+#include "app.hpp"
+
+namespace sandtin::editor {
+
+// ---- Panels ---------------------------------------------------------------------------------
+
+void App::draw_panels() {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_Always);
+    ImGui::Begin("sandtin", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) panel_file();
+    if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) panel_tools();
+    if (ImGui::CollapsingHeader("Materials")) panel_materials();
+    if (ImGui::CollapsingHeader("Erosion", ImGuiTreeNodeFlags_DefaultOpen)) panel_erosion();
+    if (ImGui::CollapsingHeader("Haptics")) panel_haptics();
+    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::End();
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
+    ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_Always);
+    ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    panel_stats();
+    ImGui::End();
+    recovery_prompt();
+}
+
+void App::panel_file() {
+    ImGui::InputText("Scene", path_buf_, sizeof(path_buf_));
+    tip("Path used by Open, Save As and Ctrl+S when the scene has no file yet");
+    if (ImGui::Button("New")) {
+        end_action();
+        doc_.adopt(default_sandbox(), 1, {});
+        document_replaced();
+        frame_terrain();
+    }
+    tip("Start a new 1 m x 1 m sandbox with dunes");
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) {
+        try {
+            open(path_buf_);
+        } catch (const std::exception& e) {
+            report(std::string("open failed: ") + e.what());
+        }
+    }
+    tip("Open the .sandtin session named above");
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) {
+        try {
+            save(doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path);
+        } catch (const std::exception& e) {
+            report(std::string("save failed: ") + e.what());
+        }
+    }
+    tip("Save the scene to its file (Ctrl+S); the autosave is then removed");
+    ImGui::SameLine();
+    if (ImGui::Button("Save As")) {
+        try {
+            save(path_buf_);
+        } catch (const std::exception& e) {
+            report(std::string("save failed: ") + e.what());
+        }
+    }
+    tip("Save the scene under the path above");
+    ImGui::InputText("Heightmap", import_buf_, sizeof(import_buf_));
+    tip("PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid to import");
+    ImGui::SameLine();
+    if (ImGui::Button("Import")) {
+        try {
+            end_action();
+            ImportResult r = import_heightmap(import_buf_, ImportOptions{});
+            doc_.adopt(std::move(r.tin), 1, {});
+            document_replaced();
+            frame_terrain();
+            report("imported " + std::string(import_buf_));
+        } catch (const std::exception& e) {
+            report(std::string("import failed: ") + e.what());
+        }
+    }
+    tip("Import the heightmap as an error-bounded TIN (replaces the scene)");
+    ImGui::InputText("Export to", export_buf_, sizeof(export_buf_));
+    tip("Mesh (.obj .ply .stl .gltf .glb) or heightmap (.png .exr); the extension picks the "
+        "format");
+    ImGui::SameLine();
+    if (ImGui::Button("Export")) {
+        try {
+            end_action();
+            const ExportReport r =
+                export_terrain(*doc_.tin, export_buf_, export_format_for(export_buf_));
+            report("exported " + std::to_string(r.files.size()) + " file(s)");
+        } catch (const std::exception& e) {
+            report(std::string("export failed: ") + e.what());
+        }
+    }
+    tip("Write the terrain to the file above");
+    ImGui::BeginDisabled(!doc_.history->can_undo());
+    if (ImGui::Button("Undo")) undo();
+    ImGui::EndDisabled();
+    tip("Undo the last stroke, brush, pour or erosion run (Ctrl+Z)");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!doc_.history->can_redo());
+    if (ImGui::Button("Redo")) redo();
+    ImGui::EndDisabled();
+    tip("Redo (Ctrl+Y)");
+    ImGui::SameLine();
+    ImGui::Text("%zu levels, %.1f MB", doc_.history->undo_levels(),
+                static_cast<double>(doc_.history->bytes()) / 1048576.0);
+}
+
+void App::panel_tools() {
+    for (int i = 0; i < kToolCount; ++i) {
+        if (i % 4 != 0) ImGui::SameLine();
+        if (ImGui::RadioButton(kTools[i].label, settings_.tool == i)) {
+            end_action();
+            settings_.tool = i;
+        }
+        tip(kTools[i].help);
+    }
+    float radius = static_cast<float>(settings_.tool_radius * 100.0);
+    if (ImGui::SliderFloat("Size (cm)", &radius, 0.5f, 15.0f, "%.1f"))
+        settings_.tool_radius = static_cast<double>(radius) / 100.0;
+    tip("Radius of round tools, brushes and the pour");
+    float depth = static_cast<float>(settings_.tool_depth * 1000.0);
+    if (ImGui::SliderFloat("Depth (mm)", &depth, -20.0f, 40.0f, "%.1f"))
+        settings_.tool_depth = static_cast<double>(depth) / 1000.0;
+    tip("How deep a stamp tool presses below the terrain ahead of it");
+    float spacing = static_cast<float>(settings_.stroke_spacing * 1000.0);
+    if (ImGui::SliderFloat("Spacing (mm)", &spacing, 1.0f, 50.0f, "%.1f"))
+        settings_.stroke_spacing = static_cast<double>(spacing) / 1000.0;
+    tip("Distance between stamps along a stroke (independent of frame rate)");
+    ImGui::Checkbox("Extrude", &settings_.extrude);
+    tip("Push the displaced sand into a rim beside and ahead of the tool (volume conserved).\n"
+        "On finely triangulated sand the rim can form tall spikes; erosion flattens them.");
+    ImGui::SameLine();
+    ImGui::Checkbox("Follow path", &settings_.follow_path);
+    tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");
+    float angle = static_cast<float>(settings_.tool_angle);
+    if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
+        settings_.tool_angle = static_cast<double>(angle);
+    tip("Tool heading when it does not follow the path");
+    float strength = static_cast<float>(settings_.brush_strength * 1000.0);
+    if (ImGui::SliderFloat("Brush (mm/dab)", &strength, 0.5f, 20.0f, "%.1f"))
+        settings_.brush_strength = static_cast<double>(strength) / 1000.0;
+    tip("Height a Raise brush dab adds at its centre");
+    float pour = static_cast<float>(settings_.pour_volume * 1e6);
+    if (ImGui::SliderFloat("Pour (cm3)", &pour, 1.0f, 200.0f, "%.0f"))
+        settings_.pour_volume = static_cast<double>(pour) * 1e-6;
+    tip("Sand volume poured or removed per click or mouse move");
+}
+
+void App::panel_materials() {
+    const auto& all = doc_.materials.all();
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const Material& m = all[i];
+        ImGui::ColorButton(("##c" + std::to_string(i)).c_str(),
+                           ImVec4(m.colour[0], m.colour[1], m.colour[2], 1.0f));
+        tip("Material colour (linear RGB)");
+        ImGui::SameLine();
+        if (ImGui::RadioButton(m.name.c_str(), settings_.material == static_cast<int>(i)))
+            settings_.material = static_cast<int>(i);
+        tip("Material painted by the Paint brush");
+        ImGui::SameLine();
+        ImGui::Text("repose %.0f deg dry, %.0f deg moist", m.repose_dry * 57.2957795,
+                    m.repose_wet * 57.2957795);
+    }
+    ImGui::TextWrapped(
+        "Paint materials with the Paint brush (key 0); moisture darkens the colour.");
+}
+
+void App::panel_erosion() {
+    if (ImGui::Button(settings_.erosion_running ? "Pause" : "Run")) {
+        settings_.erosion_running = !settings_.erosion_running;
+        if (!settings_.erosion_running) end_action();
+    }
+    tip("Run or pause talus relaxation; an erosion run becomes one undo level");
+    ImGui::SameLine();
+    ImGui::Text("%s, %zu active", doc_.physics->at_rest() ? "at rest" : "sliding",
+                doc_.physics->active_count());
+    ImGui::SliderInt("Steps/frame", &settings_.erosion_steps, 1, 200);
+    tip("Relaxation iterations per frame");
+    ImGui::TextUnformatted("Solver: CPU (sequential active list)");
+    tip("The GPU relaxation belongs to the GPU mirror; this editor build runs the CPU reference");
+    float rs = static_cast<float>(settings_.relocation_radius * 1000.0);
+    if (ImGui::SliderFloat("r_S (mm)", &rs, 1.0f, 50.0f, "%.1f"))
+        settings_.relocation_radius = static_cast<double>(rs) / 1000.0;
+    tip("Relocation radius: material never jumps farther; longer edges are split");
+    float tol = static_cast<float>(settings_.simplify_tolerance * 1000.0);
+    if (ImGui::SliderFloat("Simplify (mm)", &tol, 0.05f, 5.0f, "%.2f")) {
+        settings_.simplify_tolerance = static_cast<double>(tol) / 1000.0;
+        doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
+    }
+    tip("Vertices within this distance of a common plane with their neighbours are removed");
+    ImGui::Checkbox("Wireframe", &settings_.overlay_wireframe);
+    tip("Show the triangulation; constrained edges (tool rims) in magenta");
+    ImGui::SameLine();
+    ImGui::Checkbox("Active", &settings_.overlay_active);
+    tip("Highlight vertices that moved in the last erosion step");
+    ImGui::Checkbox("Sand depth", &settings_.overlay_thickness);
+    tip("Sand thickness above bedrock: blue thin, yellow 5 cm or more");
+    ImGui::SameLine();
+    ImGui::Checkbox("Slope", &settings_.overlay_slope);
+    tip("Slope against the angle of repose: green stable, yellow at repose, red over-steep");
+    float contrast = static_cast<float>(settings_.contrast);
+    if (ImGui::SliderFloat("Contrast", &contrast, 0.0f, 1.0f))
+        settings_.contrast = static_cast<double>(contrast);
+    tip("Strength of the height contrast curve (histogram stretch)");
+    if (ImGui::Checkbox("VSync", &settings_.vsync)) {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        swapchain_->recreate({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
+                             settings_.vsync);
+    }
+    tip("Wait for the display's refresh when presenting");
+}
+
+void App::panel_haptics() {
+    const bool connected = haptics_ != nullptr;
+    ImGui::BeginDisabled(connected);
+    const char* devices[] = {"Simulated pen (spring to the mouse)", "UDP driver (loopback)"};
+    ImGui::Combo("Device", &haptic_device_, devices, 2);
+    tip("Simulated: a virtual pen pulled to the tool cursor by a spring and pushed back by the "
+        "sand. UDP: a separate driver process that owns the hardware (see engine/haptics)");
+    ImGui::SliderInt("Loop (Hz)", &haptic_rate_hz_, 250, 4000);
+    tip("Rate of the force loop thread");
+    if (haptic_device_ == static_cast<int>(HapticDeviceKind::Udp)) {
+        ImGui::InputInt("UDP port", &haptic_udp_port_);
+        tip("Loopback port the driver sends poses to (0: any free port)");
+    }
+    ImGui::EndDisabled();
+    if (ImGui::Button(connected ? "Disconnect" : "Connect")) {
+        if (connected) {
+            haptics_.reset();
+        } else {
+            try {
+                const Vec3 start = cursor_.value_or(
+                    Vec3{doc_.tin->domain().centre().x, doc_.tin->domain().centre().y, 0.1});
+                haptics_ = std::make_unique<HapticsSession>(
+                    static_cast<HapticDeviceKind>(haptic_device_), haptic_rate_hz_,
+                    static_cast<std::uint16_t>(std::clamp(haptic_udp_port_, 0, 65535)), start);
+                haptics_error_.clear();
+                haptic_forces_.clear();
+            } catch (const std::exception& e) {
+                haptics_error_ = e.what();
+            }
+        }
+    }
+    tip("Start or stop the force loop; the tool under the cursor is what the pen feels");
+    if (!haptics_error_.empty()) ImGui::TextWrapped("%s", haptics_error_.c_str());
+    if (!haptics_) return;
+    const HapticsLive l = haptics_->live();
+    ImGui::Text("%s", l.device.c_str());
+    ImGui::Text("%.0f Hz, %llu ticks%s", l.rate_hz, static_cast<unsigned long long>(l.ticks),
+                l.device_lost ? ", device lost" : "");
+    tip("Measured loop rate and ticks since connecting");
+    ImGui::Text("force %.2f N %s", l.force_n, l.contact ? "(in contact)" : "");
+    tip("Force the device renders now");
+    haptic_forces_.push_back(static_cast<float>(l.force_n));
+    if (haptic_forces_.size() > 240) haptic_forces_.pop_front();
+    std::vector<float> plot(haptic_forces_.begin(), haptic_forces_.end());
+    ImGui::PlotLines("##force", plot.data(), static_cast<int>(plot.size()), 0, "force N", 0.0f,
+                     10.0f, ImVec2(0, 40));
+    tip("Force over the last 240 frames (0-10 N)");
+}
+
+void App::panel_stats() {
+    const Tin& t = *doc_.tin;
+    ImGui::Text("%zu vertices, %zu triangles", t.vertex_count(), t.triangle_count());
+    ImGui::Text("%zu constrained edges, volume %.3f L", t.constrained_edge_count(),
+                t.volume() * 1000.0);
+    const double frame_ms = StageTimes::median(times_.frame);
+    ImGui::Text("%.1f fps (%.1f ms)", frame_ms > 0.0 ? 1000.0 / frame_ms : 0.0, frame_ms);
+    ImGui::Text("tool %.2f  physics %.2f  mesh %.2f", StageTimes::median(times_.tool),
+                StageTimes::median(times_.physics), StageTimes::median(times_.mesh));
+    ImGui::Text("upload %.2f  render %.2f ms", StageTimes::median(times_.upload),
+                StageTimes::median(times_.render));
+    tip("Median milliseconds per frame of each stage over the last 240 frames");
+    std::vector<float> plot(times_.frame.begin(), times_.frame.end());
+    ImGui::PlotLines("##frame", plot.data(), static_cast<int>(plot.size()), 0, "frame ms", 0.0f,
+                     100.0f, ImVec2(0, 40));
+    tip("Frame time over the last 240 frames (0-100 ms)");
+}
+
+void App::recovery_prompt() {
+    if (!recovery_for_) return;
+    ImGui::OpenPopup("Recover autosave?");
+    if (ImGui::BeginPopupModal("Recover autosave?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("An autosave newer than %s exists.", recovery_for_->c_str());
+        if (ImGui::Button("Recover")) {
+            const Session s = recover_autosave(*recovery_for_);
+            doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_);
+            doc_.dirty = true;
+            document_replaced();
+            recovery_for_.reset();
+            ImGui::CloseCurrentPopup();
+        }
+        tip("Load the autosave; save to keep it");
+        ImGui::SameLine();
+        if (ImGui::Button("Discard")) {
+            discard_autosave(*recovery_for_);
+            recovery_for_.reset();
+            ImGui::CloseCurrentPopup();
+        }
+        tip("Delete the autosave and keep the scene as saved");
+        ImGui::EndPopup();
+    }
+}
+
+}  // namespace sandtin::editor

@@ -1,0 +1,120 @@
+// Scripted mode: JSON ops fed through the same handlers as the real mouse and keys.
+
+#include "app.hpp"
+
+namespace sandtin::editor {
+
+// ---- Script ---------------------------------------------------------------------------------
+//
+// {"ops": [ {"op": "tool", "name": "Ball"} | {"op": "set", "<setting>": value, ...}
+//         | {"op": "drag", "button": "left"|"right"|"middle", "path": [[fx, fy], ...], "steps": n}
+//         | {"op": "click", "at": [fx, fy]} | {"op": "move", "at": [fx, fy]}
+//         | {"op": "key", "key": "z", "ctrl": true}
+//         | {"op": "scroll", "steps": s} | {"op": "wait", "frames": n}
+//         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
+//         | {"op": "haptics", "connect": true|false, "rate": hz}
+//         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."} ] }
+// Positions are fractions of the window (0..1): scripts work at any --size.
+
+void App::run_script_op(const nlohmann::json& op) {
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    const std::string kind = op.at("op").get<std::string>();
+    auto px = [&](const nlohmann::json& p) {
+        return std::pair<double, double>{p.at(0).get<double>() * w, p.at(1).get<double>() * h};
+    };
+    if (kind == "tool") {
+        const std::string name = op.at("name").get<std::string>();
+        for (int i = 0; i < kToolCount; ++i) {
+            if (name == kTools[i].label) {
+                key(i == 9 ? GLFW_KEY_0 : GLFW_KEY_1 + i, false);
+                return;
+            }
+        }
+        throw std::runtime_error("script: unknown tool '" + name + "'");
+    } else if (kind == "set") {
+        nlohmann::json j = op;
+        j.erase("op");
+        for (auto& [k2, v] : j.items()) {
+            if (k2 == "radius")
+                settings_.tool_radius = v.get<double>();
+            else if (k2 == "depth")
+                settings_.tool_depth = v.get<double>();
+            else if (k2 == "material")
+                settings_.material = v.get<int>();
+            else if (k2 == "erosion")
+                settings_.erosion_running = v.get<bool>();
+            else if (k2 == "wireframe")
+                settings_.overlay_wireframe = v.get<bool>();
+            else if (k2 == "slope")
+                settings_.overlay_slope = v.get<bool>();
+            else if (k2 == "pour_volume")
+                settings_.pour_volume = v.get<double>();
+            else
+                throw std::runtime_error("script: unknown setting '" + k2 + "'");
+        }
+    } else if (kind == "drag" || kind == "click") {
+        const std::string b = op.value("button", "left");
+        const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
+                           : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
+                                           : GLFW_MOUSE_BUTTON_LEFT;
+        std::vector<std::pair<double, double>> pts;
+        if (kind == "click") {
+            pts.push_back(px(op.at("at")));
+        } else {
+            const auto& path = op.at("path");
+            if (path.size() < 2) throw std::runtime_error("script: a drag needs two points");
+            const int steps = std::max(1, op.value("steps", 20));
+            for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+                const auto a = px(path[i]), c = px(path[i + 1]);
+                for (int s = 0; s < steps; ++s) {
+                    const double t = static_cast<double>(s) / steps;
+                    pts.push_back(
+                        {a.first + t * (c.first - a.first), a.second + t * (c.second - a.second)});
+                }
+            }
+            pts.push_back(px(path.back()));
+        }
+        mouse_move(pts[0].first, pts[0].second);
+        mouse_button(button, true, pts[0].first, pts[0].second);
+        for (std::size_t i = 1; i < pts.size(); ++i)
+            mouse_move(pts[i].first, pts[i].second);
+        mouse_button(button, false, pts.back().first, pts.back().second);
+    } else if (kind == "camera") {
+        // Absolute orbit angles (radians) and a zoom in wheel steps from frame-to-fit.
+        frame_terrain();
+        camera_.yaw = op.value("yaw", camera_.yaw);
+        camera_.pitch = std::clamp(op.value("pitch", camera_.pitch), OrbitCamera::kMinPitch,
+                                   OrbitCamera::kMaxPitch);
+        camera_.zoom(op.value("zoom", 0.0));
+    } else if (kind == "haptics") {
+        // Connects the simulated pen (as the panel's Connect button does) or disconnects.
+        if (op.value("connect", true)) {
+            haptics_ = std::make_unique<HapticsSession>(HapticDeviceKind::SimulatedSpring,
+                                                        op.value("rate", 1000.0), 0,
+                                                        cursor_.value_or(Vec3{0.5, 0.5, 0.1}));
+        } else {
+            haptics_.reset();
+        }
+    } else if (kind == "move") {
+        const auto p = px(op.at("at"));
+        mouse_move(p.first, p.second);
+    } else if (kind == "key") {
+        const std::string k = op.at("key").get<std::string>();
+        if (k.size() != 1) throw std::runtime_error("script: key must be one character");
+        const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
+        key(c >= '0' && c <= '9' ? GLFW_KEY_0 + (c - '0') : GLFW_KEY_A + (c - 'A'),
+            op.value("ctrl", false));
+    } else if (kind == "scroll") {
+        scroll(op.at("steps").get<double>());
+    } else if (kind == "wait" || kind == "erode") {
+        if (kind == "erode") settings_.erosion_running = true;
+        script_wait_ = op.value("frames", 1);
+    } else if (kind == "save") {
+        save(op.at("path").get<std::string>());
+    } else {
+        throw std::runtime_error("script: unknown op '" + kind + "'");
+    }
+}
+
+}  // namespace sandtin::editor

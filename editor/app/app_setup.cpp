@@ -1,0 +1,403 @@
+// Set-up, document operations and the main loop of the editor.
+
+#include "app.hpp"
+
+namespace sandtin::editor {
+
+namespace {
+
+App* app_of(GLFWwindow* w) {
+    return static_cast<App*>(glfwGetWindowUserPointer(w));
+}
+
+void on_button(GLFWwindow* w, int b, int action, int mods) {
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(w, &x, &y);
+    (void)mods;
+    const bool down = action == GLFW_PRESS;
+    if (down && ImGui::GetIO().WantCaptureMouse) return;
+    app_of(w)->mouse_button(b, down, x, y);
+}
+void on_cursor(GLFWwindow* w, double x, double y) {
+    app_of(w)->mouse_move(x, y);
+}
+void on_wheel(GLFWwindow* w, double, double dy) {
+    if (ImGui::GetIO().WantCaptureMouse) return;
+    app_of(w)->scroll(dy);
+}
+void on_key(GLFWwindow* w, int key, int, int action, int mods) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    app_of(w)->key(key, (mods & GLFW_MOD_CONTROL) != 0);
+}
+
+}  // namespace
+
+// ---- Set-up -------------------------------------------------------------------------------
+
+void App::load_initial_scene() {
+    if (options_.scene.empty()) {
+        doc_.adopt(default_sandbox(), 1, {});
+        doc_.tin->take_changes();
+        return;
+    }
+    if (!std::filesystem::exists(options_.scene)) {
+        throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
+    }
+    const Session s = load_session(options_.scene);
+    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, options_.scene);
+    if (const auto info = find_autosave(options_.scene); info && info->offer_recovery()) {
+        if (options_.scripted()) {
+            std::fprintf(stderr,
+                         "sandtin-editor: an autosave newer than %s exists (%s); "
+                         "scripted mode leaves it alone\n",
+                         options_.scene.c_str(), info->path.c_str());
+        } else {
+            recovery_for_ = options_.scene;
+        }
+    }
+}
+
+void App::init_window_and_gpu() {
+    if (glfwInit() != GLFW_TRUE) {
+        throw std::runtime_error(
+            "cannot open a window: no display (set DISPLAY, or run under "
+            "xvfb-run -s '-screen 0 1280x720x24')");
+    }
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+    window_ = glfwCreateWindow(options_.width, options_.height, "sandtin", nullptr, nullptr);
+    if (window_ == nullptr) throw std::runtime_error("glfwCreateWindow failed");
+    glfwSetWindowUserPointer(window_, this);
+    glfwSetMouseButtonCallback(window_, on_button);
+    glfwSetCursorPosCallback(window_, on_cursor);
+    glfwSetScrollCallback(window_, on_wheel);
+    glfwSetKeyCallback(window_, on_key);
+
+    gpu::ContextOptions o;
+    std::uint32_t n = 0;
+    const char** ext = glfwGetRequiredInstanceExtensions(&n);
+    if (ext == nullptr) throw std::runtime_error("GLFW finds no Vulkan surface support");
+    o.instance_extensions.assign(ext, ext + n);
+    GLFWwindow* win = window_;
+    o.make_surface = [win](VkInstance instance) {
+        VkSurfaceKHR surface = VK_NULL_HANDLE;
+        if (glfwCreateWindowSurface(instance, win, nullptr, &surface) != VK_SUCCESS)
+            return VkSurfaceKHR{VK_NULL_HANDLE};
+        return surface;
+    };
+    o.validation = options_.validation;
+    context_ = std::make_unique<gpu::VulkanContext>(o);
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    swapchain_ = std::make_unique<Swapchain>(
+        *context_, VkExtent2D{static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
+        settings_.vsync);
+    renderer_ = std::make_unique<render::TerrainRenderer>(*context_, swapchain_->render_pass());
+    mesh_ = std::make_unique<render::TerrainMesh>(doc_.materials);
+}
+
+void App::init_imgui() {
+    const VkDevice device = context_->device();
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
+    VkDescriptorPoolCreateInfo pool{};
+    pool.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pool.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    pool.maxSets = 16;
+    pool.poolSizeCount = 1;
+    pool.pPoolSizes = &size;
+    VkDescriptorPool handle = VK_NULL_HANDLE;
+    gpu::check(vkCreateDescriptorPool(device, &pool, nullptr, &handle), "vkCreateDescriptorPool");
+    imgui_pool_ = gpu::UniqueDescriptorPool(device, handle);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // panel layout is fixed; settings live in our file
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForVulkan(window_, true);
+    ImGui_ImplVulkan_InitInfo info{};
+    info.Instance = context_->instance();
+    info.PhysicalDevice = context_->physical_device();
+    info.Device = device;
+    info.QueueFamily = context_->queue_family();
+    info.Queue = context_->queue();
+    info.DescriptorPool = handle;
+    info.MinImageCount = 2;
+    info.ImageCount = std::max(2u, swapchain_->image_count());
+    info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+    ImGui_ImplVulkan_Init(&info, swapchain_->render_pass());
+    context_->submit_and_wait([](VkCommandBuffer cb) { ImGui_ImplVulkan_CreateFontsTexture(cb); });
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    imgui_ready_ = true;
+}
+
+void App::shutdown() {
+    haptics_.reset();  // the loop fades the force out before the window goes
+    if (swapchain_) swapchain_->wait_idle();
+    if (context_) vkDeviceWaitIdle(context_->device());
+    if (imgui_ready_) {
+        ImGui_ImplVulkan_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+        imgui_ready_ = false;
+    }
+    renderer_.reset();
+    imgui_pool_.reset();
+    swapchain_.reset();
+    context_.reset();
+    if (window_ != nullptr) glfwDestroyWindow(window_);
+    window_ = nullptr;
+    glfwTerminate();
+}
+
+// ---- Document operations ------------------------------------------------------------------
+
+void App::frame_terrain() {
+    const Rect d = doc_.tin->domain();
+    const VertexArrays& va = doc_.tin->vertices();
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (!va.alive[i]) continue;
+        lo = std::min(lo, va.height[i]);
+        hi = std::max(hi, va.height[i]);
+    }
+    camera_.frame({-0.5 * d.width(), -0.5 * d.height(), lo},
+                  {0.5 * d.width(), 0.5 * d.height(), hi});
+    camera_.distance *= 0.8;  // the domain's corners may leave the view a little: more terrain
+}
+
+void App::save(const std::filesystem::path& p) {
+    end_action();
+    save_session_clearing_autosave(p, doc_.session());
+    doc_.path = p;
+    doc_.dirty = false;
+    report("saved " + p.string());
+}
+
+void App::open(const std::filesystem::path& p) {
+    end_action();
+    const Session s = load_session(p);
+    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, p);
+    document_replaced();
+    frame_terrain();
+    report("opened " + p.string());
+}
+
+Tool App::build_tool() const {
+    ToolSpec spec = load_tool_asset(kTools[settings_.tool].asset);
+    if (spec.contour == ContourKind::Circle) spec.radius = settings_.tool_radius;
+    spec.extrude = settings_.extrude;
+    return Tool::build(spec);
+}
+
+void App::end_action() {
+    if (sampler_) {
+        const ToolEntry& t = kTools[settings_.tool];
+        for (const StrokeSample& s : sampler_->finish()) {
+            StrokeSettings ss;
+            ss.depth = settings_.tool_depth;
+            ss.follow_path = settings_.follow_path;
+            ss.angle = settings_.tool_angle * 3.14159265358979 / 180.0;
+            const ToolPlacement at =
+                placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
+            stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+        }
+        sampler_.reset();
+        (void)t;
+    }
+    if (!pending_label_.empty()) {
+        if (doc_.history->record(pending_label_)) doc_.dirty = true;
+        pending_label_.clear();
+    }
+    if (erosion_pending_) {
+        if (doc_.history->record("erosion")) doc_.dirty = true;
+        erosion_pending_ = false;
+    }
+}
+
+void App::undo() {
+    end_action();
+    const HistoryStep step = doc_.history->undo();
+    std::string message = step.done ? "undo " + step.label : "nothing to undo";
+    if (step.done && !step.report.exact()) {
+        message += " (approximate: " + std::to_string(step.report.unrestored.size()) +
+                   " vertices could not be restored)";
+        if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr) {
+            for (Vec2 p : step.report.unrestored) {
+                LocateHint h;
+                const Location loc = doc_.tin->locate(p, &h);
+                for (VertexId c : loc.corners) {
+                    if (doc_.tin->position(c) == p)
+                        std::fprintf(stderr, "unrestored %.6f %.6f boundary %d constraint %d\n",
+                                     p.x, p.y, doc_.tin->is_boundary(c),
+                                     doc_.tin->is_on_constraint(c));
+                }
+            }
+        }
+    }
+    if (step.label == "erosion" && settings_.erosion_running) {
+        // Running on, the physics would slide the restored sand straight back.
+        settings_.erosion_running = false;
+        message += "; erosion paused";
+    }
+    report(message);
+    physics_kick_ = true;
+    doc_.dirty = true;
+}
+
+void App::redo() {
+    end_action();
+    const HistoryStep step = doc_.history->redo();
+    report(step.done ? "redo " + step.label : "nothing to redo");
+    physics_kick_ = true;
+    doc_.dirty = true;
+}
+
+// ---- Main loop ------------------------------------------------------------------------------
+
+int App::run() {
+    settings_path_ = options_.settings.empty() ? default_settings_path() : options_.settings;
+    std::string problem;
+    settings_ = load_settings(settings_path_, &problem);
+    if (!problem.empty()) std::fprintf(stderr, "sandtin-editor: %s\n", problem.c_str());
+    settings_.tool = std::clamp(settings_.tool, 0, kToolCount - 1);
+    saved_settings_ = settings_;
+    if (!options_.script.empty()) {
+        std::ifstream in(options_.script);
+        if (!in) throw std::runtime_error("cannot read script " + options_.script.string());
+        const nlohmann::json j = nlohmann::json::parse(in);
+        if (!j.contains("ops") || !j["ops"].is_array())
+            throw std::runtime_error("script " + options_.script.string() +
+                                     " has no \"ops\" array");
+        for (const auto& op : j["ops"])
+            script_.push_back(op);
+    }
+    load_initial_scene();
+    if (!options_.scene.empty())
+        std::snprintf(path_buf_, sizeof(path_buf_), "%s", options_.scene.c_str());
+    doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
+    init_window_and_gpu();
+    init_imgui();
+    std::fprintf(stderr, "sandtin-editor: %s\n", context_->describe().c_str());
+    frame_terrain();
+
+    int exit_code = 0;
+    std::uint64_t idle_submissions = 0;
+    int frames_after_script = 0;
+    if (options_.scripted()) {
+        const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
+        // Scripted: every op runs between frames through the real input handlers.
+        while (!glfwWindowShouldClose(window_)) {
+            glfwPollEvents();
+            if (script_wait_ > 0) {
+                --script_wait_;
+            } else if (script_pos_ < script_.size()) {
+                run_script_op(script_[script_pos_++]);
+                if (trace)
+                    std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n", script_pos_,
+                                 script_[script_pos_ - 1].dump().c_str(), doc_.tin->vertex_count());
+            } else {
+                end_action();
+                ++frames_after_script;
+            }
+            const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
+                              frames_after_script >= std::max(1, options_.frames);
+            frame(last && !options_.screenshot.empty());
+            if (last) break;
+        }
+        if (!options_.screenshot.empty()) write_png(options_.screenshot, swapchain_->screenshot());
+        if (!options_.save_after.empty()) save(options_.save_after);
+        if (options_.idle_seconds > 0.0) {
+            // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
+            const std::uint64_t before = swapchain_->submissions();
+            const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
+            settings_.erosion_running = false;
+            redraw_frames_ = 0;
+            while (Clock::now() < until) {
+                glfwWaitEventsTimeout(std::chrono::duration<double>(until - Clock::now()).count());
+                if (redraw_frames_ > 0) {
+                    frame(false);
+                    --redraw_frames_;
+                }
+            }
+            idle_submissions = swapchain_->submissions() - before;
+        }
+    } else {
+        while (!glfwWindowShouldClose(window_)) {
+            const bool busy =
+                redraw_frames_ > 0 || left_down_ || recovery_for_ ||
+                (settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest()));
+            // Idle: block until an event arrives; no frame, no submission.
+            if (busy)
+                glfwPollEvents();
+            else
+                glfwWaitEvents();
+            int w = 0, h = 0;
+            glfwGetFramebufferSize(window_, &w, &h);
+            if (w == 0 || h == 0) continue;  // minimised: nothing to draw
+            frame(false);
+            if (redraw_frames_ > 0) --redraw_frames_;
+            if (!(settings_ == saved_settings_)) {
+                save_settings(settings_path_, settings_);
+                saved_settings_ = settings_;
+            }
+        }
+        end_action();
+    }
+
+    const std::uint64_t validation = context_->validation_message_count();
+    if (!options_.stats.empty()) {
+        nlohmann::json s;
+        s["device"] = context_->device_name();
+        s["frames"] = times_.frame.size();
+        s["frame_ms_median"] = StageTimes::median(times_.frame);
+        s["tool_ms_median"] = StageTimes::median(times_.tool);
+        s["physics_ms_median"] = StageTimes::median(times_.physics);
+        s["mesh_ms_median"] = StageTimes::median(times_.mesh);
+        s["upload_ms_median"] = StageTimes::median(times_.upload);
+        s["render_ms_median"] = StageTimes::median(times_.render);
+        s["fps"] =
+            StageTimes::median(times_.frame) > 0 ? 1000.0 / StageTimes::median(times_.frame) : 0.0;
+        s["vertices"] = doc_.tin->vertex_count();
+        s["triangles"] = doc_.tin->triangle_count();
+        s["undo_levels"] = doc_.history->undo_levels();
+        s["submissions"] = swapchain_->submissions();
+        s["bytes_uploaded"] = renderer_->bytes_uploaded();
+        s["mesh_updates"] = mesh_updates_;
+        s["mesh_rebuilds"] = mesh_rebuilds_;
+        s["mesh_vertices_recomputed"] = mesh_recomputed_;
+        s["idle_submissions"] = idle_submissions;
+        s["validation_messages"] = validation;
+        if (haptics_) {
+            const HapticsLive l = haptics_->live();
+            s["haptics"] = {{"device", l.device},   {"rate_hz", l.rate_hz},
+                            {"ticks", l.ticks},     {"force_n", l.force_n},
+                            {"contact", l.contact}, {"device_lost", l.device_lost}};
+        }
+        if (cursor_) s["cursor"] = {cursor_->x, cursor_->y, cursor_->z};
+        double px = 0, py = 0;
+        int w = 0, h = 0;
+        glfwGetWindowSize(window_, &w, &h);
+        if (cursor_) {
+            const Vec2 c = doc_.tin->domain().centre();
+            if (camera_.project({cursor_->x - c.x, cursor_->y - c.y, cursor_->z}, w, h, px, py))
+                s["cursor_pixel"] = {px, py};
+        }
+        std::ofstream(options_.stats) << s.dump(2) << "\n";
+    }
+    if (validation > 0) {
+        for (const std::string& m : context_->validation_messages())
+            std::fprintf(stderr, "validation: %s\n", m.c_str());
+        exit_code = 3;
+    }
+    if (!options_.scripted() && !(settings_ == saved_settings_))
+        save_settings(settings_path_, settings_);
+    shutdown();
+    return exit_code;
+}
+
+int run_editor(const EditorOptions& options) {
+    App app(options);
+    return app.run();
+}
+
+}  // namespace sandtin::editor

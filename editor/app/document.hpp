@@ -1,0 +1,51 @@
+#pragma once
+// The terrain being edited and everything whose lifetime follows it (sculpt context, physics,
+// undo history), plus the default sandbox a new document starts from.
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+
+#include "history/history.hpp"
+#include "io/session_file.hpp"
+#include "physics/sand_physics.hpp"
+#include "tools/sculpt_context.hpp"
+
+namespace sandtin::editor {
+
+/// The terrain being edited and everything that follows its lifetime.
+struct Document {
+    std::filesystem::path path;
+    std::unique_ptr<Tin> tin;
+    std::unique_ptr<SculptContext> context;
+    std::unique_ptr<SandPhysics> physics;
+    std::unique_ptr<History> history;
+    MaterialTable materials = MaterialTable::presets();
+    bool dirty = false;
+    std::chrono::steady_clock::time_point last_autosave = std::chrono::steady_clock::now();
+
+    void adopt(Tin t, Generation next_generation, const std::filesystem::path& p) {
+        history.reset();
+        physics.reset();
+        tin = std::make_unique<Tin>(std::move(t));
+        context = std::make_unique<SculptContext>(tin->domain());
+        context->set_next_generation(next_generation);
+        physics = std::make_unique<SandPhysics>(*tin, materials);
+        history = std::make_unique<History>(*tin);
+        path = p;
+        dirty = false;
+    }
+    Session session() const {
+        Session s;
+        s.terrain = tin->snapshot();
+        s.next_generation = context->peek_generation();
+        s.metadata_json = R"({"editor":"sandtin-editor"})";
+        return s;
+    }
+};
+
+/// A new sandbox: 1 m x 1 m of sand with dunes, ripples and a band of moist sand (see
+/// document.cpp).
+Tin default_sandbox();
+
+}  // namespace sandtin::editor

@@ -1,0 +1,132 @@
+// The renderer's mesh: slopes and normals on an analytic plane, constrained edges against the
+// TIN's own edge queries, and incremental updates from the change journal against a second,
+// from-scratch build (after strokes, brushes, pours and erosion), plus the upload size of a
+// stamp on a large terrain.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "gpu/render/terrain_mesh.hpp"
+#include "physics/material.hpp"
+#include "physics/sand_physics.hpp"
+#include "tin/tin.hpp"
+#include "tools/brushes.hpp"
+#include "tools/sand.hpp"
+#include "tools/stroke.hpp"
+#include "tools/tool_json.hpp"
+
+namespace sandtin::render {
+namespace {
+
+TEST(TerrainMesh, PlaneAtTheAngleOfReposeHasSlopeRatioOne) {
+    const MaterialTable materials = MaterialTable::presets();
+    const double t = materials.at(0).talus_slope(0.0);
+    const double gx = t * std::cos(0.5236), gy = t * std::sin(0.5236);  // |grad| = t
+    const Tin tin =
+        Tin::regular_grid({{0, 0}, {2, 1}}, 8, 4, [&](Vec2 p) { return gx * p.x + gy * p.y; });
+    TerrainMesh mesh(materials);
+    mesh.rebuild(tin);
+    ASSERT_GE(mesh.vertices().size(), tin.vertex_capacity());
+    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+        const RenderVertex& v = mesh.vertices()[i];
+        EXPECT_NEAR(v.overlay[0], 1.0, 1e-5);
+        EXPECT_NEAR(v.normal[2], 1.0 / std::sqrt(1.0 + t * t), 1e-6);
+        EXPECT_NEAR(v.normal[0], -gx / std::sqrt(1.0 + t * t), 1e-6);
+        EXPECT_NEAR(static_cast<double>(v.position[0]) + 1.0, tin.position(VertexId{i}).x, 1e-6);
+    }
+}
+
+TEST(TerrainMesh, ConstrainedEdgesAreTheTinsConstrainedEdges) {
+    Tin tin = Tin::regular_grid({{0, 0}, {1, 1}}, 6, 6);
+    const VertexId a = tin.insert_point({0.21, 0.33}, 0.0);
+    const VertexId b = tin.insert_point({0.77, 0.61}, 0.0);
+    const VertexId c = tin.insert_point({0.3, 0.8}, 0.0);
+    tin.insert_constraint(a, b, 1);
+    tin.insert_constraint(b, c, 1);
+    TerrainMesh mesh(MaterialTable::presets());
+    mesh.rebuild(tin);
+    const auto& e = mesh.constrained_edges();
+    ASSERT_EQ(e.size(), 2 * tin.constrained_edge_count());
+    for (std::size_t i = 0; i < e.size(); i += 2)
+        EXPECT_TRUE(tin.is_constrained_edge(VertexId{e[i]}, VertexId{e[i + 1]}));
+    // Every triangle edge appears once in the wireframe list: E = V + T - 1 (Euler, planar).
+    EXPECT_EQ(mesh.all_edges().size() / 2, tin.vertex_count() + tin.triangle_count() - 1);
+}
+
+void expect_same(const TerrainMesh& a, const TerrainMesh& b, const Tin& tin) {
+    const std::size_t n = std::size_t{tin.slot_capacity()} * 3;
+    ASSERT_GE(a.indices().size(), n);
+    ASSERT_GE(b.indices().size(), n);
+    for (std::size_t i = n; i < a.indices().size(); ++i)
+        ASSERT_EQ(a.indices()[i], 0u);
+    EXPECT_TRUE(std::equal(a.indices().begin(), a.indices().begin() + static_cast<long>(n),
+                           b.indices().begin()));
+    EXPECT_EQ(a.constrained_edges(), b.constrained_edges());
+    std::size_t differ = 0;
+    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+        if (!tin.is_alive(VertexId{i})) continue;
+        if (std::memcmp(&a.vertices()[i], &b.vertices()[i], sizeof(RenderVertex)) != 0) ++differ;
+    }
+    EXPECT_EQ(differ, 0u);
+}
+
+TEST(TerrainMesh, IncrementalUpdatesEqualAFreshBuild) {
+    const Rect domain{{0, 0}, {1, 1}};
+    Tin tin = Tin::random_points(domain, 3000, 4, [](Vec2 p) { return 0.05 + 0.02 * p.x * p.y; });
+    const MaterialTable materials = MaterialTable::presets();
+    TerrainMesh mesh(materials);
+    tin.take_changes();
+    mesh.rebuild(tin);
+    SculptContext context(domain);
+    SandPhysics physics(tin, materials);
+    const Tool tool = Tool::build(load_tool_asset("ball"));
+    StrokeSettings ss;
+    ss.depth = 0.01;
+    std::vector<std::function<void()>> edits = {
+        [&] {
+            apply_stroke(tin, tool, std::vector<Vec2>{{0.2, 0.3}, {0.6, 0.5}}, ss, context);
+        },
+        [&] {
+            apply_brush(tin, {0.7, 0.7}, BrushSettings{}, context);
+        },
+        [&] {
+            BrushSettings b;
+            b.kind = BrushKind::PaintMaterial;
+            b.material = 2;
+            apply_brush(tin, {0.4, 0.6}, b, context);
+        },
+        [&] {
+            pour_sand(tin, {0.5, 0.2}, 1e-4, PourSettings{}, context);
+        },
+        [&] { physics.run_to_rest(3000); },
+    };
+    for (auto& edit : edits) {
+        edit();
+        const MeshUpdate u = mesh.update(tin, tin.take_changes());
+        EXPECT_FALSE(u.vertices.empty());
+        TerrainMesh fresh(materials);
+        fresh.rebuild(tin);
+        expect_same(mesh, fresh, tin);
+    }
+}
+
+TEST(TerrainMesh, AStampOnALargeTerrainUploadsATinyFraction) {
+    const Rect domain{{0, 0}, {1, 1}};
+    Tin tin = Tin::random_points(domain, 200000, 8, [](Vec2 p) { return 0.05 + 0.01 * p.x; });
+    TerrainMesh mesh(MaterialTable::presets());
+    tin.take_changes();
+    const MeshUpdate all = mesh.rebuild(tin);
+    SculptContext context(domain);
+    const Tool tool = Tool::build(load_tool_asset("circle"));
+    stamp(tin, tool, {{0.5, 0.5}, 0.0, 0.04}, context);
+    const MeshUpdate u = mesh.update(tin, tin.take_changes());
+    EXPECT_GT(u.bytes(), 0u);
+    EXPECT_LT(u.bytes(), all.bytes() / 100) << u.bytes() << " of " << all.bytes();
+}
+
+}  // namespace
+}  // namespace sandtin::render
