@@ -17,6 +17,8 @@
 #define C_PROCESSED_HI 8
 #define C_CHANGED_TOTAL_LO 9
 #define C_CHANGED_TOTAL_HI 10
+#define C_WORK_ITER_LO 11   // 64-bit count of iterations that had work (TalusSolver::iteration())
+#define C_WORK_ITER_HI 12
 #define C_ARGS_ACTIVE 16    // 3 words: indirect dispatch of the active list
 #define C_ARGS_RECEIVERS 20
 #define C_ARGS_CHANGED 24
@@ -65,6 +67,9 @@ layout(push_constant) uniform Push {
     float rest_tolerance;
     float r_limit;      // relocation radius (1 + 1e-9 slack applied on the host); 1e30 = none
     float slide_gain;   // gamma: texture units per metre of transported height; 0 = off
+    uint seed_lo;       // TalusSettings::seed
+    uint seed_hi;
+    float randomness;   // TalusSettings::randomness; 0 = no jitter
 } pc;
 
 void set_args(uint word, uint threads) {

@@ -26,6 +26,7 @@ void main() {
         add64(C_CHANGED_TOTAL_LO, ctl[C_CHANGED]);
     } else if (pc.mode == 2u) {
         add64(C_PROCESSED_LO, ctl[C_ACTIVE]);
+        if (ctl[C_ACTIVE] > 0u) add64(C_WORK_ITER_LO, 1u);
         ctl[C_ACTIVE] = min(ctl[C_NEXT], pc.capacity);
         ctl[C_NEXT] = 0u;
         ctl[C_RECEIVERS] = 0u;

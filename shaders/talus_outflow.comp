@@ -15,6 +15,27 @@ void request_split(uint v) {
     if (atomicExchange(vs[v].split, pc.iter) != pc.iter) append(R_SPLIT, C_SPLIT, v);
 }
 
+// 64-bit arithmetic on (lo, hi) pairs, so no shaderInt64 is needed.
+uvec2 mul64(uvec2 a, uvec2 b) {
+    uint hi, lo;
+    umulExtended(a.x, b.x, hi, lo);
+    return uvec2(lo, hi + a.x * b.y + a.y * b.x);
+}
+uvec2 shr64(uvec2 a, uint s) {  // 0 < s < 32
+    return uvec2((a.x >> s) | (a.y << (32u - s)), a.y >> s);
+}
+
+// physics/talus_kernel.hpp signed_unit_hash (splitmix64) in [-1, 1), to float precision.
+float signed_unit_hash(uvec2 seed, uint vertex, uvec2 iteration) {
+    uvec2 z = seed ^ mul64(uvec2(vertex, 0u), uvec2(0x7F4A7C15u, 0x9E3779B9u)) ^
+              mul64(iteration, uvec2(0xD192ED03u, 0xD1B54A32u));
+    z = mul64(z ^ shr64(z, 30u), uvec2(0x1CE4E5B9u, 0xBF58476Du));
+    z = mul64(z ^ shr64(z, 27u), uvec2(0x133111EBu, 0x94D049BBu));
+    z = z ^ shr64(z, 31u);
+    z = shr64(z, 11u);  // 53 bits
+    return float(z.y) * (2.0 / 2097152.0) + float(z.x) * (2.0 / 9007199254740992.0) - 1.0;
+}
+
 void main() {
     uint idx = thread_index();
     if (idx >= ctl[C_ACTIVE]) return;
@@ -61,6 +82,10 @@ void main() {
                 }
             }
             float scale = pc.damping;
+            if (pc.randomness > 0.0) {
+                uvec2 it = uvec2(ctl[C_WORK_ITER_LO], ctl[C_WORK_ITER_HI]);
+                scale *= 1.0 + pc.randomness * signed_unit_hash(uvec2(pc.seed_lo, pc.seed_hi), i, it);
+            }
             float cap = pc.damping * largest * area[i];
             if (scale * levelling > cap) scale = cap / levelling;
             float available = area[i] * (hi - bedrock[i]);

@@ -83,6 +83,9 @@ GpuRelaxation::Push GpuRelaxation::push(uint32_t mode) const {
     pc.r_limit =
         p.relocation_radius > 0.0 ? static_cast<float>(p.relocation_radius * (1.0 + 1e-6)) : 1e30f;
     pc.slide_gain = static_cast<float>(std::max(0.0, settings_.slide_gain));
+    pc.seed_lo = static_cast<uint32_t>(settings_.seed);
+    pc.seed_hi = static_cast<uint32_t>(settings_.seed >> 32);
+    pc.randomness = static_cast<float>(std::clamp(settings_.randomness, 0.0, 0.99));
     return pc;
 }
 

@@ -9,8 +9,6 @@
 //
 // Heights on the GPU are the mirror's height buffer: after run(), read_back() returns the
 // vertices that changed (height and texture-slide offset) so the CPU TIN can be updated.
-// Randomised outflow (TalusSettings::randomness) is not supported on the GPU (GpuSandPhysics
-// rejects it): the jitter needs 64-bit integer hashing that not every GPU has.
 
 #include <cstdint>
 #include <memory>
@@ -31,6 +29,10 @@ struct GpuRelaxationSettings {
     int quiet_iterations = 3;  // K, as TalusSettings::quiet_iterations
     // gamma of texture sliding: texture units per metre of transported height; 0 = off.
     double slide_gain = 0.0;
+    // TalusSettings::randomness and seed: the same per-vertex, per-iteration jitter as the CPU
+    // (splitmix64 of seed, vertex and the count of iterations that had work).
+    double randomness = 0.0;
+    uint64_t seed = 1;
     bool profile = false;  // per-kernel timestamps (KernelTimer), for benchmarks
 };
 
@@ -87,6 +89,9 @@ class GpuRelaxation {
         float rest_tolerance;
         float r_limit;
         float slide_gain;
+        uint32_t seed_lo;
+        uint32_t seed_hi;
+        float randomness;
     };
     void ensure_buffers();
     void bind_all();

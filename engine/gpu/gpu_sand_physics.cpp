@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <chrono>
 
-#include "gpu/gpu_error.hpp"
-
 namespace sandtin::gpu {
 
 namespace {
@@ -14,16 +12,9 @@ GpuRelaxationSettings relaxation_settings(const TalusSettings& s, double slide_g
     g.parameters = s.parameters;
     g.quiet_iterations = s.quiet_iterations;
     g.slide_gain = slide_gain;
+    g.randomness = s.randomness;
+    g.seed = s.seed;
     return g;
-}
-
-TalusSettings checked(TalusSettings s) {
-    if (s.randomness > 0.0) {
-        throw GpuError(
-            "GPU physics: randomised outflow (randomness > 0) is only available on the "
-            "CPU physics");
-    }
-    return s;
 }
 
 }  // namespace
@@ -31,7 +22,7 @@ TalusSettings checked(TalusSettings s) {
 GpuSandPhysics::GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
                                TalusSettings settings, double slide_gain)
     : tin_(tin),
-      settings_(checked(settings)),
+      settings_(settings),
       mirror_(context, std::move(materials)),
       relax_((mirror_.sync(tin), mirror_), relaxation_settings(settings_, slide_gain)) {}
 
@@ -47,7 +38,6 @@ void GpuSandPhysics::activate_all() {
 }
 
 void GpuSandPhysics::sync() {
-    checked(settings_);
     const double gain = relax_.settings().slide_gain;
     relax_.settings() = relaxation_settings(settings_, gain);
     const SyncStats s = mirror_.sync(tin_);

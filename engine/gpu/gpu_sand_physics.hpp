@@ -9,9 +9,8 @@
 // haptic snapshots always see the current terrain. Edges longer than the relocation radius are
 // split on the CPU between GPU submissions (as SandPhysics does between iterations).
 //
-// Differences from the CPU physics, all documented in the step report: volume_moved is not
-// measured on the GPU (reported as 0); randomised outflow is not supported (the constructor
-// throws GpuError when TalusSettings::randomness > 0); the schedule is always Jacobi.
+// Differences from the CPU physics: volume_moved is not measured on the GPU (reported as 0);
+// the schedule is always Jacobi (TalusSettings::schedule and threads are ignored).
 
 #include <memory>
 #include <span>

@@ -87,17 +87,5 @@ TEST_F(GpuTest, GpuPhysicsAtRestRecordsNothingAndUploadsNothing) {
     EXPECT_EQ(gpu.last_sync_bytes(), 0u);
 }
 
-TEST_F(GpuTest, GpuPhysicsRefusesRandomisedOutflowClearly) {
-    Tin tin = Tin::random_points(kUnitSquare, 100, 1);
-    TalusSettings s;
-    s.randomness = 0.2;
-    try {
-        GpuSandPhysics physics(tin, ctx(), MaterialTable::presets(), s);
-        FAIL() << "expected GpuError";
-    } catch (const GpuError& e) {
-        EXPECT_NE(std::string(e.what()).find("randomness"), std::string::npos) << e.what();
-    }
-}
-
 }  // namespace
 }  // namespace sandtin::gpu
