@@ -1,7 +1,8 @@
 // sandtin bench erosion: run time to rest against error, TIN versus the regular-grid baseline
 // (issue 4; the seeds' Fig. 8.4a compares the same two), and CPU Jacobi throughput.
 //
-//   sandtin bench erosion [--json] [--quick] [--out DIR]
+//   sandtin bench erosion [--json] [--quick] [--out DIR] [--throughput]
+//   (--throughput: only the CPU Jacobi throughput on about 10⁶ vertices, 1 and 2 threads)
 //
 // Scenes:
 //  - cone: V = 0.01 m³ poured at the centre of a flat 1 m square (dry sand, 32°). The TIN
@@ -190,45 +191,92 @@ nlohmann::json to_json(const Row& r) {
             {"at_rest", r.at_rest}};
 }
 
-/// Jacobi throughput on a 1000 x 1000 regular-grid TIN (10⁶ vertices) with a rough surface:
-/// vertex updates per second of one iteration, median over iterations, all vertices active.
-nlohmann::json jacobi_throughput(bool quick, int threads) {
-    const int n = quick ? 200 : 999;
-    Tin tin = Tin::regular_grid(
-        Rect::from_size(1.0, 1.0), n, n,
-        [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
-        TinOptions{false});
+/// Jacobi throughput on a regular-grid TIN (999 x 999, about 10⁶ vertices; 200 x 200 with
+/// --quick) with a rough surface whose slopes are far above repose, so every vertex stays
+/// active: vertex updates per second of wall time over `kTimed` consecutive iterations after a
+/// warm-up one (the solver keeps its own active set, as in use), median of `runs` runs.
+struct ThroughputScene {
+    Tin tin;
     AdjacencyGraph graph;
-    graph.rebuild(tin);
-    const VertexArrays& va = tin.vertices();
-    std::vector<double> height = va.height;
-    std::vector<double> tan(va.size(), tan_alpha());
-    TalusSettings settings;
-    settings.schedule = Schedule::Jacobi;
-    settings.threads = threads;
-    TalusSolver solver(settings);
-    const TalusArrays arrays{height.data(), va.lumped_area.data(), va.bedrock.data(), tan.data(),
-                             height.size()};
+};
+
+ThroughputScene throughput_scene(int n) {
+    ThroughputScene s{
+        Tin::regular_grid(
+            Rect::from_size(1.0, 1.0), n, n,
+            [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
+            TinOptions{false}),
+        {}};
+    s.graph.rebuild(s.tin);
+    return s;
+}
+
+/// CPU time of the whole process (all threads), ms.
+double process_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+double load_average() {
+    std::ifstream in("/proc/loadavg");
+    double one = -1.0;
+    in >> one;
+    return one;
+}
+
+nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
+    constexpr int kTimed = 6;
+    const VertexArrays& va = scene.tin.vertices();
     std::vector<double> rates;
+    std::vector<double> cpu_rates;
+    std::vector<double> loads;
     std::size_t processed = 0;
-    for (int it = 0; it < 7; ++it) {
-        ActiveSet active;  // everything active each time: a fully active scene
+    for (int run = 0; run < runs; ++run) {
+        std::vector<double> height = va.height;
+        std::vector<double> tan(va.size(), tan_alpha());
+        TalusSettings settings;
+        settings.schedule = Schedule::Jacobi;
+        settings.threads = threads;
+        TalusSolver solver(settings);
+        const TalusArrays arrays{height.data(), va.lumped_area.data(), va.bedrock.data(),
+                                 tan.data(), height.size()};
+        ActiveSet active;
         for (std::uint32_t v = 0; v < va.size(); ++v)
             active.activate(v);
+        solver.iterate(scene.graph, arrays, active);  // warm-up: first-touch of the buffers
+        loads.push_back(load_average());
+        std::size_t updates = 0;
+        const double cpu0 = process_cpu_ms();
         Stopwatch wall;
-        const IterationStats st = solver.iterate(graph, arrays, active);
+        for (int it = 0; it < kTimed; ++it)
+            updates += solver.iterate(scene.graph, arrays, active).processed;
         const double s = wall.ms() * 1e-3;
-        processed = st.processed;
-        rates.push_back(static_cast<double>(st.processed) / s);
+        const double cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
+        processed = updates / kTimed;
+        rates.push_back(static_cast<double>(updates) / s);
+        cpu_rates.push_back(static_cast<double>(updates) / cpu_s);
     }
     const double rate = bench::median(rates);
-    return {{"vertices", tin.vertex_count()},
+    return {{"vertices", scene.tin.vertex_count()},
             {"threads", threads},
             {"processed_per_iteration", processed},
             {"vertex_updates_per_s", rate},
             {"vertex_updates_per_s_per_core", rate / threads},
-            {"iterations_measured", rates.size()},
-            {"timer", "wall, median of 7 iterations (other agents share the 2 cores)"}};
+            {"runs", rates},
+            // Updates per second of CPU time summed over the threads: the per-core rate with
+            // the time the other agents' processes took from us left out.
+            {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
+            {"runs_per_cpu_s", cpu_rates},
+            {"load_average_1min", loads},
+            {"timer", "wall time of " + std::to_string(kTimed) +
+                          " consecutive iterations after a warm-up one, median of " +
+                          std::to_string(runs) + " runs (other agents share the 2 cores)"}};
+}
+
+nlohmann::json jacobi_throughputs(bool quick, int runs) {
+    const ThroughputScene scene = throughput_scene(quick ? 200 : 999);
+    return {jacobi_throughput(scene, 1, runs), jacobi_throughput(scene, 2, runs)};
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
@@ -300,9 +348,18 @@ void write_svg(const std::filesystem::path& path, const std::vector<Row>& rows) 
 }  // namespace
 
 int run_bench_erosion(const std::vector<std::string>& raw) {
-    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--out", 1}});
-    args.require_positionals(1, "sandtin bench erosion [--quick] [--json] [--out DIR]");
+    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--out", 1}, {"--throughput", 0}});
+    args.require_positionals(1,
+                             "sandtin bench erosion [--quick] [--json] [--out DIR] [--throughput]");
     const bool quick = args.has("--quick");
+    if (args.has("--throughput")) {
+        // Only the Jacobi throughput (issue 4's 10⁶-vertex figure), 5 runs per thread count.
+        nlohmann::json j;
+        j["bench"] = "erosion";
+        j["jacobi_throughput"] = jacobi_throughputs(quick, 5);
+        std::cout << j.dump(2) << "\n";
+        return 0;
+    }
     const int repeats = quick ? 1 : 3;
     std::vector<Row> rows;
 
@@ -371,7 +428,7 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         target["met"] = false;
     }
     j["cone_target"] = target;
-    j["jacobi_throughput"] = {jacobi_throughput(quick, 1), jacobi_throughput(quick, 2)};
+    j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
 
     if (args.has("--out")) {
         const std::filesystem::path dir = args.text("--out");

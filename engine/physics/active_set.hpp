@@ -2,6 +2,10 @@
 // The vertices the relaxation still has to look at (seed 000 §7.2, list L_E): a vertex is
 // active while it or a neighbour changed within the last `quiet_limit` iterations. A terrain at
 // rest has an empty set and costs nothing.
+//
+// Membership is a bitmap (one bit per vertex id), so the Jacobi schedule can rebuild the list
+// in vertex-id order by scanning 64 ids per word in parallel (TalusSolver); the list itself
+// keeps the order of activation otherwise (the sequential schedule's Gauss-Seidel order).
 
 #include <cstdint>
 #include <span>
@@ -9,14 +13,18 @@
 
 namespace sandtin {
 
+class TalusSolver;
+
 class ActiveSet {
   public:
     /// Makes v active with a fresh quiet count.
     void activate(std::uint32_t v) {
         ensure(v);
         quiet_[v] = 0;
-        if (!flag_[v]) {
-            flag_[v] = 1;
+        const std::uint64_t bit = std::uint64_t{1} << (v & 63u);
+        std::uint64_t& word = bits_[v >> 6];
+        if ((word & bit) == 0) {
+            word |= bit;
             list_.push_back(v);
         }
     }
@@ -24,7 +32,9 @@ class ActiveSet {
         for (std::uint32_t v : vs)
             activate(v);
     }
-    bool contains(std::uint32_t v) const { return v < flag_.size() && flag_[v]; }
+    bool contains(std::uint32_t v) const {
+        return (v >> 6) < bits_.size() && ((bits_[v >> 6] >> (v & 63u)) & 1u) != 0;
+    }
     const std::vector<std::uint32_t>& list() const { return list_; }
     std::size_t size() const { return list_.size(); }
     bool empty() const { return list_.empty(); }
@@ -38,7 +48,7 @@ class ActiveSet {
             if (moved) {
                 quiet_[v] = 0;
             } else if (++quiet_[v] >= quiet_limit) {
-                flag_[v] = 0;
+                bits_[v >> 6] &= ~(std::uint64_t{1} << (v & 63u));
                 continue;
             }
             list_[out++] = v;
@@ -48,25 +58,29 @@ class ActiveSet {
     /// Drops an id (the vertex died).
     void remove(std::uint32_t v) {
         if (!contains(v)) return;
-        flag_[v] = 0;
+        bits_[v >> 6] &= ~(std::uint64_t{1} << (v & 63u));
         std::erase(list_, v);
     }
     void clear() {
         for (std::uint32_t v : list_)
-            flag_[v] = 0;
+            bits_[v >> 6] = 0;
         list_.clear();
     }
 
   private:
+    // The Jacobi schedule ages and rebuilds the set word by word on several threads.
+    friend class TalusSolver;
+
     void ensure(std::uint32_t v) {
-        if (v >= flag_.size()) {
-            flag_.resize(static_cast<std::size_t>(v) + 1 + flag_.size() / 2, 0);
-            quiet_.resize(flag_.size(), 0);
+        if (v >= quiet_.size()) {
+            const std::size_t n = static_cast<std::size_t>(v) + 1 + quiet_.size() / 2;
+            quiet_.resize(n, 0);
+            bits_.resize((n + 63) / 64, 0);
         }
     }
     std::vector<std::uint32_t> list_;
-    std::vector<std::uint8_t> flag_;
-    std::vector<std::uint8_t> quiet_;
+    std::vector<std::uint64_t> bits_;  ///< membership, bit v & 63 of word v >> 6
+    std::vector<std::uint8_t> quiet_;  ///< quiet iterations so far, per vertex id
 };
 
 }  // namespace sandtin

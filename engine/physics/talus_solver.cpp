@@ -1,9 +1,55 @@
 #include "physics/talus_solver.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <memory>
 
 namespace sandtin {
+
+namespace {
+
+constexpr std::size_t kNoWord = ~std::size_t{0};
+/// Below this many active vertices the Jacobi phases run on the calling thread: waking the
+/// pool costs more than the work.
+constexpr std::size_t kThreadedMinimum = 2048;
+
+inline void mark(std::uint64_t* bits, std::uint32_t v, std::size_t& lo, std::size_t& hi) {
+    const std::size_t w = v >> 6;
+    bits[w] |= std::uint64_t{1} << (v & 63u);
+    lo = std::min(lo, w);
+    hi = std::max(hi, w + 1);
+}
+
+// Vertices ahead of the one being processed whose neighbours' data is fetched early. A
+// neighbour's id is often far from the vertex's own (the TIN's multiscale Hilbert numbering
+// puts about a third of the neighbours more than 10⁵ ids away), so without prefetching each
+// iteration waits on those cache misses one after another.
+constexpr std::size_t kPrefetchDistance = 12;
+
+inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const TalusArrays& a) {
+    if (v >= g.degrees().size()) return;
+    const std::uint32_t* target = g.targets().data();
+    const std::uint32_t row = g.offsets()[v];
+    for (std::uint32_t k = row; k < row + g.degrees()[v]; ++k) {
+        const std::uint32_t t = target[k];
+        __builtin_prefetch(a.height + t);
+        __builtin_prefetch(a.area + t);
+        __builtin_prefetch(g.longest_edges().data() + t);
+    }
+}
+
+inline void prefetch_gather(std::uint32_t v, const AdjacencyGraph& g, const double* q,
+                            const std::uint32_t* source) {
+    const std::uint32_t* target = g.targets().data();
+    const std::uint32_t* reverse = g.reverses().data();
+    const std::uint32_t row = g.offsets()[v];
+    for (std::uint32_t k = row; k < row + g.degrees()[v]; ++k) {
+        __builtin_prefetch(source + target[k]);
+        __builtin_prefetch(q + reverse[k]);
+    }
+}
+
+}  // namespace
 
 TalusSolver::TalusSolver(TalusSettings settings) : settings_(settings) {
     pool_ = std::make_unique<ThreadPool>(std::max(1, settings_.threads));
@@ -18,16 +64,31 @@ void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
     if (q_.size() < g.slot_count()) q_.resize(g.slot_count(), 0.0);
     if (out_.size() < vertices) {
         out_.resize(vertices, 0.0);
-        new_height_.resize(vertices, 0.0);
         source_.resize(vertices, 0);
-        receiver_flag_.resize(vertices, 0);
         changed_.resize(vertices, 0);
     }
     if (pool_->threads() != std::max(1, settings_.threads)) {
         pool_ = std::make_unique<ThreadPool>(std::max(1, settings_.threads));
     }
-    split_per_thread_.resize(static_cast<std::size_t>(pool_->threads()));
-    moved_per_thread_.assign(static_cast<std::size_t>(pool_->threads()), 0.0);
+    scratch_.resize(static_cast<std::size_t>(pool_->threads()));
+    const std::size_t words = (out_.size() + 63) / 64;
+    for (ThreadScratch& s : scratch_) {
+        if (s.receive.size() < words) {
+            s.receive.resize(words, 0);
+            s.wake.resize(words, 0);
+        }
+    }
+}
+
+template <class Body>
+void TalusSolver::run(std::size_t n, bool threaded, Body body) {
+    if (threaded) {
+        pool_->parallel_for(n, [&](std::size_t b, std::size_t e, int t) {
+            body(b, e, scratch_[static_cast<std::size_t>(t)]);
+        });
+    } else {
+        body(0, n, scratch_[0]);
+    }
 }
 
 IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
@@ -36,17 +97,22 @@ IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArra
         changed_[v] = 0;
     changed_list_.clear();
     if (active.empty()) return {};
-    ensure(graph, std::max<std::size_t>(arrays.size, graph.vertex_capacity()));
-    const IterationStats stats = settings_.schedule == Schedule::Sequential
-                                     ? sequential(graph, arrays, active, split_around)
-                                     : jacobi(graph, arrays, active, split_around);
-    // Changed vertices and their neighbours may now have excess.
-    active.age(changed_, settings_.quiet_iterations);
-    for (std::uint32_t v : changed_list_) {
-        active.activate(v);
-        const std::uint32_t b = graph.offset(v);
-        for (std::uint32_t k = b; k < b + graph.degree(v); ++k)
-            active.activate(graph.targets()[k]);
+    std::size_t vertices = std::max<std::size_t>(arrays.size, graph.vertex_capacity());
+    vertices = std::max(vertices, active.quiet_.size());
+    ensure(graph, vertices);
+    IterationStats stats;
+    if (settings_.schedule == Schedule::Sequential) {
+        stats = sequential(graph, arrays, active, split_around);
+        // Changed vertices and their neighbours may now have excess.
+        active.age(changed_, settings_.quiet_iterations);
+        for (std::uint32_t v : changed_list_) {
+            active.activate(v);
+            const std::uint32_t b = graph.offset(v);
+            for (std::uint32_t k = b; k < b + graph.degree(v); ++k)
+                active.activate(graph.targets()[k]);
+        }
+    } else {
+        stats = jacobi(graph, arrays, active, split_around);
     }
     ++iteration_;
     return stats;
@@ -99,92 +165,197 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
 IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                                    std::vector<std::uint32_t>* split_around) {
     IterationStats stats;
+    if (++tag_ == 0) {  // the stamps wrapped around: forget them all
+        std::fill(source_.begin(), source_.end(), 0u);
+        tag_ = 1;
+    }
+    active.ensure(static_cast<std::uint32_t>(out_.size() - 1));
+    pass_ = {&g, &a, &active, 0};
+    const std::vector<std::uint32_t>& list = active.list_;
+    const bool threaded = list.size() >= kThreadedMinimum && pool_->threads() > 1;
+    for (ThreadScratch& s : scratch_) {
+        s.receive_lo = s.wake_lo = kNoWord;
+        s.receive_hi = s.wake_hi = 0;
+        s.first = ~0u;
+        s.last = 0;
+        s.moved = 0.0;
+        s.splits.clear();
+        s.changed.clear();
+        s.kept.clear();
+    }
+
+    // Phase 1: outflow of every active vertex along each of its edges, from the old heights;
+    // senders mark themselves and their neighbours as receivers.
+    run(list.size(), threaded,
+        [this](std::size_t b, std::size_t e, ThreadScratch& s) { jacobi_outflow(b, e, s); });
+    stats.processed = list.size();
+    std::size_t lo = kNoWord, hi = 0;
+    std::uint32_t first = ~0u, last = 0;
+    for (const ThreadScratch& s : scratch_) {
+        stats.volume_moved += s.moved;
+        lo = std::min(lo, s.receive_lo);
+        hi = std::max(hi, s.receive_hi);
+        first = std::min(first, s.first);
+        last = std::max(last, s.last);
+        if (split_around != nullptr)
+            split_around->insert(split_around->end(), s.splits.begin(), s.splits.end());
+    }
+
+    // Phase 2: each receiver gathers, in its row order, what its source neighbours sent; the
+    // changed ones wake themselves and their neighbours.
+    if (hi > lo) {
+        pass_.word_begin = lo;
+        run(hi - lo, threaded,
+            [this](std::size_t b, std::size_t e, ThreadScratch& s) { jacobi_gather(b, e, s); });
+    }
+    for (const ThreadScratch& s : scratch_)
+        changed_list_.insert(changed_list_.end(), s.changed.begin(), s.changed.end());
+    stats.changed = changed_list_.size();
+
+    // Phase 3: the next active set, over the words of the old one and of the woken vertices.
+    lo = static_cast<std::size_t>(first >> 6);
+    hi = static_cast<std::size_t>(last >> 6) + 1;
+    for (const ThreadScratch& s : scratch_) {
+        lo = std::min(lo, s.wake_lo);
+        hi = std::max(hi, s.wake_hi);
+    }
+    pass_.word_begin = lo;
+    run(hi - lo, threaded,
+        [this](std::size_t b, std::size_t e, ThreadScratch& s) { jacobi_age(b, e, s); });
+    active.list_.clear();
+    for (const ThreadScratch& s : scratch_)
+        active.list_.insert(active.list_.end(), s.kept.begin(), s.kept.end());
+    return stats;
+}
+
+void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s) {
+    const AdjacencyGraph& g = *pass_.graph;
+    const TalusArrays& a = *pass_.arrays;
+    const std::uint32_t* list = pass_.active->list_.data();
     const std::uint32_t* target = g.targets().data();
-    const std::uint32_t* reverse = g.reverses().data();
     const double* length = g.lengths().data();
     const double* longest = g.longest_edges().data();
+    const std::uint32_t* offset = g.offsets().data();
+    const std::uint32_t* degree = g.degrees().data();
+    const std::size_t rows = g.degrees().size();
     double* q = q_.data();
-    const std::vector<std::uint32_t>& list = active.list();
-    for (auto& l : split_per_thread_)
-        l.clear();
-    std::fill(moved_per_thread_.begin(), moved_per_thread_.end(), 0.0);
-    const bool threaded = list.size() >= 2048;
-    auto run = [&](std::size_t n, const std::function<void(std::size_t, std::size_t, int)>& body) {
-        if (threaded) {
-            pool_->parallel_for(n, body);
-        } else {
-            body(0, n, 0);
+    double* out = out_.data();
+    std::uint32_t* source = source_.data();
+    std::uint64_t* receive = s.receive.data();
+    const std::uint32_t tag = tag_;
+    std::size_t lo = s.receive_lo, hi = s.receive_hi;
+    std::uint32_t first = s.first, last = s.last;
+    double moved = 0.0;
+    for (std::size_t idx = begin; idx < end; ++idx) {
+        const std::uint32_t i = list[idx];
+        if (idx + kPrefetchDistance < end) prefetch_outflow(list[idx + kPrefetchDistance], g, a);
+        first = std::min(first, i);
+        last = std::max(last, i);
+        source[i] = tag;
+        const std::uint32_t deg = i < rows ? degree[i] : 0;
+        if (deg == 0) {
+            out[i] = 0.0;
+            continue;
         }
-    };
-
-    // Phase 1: outflow of every active vertex along each of its edges, from the old heights.
-    run(list.size(), [&](std::size_t b, std::size_t e, int t) {
-        auto& splits = split_per_thread_[static_cast<std::size_t>(t)];
-        double moved = 0.0;
-        for (std::size_t idx = b; idx < e; ++idx) {
-            const std::uint32_t i = list[idx];
-            const std::uint32_t begin = g.offset(i);
-            const std::uint32_t degree = g.degree(i);
-            out_[i] = degree == 0 ? 0.0
-                                  : talus_outflow(i, begin, degree, target, length, longest,
-                                                  a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                                  settings_.parameters, random_factor(i), q,
-                                                  [&](std::uint32_t v) { splits.push_back(v); });
-            source_[i] = 1;
-            moved += out_[i];
+        const std::uint32_t row = offset[i];
+        const double sent =
+            talus_outflow(i, row, deg, target, length, longest, a.height, a.area, a.bedrock,
+                          a.tan_alpha[i], settings_.parameters, random_factor(i), q,
+                          [&s](std::uint32_t v) { s.splits.push_back(v); });
+        out[i] = sent;
+        moved += sent;
+        if (sent > 0.0) {
+            mark(receive, i, lo, hi);
+            for (std::uint32_t k = row; k < row + deg; ++k)
+                mark(receive, target[k], lo, hi);
         }
-        moved_per_thread_[static_cast<std::size_t>(t)] = moved;
-    });
-    for (double m : moved_per_thread_)
-        stats.volume_moved += m;
-    stats.processed = list.size();
-    if (split_around != nullptr) {
-        for (const auto& l : split_per_thread_)
-            split_around->insert(split_around->end(), l.begin(), l.end());
     }
+    s.receive_lo = lo;
+    s.receive_hi = hi;
+    s.first = first;
+    s.last = last;
+    s.moved = moved;
+}
 
-    // The receivers: every source and its neighbours.
-    receivers_.clear();
-    auto add = [&](std::uint32_t v) {
-        if (!receiver_flag_[v]) {
-            receiver_flag_[v] = 1;
-            receivers_.push_back(v);
+void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s) {
+    const AdjacencyGraph& g = *pass_.graph;
+    const TalusArrays& a = *pass_.arrays;
+    const std::uint32_t* target = g.targets().data();
+    const std::uint32_t* reverse = g.reverses().data();
+    const std::uint32_t* offset = g.offsets().data();
+    const std::uint32_t* degree = g.degrees().data();
+    const double* q = q_.data();
+    const double* out = out_.data();
+    const std::uint32_t* source = source_.data();
+    const std::uint32_t tag = tag_;
+    const std::size_t rows = g.degrees().size();
+    std::uint64_t* wake = s.wake.data();
+    std::size_t lo = s.wake_lo, hi = s.wake_hi;
+    for (std::size_t w = pass_.word_begin + begin; w < pass_.word_begin + end; ++w) {
+        std::uint64_t bits = 0;
+        for (ThreadScratch& t : scratch_) {
+            bits |= t.receive[w];
+            t.receive[w] = 0;
         }
-    };
-    for (std::uint32_t i : list) {
-        if (out_[i] <= 0.0) continue;
-        add(i);
-        const std::uint32_t begin = g.offset(i);
-        for (std::uint32_t k = begin; k < begin + g.degree(i); ++k)
-            add(target[k]);
-    }
-
-    // Phase 2: each receiver gathers, in its row order, what its source neighbours sent.
-    run(receivers_.size(), [&](std::size_t b, std::size_t e, int) {
-        for (std::size_t idx = b; idx < e; ++idx) {
-            const std::uint32_t v = receivers_[idx];
-            double delta = source_[v] ? -out_[v] : 0.0;
-            const std::uint32_t begin = g.offset(v);
-            for (std::uint32_t k = begin; k < begin + g.degree(v); ++k) {
-                const std::uint32_t w = target[k];
-                if (source_[w]) delta += q[reverse[k]];
+        while (bits != 0) {
+            const auto v = static_cast<std::uint32_t>(
+                (w << 6) + static_cast<std::size_t>(std::countr_zero(bits)));
+            bits &= bits - 1;
+            if (v + kPrefetchDistance < rows) prefetch_gather(v + kPrefetchDistance, g, q, source);
+            const std::uint32_t row = offset[v];
+            const std::uint32_t deg = degree[v];
+            double delta = source[v] == tag ? -out[v] : 0.0;
+            for (std::uint32_t k = row; k < row + deg; ++k) {
+                if (source[target[k]] == tag) delta += q[reverse[k]];
             }
-            // Clamped for the same rounding reason as in the sequential schedule.
-            new_height_[v] = std::max(a.height[v] + delta / a.area[v], a.bedrock[v]);
-        }
-    });
-    for (std::uint32_t v : receivers_) {
-        receiver_flag_[v] = 0;
-        if (new_height_[v] != a.height[v]) {
-            a.height[v] = new_height_[v];
-            changed_[v] = 1;
-            changed_list_.push_back(v);
+            // When the sand ran out, h - (A (h - b)) / A can round to an ulp below b; the
+            // thickness must never be negative, and an ulp of volume is far inside the drift
+            // bound (the sequential schedule clamps the same way).
+            const double h = a.height[v];
+            const double nh = std::max(h + delta / a.area[v], a.bedrock[v]);
+            if (nh != h) {
+                a.height[v] = nh;  // in place: no other vertex reads v's height in this phase
+                s.changed.push_back(v);
+                mark(wake, v, lo, hi);
+                for (std::uint32_t k = row; k < row + deg; ++k)
+                    mark(wake, target[k], lo, hi);
+            }
         }
     }
-    for (std::uint32_t i : list)
-        source_[i] = 0;
-    stats.changed = changed_list_.size();
-    return stats;
+    s.wake_lo = lo;
+    s.wake_hi = hi;
+}
+
+void TalusSolver::jacobi_age(std::size_t begin, std::size_t end, ThreadScratch& s) {
+    ActiveSet& active = *pass_.active;
+    std::uint64_t* member = active.bits_.data();
+    std::uint8_t* quiet = active.quiet_.data();
+    const int limit = settings_.quiet_iterations;
+    for (std::size_t w = pass_.word_begin + begin; w < pass_.word_begin + end; ++w) {
+        std::uint64_t woken = 0;
+        for (ThreadScratch& t : scratch_) {
+            woken |= t.wake[w];
+            t.wake[w] = 0;
+        }
+        std::uint64_t bits = woken | member[w];
+        std::uint64_t kept = 0;
+        while (bits != 0) {
+            const int b = std::countr_zero(bits);
+            const std::uint64_t bit = std::uint64_t{1} << b;
+            bits &= bits - 1;
+            const auto v = static_cast<std::uint32_t>((w << 6) + static_cast<std::size_t>(b));
+            // Woken: a fresh quiet count. Otherwise one more quiet iteration, and out after
+            // `limit` of them (what ActiveSet::age followed by activate does, word by word).
+            if ((woken & bit) != 0) {
+                quiet[v] = 0;
+            } else if (++quiet[v] >= limit) {
+                continue;
+            }
+            kept |= bit;
+            s.kept.push_back(v);
+        }
+        member[w] = kept;
+    }
 }
 
 }  // namespace sandtin

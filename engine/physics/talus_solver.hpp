@@ -5,10 +5,13 @@
 //  - Jacobi: phase 1 computes every active vertex's outflow per directed edge from the old
 //    heights, phase 2 lets every vertex gather what its neighbours sent. Deterministic and
 //    independent of the thread count (each vertex sums in its fixed row order); the exact CPU
-//    twin of the compute shader.
+//    twin of the compute shader. Its active set is processed and rebuilt in vertex-id order
+//    (the TIN numbers bulk-built vertices along a Hilbert curve, so that order is also
+//    spatially coherent), and all three phases (outflow, gather, ageing) run on the threads.
 // Both move volume, never height: what leaves a vertex is exactly what its neighbours receive.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "physics/active_set.hpp"
@@ -62,26 +65,53 @@ class TalusSolver {
     const std::vector<std::uint32_t>& changed() const { return changed_list_; }
 
   private:
+    /// Per-thread scratch of the Jacobi schedule, on its own cache lines. The bitmaps hold one
+    /// bit per vertex id and are written only by their thread, so marking needs no atomics;
+    /// the next phase ORs them word by word (64 ids at a time) in id order.
+    struct alignas(64) ThreadScratch {
+        std::vector<std::uint64_t> receive;  ///< senders and their neighbours (phase 1)
+        std::vector<std::uint64_t> wake;     ///< changed vertices and their neighbours (phase 2)
+        std::size_t receive_lo = 0, receive_hi = 0;  ///< word range marked in `receive`
+        std::size_t wake_lo = 0, wake_hi = 0;        ///< word range marked in `wake`
+        std::uint32_t first = 0, last = 0;           ///< smallest and largest id in phase 1
+        double moved = 0.0;
+        std::vector<std::uint32_t> splits;   ///< phase 1, in list order
+        std::vector<std::uint32_t> changed;  ///< phase 2, in id order
+        std::vector<std::uint32_t> kept;     ///< phase 3: the next active list, in id order
+    };
+    /// What the Jacobi phases read, so the pool's task captures `this` only (no allocation).
+    struct JacobiPass {
+        const AdjacencyGraph* graph = nullptr;
+        const TalusArrays* arrays = nullptr;
+        ActiveSet* active = nullptr;
+        std::size_t word_begin = 0;  ///< first bitmap word of phases 2 and 3
+    };
+
     IterationStats sequential(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                               std::vector<std::uint32_t>* split_around);
     IterationStats jacobi(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                           std::vector<std::uint32_t>* split_around);
+    void jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s);
+    void jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s);
+    void jacobi_age(std::size_t begin, std::size_t end, ThreadScratch& s);
+    /// Runs body(begin, end, scratch) over [0, n) on the pool, or inline when n is small.
+    template <class Body>
+    void run(std::size_t n, bool threaded, Body body);
     double random_factor(std::uint32_t v) const;
     void ensure(const AdjacencyGraph& g, std::size_t vertices);
 
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;
-    std::vector<double> q_;             ///< per slot: volume sent along the directed edge
-    std::vector<double> out_;           ///< per vertex: total sent this iteration
-    std::vector<double> new_height_;    ///< per receiver (Jacobi)
-    std::vector<std::uint8_t> source_;  ///< per vertex: computed an outflow this iteration
-    std::vector<std::uint8_t> receiver_flag_;
-    std::vector<std::uint32_t> receivers_;
-    std::vector<std::uint8_t> changed_;
+    std::vector<double> q_;              ///< per slot: volume sent along the directed edge
+    std::vector<double> out_;            ///< per vertex: total sent this iteration
+    std::vector<std::uint8_t> changed_;  ///< per vertex (sequential schedule)
     std::vector<std::uint32_t> changed_list_;
-    std::vector<std::vector<std::uint32_t>> split_per_thread_;
-    std::vector<double> moved_per_thread_;
+    // Jacobi schedule.
+    std::vector<std::uint32_t> source_;  ///< per vertex: == tag_ when it was a source this time
+    std::uint32_t tag_ = 0;
+    std::vector<ThreadScratch> scratch_;
+    JacobiPass pass_;
 };
 
 }  // namespace sandtin
