@@ -7,6 +7,7 @@
 
 void activate(uint u, uint list_half, uint counter) {
     vs[u].quiet = 0u;
+    if (vs[u].in_list == 1u) return;  // already listed (plain read spares most atomics)
     if (atomicExchange(vs[u].in_list, 1u) == 0u) append(list_half, counter, u);
 }
 

@@ -8,6 +8,9 @@
 const float kFloatEpsilon = 1.1920929e-7;
 
 void mark_receiver(uint v) {
+    // Plain read first: most neighbours are already marked, and a stamp, once set, stays for
+    // the iteration; only the first marking needs the atomic.
+    if (vs[v].receiver == pc.iter) return;
     if (atomicExchange(vs[v].receiver, pc.iter) != pc.iter) append(R_RECEIVERS, C_RECEIVERS, v);
 }
 
@@ -47,17 +50,21 @@ void main() {
     if (degree > 0u) {
         float hi = height[i];
         float tan_a = tan_alpha[i];
-        float largest = 0.0;
-        float sum = 0.0;
+        float inv_ai = 1.0 / area[i];
         // The CPU uses 64 double ulps; in float, 4 ulps of the height is the rounding noise
         // below which two nearly coincident vertices would trade the last bit forever.
         float noise_floor = 4.0 * kFloatEpsilon * abs(hi);
+        // Pass 1: excesses and levelling volumes, nothing stored. Pass 2 recomputes them with
+        // the same float operations (so the same values) and writes q once: half the memory
+        // traffic of storing and re-reading q like the CPU does.
+        float largest = 0.0;
+        float sum = 0.0;
+        float levelling = 0.0;
         for (uint k = begin; k < begin + degree; ++k) {
             float r = edge_length[k];
             float slope = r * tan_a;
             uint t = target[k];
             float e = (hi - height[t]) - slope;
-            q[k] = 0.0;
             if (!(e > pc.rest_tolerance * slope) || !(e > noise_floor)) continue;
             if (r > pc.r_limit) {
                 request_split(i);
@@ -67,36 +74,38 @@ void main() {
                 request_split(t);
                 continue;
             }
-            q[k] = e;
             sum += e;
             largest = max(largest, e);
+            levelling += e / (inv_ai + 1.0 / area[t]);
         }
+        float scale = 0.0;
         if (sum > 0.0) {
-            float inv_ai = 1.0 / area[i];
-            float levelling = 0.0;
-            for (uint k = begin; k < begin + degree; ++k) {
-                if (q[k] > 0.0) {
-                    float v = q[k] / (inv_ai + 1.0 / area[target[k]]);
-                    q[k] = v;
-                    levelling += v;
-                }
-            }
-            float scale = pc.damping;
+            scale = pc.damping;
             if (pc.randomness > 0.0) {
                 uvec2 it = uvec2(ctl[C_WORK_ITER_LO], ctl[C_WORK_ITER_HI]);
-                scale *= 1.0 + pc.randomness * signed_unit_hash(uvec2(pc.seed_lo, pc.seed_hi), i, it);
+                scale *= 1.0 + pc.randomness *
+                                   signed_unit_hash(uvec2(pc.seed_lo, pc.seed_hi), i, it);
             }
             float cap = pc.damping * largest * area[i];
             if (scale * levelling > cap) scale = cap / levelling;
             float available = area[i] * (hi - bedrock[i]);
             if (scale * levelling > available) scale = max(available, 0.0) / levelling;
-            for (uint k = begin; k < begin + degree; ++k) {
-                if (q[k] > 0.0) {
-                    float v = q[k] * scale;
-                    q[k] = v;
-                    sent += v;
+        }
+        // Pass 2: every slot of the row is written (receivers read q of every source's row).
+        for (uint k = begin; k < begin + degree; ++k) {
+            float v = 0.0;
+            if (scale > 0.0) {
+                float r = edge_length[k];
+                float slope = r * tan_a;
+                uint t = target[k];
+                float e = (hi - height[t]) - slope;
+                if (e > pc.rest_tolerance * slope && e > noise_floor && !(r > pc.r_limit) &&
+                    !(longest[t] > pc.r_limit)) {
+                    v = (e / (inv_ai + 1.0 / area[t])) * scale;
                 }
             }
+            q[k] = v;
+            sent += v;
         }
     }
     outflow[i] = sent;
