@@ -6,6 +6,7 @@
 #include "gpu/surface_maps.hpp"
 #include "gpu_fixture.hpp"
 #include "gpu_scenes.hpp"
+#include "io/export_maps.hpp"
 #include "maps/height_map.hpp"
 #include "maps/normal_map.hpp"
 #include "maps/vertex_normals.hpp"
@@ -167,6 +168,14 @@ TEST_F(GpuTest, BakedMapsMatchAnalyticPlaneAndSphericalCapAndTheCpuBake) {
         worst_cpu_h = std::max(worst_cpu_h, std::abs(cpu_h.values[i] - b2.height.values[i]));
     EXPECT_LE(worst_cpu, 1e-4);
     EXPECT_LE(worst_cpu_h, 1e-5);
+
+    // The GPU maps go through the same exporters as the CPU bakes.
+    const std::vector<uint8_t> png = encode_normal_png(b2.normal);
+    ASSERT_GT(png.size(), 8u);
+    EXPECT_EQ(png[1], 'P');
+    EXPECT_EQ(png[2], 'N');
+    EXPECT_EQ(png[3], 'G');
+    EXPECT_GT(encode_height_exr(b2.height, 1.0 / 99.0).size(), 100u);
 }
 
 }  // namespace
