@@ -85,6 +85,8 @@ class App {
     void panel_stats();
     void panel_file();
     void recovery_prompt();
+    /// The recovery prompt's answer (its buttons, or the script's "recovery" op).
+    void answer_recovery(bool recover);
 
     // Input, shared by GLFW callbacks and the script.
     void mouse_button(int button, bool down, double x, double y);

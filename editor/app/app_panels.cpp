@@ -281,24 +281,34 @@ void App::panel_stats() {
     tip("Frame time over the last 240 frames (0-100 ms)");
 }
 
+void App::answer_recovery(bool recover) {
+    if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
+    if (recover) {
+        const Session s = recover_autosave(*recovery_for_);
+        doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_);
+        doc_.dirty = true;
+        document_replaced();
+        report("recovered the autosave of " + recovery_for_->string());
+    } else {
+        discard_autosave(*recovery_for_);
+        report("discarded the autosave of " + recovery_for_->string());
+    }
+    recovery_for_.reset();
+}
+
 void App::recovery_prompt() {
     if (!recovery_for_) return;
     ImGui::OpenPopup("Recover autosave?");
     if (ImGui::BeginPopupModal("Recover autosave?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("An autosave newer than %s exists.", recovery_for_->c_str());
         if (ImGui::Button("Recover")) {
-            const Session s = recover_autosave(*recovery_for_);
-            doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_);
-            doc_.dirty = true;
-            document_replaced();
-            recovery_for_.reset();
+            answer_recovery(true);
             ImGui::CloseCurrentPopup();
         }
         tip("Load the autosave; save to keep it");
         ImGui::SameLine();
         if (ImGui::Button("Discard")) {
-            discard_autosave(*recovery_for_);
-            recovery_for_.reset();
+            answer_recovery(false);
             ImGui::CloseCurrentPopup();
         }
         tip("Delete the autosave and keep the scene as saved");

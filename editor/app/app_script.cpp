@@ -13,6 +13,7 @@ namespace sandtin::editor {
 //         | {"op": "scroll", "steps": s} | {"op": "wait", "frames": n}
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
+//         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."} ] }
 // Positions are fractions of the window (0..1): scripts work at any --size.
 
@@ -87,6 +88,11 @@ void App::run_script_op(const nlohmann::json& op) {
         camera_.pitch = std::clamp(op.value("pitch", camera_.pitch), OrbitCamera::kMinPitch,
                                    OrbitCamera::kMaxPitch);
         camera_.zoom(op.value("zoom", 0.0));
+    } else if (kind == "recovery") {
+        const std::string choice = op.at("choice").get<std::string>();
+        if (choice != "recover" && choice != "discard")
+            throw std::runtime_error("script: recovery choice must be recover or discard");
+        answer_recovery(choice == "recover");
     } else if (kind == "haptics") {
         // Connects the simulated pen (as the panel's Connect button does) or disconnects.
         if (op.value("connect", true)) {

@@ -46,16 +46,9 @@ void App::load_initial_scene() {
     }
     const Session s = load_session(options_.scene);
     doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, options_.scene);
-    if (const auto info = find_autosave(options_.scene); info && info->offer_recovery()) {
-        if (options_.scripted()) {
-            std::fprintf(stderr,
-                         "sandtin-editor: an autosave newer than %s exists (%s); "
-                         "scripted mode leaves it alone\n",
-                         options_.scene.c_str(), info->path.c_str());
-        } else {
-            recovery_for_ = options_.scene;
-        }
-    }
+    // An autosave newer than the scene: the prompt asks (a script answers with "recovery").
+    if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
+        recovery_for_ = options_.scene;
 }
 
 void App::init_window_and_gpu() {

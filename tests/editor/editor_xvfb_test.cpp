@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "formats/png_image.hpp"
+#include "io/autosave.hpp"
 #include "io/session_file.hpp"
 #include "tin/tin.hpp"
 
@@ -278,6 +279,43 @@ TEST_F(EditorXvfb, HapticsPanelRunsTheForceLoopAgainstTheSandUnderTheCursor) {
     EXPECT_GT(h.at("force_n").get<double>(), 0.05);
     EXPECT_LE(h.at("force_n").get<double>(), 10.0);
     EXPECT_TRUE(h.at("contact").get<bool>());
+}
+
+TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarded) {
+    const fs::path scene = kWork / "recover.sandtin";
+    ASSERT_EQ(run_editor("recover-base", kFlat, "--save-after " + scene.string()).exit_code, 0);
+    // An autosave with one vertex raised by 3 cm, written after the scene.
+    Session edited = load_session(scene);
+    std::size_t raised = 0;
+    while (!edited.terrain.vertices.alive[raised])
+        ++raised;
+    edited.terrain.vertices.height[raised] += 0.03;
+    write_autosave(scene, edited);
+    ASSERT_TRUE(find_autosave(scene).has_value());
+    ASSERT_TRUE(find_autosave(scene)->offer_recovery());
+
+    const fs::path recovered = kWork / "recovered.sandtin";
+    const EditorRun r = run_editor("recover", R"([{"op": "recovery", "choice": "recover"}])",
+                                   scene.string() + " --save-after " + recovered.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    const Session got = load_session(recovered);
+    EXPECT_EQ(got.terrain.vertices.height, edited.terrain.vertices.height);
+    // Saving (here to another file) leaves the scene's own autosave alone.
+    ASSERT_TRUE(find_autosave(scene).has_value());
+
+    const fs::path kept = kWork / "kept.sandtin";
+    const EditorRun d = run_editor("discard", R"([{"op": "recovery", "choice": "discard"}])",
+                                   scene.string() + " --save-after " + kept.string());
+    ASSERT_EQ(d.exit_code, 0) << d.log;
+    EXPECT_FALSE(find_autosave(scene).has_value());
+    EXPECT_EQ(load_session(kept).terrain.vertices.height,
+              load_session(scene).terrain.vertices.height);
+
+    // Without an autosave, answering the prompt is a clear error.
+    const EditorRun e =
+        run_editor("no-autosave", R"([{"op": "recovery", "choice": "recover"}])", scene.string());
+    EXPECT_EQ(e.exit_code, 1);
+    EXPECT_NE(e.log.find("no autosave"), std::string::npos) << e.log;
 }
 
 TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
