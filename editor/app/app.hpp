@@ -106,6 +106,7 @@ class App {
     /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
         mesh_stale_ = true;
+        contrast_stale_ = true;
         active_.clear();
         active_ids_.clear();
         active_flipped_.clear();
@@ -165,6 +166,10 @@ class App {
     double haptic_tool_radius_ = 0.0;
     std::deque<float> haptic_forces_;
     void update_haptics();
+    void update_contrast_range();
+    double contrast_low_ = 0.0, contrast_high_ = 0.1;  ///< m, heights the curve stretches
+    Clock::time_point contrast_at_{};
+    bool contrast_stale_ = true;
 
     // Scripted mode.
     std::vector<nlohmann::json> script_;

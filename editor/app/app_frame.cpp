@@ -80,6 +80,28 @@ void App::update_haptics() {
                      {cursor_->x, cursor_->y, bottom});
 }
 
+void App::update_contrast_range() {
+    // The contrast curve stretches the 2nd..98th percentile of the heights over the full
+    // range (the seeds' histogram stretch). O(n): refreshed at most twice a second.
+    if (!contrast_stale_ && Clock::now() - contrast_at_ < std::chrono::milliseconds(500)) return;
+    const VertexArrays& va = doc_.tin->vertices();
+    std::vector<double> h;
+    h.reserve(doc_.tin->vertex_count());
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (va.alive[i]) h.push_back(va.height[i]);
+    }
+    if (h.size() < 2) return;
+    const auto at = [&](double q) {
+        auto it = h.begin() + static_cast<long>(q * static_cast<double>(h.size() - 1));
+        std::nth_element(h.begin(), it, h.end());
+        return *it;
+    };
+    contrast_low_ = at(0.02);
+    contrast_high_ = std::max(at(0.98), contrast_low_ + 1e-4);
+    contrast_at_ = Clock::now();
+    contrast_stale_ = false;
+}
+
 void App::update_mesh() {
     // The journal says what changed; nothing changed means no recomputation and no upload.
     const ChangeSet changes = doc_.tin->take_changes();
@@ -105,6 +127,7 @@ void App::update_mesh() {
     const std::uint64_t before = renderer_->bytes_uploaded();
     renderer_->upload(*mesh_, update);
     last_upload_bytes_ = renderer_->bytes_uploaded() - before;
+    update_contrast_range();
     times_.push(times_.upload, ms_since(t1));
 }
 
@@ -151,8 +174,8 @@ bool App::frame(bool capture) {
     push.overlays[1] = settings_.overlay_active ? 1.0f : 0.0f;
     push.overlays[2] = settings_.overlay_thickness ? 1.0f : 0.0f;
     push.overlays[3] = settings_.overlay_slope ? 1.0f : 0.0f;
-    push.contrast[0] = 0.0f;
-    push.contrast[1] = 0.12f;
+    push.contrast[0] = static_cast<float>(contrast_low_);
+    push.contrast[1] = static_cast<float>(contrast_high_);
     renderer_->draw(swapchain_->command_buffer(), push, extent, *mesh_);
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), swapchain_->command_buffer());
     const bool ok = swapchain_->end_frame(capture);

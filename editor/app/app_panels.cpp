@@ -150,7 +150,7 @@ void App::panel_tools() {
 }
 
 void App::panel_materials() {
-    const auto& all = doc_.materials.all();
+    std::vector<Material> all = doc_.materials.all();
     for (std::size_t i = 0; i < all.size(); ++i) {
         const Material& m = all[i];
         ImGui::ColorButton(("##c" + std::to_string(i)).c_str(),
@@ -159,13 +159,40 @@ void App::panel_materials() {
         ImGui::SameLine();
         if (ImGui::RadioButton(m.name.c_str(), settings_.material == static_cast<int>(i)))
             settings_.material = static_cast<int>(i);
-        tip("Material painted by the Paint brush");
+        tip("Select: the Paint brush and the pour use this material; edit it below");
         ImGui::SameLine();
-        ImGui::Text("repose %.0f deg dry, %.0f deg moist", m.repose_dry * 57.2957795,
-                    m.repose_wet * 57.2957795);
+        ImGui::Text("%.0f / %.0f deg", m.repose_dry * 57.2957795, m.repose_wet * 57.2957795);
+        tip("Angle of repose dry / with capillary moisture");
     }
-    ImGui::TextWrapped(
-        "Paint materials with the Paint brush (key 0); moisture darkens the colour.");
+    if (settings_.material < 0 || settings_.material >= static_cast<int>(all.size())) return;
+    Material& m = all[static_cast<std::size_t>(settings_.material)];
+    float dry = static_cast<float>(m.repose_dry * 57.2957795);
+    float wet = static_cast<float>(m.repose_wet * 57.2957795);
+    bool edited = false;
+    ImGui::SliderFloat("Repose dry", &dry, 10.0f, 50.0f, "%.1f deg");
+    tip("Steepest stable slope of the dry material");
+    edited |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderFloat("Repose moist", &wet, dry, 70.0f, "%.1f deg");
+    tip("Steepest stable slope with capillary moisture (the plateau before slumping)");
+    edited |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::ColorEdit3("Colour", m.colour, ImGuiColorEditFlags_Float);
+    tip("Albedo of the material (linear RGB)");
+    edited |= ImGui::IsItemDeactivatedAfterEdit();
+    ImGui::SliderFloat("Paint moisture", &m.default_moisture, 0.0f, 1.0f, "%.2f");
+    tip("Saturation the Paint brush gives the sand it paints with this material");
+    edited |= ImGui::IsItemDeactivatedAfterEdit();
+    m.repose_dry = static_cast<double>(dry) / 57.2957795;
+    m.repose_wet = static_cast<double>(std::max(wet, dry)) / 57.2957795;
+    if (edited) {
+        // Applied when the control is released: the whole terrain is re-checked against the
+        // new angles, and the colours are rebuilt. Not an undo level: the table is not terrain.
+        doc_.materials = MaterialTable(all);
+        doc_.physics->set_materials(doc_.materials);
+        doc_.physics->activate_all();
+        mesh_->set_materials(doc_.materials);
+        mesh_stale_ = true;
+        physics_kick_ = true;
+    }
 }
 
 void App::panel_erosion() {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "physics/material.hpp"
@@ -46,6 +47,8 @@ class TerrainMesh {
     /// Applies `changes` (from tin.take_changes()) and the vertices whose active flag flipped.
     MeshUpdate update(const Tin& tin, const ChangeSet& changes,
                       std::span<const VertexId> active_flipped = {});
+    /// New material table (colours, angles of repose); call rebuild() afterwards.
+    void set_materials(MaterialTable materials) { materials_ = std::move(materials); }
     /// Active (eroding) flags by VertexId, read by update() for the vertices it recomputes.
     void set_active(std::span<const std::uint8_t> active) { active_ = active; }
 
