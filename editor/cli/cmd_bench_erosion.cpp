@@ -195,20 +195,84 @@ nlohmann::json to_json(const Row& r) {
 /// --quick) with a rough surface whose slopes are far above repose, so every vertex stays
 /// active: vertex updates per second of wall time over `kTimed` consecutive iterations after a
 /// warm-up one (the solver keeps its own active set, as in use), median of `runs` runs.
+/// Two numberings of the same graph: the TIN's own ids, and the ids renumbered along a Hilbert
+/// curve (the TIN's bulk build numbers along CGAL's multiscale spatial sort, which leaves about
+/// a third of the neighbours more than 10⁵ ids apart, so every iteration waits on cache misses).
 struct ThroughputScene {
-    Tin tin;
+    std::string numbering;
+    std::size_t vertices = 0;
     AdjacencyGraph graph;
+    std::vector<double> height, area, bedrock;
 };
 
-ThroughputScene throughput_scene(int n) {
-    ThroughputScene s{
-        Tin::regular_grid(
-            Rect::from_size(1.0, 1.0), n, n,
-            [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
-            TinOptions{false}),
-        {}};
-    s.graph.rebuild(s.tin);
-    return s;
+/// Position of (x, y) along a Hilbert curve over a 2^16 x 2^16 lattice.
+std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y) {
+    std::uint64_t d = 0;
+    for (std::uint32_t s = 1u << 15; s > 0; s >>= 1) {
+        const std::uint32_t rx = (x & s) != 0 ? 1 : 0;
+        const std::uint32_t ry = (y & s) != 0 ? 1 : 0;
+        d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+        if (ry == 0) {
+            if (rx == 1) {
+                x = s - 1 - (x & (s - 1)) + (x & ~(s - 1));
+                y = s - 1 - (y & (s - 1)) + (y & ~(s - 1));
+                x &= (s << 1) - 1;
+                y &= (s << 1) - 1;
+            }
+            std::swap(x, y);
+        }
+    }
+    return d;
+}
+
+std::vector<ThroughputScene> throughput_scenes(int n) {
+    const Tin tin = Tin::regular_grid(
+        Rect::from_size(1.0, 1.0), n, n,
+        [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
+        TinOptions{false});
+    const VertexArrays& va = tin.vertices();
+    std::vector<ThroughputScene> scenes(2);
+    ThroughputScene& own = scenes[0];
+    own.numbering = "tin ids";
+    own.vertices = tin.vertex_count();
+    own.graph.rebuild(tin);
+    own.height = va.height;
+    own.area = va.lumped_area;
+    own.bedrock = va.bedrock;
+
+    ThroughputScene& hil = scenes[1];
+    hil.numbering = "hilbert-renumbered";
+    hil.vertices = own.vertices;
+    const std::size_t size = va.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(size);
+    for (std::uint32_t v = 0; v < size; ++v) {
+        const Vec2 p = va.position[v];  // the domain is the unit square
+        keys[v] = {hilbert_index(static_cast<std::uint32_t>(std::clamp(p.x, 0.0, 1.0) * 65535.0),
+                                 static_cast<std::uint32_t>(std::clamp(p.y, 0.0, 1.0) * 65535.0)),
+                   v};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t> new_id(size);
+    for (std::uint32_t k = 0; k < size; ++k)
+        new_id[keys[k].second] = k;
+    std::vector<std::vector<std::uint32_t>> rows(size);
+    std::vector<std::vector<double>> lengths(size);
+    hil.height.resize(size);
+    hil.area.resize(size);
+    hil.bedrock.resize(size);
+    for (std::uint32_t v = 0; v < size; ++v) {
+        const std::uint32_t w = new_id[v];
+        hil.height[w] = va.height[v];
+        hil.area[w] = va.lumped_area[v];
+        hil.bedrock[w] = va.bedrock[v];
+        for (std::uint32_t k = own.graph.offset(v); k < own.graph.offset(v) + own.graph.degree(v);
+             ++k) {
+            rows[w].push_back(new_id[own.graph.targets()[k]]);
+            lengths[w].push_back(own.graph.lengths()[k]);
+        }
+    }
+    hil.graph.assign(rows, lengths);
+    return scenes;
 }
 
 /// CPU time of the whole process (all threads), ms.
@@ -227,22 +291,21 @@ double load_average() {
 
 nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
     constexpr int kTimed = 6;
-    const VertexArrays& va = scene.tin.vertices();
     std::vector<double> rates;
     std::vector<double> cpu_rates;
     std::vector<double> loads;
     std::size_t processed = 0;
     for (int run = 0; run < runs; ++run) {
-        std::vector<double> height = va.height;
-        std::vector<double> tan(va.size(), tan_alpha());
+        std::vector<double> height = scene.height;
+        std::vector<double> tan(height.size(), tan_alpha());
         TalusSettings settings;
         settings.schedule = Schedule::Jacobi;
         settings.threads = threads;
         TalusSolver solver(settings);
-        const TalusArrays arrays{height.data(), va.lumped_area.data(), va.bedrock.data(),
-                                 tan.data(), height.size()};
+        const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
+                                 height.size()};
         ActiveSet active;
-        for (std::uint32_t v = 0; v < va.size(); ++v)
+        for (std::uint32_t v = 0; v < height.size(); ++v)
             active.activate(v);
         solver.iterate(scene.graph, arrays, active);  // warm-up: first-touch of the buffers
         loads.push_back(load_average());
@@ -258,7 +321,8 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
         cpu_rates.push_back(static_cast<double>(updates) / cpu_s);
     }
     const double rate = bench::median(rates);
-    return {{"vertices", scene.tin.vertex_count()},
+    return {{"vertices", scene.vertices},
+            {"numbering", scene.numbering},
             {"threads", threads},
             {"processed_per_iteration", processed},
             {"vertex_updates_per_s", rate},
@@ -275,8 +339,13 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
 }
 
 nlohmann::json jacobi_throughputs(bool quick, int runs) {
-    const ThroughputScene scene = throughput_scene(quick ? 200 : 999);
-    return {jacobi_throughput(scene, 1, runs), jacobi_throughput(scene, 2, runs)};
+    const std::vector<ThroughputScene> scenes = throughput_scenes(quick ? 200 : 999);
+    nlohmann::json list = nlohmann::json::array();
+    for (const ThroughputScene& scene : scenes) {
+        for (int threads : {1, 2})
+            list.push_back(jacobi_throughput(scene, threads, runs));
+    }
+    return list;
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
