@@ -68,6 +68,10 @@ inline void tip(const char* text) {
 class App {
   public:
     explicit App(const EditorOptions& o) : options_(o) {}
+    /// Also on errors: ImGui's and the swapchain's Vulkan objects go before the device.
+    ~App() { shutdown(); }
+    App(const App&) = delete;
+    App& operator=(const App&) = delete;
     int run();
 
     void load_initial_scene();

@@ -155,6 +155,39 @@ TEST(History, BrushOverAStrokeUndoesBothExactly) {
     }
 }
 
+TEST(History, VerticesCreatedOnTheBorderAreReportedNotSilentlyKept) {
+    // A stroke across the domain's edge puts rim vertices on the border, which the Tin's API
+    // cannot remove: undo must say so (ApplyReport::unrestored names them, all on the border)
+    // and restore everything else exactly.
+    Tin tin = dune_terrain(4000, 13);
+    History history(tin);
+    SculptContext context(kDomain);
+    const TinState before = capture(tin);
+    const Tool tool = Tool::build(load_tool_asset("circle"));
+    StrokeSettings settings;
+    settings.depth = 0.01;
+    apply_stroke(tin, tool, std::vector<Vec2>{{0.8, 0.5}, {0.99, 0.5}}, settings, context);
+    ASSERT_TRUE(history.record("stroke"));
+    const HistoryStep u = history.undo();
+    ASSERT_TRUE(u.done);
+    ASSERT_FALSE(u.report.exact());
+    const TinState after_undo = capture(tin);
+    for (Vec2 p : u.report.unrestored) {
+        EXPECT_TRUE(p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0) << p.x << " " << p.y;
+        EXPECT_EQ(before.vertices.count(test::key(p)), 0u);
+    }
+    // Every vertex of the prior state is back with its attributes; the only extra vertices
+    // are the reported ones; no constraint is left.
+    for (const auto& [p, v] : before.vertices) {
+        const auto it = after_undo.vertices.find(p);
+        ASSERT_NE(it, after_undo.vertices.end());
+        EXPECT_EQ(it->second, v);
+    }
+    EXPECT_EQ(after_undo.vertices.size(), before.vertices.size() + u.report.unrestored.size());
+    EXPECT_TRUE(after_undo.constraints.empty());
+    EXPECT_TRUE(tin.check_valid().ok());
+}
+
 TEST(History, HundredsOfLevelsUndoToTheStart) {
     Tin tin = dune_terrain(2000, 9);
     History history(tin);
