@@ -144,6 +144,19 @@ bool App::frame(bool capture) {
     ImGui::Render();
 
     const auto t1 = Clock::now();
+    // A resized window: not every presentation engine reports the old swapchain out of date,
+    // so compare sizes every frame.
+    {
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        const VkExtent2D e = swapchain_->extent();
+        if (w > 0 && h > 0 &&
+            (static_cast<std::uint32_t>(w) != e.width ||
+             static_cast<std::uint32_t>(h) != e.height)) {
+            swapchain_->recreate({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
+                                 settings_.vsync);
+        }
+    }
     const float clear[3] = {0.09f, 0.10f, 0.12f};
     if (!swapchain_->begin_frame(clear)) {
         int w = 0, h = 0;

@@ -14,6 +14,7 @@ namespace sandtin::editor {
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
+//         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."} ] }
 // Positions are fractions of the window (0..1): scripts work at any --size.
 
@@ -88,6 +89,11 @@ void App::run_script_op(const nlohmann::json& op) {
         camera_.pitch = std::clamp(op.value("pitch", camera_.pitch), OrbitCamera::kMinPitch,
                                    OrbitCamera::kMaxPitch);
         camera_.zoom(op.value("zoom", 0.0));
+    } else if (kind == "resize") {
+        const int nw = op.at("size").at(0).get<int>(), nh = op.at("size").at(1).get<int>();
+        if (nw < 64 || nh < 64 || nw > 8192 || nh > 8192)
+            throw std::runtime_error("script: resize wants 64..8192 pixels a side");
+        glfwSetWindowSize(window_, nw, nh);
     } else if (kind == "recovery") {
         const std::string choice = op.at("choice").get<std::string>();
         if (choice != "recover" && choice != "discard")

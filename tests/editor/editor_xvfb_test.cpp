@@ -318,6 +318,32 @@ TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarde
     EXPECT_NE(e.log.find("no autosave"), std::string::npos) << e.log;
 }
 
+TEST_F(EditorXvfb, ResizingTheWindowRebuildsTheSwapchainCleanly) {
+    const fs::path shot = kWork / "resized.png";
+    const EditorRun r = run_editor("resize",
+                                   R"([{"op": "set", "erosion": false},
+                                       {"op": "resize", "size": [800, 600]},
+                                       {"op": "wait", "frames": 4}])",
+                                   "--frames 2 --screenshot " + shot.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    const PngImage im = read_png(shot);
+    EXPECT_EQ(im.width, 800u);
+    EXPECT_EQ(im.height, 600u);
+    // Still a terrain in the middle of the new frame (not the clear colour everywhere).
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    for (std::uint32_t y = 250; y < 350; ++y) {
+        for (std::uint32_t x = 450; x < 650; ++x) {
+            const double l = luminance(pixel(im, x, y));
+            sum += l;
+            sum2 += l * l;
+            ++n;
+        }
+    }
+    EXPECT_GT(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 3.0);
+}
+
 TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
     const EditorRun r = run_editor("idle", kFlat, "--frames 2 --idle-seconds 2");
     ASSERT_EQ(r.exit_code, 0) << r.log;
