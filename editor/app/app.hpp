@@ -171,6 +171,13 @@ class App {
     std::deque<float> haptic_forces_;
     void update_haptics();
     void update_contrast_range();
+    /// The current stamp tool's inner contour at the cursor, on the terrain (render frame).
+    std::vector<std::array<float, 3>> footprint_outline();
+    std::optional<Tool> cursor_tool_;
+    int cursor_tool_index_ = -1;
+    double cursor_tool_radius_ = 0.0;
+    bool cursor_tool_extrude_ = false;
+    double last_heading_ = 0.0;  ///< radians: direction of the stroke's last sample
     double contrast_low_ = 0.0, contrast_high_ = 0.1;  ///< m, heights the curve stretches
     Clock::time_point contrast_at_{};
     bool contrast_stale_ = true;

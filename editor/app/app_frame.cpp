@@ -102,6 +102,36 @@ void App::update_contrast_range() {
     contrast_stale_ = false;
 }
 
+std::vector<std::array<float, 3>> App::footprint_outline() {
+    if (!cursor_tool_ || cursor_tool_index_ != settings_.tool ||
+        cursor_tool_radius_ != settings_.tool_radius || cursor_tool_extrude_ != settings_.extrude) {
+        cursor_tool_ = build_tool();
+        cursor_tool_index_ = settings_.tool;
+        cursor_tool_radius_ = settings_.tool_radius;
+        cursor_tool_extrude_ = settings_.extrude;
+    }
+    const double angle = settings_.follow_path && sampler_
+                             ? last_heading_
+                             : settings_.tool_angle * 3.14159265358979 / 180.0;
+    const ToolPlacement at{{cursor_->x, cursor_->y}, angle, cursor_->z};
+    const Vec2 c = doc_.tin->domain().centre();
+    const std::vector<Vec2>& inner = cursor_tool_->shape().inner;
+    std::vector<std::array<float, 3>> loop;
+    LocateHint hint;
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+        // Subdivided so the outline follows the sand between the contour's corners.
+        const Vec2 a = inner[i], b = inner[(i + 1) % inner.size()];
+        constexpr int kPieces = 6;
+        for (int k = 0; k < kPieces; ++k) {
+            const Vec2 w = cursor_tool_->to_world(at, lerp(a, b, static_cast<double>(k) / kPieces));
+            const double z = doc_.tin->height_at(w, &hint).value_or(cursor_->z);
+            loop.push_back({static_cast<float>(w.x - c.x), static_cast<float>(w.y - c.y),
+                            static_cast<float>(z + 0.0005)});
+        }
+    }
+    return loop;
+}
+
 void App::update_mesh() {
     // The journal says what changed; nothing changed means no recomputation and no upload.
     const ChangeSet changes = doc_.tin->take_changes();
@@ -181,7 +211,10 @@ bool App::frame(bool capture) {
         push.cursor[0] = static_cast<float>(cursor_->x - c.x);
         push.cursor[1] = static_cast<float>(cursor_->y - c.y);
         push.cursor[2] = static_cast<float>(settings_.tool_radius);
+        // Round tools show a ring of their radius; stamp tools their outline (below), plus the
+        // centre dot (radius 0 draws no ring).
         push.cursor[3] = 1.0f;
+        if (kTools[settings_.tool].kind == ToolKind::Stamp) push.cursor[2] = 0.0f;
     }
     push.overlays[0] = settings_.overlay_wireframe ? 1.0f : 0.0f;
     push.overlays[1] = settings_.overlay_active ? 1.0f : 0.0f;
@@ -190,6 +223,13 @@ bool App::frame(bool capture) {
     push.contrast[0] = static_cast<float>(contrast_low_);
     push.contrast[1] = static_cast<float>(contrast_high_);
     renderer_->draw(swapchain_->command_buffer(), push, extent, *mesh_);
+    if (cursor_ && kTools[settings_.tool].kind == ToolKind::Stamp) {
+        // Stamp tools: the footprint's inner contour on the terrain, turned as the next stamp
+        // will be.
+        const std::vector<std::array<float, 3>> loop = footprint_outline();
+        const float cyan[4] = {0.1f, 0.9f, 1.0f, 1.0f};
+        renderer_->draw_outline(swapchain_->command_buffer(), push.view_projection, loop, cyan);
+    }
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), swapchain_->command_buffer());
     const bool ok = swapchain_->end_frame(capture);
     times_.push(times_.render, ms_since(t1));

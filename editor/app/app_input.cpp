@@ -37,6 +37,7 @@ void App::tool_at(Vec3 p) {
                 const ToolPlacement at =
                     placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
                 stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+                last_heading_ = at.angle;
             }
             pending_label_ = std::string("stroke (") + t.label + ")";
             break;

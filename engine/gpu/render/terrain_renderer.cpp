@@ -255,4 +255,31 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
     }
 }
 
+void TerrainRenderer::draw_outline(VkCommandBuffer cb, const float view_projection[16],
+                                   std::span<const std::array<float, 3>> loop,
+                                   const float colour[4]) {
+    if (loop.size() < 2) return;
+    const std::size_t count = loop.size() * 2;  // line list: each segment's two ends
+    ensure(outline_, count * sizeof(RenderVertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    auto* v = static_cast<RenderVertex*>(outline_.mapped());
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const auto& a = loop[i];
+        const auto& b = loop[(i + 1) % loop.size()];
+        v[2 * i] = RenderVertex{{a[0], a[1], a[2]}, {}, {}, {}, {}};
+        v[2 * i + 1] = RenderVertex{{b[0], b[1], b[2]}, {}, {}, {}, {}};
+    }
+    outline_.flush(context_);
+    LinesPush lp{};
+    std::memcpy(lp.view_projection, view_projection, sizeof(lp.view_projection));
+    std::memcpy(lp.colour, colour, sizeof(lp.colour));
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_pipeline_.get());
+    vkCmdPushConstants(cb, lines_layout_.get(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(LinesPush), &lp);
+    const VkBuffer buffer = outline_.get();
+    const VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cb, 0, 1, &buffer, &offset);
+    vkCmdDraw(cb, static_cast<std::uint32_t>(count), 1, 0, 0);
+}
+
 }  // namespace sandtin::render

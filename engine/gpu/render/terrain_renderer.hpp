@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -39,6 +40,12 @@ class TerrainRenderer {
     void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
               const TerrainMesh& mesh);
 
+    /// Records a closed outline (metres, domain-centre relative, already at the terrain's
+    /// height) as lines of `colour` (RGBA): the tool cursor's footprint. Call once per frame
+    /// after draw(); it reuses one small buffer, which the previous frame no longer reads.
+    void draw_outline(VkCommandBuffer cb, const float view_projection[16],
+                      std::span<const std::array<float, 3>> loop, const float colour[4]);
+
     std::uint64_t bytes_uploaded() const { return bytes_uploaded_; }
 
   private:
@@ -53,6 +60,7 @@ class TerrainRenderer {
     gpu::Buffer indices_;
     gpu::Buffer constrained_;
     gpu::Buffer wire_;
+    gpu::Buffer outline_;
     std::uint32_t index_count_ = 0;
     std::uint32_t constrained_count_ = 0;
     std::uint32_t wire_count_ = 0;
