@@ -1,11 +1,65 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds sandtin, and runs the whole test suite.
+# Installs what is missing, builds sandtin, and runs the whole test suite:
+#   1. Release build, every ctest (GPU on lavapipe, the editor under Xvfb, 5 x 10 000-operation
+#      stress sessions);
+#   2. AddressSanitizer + UndefinedBehaviorSanitizer over the engine rooms' tests;
+#   3. ThreadSanitizer over the threaded parts (haptics loop, multithreaded Jacobi);
+#   4. libFuzzer (clang) on the session loader, every importer, the script parser and the
+#      haptic packet decoder, SANDTIN_FUZZ_SECONDS (default 30) each.
+# Arguments are passed to the first ctest (e.g. ./test.sh -L tin). SANDTIN_TEST_PASSES picks
+# passes (default "release asan tsan fuzz").
 set -euo pipefail
 cd "$(dirname "$0")"
 
 scripts/install-deps.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$jobs"
-cd build
-ctest --output-on-failure -j"$jobs" "$@"
+passes=${SANDTIN_TEST_PASSES:-release asan tsan fuzz}
+has_pass() { [[ " $passes " == *" $1 "* ]]; }
+section() { printf '\n=== %s (%s)\n' "$1" "$(date +%T)"; }
+
+if has_pass release; then
+  section "release build and the whole suite"
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+  cmake --build build -j"$jobs"
+  ctest --test-dir build --output-on-failure -j"$jobs" "$@"
+fi
+
+# The engine rooms under ASan+UBSan. GPU, editor and CLI tests stay in the release pass: their
+# drivers (lavapipe, the X server) are not ours to sanitize. Long sessions are the release
+# pass's job too; here the short tests cover the same code.
+engine_tests=(sandtin_tin_tests sandtin_io_tests sandtin_geom_tests sandtin_tools_tests
+  sandtin_terrain_io_tests sandtin_physics_tests sandtin_stress_tests sandtin_haptics_core_tests
+  sandtin_history_tests)
+if has_pass asan; then
+  section "AddressSanitizer + UndefinedBehaviorSanitizer"
+  cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSANDTIN_SANITIZE=ON
+  cmake --build build-asan -j"$jobs" --target "${engine_tests[@]}"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan --output-on-failure -j"$jobs" \
+    -L '^(tin|io|geom|tools|terrain_io|physics|stress|tsan|history)$' \
+    -E '^(stress\.session_seed_|LongStroke\.|Conservation\.)'
+fi
+
+if has_pass tsan; then
+  section "ThreadSanitizer"
+  cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSANDTIN_TSAN=ON
+  cmake --build build-tsan -j"$jobs" --target sandtin_haptics_core_tests sandtin_physics_tests \
+    sandtin_stress_tests
+  export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+  ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
+  build-tsan/tests/physics/sandtin_physics_tests \
+    --gtest_filter='Jacobi.*:JacobiSchedule.*:Randomisation.*'
+  build-tsan/tests/stress/sandtin_stress_tests --gtest_filter='Determinism.*'
+  unset TSAN_OPTIONS
+fi
+
+if has_pass fuzz; then
+  section "libFuzzer"
+  CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSANDTIN_FUZZ=ON -DSANDTIN_BUILD_TESTS=OFF \
+    -DSANDTIN_FUZZ_SECONDS="${SANDTIN_FUZZ_SECONDS:-30}"
+  cmake --build build-fuzz -j"$jobs" --target fuzz_session fuzz_script fuzz_udp_packet \
+    fuzz_png fuzz_esri_ascii fuzz_exr fuzz_geotiff
+  ctest --test-dir build-fuzz --output-on-failure -j"$jobs" -L '^fuzz$'
+fi
+section "all passes done"

@@ -12,6 +12,9 @@ namespace sandtin {
 
 namespace {
 
+constexpr png_alloc_size_t kMaxAncillaryChunkBytes = 1u << 20;  ///< per chunk, decompressed
+constexpr png_uint_32 kMaxAncillaryChunks = 64;
+
 struct ReadState {
     std::span<const std::uint8_t> bytes;
     std::size_t offset = 0;
@@ -109,6 +112,27 @@ PngImage decode_png(std::span<const std::uint8_t> bytes, const std::string& name
                                      std::to_string(limits.max_height));
         }
     }
+    // Every chunk must fit in the bytes we have: libpng allocates a chunk's buffer from its
+    // length field before reading it (found by fuzzing: a 93-byte file made it ask for 553 MB).
+    // The file is in memory, so no legitimate chunk is longer than what remains.
+    {
+        const auto be32 = [&](std::size_t at) {
+            return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) |
+                   (std::uint32_t{bytes[at + 2]} << 8) | std::uint32_t{bytes[at + 3]};
+        };
+        std::size_t at = 8;
+        while (at + 8 <= bytes.size()) {
+            const std::size_t length = be32(at);
+            if (length > bytes.size() - at - 8) {
+                throw std::runtime_error(
+                    name + ": invalid PNG: chunk at byte " + std::to_string(at) + " claims " +
+                    std::to_string(length) + " bytes but the file has only " +
+                    std::to_string(bytes.size() - at - 8) + " left (truncated or corrupted)");
+            }
+            if (std::memcmp(bytes.data() + at + 4, "IEND", 4) == 0) break;
+            at += 12 + length;
+        }
+    }
     ReadState state;
     state.bytes = bytes;
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_error, on_warning);
@@ -119,6 +143,11 @@ PngImage decode_png(std::span<const std::uint8_t> bytes, const std::string& name
         throw std::runtime_error(name + ": cannot initialise libpng");
     }
     png_set_user_limits(png, limits.max_width, limits.max_height);
+    // Ancillary chunks (our tEXt metadata, anything else) are tiny; without a cap libpng
+    // allocates whatever a chunk's length field claims (found by fuzzing: a 93-byte file asked
+    // for 553 MB), and a crafted zTXt could inflate without bound.
+    png_set_chunk_malloc_max(png, kMaxAncillaryChunkBytes);
+    png_set_chunk_cache_max(png, kMaxAncillaryChunks);
     PngImage image;
     std::vector<png_bytep> rows;
     std::vector<std::uint8_t> raw;

@@ -33,7 +33,7 @@ Vec2 RandomOperations::point(double outside_margin) {
 
 nlohmann::json RandomOperations::random_tool() {
     const double size = std::max(domain_.width(), domain_.height());
-    const double r = size * uniform(0.006, 0.04);
+    const double r = size * uniform(0.006, 0.03);
     nlohmann::json t;
     switch (std::uniform_int_distribution<int>(0, 9)(rng_)) {
         case 0:
@@ -113,25 +113,25 @@ nlohmann::json RandomOperations::stroke(const Tin& tin) {
             all[std::uniform_int_distribution<std::size_t>(0, all.size() - 1)(rng_)];
         for (VertexId v : c.vertices)
             path.push_back(xy(tin.position(v)));
-        op["spacing"] = size * uniform(0.02, 0.06);
+        op["spacing"] = size * uniform(0.03, 0.08);
     } else if (kind < 0.22) {
         // Straight across the whole domain: crosses many old constraints.
         const double y0 = uniform(domain_.min.y, domain_.max.y);
         const double y1 = uniform(domain_.min.y, domain_.max.y);
         path.push_back(xy({domain_.min.x, y0}));
         path.push_back(xy({domain_.max.x, y1}));
-        op["spacing"] = size * uniform(0.04, 0.1);
+        op["spacing"] = size * uniform(0.08, 0.2);
     } else {
         const int n = std::uniform_int_distribution<int>(2, 5)(rng_);
         Vec2 p = point(0.05 * size);
         for (int k = 0; k < n; ++k) {
             path.push_back(xy(p));
-            p = p + Vec2{uniform(-0.05, 0.05), uniform(-0.05, 0.05)} * size;
+            p = p + Vec2{uniform(-0.03, 0.03), uniform(-0.03, 0.03)} * size;
         }
         op["curve"] = chance(0.5);
     }
     op["path"] = path;
-    if (!op.contains("spacing")) op["spacing"] = size * uniform(0.008, 0.04);
+    if (!op.contains("spacing")) op["spacing"] = size * uniform(0.01, 0.04);
     op["depth"] = uniform(0.0, 0.04);
     op["follow_path"] = chance(0.8);
     if (chance(0.2)) {

@@ -54,6 +54,7 @@ class StressSession {
         const double area = tin_.domain().width() * tin_.domain().height();
         limits_.max_vertices = 4 * tin_.vertex_count() + static_cast<std::size_t>(area / 4e-6);
         limits_.max_constraints = 4096;
+        if (options.limits) limits_ = *options.limits;
     }
 
     const Tin& tin() const { return tin_; }
@@ -209,7 +210,7 @@ nlohmann::json stress_script_header(const StressOptions& options) {
              {{"keep_generations", 16},
               {"simplify", true},
               {"simplify_tolerance", 0.0005},
-              {"relocation_radius", 0.02}}}};
+              {"relocation_radius", 0.05}}}};
 }
 
 nlohmann::json StressReport::to_json() const {

@@ -22,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stress/terrain_invariants.hpp"
+
 namespace sandtin {
 
 struct StressOptions {
@@ -34,6 +36,9 @@ struct StressOptions {
     /// Relative volume tolerance per operation: |ΔV - reported| <= tol * (|V| + |reported| +
     /// domain area x 1 m).
     double volume_tolerance = 1e-9;
+    /// Vertex and constraint bounds; by default 4 x the starting vertices plus one vertex per
+    /// (2 mm)² of domain, and 4096 constraints.
+    std::optional<InvariantLimits> limits;
 };
 
 struct StressFailure {

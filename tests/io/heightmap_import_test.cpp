@@ -18,6 +18,7 @@
 #include "formats/png_image.hpp"
 #include "io/heightmap_exr.hpp"
 #include "io/heightmap_import.hpp"
+#include "io/heightmap_png.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin {
@@ -445,6 +446,31 @@ TEST_F(HeightmapFiles, HeightmapExportImportRoundTripsWithinTheQuantisation) {
     EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png", o).at(0, 0), -12.5 + 1.0);
     image.text = {{kPngKeyZOffset, "lots"}};
     expect_rejected(encode_png(image), {"not a finite number"});
+}
+
+}  // namespace
+}  // namespace sandtin
+
+namespace sandtin {
+namespace {
+
+// Found by fuzzing (tests/fuzz/corpus/fuzz_png/regression-oom-chunk-length): a chunk whose
+// length field exceeds the file made libpng allocate hundreds of megabytes. It must be
+// rejected as corrupted before libpng sees it.
+TEST(HeightmapImportRegression, ChunkLongerThanTheFileIsRejectedWithoutAllocating) {
+    std::vector<std::uint8_t>
+        png = {0x89, 'P',  'N',  'G',  0x0d, 0x0a, 0x1a, 0x0a, 0,    0, 0, 13,
+               'I',  'H',  'D',  'R',  0,    0,    0,    5,    0,    0, 0, 5,
+               16,   0,    0,    0,    0,    0xf8, 0x94, 0xa5, 0x7a,  // CRC (not checked first)
+               0x21, 0x00, 0x00, 0x13, 't',  'E',  'X',  't'};
+    png.resize(png.size() + 20, 0);
+    try {
+        decode_png_heightmap(png, "crafted.png", PngHeightEncoding::Auto, RasterLimits{});
+        FAIL() << "accepted";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("claims"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("crafted.png"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace
