@@ -116,6 +116,18 @@ std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
     const double s = kLatticeSpacing * rs;
     const double row = s * 0.8660254037844386;
     const Rect domain = tin_.domain();
+    // A fixed pseudo-random jitter of each lattice point: a regular lattice has six edge
+    // directions, and a pile resting on it is a hexagonal pyramid whose faces are steeper than
+    // alpha between them (measured: the apex 4-5 % above the cone's, at any r_S).
+    auto lattice_point = [&](long long i, long long j) {
+        const auto key =
+            static_cast<std::uint64_t>(i) * 0x100000001B3ull ^ static_cast<std::uint64_t>(j);
+        const double shift = (j & 1) != 0 ? 0.5 * s : 0.0;
+        return Vec2{domain.min.x + shift + static_cast<double>(i) * s +
+                        kLatticeJitter * s * signed_unit_hash(0x5A17, key, 1),
+                    domain.min.y + static_cast<double>(j) * row +
+                        kLatticeJitter * s * signed_unit_hash(0x5A17, key, 2)};
+    };
     std::vector<VertexId> ring;
     std::vector<Vec2> points;
     std::vector<EdgeSplit> bisect;
@@ -143,20 +155,11 @@ std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
             const auto j0 = static_cast<long long>(std::ceil((y0 - domain.min.y) / row));
             const auto j1 = static_cast<long long>(std::floor((y1 - domain.min.y) / row));
             for (long long j = j0 - 1; j <= j1 + 1; ++j) {  // +-1: the jitter
-                const double y = domain.min.y + static_cast<double>(j) * row;
                 const double shift = (j & 1) != 0 ? 0.5 * s : 0.0;
                 const auto i0 = static_cast<long long>(std::ceil((x0 - domain.min.x - shift) / s));
                 const auto i1 = static_cast<long long>(std::floor((x1 - domain.min.x - shift) / s));
                 for (long long i = i0 - 1; i <= i1 + 1; ++i) {
-                    // A fixed pseudo-random jitter of each lattice point: a regular lattice
-                    // has six edge directions, and a pile resting on it is a hexagonal
-                    // pyramid whose faces are steeper than alpha between them (measured: the
-                    // apex 4-5 % above the cone's, at any r_S).
-                    const auto key = static_cast<std::uint64_t>(i) * 0x100000001B3ull ^
-                                     static_cast<std::uint64_t>(j);
-                    const Vec2 p{domain.min.x + shift + static_cast<double>(i) * s +
-                                     kLatticeJitter * s * signed_unit_hash(0x5A17, key, 1),
-                                 y + kLatticeJitter * s * signed_unit_hash(0x5A17, key, 2)};
+                    const Vec2 p = lattice_point(i, j);
                     if (distance(p, pv) > reach) continue;
                     // Strictly inside (v, a, b), and not crowding a corner.
                     if (!(cross(a - pv, p - pv) > 0.0 && cross(b - a, p - a) > 0.0 &&
@@ -185,9 +188,48 @@ std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
         if (v < split_requested_.size()) split_requested_[v] = 0;
     }
     around.clear();
-    // One edge at a time, for the same reason as above.
-    for (const EdgeSplit& e : bisect)
+    // One edge at a time, for the same reason as above. A long edge gets the lattice point
+    // nearest its midpoint when that point lies well inside the edge's diametral circle (so
+    // the edge will not stay Delaunay) and clear of both ends; the exact midpoint only
+    // otherwise, or when the edge survived. Plain midpoints are off the lattice, the lattice
+    // points next to them are then skipped as crowded, the holes leave edges longer than r_S,
+    // and those were bisected again. Measured on the pile from two triangles: with r_S = 2 cm,
+    // 2347 bisections against 807 lattice points and edges down to 0.3 mm; snapping to the
+    // lattice took the iterations to rest from 35 935 to 12 498 (sequential) and from 25 508
+    // to 9 817 (Jacobi), and with r_S = 1 cm from 103 487 to 53 866 and 119 791 to 60 656.
+    std::vector<VertexId> ends;
+    for (const EdgeSplit& e : bisect) {
+        if (!tin_.is_alive(e.a) || !tin_.is_alive(e.b)) continue;
+        const Vec2 pa = va.position[e.a.value];
+        const Vec2 pb = va.position[e.b.value];
+        const double len = distance(pa, pb);
+        const Vec2 m = 0.5 * (pa + pb);
+        const auto jm = static_cast<long long>(std::floor((m.y - domain.min.y) / row + 0.5));
+        Vec2 best{};
+        double best_d = 1e300;
+        for (long long j = jm - 2; j <= jm + 2; ++j) {
+            const double shift = (j & 1) != 0 ? 0.5 * s : 0.0;
+            const auto im =
+                static_cast<long long>(std::floor((m.x - domain.min.x - shift) / s + 0.5));
+            for (long long i = im - 2; i <= im + 2; ++i) {
+                const Vec2 p = lattice_point(i, j);
+                if (distance(p, m) < best_d) {
+                    best_d = distance(p, m);
+                    best = p;
+                }
+            }
+        }
+        const bool inside = best.x > domain.min.x && best.x < domain.max.x &&
+                            best.y > domain.min.y && best.y < domain.max.y;
+        if (inside && best_d < 0.45 * len && distance(best, pa) > 0.5 * s &&
+            distance(best, pb) > 0.5 * s) {
+            const Vec2 one[] = {best};
+            tin_.insert_points_on_surface(one, &hint_, VolumePolicy::Conserve);
+            tin_.neighbours(e.a, ends);
+            if (std::find(ends.begin(), ends.end(), e.b) == ends.end()) continue;
+        }
         tin_.split_edges(std::span<const EdgeSplit>(&e, 1), VolumePolicy::Conserve);
+    }
     return tin_.vertex_count() - before;
 }
 
