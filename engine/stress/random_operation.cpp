@@ -43,7 +43,7 @@ nlohmann::json RandomOperations::random_tool() {
             t = {{"asset", "box"}, {"width", 2 * r}, {"length", uniform(0.5, 2.0) * r}};
             break;
         case 2:
-            t = {{"asset", "lambda"}, {"scale", r / 0.04}};
+            t = {{"asset", "lambda"}, {"scale", r / 5.0}};  // its polygon spans ±5 units
             break;
         case 3:
             t = {{"asset", "ball"}, {"radius", r}};

@@ -200,8 +200,14 @@ scenario_demo() {
     check_eq "demo valid" "$(json demo.out /valid)" true
     holds "demo stamps" "a > 0" "$(json demo.out /stamps)"
     holds "demo constrained edges" "a > 0" "$(json demo.out /constrained_edges)"
-    # Every edit of the demo conserves volume (VolumePolicy::Conserve).
-    abs_le "$(json demo.out /volume)" "$(json demo.out /volume_before)" 1e-10 "demo volume conserved"
+    # Volume accounting: the terrain changed by exactly what the steps reported (the stroke
+    # digs, the pour adds, erosion conserves), recomputed from scratch by `describe_terrain`.
+    local expected
+    expected=$(awk -v a="$(json demo.out /volume_before)" -v b="$(json demo.out /volume_reported)" \
+        'BEGIN { printf "%.15g", a + b }')
+    abs_le "$(json demo.out /volume)" "$expected" 1e-9 "demo volume accounted for"
+    # The stroke dug: the reported change is negative and larger than the pour.
+    holds "demo dug" "a < 0" "$(json demo.out /steps/0/volume_change)"
     expect_ok demo_plain demo || return
     grep -q "sandtin demo" demo_plain.out || fail "plain demo output lacks its title"
 }
