@@ -62,6 +62,10 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
     ForceRenderer offline(loop.config().renderer);
     HapticSnapshot s = flat_snapshot(0.0);
     s.sequence = 1;
+    // Published just before the first tick, as in the loop: with published_ns = 0 the offline
+    // snapshot would count as stale once the machine has been up for stale_after_ns (an hour).
+    ASSERT_FALSE(loop.records().empty());
+    s.published_ns = loop.records().front().time_ns;
     double max_force = 0.0;
     for (std::size_t i = 0; i < loop.records().size(); ++i) {
         const TickRecord& r = loop.records()[i];
