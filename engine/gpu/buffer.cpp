@@ -115,4 +115,12 @@ std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer bu
     return out;
 }
 
+std::vector<float> read_buffer_floats(const VulkanContext& context, VkBuffer buffer,
+                                      VkDeviceSize bytes) {
+    const std::vector<unsigned char> raw = read_buffer(context, buffer, 0, bytes);
+    std::vector<float> out(raw.size() / sizeof(float));
+    std::memcpy(out.data(), raw.data(), out.size() * sizeof(float));
+    return out;
+}
+
 }  // namespace sandtin::gpu

@@ -59,5 +59,8 @@ void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccess
 // barrier making earlier shader and transfer writes visible). For read-backs and tests.
 std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer buffer,
                                        VkDeviceSize offset, VkDeviceSize bytes);
+// The same for a buffer of 32-bit floats, from its start.
+std::vector<float> read_buffer_floats(const VulkanContext& context, VkBuffer buffer,
+                                      VkDeviceSize bytes);
 
 }  // namespace sandtin::gpu

@@ -298,29 +298,14 @@ std::vector<uint32_t> GpuRelaxation::take_split_requests() {
     return out;
 }
 
-namespace {
-std::vector<float> read_whole(const VulkanContext& ctx, VkBuffer src, VkDeviceSize bytes) {
-    Buffer host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    ctx.submit_and_wait([&](VkCommandBuffer cb) {
-        compute_barrier(cb);
-        VkBufferCopy c{0, 0, bytes};
-        vkCmdCopyBuffer(cb, src, host.get(), 1, &c);
-    });
-    host.invalidate(ctx);
-    std::vector<float> out(bytes / 4);
-    std::memcpy(out.data(), host.mapped(), bytes);
-    return out;
-}
-}  // namespace
-
 std::vector<float> GpuRelaxation::read_heights() const {
-    return read_whole(context_, mirror_.vertex_buffer(VertexBuffer::Height),
-                      VkDeviceSize{mirror_.vertex_capacity()} * 4);
+    return read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Height),
+                              VkDeviceSize{mirror_.vertex_capacity()} * 4);
 }
 
 std::vector<float> GpuRelaxation::read_slides() const {
-    return read_whole(context_, mirror_.vertex_buffer(VertexBuffer::Slide),
-                      VkDeviceSize{mirror_.vertex_capacity()} * 8);
+    return read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Slide),
+                              VkDeviceSize{mirror_.vertex_capacity()} * 8);
 }
 
 }  // namespace sandtin::gpu

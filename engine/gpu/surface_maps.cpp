@@ -24,19 +24,6 @@ void shader_barrier(VkCommandBuffer cb) {
         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
-std::vector<float> read_floats(const VulkanContext& ctx, VkBuffer src, VkDeviceSize bytes) {
-    Buffer host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
-    ctx.submit_and_wait([&](VkCommandBuffer cb) {
-        shader_barrier(cb);
-        VkBufferCopy c{0, 0, bytes};
-        vkCmdCopyBuffer(cb, src, host.get(), 1, &c);
-    });
-    host.invalidate(ctx);
-    std::vector<float> out(bytes / 4);
-    std::memcpy(out.data(), host.mapped(), bytes);
-    return out;
-}
-
 std::vector<Vec3> to_vec3(const std::vector<float>& f) {
     std::vector<Vec3> out(f.size() / 4);
     for (size_t i = 0; i < out.size(); ++i) {
@@ -121,12 +108,14 @@ void SurfaceMaps::compute_normals(double z_scale) {
 
 std::vector<Vec3> SurfaceMaps::read_vertex_normals() const {
     if (!vertex_normals_) return {};
-    return to_vec3(read_floats(mirror_.context(), vertex_normals_.get(), vertex_normals_.size()));
+    return to_vec3(
+        read_buffer_floats(mirror_.context(), vertex_normals_.get(), vertex_normals_.size()));
 }
 
 std::vector<Vec3> SurfaceMaps::read_corner_normals() const {
     if (!corner_normals_) return {};
-    return to_vec3(read_floats(mirror_.context(), corner_normals_.get(), corner_normals_.size()));
+    return to_vec3(
+        read_buffer_floats(mirror_.context(), corner_normals_.get(), corner_normals_.size()));
 }
 
 BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
@@ -158,8 +147,8 @@ BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
         bake_kernel_.dispatch(cb, p.count, &p);
     });
     ++dispatches_;
-    const std::vector<float> h = read_floats(ctx, height_map_.get(), texels * 4);
-    const std::vector<float> n = read_floats(ctx, normal_map_.get(), texels * 16);
+    const std::vector<float> h = read_buffer_floats(ctx, height_map_.get(), texels * 4);
+    const std::vector<float> n = read_buffer_floats(ctx, normal_map_.get(), texels * 16);
     BakedMaps out;
     out.height.width = out.normal.width = grid.width;
     out.height.height = out.normal.height = grid.height;
