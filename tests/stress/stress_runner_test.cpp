@@ -110,12 +110,18 @@ TEST(TerrainInvariants, VertexAndConstraintBoundsAreReported) {
 
 // ---- the runner -----------------------------------------------------------------------------
 
-TEST(StressRunner, AShortSessionKeepsEveryInvariantAndConservesVolume) {
+StressOptions short_session(std::uint64_t seed, std::size_t operations, std::size_t points,
+                            const std::string& dir) {
     StressOptions options;
-    options.seed = 11;
-    options.operations = 150;
-    options.terrain_points = 300;
-    options.work_dir = scratch_dir("short");
+    options.seed = seed;
+    options.operations = operations;
+    options.terrain_points = points;
+    options.work_dir = scratch_dir(dir);
+    return options;
+}
+
+TEST(StressRunner, AShortSessionKeepsEveryInvariantAndConservesVolume) {
+    StressOptions options = short_session(11, 150, 300, "short");
     const StressReport report = run_stress(options);
     ASSERT_FALSE(report.failure.has_value()) << report.to_json().dump(2);
     EXPECT_EQ(report.operations_run, 150u);
@@ -127,11 +133,7 @@ TEST(StressRunner, AShortSessionKeepsEveryInvariantAndConservesVolume) {
 }
 
 TEST(StressRunner, AnInjectedViolationIsMinimisedIntoAScriptThatReproducesIt) {
-    StressOptions options;
-    options.seed = 5;
-    options.operations = 200;
-    options.terrain_points = 200;
-    options.work_dir = scratch_dir("inject");
+    StressOptions options = short_session(5, 200, 200, "inject");
     // A bound the first real stamp breaks: constraints are the rims stamps leave.
     options.limits = InvariantLimits{.max_vertices = 0, .max_constraints = 1};
     options.minimise_seconds = 60.0;
@@ -154,11 +156,7 @@ TEST(StressRunner, AnInjectedViolationIsMinimisedIntoAScriptThatReproducesIt) {
 }
 
 TEST(StressRunner, TheSameSeedGivesTheSameSession) {
-    StressOptions options;
-    options.seed = 21;
-    options.operations = 60;
-    options.terrain_points = 200;
-    options.work_dir = scratch_dir("same-a");
+    StressOptions options = short_session(21, 60, 200, "same-a");
     const StressReport a = run_stress(options);
     options.work_dir = scratch_dir("same-b");
     const StressReport b = run_stress(options);
