@@ -412,7 +412,7 @@ nlohmann::json stamp_json(const StampReport& r) {
 
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
                            bool with_physics, const PhysicsBackendFactory& backend)
-    : tin_(tin), context_(context), physics_settings_(script.physics) {
+    : tin_(tin), context_(context) {
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;

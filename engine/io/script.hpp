@@ -174,7 +174,6 @@ class ScriptRunner {
   private:
     Tin& tin_;
     SculptContext& context_;
-    TalusSettings physics_settings_;
     std::unique_ptr<SandPhysics> physics_;
     PhysicsBackend backend_;
 };
