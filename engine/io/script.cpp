@@ -327,6 +327,10 @@ Script parse_script(std::string_view text, const std::string& name,
             1 + static_cast<std::size_t>(std::count(
                     text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
         throw JsonInputError(name + ":" + std::to_string(line) + ": not valid JSON: " + e.what());
+    } catch (const nlohmann::json::exception& e) {
+        // Valid syntax the parser still cannot hold, e.g. a number beyond double's range (1e660000):
+        // nlohmann throws out_of_range, not parse_error (found by fuzzing).
+        throw JsonInputError(name + ": not valid JSON: " + e.what());
     }
     LineCountingIterator::Cursor cursor;
     OperationLines lines(&cursor);

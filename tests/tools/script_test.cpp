@@ -239,5 +239,13 @@ TEST(Script, ExtensionsAddOperations) {
     EXPECT_THROW(parse("[{\"op\": \"wobble\"}]"), JsonInputError);
 }
 
+// Found by fuzzing: a number beyond double's range is valid JSON syntax, but nlohmann throws
+// out_of_range for it, which escaped the parser's JsonInputError contract.
+TEST(Script, NumberBeyondDoubleRangeIsAClearError) {
+    const std::string e = error_of("{\"version\": 1e660000, \"operations\": []}");
+    EXPECT_NE(e.find("script.json"), std::string::npos) << e;
+    EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace sandtin
