@@ -42,6 +42,8 @@ class SandPhysics {
     /// Every live vertex becomes active (e.g. after loading a terrain that is not at rest).
     void activate_all();
     std::size_t active_count() const { return active_.size(); }
+    /// The vertices still being relaxed (ids).
+    const ActiveSet& active() const { return active_; }
     bool at_rest() const { return active_.empty(); }
 
     /// Runs up to `iterations` relaxation iterations (stops early at rest). Vertices whose

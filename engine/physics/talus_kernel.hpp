@@ -15,6 +15,16 @@
 // sliver vertex throttle the whole neighbourhood. The outflow is capped by the sand above the
 // bedrock, A_i (h_i - b_i). Edges longer than the relocation radius carry nothing; they are
 // reported so the caller can split them (seed 000 §7.2, "prevention of long edges").
+//
+// Settling margin m (default 0): an edge starts to flow when e > tol r tan(alpha), as before,
+// but a flowing edge is levelled towards (1 - m) r tan(alpha), not r tan(alpha). Sand that
+// moves comes to rest a little below the angle it can stand at (the dynamic angle of repose
+// is 1-3 degrees below the angle of maximum stability; Jaeger, Nagel & Behringer, Rev. Mod.
+// Phys. 68 (1996) §II). Without it, an avalanche leaves its whole slope exactly at the
+// threshold, and every later grain that arrives re-triggers the slope below it: measured
+// after a dig into a slope 3 % under repose, a creep of tens of vertices trading 1e-11 m³ for
+// 32 000 (sequential) and 42 000 (Jacobi) iterations; m = 0.03 rests in 3 000 and 4 300.
+// Neither the trigger nor the bound "no edge steeper than (1 + tol) tan(alpha)" changes.
 
 #include <algorithm>
 #include <cstdint>
@@ -25,6 +35,9 @@ struct TalusParameters {
     double damping = 0.5;          ///< fraction of the largest excess removed per step (seeds: 1/2)
     double rest_tolerance = 1e-4;  ///< an edge is at rest when e <= tol * r tan(alpha)
     double relocation_radius = 0.0;  ///< r_S in metres; 0 = no limit
+    /// m in [0, 1): flowing edges level towards (1 - m) r tan(alpha) (see above); 0 = the
+    /// seeds' rule, and what the compute shader does.
+    double settle_margin = 0.0;
 };
 
 /// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.
@@ -70,9 +83,10 @@ inline double talus_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t 
             needs_split(target[k]);
             continue;
         }
-        q[k] = e;  // excess for now; scaled to volume below
-        sum += e;
-        largest = std::max(largest, e);
+        const double excess = e + p.settle_margin * slope;  // == e when m = 0
+        q[k] = excess;                                      // for now; scaled to volume below
+        sum += excess;
+        largest = std::max(largest, excess);
     }
     if (!(sum > 0.0)) return 0.0;
     // sum held the excesses; now turn each into the volume that levels its edge alone.
