@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "camera.hpp"
+#include "change_fanout.hpp"
 #include "editor_settings.hpp"
 #include "formats/png_image.hpp"
 #include "gpu/gpu_error.hpp"
@@ -80,6 +81,9 @@ class App {
     void shutdown();
     bool frame(bool capture);
     void update_simulation();
+    /// Gives the document the solver the Erosion panel asks for (CPU or GPU). `switched`: the
+    /// new solver looks at every vertex once (it does not know what the old one had left).
+    void attach_physics(bool switched);
     void update_mesh();
     void draw_panels();
     void panel_tools();
@@ -98,6 +102,7 @@ class App {
     void scroll(double dy);
     void key(int key, bool ctrl);
     void run_script_op(const nlohmann::json& op);
+    void set_physics(const std::string& name);
 
     std::optional<Vec3> pick(double x, double y) const;
     void tool_at(Vec3 point);
@@ -109,6 +114,8 @@ class App {
     void frame_terrain();
     /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
+        fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
+        attach_physics(false);
         mesh_stale_ = true;
         contrast_stale_ = true;
         active_.clear();
@@ -132,6 +139,8 @@ class App {
     std::unique_ptr<Swapchain> swapchain_;
     std::unique_ptr<render::TerrainRenderer> renderer_;
     std::unique_ptr<render::TerrainMesh> mesh_;
+    /// The one consumer of the TIN's change journal; the mesh and the GPU mirror take from it.
+    std::unique_ptr<ChangeFanout> fanout_;
     std::vector<VertexId> active_ids_;      ///< vertices flagged active now
     std::vector<VertexId> active_flipped_;  ///< flags that changed since the last mesh update
     std::uint64_t last_upload_bytes_ = 0;

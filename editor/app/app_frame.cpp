@@ -6,6 +6,26 @@ namespace sandtin::editor {
 
 // ---- Per frame ------------------------------------------------------------------------------
 
+void App::attach_physics(bool switched) {
+    const ErosionBackend want = settings_.erosion_gpu ? ErosionBackend::Gpu : ErosionBackend::Cpu;
+    if (doc_.physics && doc_.physics->backend() == want) return;
+    doc_.physics.reset();
+    if (want == ErosionBackend::Gpu && context_) {
+        try {
+            ChangeFanout* fanout = fanout_.get();
+            doc_.physics = make_gpu_erosion(*doc_.tin, *context_, doc_.materials, [fanout] {
+                return fanout->take(ChangeFanout::Mirror);
+            });
+        } catch (const gpu::GpuError& e) {
+            settings_.erosion_gpu = false;
+            report(std::string("GPU erosion unavailable, using the CPU: ") + e.what());
+        }
+    }
+    if (!doc_.physics) doc_.physics = make_cpu_erosion(*doc_.tin, doc_.materials);
+    if (switched) doc_.physics->activate_all();
+    physics_kick_ = true;
+}
+
 void App::update_simulation() {
     const auto t0 = Clock::now();
     // The physics learns about edits when it steps, so an edit "kicks" it.
@@ -15,9 +35,15 @@ void App::update_simulation() {
         // Up to the chosen iterations, but within a time budget so the editor stays responsive
         // while a large region slides.
         std::vector<VertexId> changed;
-        for (int i = 0; i < settings_.erosion_steps; ++i) {
-            doc_.physics->step(1, &changed);
-            if (doc_.physics->at_rest() || ms_since(t0) > kErosionBudgetMs) break;
+        if (doc_.physics->backend() == ErosionBackend::Gpu) {
+            // One call: the GPU physics batches the iterations into few submissions (64 per
+            // submission), each followed by the read-back of the heights into the TIN.
+            doc_.physics->step(settings_.erosion_steps, &changed);
+        } else {
+            for (int i = 0; i < settings_.erosion_steps; ++i) {
+                doc_.physics->step(1, &changed);
+                if (doc_.physics->at_rest() || ms_since(t0) > kErosionBudgetMs) break;
+            }
         }
         std::sort(changed.begin(), changed.end());
         changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
@@ -134,7 +160,7 @@ std::vector<std::array<float, 3>> App::footprint_outline() {
 
 void App::update_mesh() {
     // The journal says what changed; nothing changed means no recomputation and no upload.
-    const ChangeSet changes = doc_.tin->take_changes();
+    const ChangeSet changes = fanout_->take(ChangeFanout::Mesh);
     if (!mesh_stale_ && changes.empty() && active_flipped_.empty()) {
         times_.push(times_.mesh, 0.0);
         times_.push(times_.upload, 0.0);

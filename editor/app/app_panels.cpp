@@ -206,8 +206,18 @@ void App::panel_erosion() {
                 doc_.physics->active_count());
     ImGui::SliderInt("Steps/frame", &settings_.erosion_steps, 1, 200);
     tip("Relaxation iterations per frame");
-    ImGui::TextUnformatted("Solver: CPU (sequential active list)");
-    tip("The GPU relaxation belongs to the GPU mirror; this editor build runs the CPU reference");
+    int solver = settings_.erosion_gpu ? 1 : 0;
+    ImGui::RadioButton("CPU", &solver, 0);
+    tip("Relaxation on the CPU: the reference solver (sequential active list)");
+    ImGui::SameLine();
+    ImGui::RadioButton("GPU", &solver, 1);
+    tip("Relaxation on the GPU (Jacobi, two phases over the active list); the heights are read\n"
+        "back into the terrain after every batch, so tools, saves and undo see them");
+    if ((solver == 1) != settings_.erosion_gpu) {
+        end_action();
+        settings_.erosion_gpu = solver == 1;
+        attach_physics(true);
+    }
     float rs = static_cast<float>(settings_.relocation_radius * 1000.0);
     if (ImGui::SliderFloat("r_S (mm)", &rs, 1.0f, 50.0f, "%.1f"))
         settings_.relocation_radius = static_cast<double>(rs) / 1000.0;

@@ -15,8 +15,20 @@ namespace sandtin::editor {
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
-//         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."} ] }
+//         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
+//         | {"op": "save_settings"}  (writes the settings file, as a panel change does) ] }
+// "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, steps,
+// relocation_radius and physics ("cpu" | "gpu", the Erosion panel's switch).
 // Positions are fractions of the window (0..1): scripts work at any --size.
+
+void App::set_physics(const std::string& name) {
+    if (name != "cpu" && name != "gpu")
+        throw std::runtime_error("script: physics must be cpu or gpu, not '" + name + "'");
+    if ((name == "gpu") == settings_.erosion_gpu) return;
+    end_action();
+    settings_.erosion_gpu = name == "gpu";
+    attach_physics(true);
+}
 
 void App::run_script_op(const nlohmann::json& op) {
     int w = 0, h = 0;
@@ -52,6 +64,12 @@ void App::run_script_op(const nlohmann::json& op) {
                 settings_.overlay_slope = v.get<bool>();
             else if (k2 == "pour_volume")
                 settings_.pour_volume = v.get<double>();
+            else if (k2 == "steps")
+                settings_.erosion_steps = std::clamp(v.get<int>(), 1, 1000);
+            else if (k2 == "relocation_radius")
+                settings_.relocation_radius = v.get<double>();
+            else if (k2 == "physics")
+                set_physics(v.get<std::string>());
             else
                 throw std::runtime_error("script: unknown setting '" + k2 + "'");
         }
@@ -122,6 +140,10 @@ void App::run_script_op(const nlohmann::json& op) {
     } else if (kind == "wait" || kind == "erode") {
         if (kind == "erode") settings_.erosion_running = true;
         script_wait_ = op.value("frames", 1);
+    } else if (kind == "save_settings") {
+        // What the interactive loop does after a panel change.
+        save_settings(settings_path_, settings_);
+        saved_settings_ = settings_;
     } else if (kind == "save") {
         save(op.at("path").get<std::string>());
     } else {

@@ -133,6 +133,8 @@ void App::shutdown() {
         ImGui::DestroyContext();
         imgui_ready_ = false;
     }
+    // The GPU physics' mirror holds device buffers: they go before the device too.
+    if (doc_.physics && doc_.physics->backend() == ErosionBackend::Gpu) doc_.physics.reset();
     renderer_.reset();
     imgui_pool_.reset();
     swapchain_.reset();
@@ -270,6 +272,7 @@ int App::run() {
     doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
     init_window_and_gpu();
     init_imgui();
+    document_replaced();  // the journal's fan-out, and the GPU solver if the settings ask
     std::fprintf(stderr, "sandtin-editor: %s\n", context_->describe().c_str());
     frame_terrain();
 
@@ -345,6 +348,7 @@ int App::run() {
         s["frame_ms_median"] = StageTimes::median(times_.frame);
         s["tool_ms_median"] = StageTimes::median(times_.tool);
         s["physics_ms_median"] = StageTimes::median(times_.physics);
+        s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
         s["mesh_ms_median"] = StageTimes::median(times_.mesh);
         s["upload_ms_median"] = StageTimes::median(times_.upload);
         s["render_ms_median"] = StageTimes::median(times_.render);

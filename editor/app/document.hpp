@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "erosion.hpp"
 #include "history/history.hpp"
 #include "io/session_file.hpp"
-#include "physics/sand_physics.hpp"
 #include "tools/sculpt_context.hpp"
 
 namespace sandtin::editor {
@@ -18,7 +18,7 @@ struct Document {
     std::filesystem::path path;
     std::unique_ptr<Tin> tin;
     std::unique_ptr<SculptContext> context;
-    std::unique_ptr<SandPhysics> physics;
+    std::unique_ptr<Erosion> physics;  ///< CPU here; the app may switch it to the GPU
     std::unique_ptr<History> history;
     MaterialTable materials = MaterialTable::presets();
     bool dirty = false;
@@ -30,7 +30,7 @@ struct Document {
         tin = std::make_unique<Tin>(std::move(t));
         context = std::make_unique<SculptContext>(tin->domain());
         context->set_next_generation(next_generation);
-        physics = std::make_unique<SandPhysics>(*tin, materials);
+        physics = make_cpu_erosion(*tin, materials);
         history = std::make_unique<History>(*tin);
         path = p;
         dirty = false;

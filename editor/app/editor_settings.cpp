@@ -28,6 +28,7 @@ void fields(EditorSettings& s, F&& f) {
     f("material", s.material);
     f("erosion_running", s.erosion_running);
     f("erosion_steps", s.erosion_steps);
+    f("erosion_gpu", s.erosion_gpu);
     f("simplify_tolerance", s.simplify_tolerance);
     f("relocation_radius", s.relocation_radius);
     f("overlay_wireframe", s.overlay_wireframe);

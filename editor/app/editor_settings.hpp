@@ -20,6 +20,7 @@ struct EditorSettings {
     int material = 0;           ///< material painted and poured
     bool erosion_running = true;
     int erosion_steps = 20;              ///< relaxation iterations per frame
+    bool erosion_gpu = false;            ///< relaxation on the GPU (GpuSandPhysics), else CPU
     double simplify_tolerance = 0.0005;  ///< metres
     double relocation_radius = 0.01;     ///< r_S, metres
     bool overlay_wireframe = false;

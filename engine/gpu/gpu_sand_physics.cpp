@@ -20,11 +20,22 @@ GpuRelaxationSettings relaxation_settings(const TalusSettings& s, double slide_g
 }  // namespace
 
 GpuSandPhysics::GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
-                               TalusSettings settings, double slide_gain)
+                               TalusSettings settings, double slide_gain, ChangeSource source)
     : tin_(tin),
       settings_(settings),
+      source_(std::move(source)),
       mirror_(context, std::move(materials)),
-      relax_((mirror_.sync(tin), mirror_), relaxation_settings(settings_, slide_gain)) {}
+      relax_((mirror_.sync(tin, take_changes()), mirror_),
+             relaxation_settings(settings_, slide_gain)) {}
+
+ChangeSet GpuSandPhysics::take_changes() {
+    return source_ ? source_() : tin_.take_changes();
+}
+
+void GpuSandPhysics::set_materials(MaterialTable materials) {
+    mirror_.set_materials(std::move(materials));
+    activate_all();
+}
 
 void GpuSandPhysics::activate(std::span<const VertexId> vertices) {
     for (VertexId v : vertices)
@@ -40,7 +51,7 @@ void GpuSandPhysics::activate_all() {
 void GpuSandPhysics::sync() {
     const double gain = relax_.settings().slide_gain;
     relax_.settings() = relaxation_settings(settings_, gain);
-    const SyncStats s = mirror_.sync(tin_);
+    const SyncStats s = mirror_.sync(tin_, take_changes());
     last_sync_bytes_ = s.bytes;
     // Whatever changed on the CPU side (tools, write-backs, refinement) may now have excess.
     relax_.activate(s.dirty_vertices);

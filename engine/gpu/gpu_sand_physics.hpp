@@ -12,6 +12,7 @@
 // Differences from the CPU physics: volume_moved is not measured on the GPU (reported as 0);
 // the schedule is always Jacobi (TalusSettings::schedule and threads are ignored).
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -28,14 +29,22 @@ class VulkanContext;
 
 class GpuSandPhysics {
   public:
+    // Where the mirror's syncs get the TIN's changes. Empty: tin.take_changes() (this object
+    // is the journal's only consumer). A caller that shares the journal with other consumers
+    // (the editor's render mesh) passes a source that hands every consumer the same changes.
+    using ChangeSource = std::function<ChangeSet()>;
+
     // The TIN must track changes (TinOptions::track_changes) and outlive the physics; this
-    // object becomes the consumer of Tin::take_changes().
+    // object becomes the consumer of Tin::take_changes() (or of `source`).
     GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
-                   TalusSettings settings = {}, double slide_gain = 0.0);
+                   TalusSettings settings = {}, double slide_gain = 0.0, ChangeSource source = {});
 
     TalusSettings& settings() { return settings_; }
     void activate(std::span<const VertexId> vertices);
     void activate_all();
+    // New angles of repose: every live vertex's tan(alpha) is re-uploaded at the next step and
+    // every vertex becomes active.
+    void set_materials(MaterialTable materials);
     bool at_rest() const { return relax_.at_rest() && pending_.empty(); }
     std::size_t active_count() const { return relax_.active_count() + pending_.size(); }
 
@@ -50,12 +59,14 @@ class GpuSandPhysics {
 
   private:
     void sync();
+    ChangeSet take_changes();
     // Writes the GPU's changed vertices into the TIN; returns how many.
     std::size_t write_back(std::vector<VertexId>* changed);
     std::size_t refine();
 
     Tin& tin_;
     TalusSettings settings_;
+    ChangeSource source_;
     TinMirror mirror_;
     GpuRelaxation relax_;
     std::vector<uint32_t> pending_;

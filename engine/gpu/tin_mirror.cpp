@@ -237,8 +237,15 @@ SyncStats TinMirror::sync(Tin& tin) {
         throw GpuError(
             "TinMirror::sync: the TIN does not track changes (TinOptions::track_changes)");
     }
+    return sync(tin, tin.take_changes());
+}
+
+SyncStats TinMirror::sync(Tin& tin, const ChangeSet& changes) {
+    if (!tin.tracks_changes()) {
+        throw GpuError(
+            "TinMirror::sync: the TIN does not track changes (TinOptions::track_changes)");
+    }
     SyncStats stats;
-    const ChangeSet changes = tin.take_changes();
     std::vector<uint32_t> rows;
     std::vector<uint32_t> dirty;  // vertices to report (activation)
     if (first_sync_) {

@@ -80,6 +80,10 @@ class TinMirror {
     // track changes and, from then on, this mirror must be the only consumer of
     // take_changes(). Submits the copies without waiting.
     SyncStats sync(Tin& tin);
+    // The same, from a ChangeSet the caller already took from the TIN (when several consumers
+    // share the journal, e.g. the editor's render mesh and this mirror). `changes` must cover
+    // everything since the previous sync.
+    SyncStats sync(Tin& tin, const ChangeSet& changes);
     // Materials changed: tan_alpha of every live vertex is re-uploaded at the next sync.
     void set_materials(MaterialTable materials);
 

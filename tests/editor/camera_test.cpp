@@ -162,6 +162,7 @@ TEST(Settings, RoundTripAndBadFiles) {
     s.overlay_slope = true;
     s.vsync = false;
     s.erosion_steps = 77;
+    s.erosion_gpu = true;
     save_settings(path, s);
     std::string problem;
     EXPECT_EQ(load_settings(path, &problem), s);

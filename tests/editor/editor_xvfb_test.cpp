@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "formats/png_image.hpp"
 #include "io/autosave.hpp"
 #include "io/session_file.hpp"
+#include "physics/sand_physics.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -351,10 +353,71 @@ TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
     EXPECT_GT(r.stats.at("submissions").get<int>(), 0);
 }
 
+// The Erosion panel's GPU switch: sand poured with erosion paused, then eroded by the GPU
+// physics inside the editor. Oracle: the CPU Jacobi schedule (physics/SandPhysics, a second
+// implementation) run to rest from the saved pre-erosion scene. r_S = 5 cm keeps refinement
+// (which the two place differently) out of the comparison.
+const char* kGpuErosion = R"([
+    {"op": "set", "erosion": false, "physics": "gpu", "relocation_radius": 0.05, "steps": 64},
+    {"op": "tool", "name": "Pour"}, {"op": "set", "pour_volume": 0.00005},
+    {"op": "click", "at": [0.5, 0.5]}, {"op": "click", "at": [0.5, 0.5]},
+    {"op": "wait", "frames": 1}, {"op": "save", "path": "@BEFORE@"},
+    {"op": "erode", "frames": 60}, {"op": "save", "path": "@AFTER@"},
+    {"op": "save_settings"}])";
+
+TEST_F(EditorXvfb, GpuErosionRelaxesLikeTheCpuJacobiReferenceAndTheSwitchPersists) {
+    const fs::path before = kWork / "gpu-before.sandtin", after = kWork / "gpu-after.sandtin";
+    const fs::path settings = kWork / "gpu-settings.json";
+    fs::remove(settings);
+    std::string ops = kGpuErosion;
+    ops.replace(ops.find("@BEFORE@"), 8, before.string());
+    ops.replace(ops.find("@AFTER@"), 7, after.string());
+    const EditorRun r = run_editor("gpu-erosion", ops, "--settings " + settings.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("physics").get<std::string>(), "gpu");
+
+    const Session s0 = load_session(before), s1 = load_session(after);
+    const Tin t0 = Tin::from_snapshot(s0.terrain), gpu = Tin::from_snapshot(s1.terrain);
+    Tin cpu = Tin::from_snapshot(s0.terrain);
+    TalusSettings jacobi;
+    jacobi.schedule = Schedule::Jacobi;
+    SandPhysics reference(cpu, MaterialTable::presets(), jacobi);
+    reference.settings().parameters.relocation_radius = 0.05;
+    reference.activate_all();
+    ASSERT_TRUE(reference.run_to_rest(200000).at_rest);
+
+    // Compare the surfaces on a grid around the pour (the cursor) and far from it.
+    const auto cur = r.stats.at("cursor");
+    const Vec2 c{cur[0].get<double>(), cur[1].get<double>()};
+    double lowered = 0.0, worst = 0.0;
+    for (int i = -40; i <= 40; ++i) {
+        for (int j = -40; j <= 40; ++j) {
+            const Vec2 p{c.x + 0.002 * i, c.y + 0.002 * j};
+            const auto h0 = t0.height_at(p), hg = gpu.height_at(p), hc = cpu.height_at(p);
+            if (!h0 || !hg || !hc) continue;
+            lowered = std::max(lowered, *h0 - *hg);
+            worst = std::max(worst, std::abs(*hg - *hc));
+        }
+    }
+    std::printf("GPU erosion: pile lowered by %.3f mm, largest GPU-CPU difference %.4f mm\n",
+                lowered * 1e3, worst * 1e3);
+    EXPECT_GT(lowered, 0.005) << "the GPU erosion did not flatten the poured pile";
+    EXPECT_LT(worst, 0.05 * lowered) << "GPU and CPU Jacobi rest states differ";
+    EXPECT_NEAR(gpu.volume(), t0.volume(), 1e-6 * t0.volume()) << "volume not conserved";
+
+    // The switch persists: a new run with the same settings file starts on the GPU.
+    const EditorRun again = run_editor("gpu-again", kFlat, "--settings " + settings.string());
+    ASSERT_EQ(again.exit_code, 0) << again.log;
+    EXPECT_EQ(again.stats.at("physics").get<std::string>(), "gpu");
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.log.find("unknown op 'explode'"), std::string::npos) << r.log;
+    const EditorRun p = run_editor("bad-physics", R"([{"op": "set", "physics": "tpu"}])");
+    EXPECT_EQ(p.exit_code, 1);
+    EXPECT_NE(p.log.find("physics must be cpu or gpu"), std::string::npos) << p.log;
     const EditorRun s = run_editor("bad-scene", kFlat, (kWork / "missing.sandtin").string());
     EXPECT_EQ(s.exit_code, 1);
     EXPECT_NE(s.log.find("does not exist"), std::string::npos) << s.log;
