@@ -32,10 +32,11 @@ void main() {
     float cmax = (max(a.x, max(b.x, c.x)) - pc.x0) / pc.dx - pc.offset;
     float rmin = (pc.y_top - max(a.y, max(b.y, c.y))) / pc.dy - pc.offset;
     float rmax = (pc.y_top - min(a.y, min(b.y, c.y))) / pc.dy - pc.offset;
-    int c0 = max(0, int(ceil(cmin - 1e-3)));
-    int c1 = min(int(pc.width) - 1, int(floor(cmax + 1e-3)));
-    int r0 = max(0, int(ceil(rmin - 1e-3)));
-    int r1 = min(int(pc.height) - 1, int(floor(rmax + 1e-3)));
+    // Clipped to the grid and to the texel rectangle being re-baked.
+    int c0 = max(int(pc.col0), int(ceil(cmin - 1e-3)));
+    int c1 = min(int(min(pc.col1, pc.width - 1u)), int(floor(cmax + 1e-3)));
+    int r0 = max(int(pc.row0), int(ceil(rmin - 1e-3)));
+    int r1 = min(int(min(pc.row1, pc.height - 1u)), int(floor(rmax + 1e-3)));
     for (int row = r0; row <= r1; ++row) {
         float y = pc.y_top - (float(row) + pc.offset) * pc.dy;
         for (int col = c0; col <= c1; ++col) {

@@ -43,6 +43,10 @@ void main() {
         for (uint c = 0u; c < 3u; ++c) corner_normal[3u * s + c] = vec4(0.0, 0.0, 1.0, 0.0);
         return;
     }
+    // A region pass recomputes the slots with a corner inside the region.
+    if (outside_region(triangles[3u * s]) && outside_region(triangles[3u * s + 1u]) &&
+        outside_region(triangles[3u * s + 2u]))
+        return;
     for (uint c = 0u; c < 3u; ++c) {
         uint v = triangles[3u * s + c];
         uint w = triangles[3u * s + (c + 1u) % 3u];

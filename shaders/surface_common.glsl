@@ -28,7 +28,22 @@ layout(push_constant) uniform Push {
     float dx;        // bake: metres per column
     float dy;        // bake: metres per row (rows go south)
     float offset;    // 0.5 for texel centres, 0 for corners
+    uint col0;       // bake: only texels with col0 <= col <= col1, row0 <= row <= row1
+    uint row0;
+    uint col1;
+    uint row1;
+    uint in_region;  // normals: 1 = only vertices inside the region (origin-relative metres)
+    float region_x0;
+    float region_y0;
+    float region_x1;
+    float region_y1;
 } pc;
+
+bool outside_region(uint v) {
+    if (pc.in_region == 0u) return false;
+    vec2 p = position[v];
+    return p.x < pc.region_x0 || p.y < pc.region_y0 || p.x > pc.region_x1 || p.y > pc.region_y1;
+}
 
 vec3 surface_point(uint v) { return vec3(position[v], height[v] * pc.z_scale); }
 

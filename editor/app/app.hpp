@@ -28,6 +28,7 @@
 #include "editor_settings.hpp"
 #include "formats/png_image.hpp"
 #include "gpu/gpu_error.hpp"
+#include "gpu/render/normal_map.hpp"
 #include "gpu/render/terrain_mesh.hpp"
 #include "gpu/render/terrain_renderer.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -85,6 +86,9 @@ class App {
     /// new solver looks at every vertex once (it does not know what the old one had left).
     void attach_physics(bool switched);
     void update_mesh();
+    /// Syncs the GPU mirror and re-bakes the normal map where the terrain changed (the caller
+    /// waited for the previous frame).
+    void update_normal_map();
     void draw_panels();
     void panel_tools();
     void panel_materials();
@@ -114,6 +118,8 @@ class App {
     void frame_terrain();
     /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
+        normal_map_.reset();  // it refers to the old mirror
+        own_mirror_.reset();
         fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
         attach_physics(false);
         mesh_stale_ = true;
@@ -141,6 +147,12 @@ class App {
     std::unique_ptr<render::TerrainMesh> mesh_;
     /// The one consumer of the TIN's change journal; the mesh and the GPU mirror take from it.
     std::unique_ptr<ChangeFanout> fanout_;
+    /// The TIN on the GPU for the normal-map bake while the CPU erodes (the GPU physics brings
+    /// its own mirror, which the bake then shares).
+    std::unique_ptr<gpu::TinMirror> own_mirror_;
+    std::unique_ptr<render::TerrainNormalMap> normal_map_;
+    std::uint64_t normal_map_bakes_ = 0;
+    std::uint64_t normal_map_texels_ = 0;   ///< texels of the last re-bake
     std::vector<VertexId> active_ids_;      ///< vertices flagged active now
     std::vector<VertexId> active_flipped_;  ///< flags that changed since the last mesh update
     std::uint64_t last_upload_bytes_ = 0;

@@ -10,6 +10,7 @@ void App::attach_physics(bool switched) {
     const ErosionBackend want = settings_.erosion_gpu ? ErosionBackend::Gpu : ErosionBackend::Cpu;
     if (doc_.physics && doc_.physics->backend() == want) return;
     doc_.physics.reset();
+    normal_map_.reset();  // may refer to the old solver's mirror
     if (want == ErosionBackend::Gpu && context_) {
         try {
             ChangeFanout* fanout = fanout_.get();
@@ -161,9 +162,10 @@ std::vector<std::array<float, 3>> App::footprint_outline() {
 void App::update_mesh() {
     // The journal says what changed; nothing changed means no recomputation and no upload.
     const ChangeSet changes = fanout_->take(ChangeFanout::Mesh);
-    if (!mesh_stale_ && changes.empty() && active_flipped_.empty()) {
+    if (!mesh_stale_ && changes.empty() && active_flipped_.empty() && normal_map_) {
         times_.push(times_.mesh, 0.0);
         times_.push(times_.upload, 0.0);
+        times_.push(times_.bake, 0.0);
         last_upload_bytes_ = 0;
         return;
     }
@@ -185,6 +187,39 @@ void App::update_mesh() {
     last_upload_bytes_ = renderer_->bytes_uploaded() - before;
     update_contrast_range();
     times_.push(times_.upload, ms_since(t1));
+    const auto t2 = Clock::now();
+    update_normal_map();
+    times_.push(times_.bake, ms_since(t2));
+}
+
+void App::update_normal_map() {
+    gpu::TinMirror* mirror = doc_.physics->mirror();
+    if (mirror == nullptr) {
+        if (!own_mirror_) own_mirror_ = std::make_unique<gpu::TinMirror>(*context_, doc_.materials);
+        mirror = own_mirror_.get();
+    } else {
+        own_mirror_.reset();
+    }
+    // Edits the GPU physics has not seen yet (erosion paused, or tools after its step): the
+    // mirror takes them now, and the physics looks at those vertices on its next step.
+    const ChangeSet changes = fanout_->take(ChangeFanout::Mirror);
+    const gpu::SyncStats synced = mirror->sync(*doc_.tin, changes);
+    if (doc_.physics->mirror() != nullptr && !synced.dirty_vertices.empty()) {
+        std::vector<VertexId> ids;
+        ids.reserve(synced.dirty_vertices.size());
+        for (std::uint32_t v : synced.dirty_vertices)
+            ids.push_back(VertexId{v});
+        doc_.physics->activate(ids);
+    }
+    const ChangeSet dirty = fanout_->take(ChangeFanout::NormalMap);
+    if (!normal_map_ || &normal_map_->mirror() != mirror) {
+        normal_map_ = std::make_unique<render::TerrainNormalMap>(*mirror, doc_.tin->domain());
+        renderer_->set_normal_map(normal_map_->view(), normal_map_->sampler());
+        ++normal_map_bakes_;
+    } else if (const auto texels = normal_map_->rebake(*doc_.tin, dirty)) {
+        ++normal_map_bakes_;
+        normal_map_texels_ = std::uint64_t{texels->width()} * texels->height();
+    }
 }
 
 bool App::frame(bool capture) {
@@ -248,6 +283,8 @@ bool App::frame(bool capture) {
     push.overlays[3] = settings_.overlay_slope ? 1.0f : 0.0f;
     push.contrast[0] = static_cast<float>(contrast_low_);
     push.contrast[1] = static_cast<float>(contrast_high_);
+    push.contrast[2] = static_cast<float>(1.0 / doc_.tin->domain().width());
+    push.contrast[3] = static_cast<float>(1.0 / doc_.tin->domain().height());
     renderer_->draw(swapchain_->command_buffer(), push, extent, *mesh_);
     if (cursor_ && kTools[settings_.tool].kind == ToolKind::Stamp) {
         // Stamp tools: the footprint's inner contour on the terrain, turned as the next stamp

@@ -309,9 +309,15 @@ void App::panel_stats() {
     ImGui::Text("%.1f fps (%.1f ms)", frame_ms > 0.0 ? 1000.0 / frame_ms : 0.0, frame_ms);
     ImGui::Text("tool %.2f  physics %.2f  mesh %.2f", StageTimes::median(times_.tool),
                 StageTimes::median(times_.physics), StageTimes::median(times_.mesh));
-    ImGui::Text("upload %.2f  render %.2f ms", StageTimes::median(times_.upload),
-                StageTimes::median(times_.render));
-    tip("Median milliseconds per frame of each stage over the last 240 frames");
+    ImGui::Text("upload %.2f  bake %.2f  render %.2f ms", StageTimes::median(times_.upload),
+                StageTimes::median(times_.bake), StageTimes::median(times_.render));
+    tip("Median milliseconds per frame of each stage over the last 240 frames (bake: GPU mirror\n"
+        "sync and normal-map re-bake of the changed rectangle)");
+    ImGui::Text("normal map %ux%u, re-baked %llu",
+                normal_map_ ? normal_map_->grid().width : 0u,
+                normal_map_ ? normal_map_->grid().height : 0u,
+                static_cast<unsigned long long>(normal_map_texels_));
+    tip("The baked normal map is re-baked only inside the rectangle the last change touched");
     std::vector<float> plot(times_.frame.begin(), times_.frame.end());
     ImGui::PlotLines("##frame", plot.data(), static_cast<int>(plot.size()), 0, "frame ms", 0.0f,
                      100.0f, ImVec2(0, 40));

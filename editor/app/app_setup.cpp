@@ -133,7 +133,9 @@ void App::shutdown() {
         ImGui::DestroyContext();
         imgui_ready_ = false;
     }
-    // The GPU physics' mirror holds device buffers: they go before the device too.
+    // The normal map and the GPU mirrors hold device objects: they go before the device too.
+    normal_map_.reset();
+    own_mirror_.reset();
     if (doc_.physics && doc_.physics->backend() == ErosionBackend::Gpu) doc_.physics.reset();
     renderer_.reset();
     imgui_pool_.reset();
@@ -351,6 +353,9 @@ int App::run() {
         s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
         s["mesh_ms_median"] = StageTimes::median(times_.mesh);
         s["upload_ms_median"] = StageTimes::median(times_.upload);
+        s["bake_ms_median"] = StageTimes::median(times_.bake);
+        s["normal_map_bakes"] = normal_map_bakes_;
+        s["normal_map_texels_baked"] = normal_map_ ? normal_map_->texels_baked() : 0;
         s["render_ms_median"] = StageTimes::median(times_.render);
         s["fps"] =
             StageTimes::median(times_.frame) > 0 ? 1000.0 / StageTimes::median(times_.frame) : 0.0;

@@ -10,7 +10,7 @@ namespace sandtin::editor {
 /// Per-stage timings (ms) of recent frames, for the Stats panel and the stats file.
 struct StageTimes {
     static constexpr std::size_t kKeep = 240;
-    std::deque<float> frame, tool, physics, mesh, upload, render;
+    std::deque<float> frame, tool, physics, mesh, upload, bake, render;
     void push(std::deque<float>& d, double v) {
         d.push_back(static_cast<float>(v));
         if (d.size() > kKeep) d.pop_front();

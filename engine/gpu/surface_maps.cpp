@@ -68,7 +68,10 @@ void SurfaceMaps::ensure_buffers(VkDeviceSize map_texels) {
         map_texels_ = n;
         changed = true;
     }
-    if (changed || !bound_ || bound_generation_ != mirror_.generation()) bind_all();
+    if (changed || !bound_ || bound_generation_ != mirror_.generation()) {
+        bind_all();
+        normals_valid_ = false;
+    }
 }
 
 void SurfaceMaps::bind_all() {
@@ -90,20 +93,23 @@ void SurfaceMaps::bind_all() {
     bound_ = true;
 }
 
-void SurfaceMaps::compute_normals(double z_scale) {
-    ensure_buffers(map_texels_);
-    z_scale_ = static_cast<float>(z_scale);
-    Push pv{};
+void SurfaceMaps::record_normals(VkCommandBuffer cb, const Push& base) {
+    Push pv = base;
     pv.count = vertex_capacity_;
     pv.z_scale = z_scale_;
     Push ps = pv;
     ps.count = slot_capacity_;
-    mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
-        shader_barrier(cb);  // mirror uploads and relaxation -> normals
-        vertex_kernel_.dispatch(cb, pv.count, &pv);
-        corner_kernel_.dispatch(cb, ps.count, &ps);
-    });
+    shader_barrier(cb);  // mirror uploads and relaxation -> normals
+    vertex_kernel_.dispatch(cb, pv.count, &pv);
+    corner_kernel_.dispatch(cb, ps.count, &ps);
     dispatches_ += 2;
+}
+
+void SurfaceMaps::compute_normals(double z_scale) {
+    ensure_buffers(map_texels_);
+    z_scale_ = static_cast<float>(z_scale);
+    mirror_.context().submit_and_wait([&](VkCommandBuffer cb) { record_normals(cb, Push{}); });
+    normals_valid_ = true;
 }
 
 std::vector<Vec3> SurfaceMaps::read_vertex_normals() const {
@@ -118,9 +124,7 @@ std::vector<Vec3> SurfaceMaps::read_corner_normals() const {
         read_buffer_floats(mirror_.context(), corner_normals_.get(), corner_normals_.size()));
 }
 
-BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
-    const VkDeviceSize texels = grid.size();
-    ensure_buffers(texels);
+SurfaceMaps::Push SurfaceMaps::grid_push(const MapGrid& grid, BakeNormals normals) const {
     const Vec2 o = mirror_.origin();
     Push p{};
     p.count = slot_capacity_;
@@ -139,6 +143,43 @@ BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
     }
     p.x0 = static_cast<float>(grid.domain.min.x - o.x);
     p.y_top = static_cast<float>(grid.domain.max.y - o.y);
+    return p;
+}
+
+void SurfaceMaps::bake_region(const MapGrid& grid, const Rect& region, TexelRect texels,
+                              BakeNormals normals) {
+    if (texels.col1 < texels.col0 || texels.row1 < texels.row0 || texels.col1 >= grid.width ||
+        texels.row1 >= grid.height) {
+        throw GpuError("SurfaceMaps::bake_region: the texel rectangle is empty or off the grid");
+    }
+    ensure_buffers(grid.size());
+    const Vec2 o = mirror_.origin();
+    Push n{};
+    if (normals_valid_) {
+        n.in_region = 1;
+        n.region[0] = static_cast<float>(region.min.x - o.x);
+        n.region[1] = static_cast<float>(region.min.y - o.y);
+        n.region[2] = static_cast<float>(region.max.x - o.x);
+        n.region[3] = static_cast<float>(region.max.y - o.y);
+    }
+    Push p = grid_push(grid, normals);
+    p.col0 = texels.col0;
+    p.row0 = texels.row0;
+    p.col1 = texels.col1;
+    p.row1 = texels.row1;
+    mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
+        record_normals(cb, n);
+        shader_barrier(cb);
+        bake_kernel_.dispatch(cb, p.count, &p);
+    });
+    ++dispatches_;
+    normals_valid_ = true;
+}
+
+BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
+    const VkDeviceSize texels = grid.size();
+    ensure_buffers(texels);
+    Push p = grid_push(grid, normals);
     const VulkanContext& ctx = mirror_.context();
     ctx.submit_and_wait([&](VkCommandBuffer cb) {
         vkCmdFillBuffer(cb, height_map_.get(), 0, VK_WHOLE_SIZE, 0);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geom/rect.hpp"
 #include "geom/vec3.hpp"
 #include "gpu/buffer.hpp"
 #include "gpu/compute_kernel.hpp"
@@ -19,6 +20,17 @@
 namespace sandtin::gpu {
 
 enum class BakeNormals : uint32_t { Smooth = 0, Creased = 1 };
+
+// Inclusive rectangle of map texels (col0..col1, row0..row1; row 0 north).
+struct TexelRect {
+    uint32_t col0 = 0;
+    uint32_t row0 = 0;
+    uint32_t col1 = 0;
+    uint32_t row1 = 0;
+    uint32_t width() const { return col1 - col0 + 1; }
+    uint32_t height() const { return row1 - row0 + 1; }
+    friend bool operator==(const TexelRect&, const TexelRect&) = default;
+};
 
 struct BakedMaps {
     MapImage height;  // 1 channel, metres
@@ -40,6 +52,19 @@ class SurfaceMaps {
     // Bakes both maps on `grid` (compute_normals() must have run for the current heights).
     BakedMaps bake(const MapGrid& grid, BakeNormals normals = BakeNormals::Smooth);
 
+    // Re-bake after a local change, with nothing read back (the renderer copies the device
+    // maps into its texture): recomputes the normals of the vertices inside `region` (metres,
+    // world coordinates; every vertex when the normal buffers were just (re)allocated), then
+    // bakes only the texels of `texels` on `grid`. Texels outside keep what the previous bake
+    // of the same grid wrote. The caller chooses `region` so that it holds every vertex whose
+    // normal changed and `texels` so that it holds every texel whose triangle or corner
+    // normals changed.
+    void bake_region(const MapGrid& grid, const Rect& region, TexelRect texels,
+                     BakeNormals normals = BakeNormals::Smooth);
+    // The device maps of the last bake, row-major on its grid: height float, normal vec4.
+    VkBuffer height_map() const { return height_map_.get(); }
+    VkBuffer normal_map() const { return normal_map_.get(); }
+
     uint64_t dispatches_recorded() const { return dispatches_; }
 
   private:
@@ -54,7 +79,15 @@ class SurfaceMaps {
         float dx;
         float dy;
         float offset;
+        uint32_t col0 = 0;  // bake clip rectangle (inclusive)
+        uint32_t row0 = 0;
+        uint32_t col1 = UINT32_MAX;
+        uint32_t row1 = UINT32_MAX;
+        uint32_t in_region = 0;          // normals: only vertices inside `region`
+        float region[4] = {0, 0, 0, 0};  // x0, y0, x1, y1 relative to the mirror's origin
     };
+    Push grid_push(const MapGrid& grid, BakeNormals normals) const;
+    void record_normals(VkCommandBuffer cb, const Push& base);
     void ensure_buffers(VkDeviceSize map_texels);
     void bind_all();
 
@@ -71,6 +104,7 @@ class SurfaceMaps {
     VkDeviceSize map_texels_ = 0;
     uint64_t bound_generation_ = UINT64_MAX;
     bool bound_ = false;
+    bool normals_valid_ = false;  // the normal buffers hold every vertex's normal
     float z_scale_ = 1.0f;
     uint64_t dispatches_ = 0;
 };

@@ -1,6 +1,6 @@
 #version 450
-// Terrain shading: the interpolated smooth normal perturbed by a procedural sand-grain detail
-// normal whose texture coordinates slide with the material (texture-sliding offsets), the
+// Terrain shading: the baked normal map (smooth normals of the TIN, sampled by world xy, so
+// long edges show no facets) perturbed by a procedural sand-grain detail normal whose texture coordinates slide with the material (texture-sliding offsets), the
 // material albedo, a contrast curve (histogram stretch of the height range, seed 004 §5.2.4),
 // optional overlays and the tool cursor ring. The wireframe is a separate line pass.
 
@@ -19,6 +19,9 @@ layout(location = 3) in vec3 v_overlay;  // x: slope / repose, y: sand thickness
 layout(location = 4) in vec2 v_slide;
 
 layout(location = 0) out vec4 out_colour;
+
+// Baked on the GPU over the domain (TerrainNormalMap): xyz unit normal, row 0 = north edge.
+layout(set = 0, binding = 0) uniform sampler2D normal_map;
 
 // Integer hash (no transcendental functions: cheap on software rasterisers).
 float hash(vec2 p) {
@@ -48,7 +51,10 @@ vec3 bump(vec3 n, vec3 position, float h) {
 }
 
 void main() {
-    vec3 n = normalize(v_normal);
+    // contrast.zw = 1 / domain size: centre-relative position -> texture coordinates.
+    vec2 map_uv = vec2(0.5 + v_world.x * pc.contrast.z, 0.5 - v_world.y * pc.contrast.w);
+    vec3 baked = texture(normal_map, map_uv).xyz;
+    vec3 n = dot(baked, baked) > 1e-6 ? normalize(baked) : normalize(v_normal);
     // Detail normal: sand grains about 2.5 mm across, offset by the sliding texture
     // coordinates so the grain pattern moves with transported material.
     vec2 uv = v_world.xy * 400.0 + v_slide * 64.0;

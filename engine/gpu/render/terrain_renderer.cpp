@@ -29,11 +29,14 @@ gpu::UniqueShaderModule make_module(VkDevice device, const std::uint32_t* code, 
     return gpu::UniqueShaderModule(device, module);
 }
 
-gpu::UniquePipelineLayout make_layout(VkDevice device, std::uint32_t push_bytes) {
+gpu::UniquePipelineLayout make_layout(VkDevice device, std::uint32_t push_bytes,
+                                      VkDescriptorSetLayout set = VK_NULL_HANDLE) {
     VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                               push_bytes};
     VkPipelineLayoutCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
+    info.setLayoutCount = set != VK_NULL_HANDLE ? 1 : 0;
+    info.pSetLayouts = &set;
     info.pushConstantRangeCount = 1;
     info.pPushConstantRanges = &range;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -137,7 +140,33 @@ std::span<const std::uint32_t> spirv(const std::uint32_t (&code)[N]) {
 TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass render_pass)
     : context_(context) {
     const VkDevice device = context.device();
-    terrain_layout_ = make_layout(device, sizeof(TerrainPush));
+    // Set 0, binding 0: the baked normal map.
+    VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                                         VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo sli{};
+    sli.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    sli.bindingCount = 1;
+    sli.pBindings = &binding;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    gpu::check(vkCreateDescriptorSetLayout(device, &sli, nullptr, &set_layout),
+               "vkCreateDescriptorSetLayout");
+    set_layout_ = gpu::UniqueDescriptorSetLayout(device, set_layout);
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+    VkDescriptorPoolCreateInfo pi{};
+    pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+    pi.maxSets = 1;
+    pi.poolSizeCount = 1;
+    pi.pPoolSizes = &size;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    gpu::check(vkCreateDescriptorPool(device, &pi, nullptr, &pool), "vkCreateDescriptorPool");
+    pool_ = gpu::UniqueDescriptorPool(device, pool);
+    VkDescriptorSetAllocateInfo ai{};
+    ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = 1;
+    ai.pSetLayouts = &set_layout;
+    gpu::check(vkAllocateDescriptorSets(device, &ai, &set_), "vkAllocateDescriptorSets");
+    terrain_layout_ = make_layout(device, sizeof(TerrainPush), set_layout);
     terrain_pipeline_ = make_pipeline(device, render_pass, terrain_layout_.get(),
                                       {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 5,
                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST});
@@ -200,9 +229,24 @@ void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) 
     if (!update.slots.empty() || update.resized || grew) wire_stale_ = true;
 }
 
+void TerrainRenderer::set_normal_map(VkImageView view, VkSampler sampler) {
+    VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet w{};
+    w.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    w.dstSet = set_;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = &image;
+    vkUpdateDescriptorSets(context_.device(), 1, &w, 0, nullptr);
+    has_normal_map_ = true;
+}
+
 void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
                            const TerrainMesh& mesh) {
     if (index_count_ == 0) return;
+    if (!has_normal_map_)
+        throw gpu::GpuError("TerrainRenderer::draw: no normal map was set (set_normal_map)");
     VkViewport viewport{
         0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
         0.0f, 1.0f};
@@ -213,6 +257,8 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cb, 0, 1, &vb, &offset);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_pipeline_.get());
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_layout_.get(), 0, 1, &set_,
+                            0, nullptr);
     vkCmdPushConstants(cb, terrain_layout_.get(),
                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(TerrainPush), &push);

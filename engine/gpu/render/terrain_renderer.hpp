@@ -1,6 +1,7 @@
 #pragma once
 // Draws the terrain inside a render pass the caller owns (so it serves a swapchain and an
-// offscreen target alike): one indexed draw of the lit surface (detail normal, material albedo,
+// offscreen target alike): one indexed draw of the lit surface (baked normal map sampled by
+// world xy, detail normal, material albedo,
 // contrast curve, overlays and tool cursor, all in terrain.frag), then, only when the wireframe
 // overlay is on, a line pass over every edge and one over the constrained edges. Buffers mirror
 // TerrainMesh and receive only the ranges an update names.
@@ -23,7 +24,9 @@ struct TerrainPush {
     float light_dir[4];         ///< xyz towards the light; w contrast strength [0, 1]
     float cursor[4];            ///< xy centre (m, domain-centre relative), z radius (m), w shown
     float overlays[4];          ///< wireframe, active, sand thickness, slope vs repose (0/1)
-    float contrast[4];          ///< x low, y high height (m) of the stretch
+    /// x low, y high height (m) of the stretch; z = 1 / domain width, w = 1 / domain height
+    /// (1/m): the normal map's texture coordinates of a centre-relative position
+    float contrast[4];
 };
 static_assert(sizeof(TerrainPush) == 128);
 
@@ -35,6 +38,9 @@ class TerrainRenderer {
     /// Copies the ranges `update` names from `mesh` (everything when it says resized). The GPU
     /// must not be reading the buffers (the caller waits for the previous frame).
     void upload(const TerrainMesh& mesh, const MeshUpdate& update);
+    /// The baked normal map terrain.frag samples (TerrainNormalMap). Must be set before the
+    /// first draw and again when the map is replaced; the GPU must not be drawing.
+    void set_normal_map(VkImageView view, VkSampler sampler);
     /// Records the draws (viewport and scissor are dynamic). With the wireframe overlay on,
     /// the edge list is rebuilt from `mesh` when its triangles changed since the last call.
     void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
@@ -52,6 +58,10 @@ class TerrainRenderer {
     void ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage);
 
     const gpu::VulkanContext& context_;
+    gpu::UniqueDescriptorSetLayout set_layout_;
+    gpu::UniqueDescriptorPool pool_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;  ///< freed with pool_
+    bool has_normal_map_ = false;
     gpu::UniquePipelineLayout terrain_layout_;
     gpu::UniquePipeline terrain_pipeline_;
     gpu::UniquePipelineLayout lines_layout_;
