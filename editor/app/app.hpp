@@ -27,6 +27,7 @@
 #include "change_fanout.hpp"
 #include "editor_settings.hpp"
 #include "formats/png_image.hpp"
+#include "frame_policy.hpp"
 #include "gpu/gpu_error.hpp"
 #include "gpu/render/normal_map.hpp"
 #include "gpu/render/terrain_mesh.hpp"
@@ -50,6 +51,7 @@
 #include "haptics_session.hpp"
 #include "stage_times.hpp"
 #include "tool_palette.hpp"
+#include "undo_log.hpp"
 
 namespace sandtin::editor {
 
@@ -112,6 +114,10 @@ class App {
     void tool_at(Vec3 point);
     void end_action();
     void undo();
+    /// A new material table everywhere it is used (physics, mesh colours); not an undo level.
+    void apply_materials(const MaterialTable& table);
+    /// The Materials panel's edit of material `index` (released control): an undo level.
+    void edit_material(int index, const Material& m);
     void redo();
     void save(const std::filesystem::path& p);
     void open(const std::filesystem::path& p);
@@ -121,6 +127,8 @@ class App {
         normal_map_.reset();  // it refers to the old mirror
         own_mirror_.reset();
         fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
+        undo_log_.clear();
+        if (mesh_) mesh_->set_materials(doc_.materials);
         attach_physics(false);
         mesh_stale_ = true;
         contrast_stale_ = true;
@@ -160,6 +168,7 @@ class App {
     gpu::UniqueDescriptorPool imgui_pool_;
     bool imgui_ready_ = false;
     Document doc_;
+    UndoLog undo_log_;  ///< terrain levels (doc_.history) and material edits, in order
     OrbitCamera camera_;
     StageTimes times_;
     std::string status_;

@@ -94,17 +94,17 @@ void App::panel_file() {
         }
     }
     tip("Write the terrain to the file above");
-    ImGui::BeginDisabled(!doc_.history->can_undo());
+    ImGui::BeginDisabled(!undo_log_.can_undo());
     if (ImGui::Button("Undo")) undo();
     ImGui::EndDisabled();
-    tip("Undo the last stroke, brush, pour or erosion run (Ctrl+Z)");
+    tip("Undo the last stroke, brush, pour, erosion run or material edit (Ctrl+Z)");
     ImGui::SameLine();
-    ImGui::BeginDisabled(!doc_.history->can_redo());
+    ImGui::BeginDisabled(!undo_log_.can_redo());
     if (ImGui::Button("Redo")) redo();
     ImGui::EndDisabled();
     tip("Redo (Ctrl+Y)");
     ImGui::SameLine();
-    ImGui::Text("%zu levels, %.1f MB", doc_.history->undo_levels(),
+    ImGui::Text("%zu levels, %.1f MB", undo_log_.levels(),
                 static_cast<double>(doc_.history->bytes()) / 1048576.0);
 }
 
@@ -183,16 +183,22 @@ void App::panel_materials() {
     edited |= ImGui::IsItemDeactivatedAfterEdit();
     m.repose_dry = static_cast<double>(dry) / 57.2957795;
     m.repose_wet = static_cast<double>(std::max(wet, dry)) / 57.2957795;
-    if (edited) {
-        // Applied when the control is released: the whole terrain is re-checked against the
-        // new angles, and the colours are rebuilt. Not an undo level: the table is not terrain.
-        doc_.materials = MaterialTable(all);
-        doc_.physics->set_materials(doc_.materials);
-        doc_.physics->activate_all();
-        mesh_->set_materials(doc_.materials);
-        mesh_stale_ = true;
-        physics_kick_ = true;
-    }
+    // Applied when the control is released.
+    if (edited) edit_material(settings_.material, m);
+}
+
+void App::edit_material(int index, const Material& m) {
+    std::vector<Material> all = doc_.materials.all();
+    if (index < 0 || index >= static_cast<int>(all.size()))
+        throw std::runtime_error("there is no material " + std::to_string(index));
+    all[static_cast<std::size_t>(index)] = m;
+    // The whole terrain is re-checked against the new angles and the colours are rebuilt. One
+    // undo level, saved with the scene.
+    end_action();
+    const MaterialTable before = doc_.materials;
+    apply_materials(MaterialTable(std::move(all)));
+    undo_log_.push_materials(before, doc_.materials);
+    doc_.dirty = true;
 }
 
 void App::panel_erosion() {
@@ -313,8 +319,7 @@ void App::panel_stats() {
                 StageTimes::median(times_.bake), StageTimes::median(times_.render));
     tip("Median milliseconds per frame of each stage over the last 240 frames (bake: GPU mirror\n"
         "sync and normal-map re-bake of the changed rectangle)");
-    ImGui::Text("normal map %ux%u, re-baked %llu",
-                normal_map_ ? normal_map_->grid().width : 0u,
+    ImGui::Text("normal map %ux%u, re-baked %llu", normal_map_ ? normal_map_->grid().width : 0u,
                 normal_map_ ? normal_map_->grid().height : 0u,
                 static_cast<unsigned long long>(normal_map_texels_));
     tip("The baked normal map is re-baked only inside the rectangle the last change touched");
@@ -328,7 +333,8 @@ void App::answer_recovery(bool recover) {
     if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
     if (recover) {
         const Session s = recover_autosave(*recovery_for_);
-        doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_);
+        doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
+                   materials_of(s));
         doc_.dirty = true;
         document_replaced();
         report("recovered the autosave of " + recovery_for_->string());

@@ -16,7 +16,9 @@ namespace sandtin::editor {
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
-//         | {"op": "save_settings"}  (writes the settings file, as a panel change does) ] }
+//         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
+//         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
+//            "colour": [r, g, b]}  (the Materials panel's edit: one undo level) ] }
 // "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, steps,
 // relocation_radius and physics ("cpu" | "gpu", the Erosion panel's switch).
 // Positions are fractions of the window (0..1): scripts work at any --size.
@@ -140,6 +142,21 @@ void App::run_script_op(const nlohmann::json& op) {
     } else if (kind == "wait" || kind == "erode") {
         if (kind == "erode") settings_.erosion_running = true;
         script_wait_ = op.value("frames", 1);
+    } else if (kind == "material") {
+        // As the Materials panel: angles in degrees, linear RGB colour.
+        const int index = op.value("index", settings_.material);
+        if (index < 0 || index >= static_cast<int>(doc_.materials.size()))
+            throw std::runtime_error("script: there is no material " + std::to_string(index));
+        Material m = doc_.materials.all()[static_cast<std::size_t>(index)];
+        constexpr double kDeg = 3.14159265358979323846 / 180.0;
+        if (op.contains("repose_dry")) m.repose_dry = op["repose_dry"].get<double>() * kDeg;
+        if (op.contains("repose_moist")) m.repose_wet = op["repose_moist"].get<double>() * kDeg;
+        m.repose_wet = std::max(m.repose_wet, m.repose_dry);
+        if (op.contains("colour")) {
+            for (std::size_t c = 0; c < 3; ++c)
+                m.colour[c] = std::clamp(op["colour"].at(c).get<float>(), 0.0f, 1.0f);
+        }
+        edit_material(index, m);
     } else if (kind == "save_settings") {
         // What the interactive loop does after a panel change.
         save_settings(settings_path_, settings_);

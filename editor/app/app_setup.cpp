@@ -45,7 +45,7 @@ void App::load_initial_scene() {
         throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
     }
     const Session s = load_session(options_.scene);
-    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, options_.scene);
+    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, options_.scene, materials_of(s));
     // An autosave newer than the scene: the prompt asks (a script answers with "recovery").
     if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
         recovery_for_ = options_.scene;
@@ -173,7 +173,7 @@ void App::save(const std::filesystem::path& p) {
 void App::open(const std::filesystem::path& p) {
     end_action();
     const Session s = load_session(p);
-    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, p);
+    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, p, materials_of(s));
     document_replaced();
     frame_terrain();
     report("opened " + p.string());
@@ -202,17 +202,43 @@ void App::end_action() {
         (void)t;
     }
     if (!pending_label_.empty()) {
-        if (doc_.history->record(pending_label_)) doc_.dirty = true;
+        if (doc_.history->record(pending_label_)) {
+            doc_.dirty = true;
+            undo_log_.push_terrain(pending_label_);
+        }
         pending_label_.clear();
     }
     if (erosion_pending_) {
-        if (doc_.history->record("erosion")) doc_.dirty = true;
+        if (doc_.history->record("erosion")) {
+            doc_.dirty = true;
+            undo_log_.push_terrain("erosion");
+        }
         erosion_pending_ = false;
     }
 }
 
+void App::apply_materials(const MaterialTable& table) {
+    doc_.materials = table;
+    // Both solvers re-read the angles of repose and look at every vertex again.
+    doc_.physics->set_materials(doc_.materials);
+    mesh_->set_materials(doc_.materials);
+    mesh_stale_ = true;  // colours and slope ratios of every vertex
+    physics_kick_ = true;
+}
+
 void App::undo() {
     end_action();
+    const std::optional<UndoLog::Entry> entry = undo_log_.undo();
+    if (!entry) {
+        report("nothing to undo");
+        return;
+    }
+    if (!entry->terrain) {
+        apply_materials(entry->before);
+        report("undo " + entry->label);
+        doc_.dirty = true;
+        return;
+    }
     const HistoryStep step = doc_.history->undo();
     std::string message = step.done ? "undo " + step.label : "nothing to undo";
     if (step.done && !step.report.exact()) {
@@ -243,6 +269,17 @@ void App::undo() {
 
 void App::redo() {
     end_action();
+    const std::optional<UndoLog::Entry> entry = undo_log_.redo();
+    if (!entry) {
+        report("nothing to redo");
+        return;
+    }
+    if (!entry->terrain) {
+        apply_materials(entry->after);
+        report("redo " + entry->label);
+        doc_.dirty = true;
+        return;
+    }
     const HistoryStep step = doc_.history->redo();
     report(step.done ? "redo " + step.label : "nothing to redo");
     physics_kick_ = true;
@@ -321,17 +358,21 @@ int App::run() {
         }
     } else {
         while (!glfwWindowShouldClose(window_)) {
-            const bool busy =
-                redraw_frames_ > 0 || left_down_ || recovery_for_ ||
-                (settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest()));
-            // Idle: block until an event arrives; no frame, no submission.
-            if (busy)
+            LoopState state;
+            glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
+            state.redraw_pending = redraw_frames_ > 0;
+            state.dragging = left_down_;
+            state.prompt_open = recovery_for_.has_value();
+            state.eroding =
+                settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
+            // Idle or minimised: block until an event arrives; no frame, no submission.
+            if (wants_continuous_frames(state))
                 glfwPollEvents();
             else
                 glfwWaitEvents();
             int w = 0, h = 0;
             glfwGetFramebufferSize(window_, &w, &h);
-            if (w == 0 || h == 0) continue;  // minimised: nothing to draw
+            if (!can_draw(w, h)) continue;  // minimised: nothing to draw
             frame(false);
             if (redraw_frames_ > 0) --redraw_frames_;
             if (!(settings_ == saved_settings_)) {

@@ -9,6 +9,7 @@
 #include "erosion.hpp"
 #include "history/history.hpp"
 #include "io/session_file.hpp"
+#include "scene_materials.hpp"
 #include "tools/sculpt_context.hpp"
 
 namespace sandtin::editor {
@@ -24,8 +25,11 @@ struct Document {
     bool dirty = false;
     std::chrono::steady_clock::time_point last_autosave = std::chrono::steady_clock::now();
 
-    void adopt(Tin t, Generation next_generation, const std::filesystem::path& p) {
+    /// A new terrain with its material table (presets for a new or imported terrain).
+    void adopt(Tin t, Generation next_generation, const std::filesystem::path& p,
+               MaterialTable table = MaterialTable::presets()) {
         history.reset();
+        materials = std::move(table);
         physics.reset();
         tin = std::make_unique<Tin>(std::move(t));
         context = std::make_unique<SculptContext>(tin->domain());
@@ -39,10 +43,15 @@ struct Document {
         Session s;
         s.terrain = tin->snapshot();
         s.next_generation = context->peek_generation();
-        s.metadata_json = R"({"editor":"sandtin-editor"})";
+        s.metadata_json = session_metadata(materials);
         return s;
     }
 };
+
+/// The material table a loaded session was saved with (presets when it has none).
+inline MaterialTable materials_of(const Session& s) {
+    return materials_from_metadata(s.metadata_json).value_or(MaterialTable::presets());
+}
 
 /// A new sandbox: 1 m x 1 m of sand with dunes, ripples and a band of moist sand (see
 /// document.cpp).

@@ -20,6 +20,7 @@
 #include "io/autosave.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
+#include "scene_materials.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -409,6 +410,42 @@ TEST_F(EditorXvfb, GpuErosionRelaxesLikeTheCpuJacobiReferenceAndTheSwitchPersist
     const EditorRun again = run_editor("gpu-again", kFlat, "--settings " + settings.string());
     ASSERT_EQ(again.exit_code, 0) << again.log;
     EXPECT_EQ(again.stats.at("physics").get<std::string>(), "gpu");
+}
+
+// A Materials-panel edit is an undo level and travels with the scene: saved after the edit,
+// after undoing it and after redoing it, then reopened and saved again.
+TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
+    const fs::path edited = kWork / "mat-edited.sandtin", undone = kWork / "mat-undone.sandtin",
+                   redone = kWork / "mat-redone.sandtin", reopened = kWork / "mat-reopened.sandtin";
+    std::string ops = R"([{"op": "set", "erosion": false},
+        {"op": "material", "index": 0, "repose_dry": 21.5, "colour": [0.3, 0.5, 0.9]},
+        {"op": "wait", "frames": 1}, {"op": "save", "path": "@1@"},
+        {"op": "key", "key": "z", "ctrl": true}, {"op": "save", "path": "@2@"},
+        {"op": "key", "key": "y", "ctrl": true}, {"op": "save", "path": "@3@"}])";
+    ops.replace(ops.find("@1@"), 3, edited.string());
+    ops.replace(ops.find("@2@"), 3, undone.string());
+    ops.replace(ops.find("@3@"), 3, redone.string());
+    const EditorRun r = run_editor("materials", ops);
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    const auto table = [](const fs::path& p) {
+        const auto t = editor::materials_from_metadata(load_session(p).metadata_json);
+        EXPECT_TRUE(t.has_value()) << p;
+        return t.value_or(MaterialTable{});
+    };
+    const double presets_dry = MaterialTable::presets().at(0).repose_dry;
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    EXPECT_NEAR(table(edited).at(0).repose_dry, 21.5 * kDeg, 1e-9);
+    EXPECT_FLOAT_EQ(table(edited).at(0).colour[2], 0.9f);
+    EXPECT_NEAR(table(undone).at(0).repose_dry, presets_dry, 1e-9);
+    EXPECT_FLOAT_EQ(table(undone).at(0).colour[2], MaterialTable::presets().at(0).colour[2]);
+    EXPECT_NEAR(table(redone).at(0).repose_dry, 21.5 * kDeg, 1e-9);
+    // The other materials are untouched throughout.
+    EXPECT_NEAR(table(redone).at(2).repose_dry, MaterialTable::presets().at(2).repose_dry, 1e-9);
+
+    const EditorRun again = run_editor("materials-reopen", kFlat,
+                                       redone.string() + " --save-after " + reopened.string());
+    ASSERT_EQ(again.exit_code, 0) << again.log;
+    EXPECT_NEAR(table(reopened).at(0).repose_dry, 21.5 * kDeg, 1e-9);
 }
 
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
