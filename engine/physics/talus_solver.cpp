@@ -38,17 +38,6 @@ inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const Tal
     }
 }
 
-inline void prefetch_gather(std::uint32_t v, const AdjacencyGraph& g, const double* q,
-                            const std::uint32_t* source) {
-    const std::uint32_t* target = g.targets().data();
-    const std::uint32_t* reverse = g.reverses().data();
-    const std::uint32_t row = g.offsets()[v];
-    for (std::uint32_t k = row; k < row + g.degrees()[v]; ++k) {
-        __builtin_prefetch(source + target[k]);
-        __builtin_prefetch(q + reverse[k]);
-    }
-}
-
 }  // namespace
 
 TalusSolver::TalusSolver(TalusSettings settings) : settings_(settings) {
@@ -62,6 +51,9 @@ double TalusSolver::random_factor(std::uint32_t v) const {
 
 void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
     if (q_.size() < g.slot_count()) q_.resize(g.slot_count(), 0.0);
+    // Slots move when the graph rewrites or compacts rows, but every one is zero here.
+    if (settings_.schedule == Schedule::Jacobi && inflow_.size() < g.slot_count())
+        inflow_.resize(g.slot_count(), 0.0);
     if (out_.size() < vertices) {
         out_.resize(vertices, 0.0);
         source_.resize(vertices, 0);
@@ -233,12 +225,14 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
     const TalusArrays& a = *pass_.arrays;
     const std::uint32_t* list = pass_.active->list_.data();
     const std::uint32_t* target = g.targets().data();
+    const std::uint32_t* reverse = g.reverses().data();
     const double* length = g.lengths().data();
     const double* longest = g.longest_edges().data();
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
     const std::size_t rows = g.degrees().size();
-    double* q = q_.data();
+    double* q = s.row_q.data();
+    double* inflow = inflow_.data();
     double* out = out_.data();
     std::uint32_t* source = source_.data();
     std::uint64_t* receive = s.receive.data();
@@ -258,16 +252,23 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
             continue;
         }
         const std::uint32_t row = offset[i];
+        if (deg > s.row_q.size()) {  // rare: rows have a handful of slots
+            s.row_q.resize(deg);
+            q = s.row_q.data();
+        }
         const double sent =
-            talus_outflow(i, row, deg, target, length, longest, a.height, a.area, a.bedrock,
-                          a.tan_alpha[i], settings_.parameters, random_factor(i), q,
+            talus_outflow(i, 0, deg, target + row, length + row, longest, a.height, a.area,
+                          a.bedrock, a.tan_alpha[i], settings_.parameters, random_factor(i), q,
                           [&s](std::uint32_t v) { s.splits.push_back(v); });
         out[i] = sent;
         moved += sent;
         if (sent > 0.0) {
             mark(receive, i, lo, hi);
-            for (std::uint32_t k = row; k < row + deg; ++k)
-                mark(receive, target[k], lo, hi);
+            for (std::uint32_t k = 0; k < deg; ++k) {
+                mark(receive, target[row + k], lo, hi);
+                // Only this sender writes the slot of the edge into target (row + k).
+                if (q[k] > 0.0) inflow[reverse[row + k]] = q[k];
+            }
         }
     }
     s.receive_lo = lo;
@@ -281,14 +282,12 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
     const AdjacencyGraph& g = *pass_.graph;
     const TalusArrays& a = *pass_.arrays;
     const std::uint32_t* target = g.targets().data();
-    const std::uint32_t* reverse = g.reverses().data();
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
-    const double* q = q_.data();
+    double* inflow = inflow_.data();
     const double* out = out_.data();
     const std::uint32_t* source = source_.data();
     const std::uint32_t tag = tag_;
-    const std::size_t rows = g.degrees().size();
     std::uint64_t* wake = s.wake.data();
     std::size_t lo = s.wake_lo, hi = s.wake_hi;
     for (std::size_t w = pass_.word_begin + begin; w < pass_.word_begin + end; ++w) {
@@ -301,12 +300,15 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
             const auto v = static_cast<std::uint32_t>(
                 (w << 6) + static_cast<std::size_t>(std::countr_zero(bits)));
             bits &= bits - 1;
-            if (v + kPrefetchDistance < rows) prefetch_gather(v + kPrefetchDistance, g, q, source);
             const std::uint32_t row = offset[v];
             const std::uint32_t deg = degree[v];
+            // In row order, as the definition sums (a neighbour that sent nothing left 0.0,
+            // which changes no sum): the same value bit for bit.
             double delta = source[v] == tag ? -out[v] : 0.0;
-            for (std::uint32_t k = row; k < row + deg; ++k) {
-                if (source[target[k]] == tag) delta += q[reverse[k]];
+            double* in = inflow + row;
+            for (std::uint32_t k = 0; k < deg; ++k) {
+                delta += in[k];
+                in[k] = 0.0;
             }
             // When the sand ran out, h - (A (h - b)) / A can round to an ulp below b; the
             // thickness must never be negative, and an ulp of volume is far inside the drift

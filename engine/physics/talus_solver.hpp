@@ -78,6 +78,7 @@ class TalusSolver {
         std::vector<std::uint32_t> splits;   ///< phase 1, in list order
         std::vector<std::uint32_t> changed;  ///< phase 2, in id order
         std::vector<std::uint32_t> kept;     ///< phase 3: the next active list, in id order
+        std::vector<double> row_q;           ///< phase 1: the outflow of one row
     };
     /// What the Jacobi phases read, so the pool's task captures `this` only (no allocation).
     struct JacobiPass {
@@ -103,7 +104,11 @@ class TalusSolver {
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;
-    std::vector<double> q_;              ///< per slot: volume sent along the directed edge
+    std::vector<double> q_;  ///< per slot: volume sent along the directed edge
+    /// Jacobi: per slot k of v's row, the volume target(k) sends to v this iteration. Phase 1
+    /// scatters each sender's outflow into its receivers' rows (through the reverse slots), so
+    /// phase 2 reads its own row in order and zeroes it: all zero between iterations.
+    std::vector<double> inflow_;
     std::vector<double> out_;            ///< per vertex: total sent this iteration
     std::vector<std::uint8_t> changed_;  ///< per vertex (sequential schedule)
     std::vector<std::uint32_t> changed_list_;

@@ -4,7 +4,8 @@
 // received or sent gathers in row order, then ActiveSet::age and activate of the changed
 // vertices and their neighbours. Heights must agree bit for bit, and so must the active set,
 // the changed vertices and the counts, on 1 and 2 threads, with and without bedrock, jitter
-// and a relocation radius.
+// and a relocation radius. The reference computes outflows with the plain kernel in
+// reference_talus_kernel.hpp, so the optimised kernel is checked bit for bit as well.
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,7 @@
 #include <random>
 
 #include "physics/talus_solver.hpp"
+#include "reference_talus_kernel.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -41,10 +43,11 @@ class ReferenceJacobi {
                 settings_.randomness > 0.0
                     ? 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, i, iteration_)
                     : 1.0;
-            out[i] = talus_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
-                                   g.lengths().data(), g.longest_edges().data(), a.height, a.area,
-                                   a.bedrock, a.tan_alpha[i], settings_.parameters, jitter,
-                                   q.data(), [&](std::uint32_t v) { splits.push_back(v); });
+            out[i] = test::reference_talus_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
+                                                   g.lengths().data(), g.longest_edges().data(),
+                                                   a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                                   settings_.parameters, jitter, q.data(),
+                                                   [&](std::uint32_t v) { splits.push_back(v); });
             st.volume_moved += out[i];
             if (out[i] > 0.0) {
                 receiver[i] = 1;
