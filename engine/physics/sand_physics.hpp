@@ -65,6 +65,11 @@ class SandPhysics {
 
   private:
     void sync();
+    /// Writes the heights the relaxation changed since the last flush into the TIN (once per
+    /// step, and before refinement reads them), and drops the journal entries that write
+    /// makes: they echo values height_ already holds, and the solver has already activated
+    /// those vertices and their neighbours.
+    void flush(std::vector<VertexId>* changed_out);
     /// Refines around the given vertices until their edges are at most r_S (seed 000 §7.2,
     /// "prevention of long edges"): points of a hexagonal lattice of spacing 0.75 r_S inside
     /// their stars, or, where no lattice point fits, the midpoints of their long edges.
@@ -80,8 +85,9 @@ class SandPhysics {
     std::vector<double> tan_alpha_;
     std::vector<std::uint16_t> material_seen_;  ///< material/moisture tan_alpha_ was computed for
     std::vector<float> moisture_seen_;
-    std::vector<VertexId> write_ids_;
+    std::vector<VertexId> write_ids_;  ///< changed since the last flush, each once
     std::vector<double> write_values_;
+    std::vector<std::uint8_t> write_pending_;  ///< per vertex: listed in write_ids_
     std::vector<std::uint8_t> split_requested_;
     LocateHint hint_;
 };

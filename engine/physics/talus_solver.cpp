@@ -50,7 +50,8 @@ double TalusSolver::random_factor(std::uint32_t v) const {
 }
 
 void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
-    if (q_.size() < g.slot_count()) q_.resize(g.slot_count(), 0.0);
+    if (settings_.schedule == Schedule::Sequential && q_.size() < g.slot_count())
+        q_.resize(g.slot_count(), 0.0);
     // Slots move when the graph rewrites or compacts rows, but every one is zero here.
     if (settings_.schedule == Schedule::Jacobi && inflow_.size() < g.slot_count())
         inflow_.resize(g.slot_count(), 0.0);
