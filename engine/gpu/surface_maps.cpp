@@ -71,6 +71,7 @@ void SurfaceMaps::ensure_buffers(VkDeviceSize map_texels) {
     if (changed || !bound_ || bound_generation_ != mirror_.generation()) {
         bind_all();
         normals_valid_ = false;
+        corners_valid_ = false;
     }
 }
 
@@ -93,7 +94,7 @@ void SurfaceMaps::bind_all() {
     bound_ = true;
 }
 
-void SurfaceMaps::record_normals(VkCommandBuffer cb, const Push& base) {
+void SurfaceMaps::record_normals(VkCommandBuffer cb, const Push& base, bool corners) {
     Push pv = base;
     pv.count = vertex_capacity_;
     pv.z_scale = z_scale_;
@@ -101,15 +102,20 @@ void SurfaceMaps::record_normals(VkCommandBuffer cb, const Push& base) {
     ps.count = slot_capacity_;
     shader_barrier(cb);  // mirror uploads and relaxation -> normals
     vertex_kernel_.dispatch(cb, pv.count, &pv);
-    corner_kernel_.dispatch(cb, ps.count, &ps);
-    dispatches_ += 2;
+    ++dispatches_;
+    if (corners) {
+        corner_kernel_.dispatch(cb, ps.count, &ps);
+        ++dispatches_;
+    }
 }
 
 void SurfaceMaps::compute_normals(double z_scale) {
     ensure_buffers(map_texels_);
     z_scale_ = static_cast<float>(z_scale);
-    mirror_.context().submit_and_wait([&](VkCommandBuffer cb) { record_normals(cb, Push{}); });
+    mirror_.context().submit_and_wait(
+        [&](VkCommandBuffer cb) { record_normals(cb, Push{}, true); });
     normals_valid_ = true;
+    corners_valid_ = true;
 }
 
 std::vector<Vec3> SurfaceMaps::read_vertex_normals() const {
@@ -147,15 +153,20 @@ SurfaceMaps::Push SurfaceMaps::grid_push(const MapGrid& grid, BakeNormals normal
 }
 
 void SurfaceMaps::bake_region(const MapGrid& grid, const Rect& region, TexelRect texels,
-                              BakeNormals normals) {
+                              BakeNormals normals,
+                              const std::function<void(VkCommandBuffer)>& then) {
     if (texels.col1 < texels.col0 || texels.row1 < texels.row0 || texels.col1 >= grid.width ||
         texels.row1 >= grid.height) {
         throw GpuError("SurfaceMaps::bake_region: the texel rectangle is empty or off the grid");
     }
     ensure_buffers(grid.size());
     const Vec2 o = mirror_.origin();
+    // A smooth bake reads no corner normals: they are left stale (and recomputed in full by
+    // the next creased bake or compute_normals()).
+    const bool creased = normals == BakeNormals::Creased;
+    const bool whole = !normals_valid_ || (creased && !corners_valid_);
     Push n{};
-    if (normals_valid_) {
+    if (!whole) {
         n.in_region = 1;
         n.region[0] = static_cast<float>(region.min.x - o.x);
         n.region[1] = static_cast<float>(region.min.y - o.y);
@@ -168,12 +179,14 @@ void SurfaceMaps::bake_region(const MapGrid& grid, const Rect& region, TexelRect
     p.col1 = texels.col1;
     p.row1 = texels.row1;
     mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
-        record_normals(cb, n);
+        record_normals(cb, n, creased);
         shader_barrier(cb);
         bake_kernel_.dispatch(cb, p.count, &p);
+        if (then) then(cb);
     });
     ++dispatches_;
     normals_valid_ = true;
+    corners_valid_ = creased;
 }
 
 BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {

@@ -8,6 +8,7 @@
 // Normal buffers are device-local vec4 arrays (xyz, w = 0) the renderer can bind directly.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geom/rect.hpp"
@@ -59,8 +60,11 @@ class SurfaceMaps {
     // of the same grid wrote. The caller chooses `region` so that it holds every vertex whose
     // normal changed and `texels` so that it holds every texel whose triangle or corner
     // normals changed.
+    // `then` records more commands into the same submission after the bake (the renderer's
+    // copy into its texture; it makes the bake's writes visible itself).
     void bake_region(const MapGrid& grid, const Rect& region, TexelRect texels,
-                     BakeNormals normals = BakeNormals::Smooth);
+                     BakeNormals normals = BakeNormals::Smooth,
+                     const std::function<void(VkCommandBuffer)>& then = {});
     // The device maps of the last bake, row-major on its grid: height float, normal vec4.
     VkBuffer height_map() const { return height_map_.get(); }
     VkBuffer normal_map() const { return normal_map_.get(); }
@@ -87,7 +91,7 @@ class SurfaceMaps {
         float region[4] = {0, 0, 0, 0};  // x0, y0, x1, y1 relative to the mirror's origin
     };
     Push grid_push(const MapGrid& grid, BakeNormals normals) const;
-    void record_normals(VkCommandBuffer cb, const Push& base);
+    void record_normals(VkCommandBuffer cb, const Push& base, bool corners);
     void ensure_buffers(VkDeviceSize map_texels);
     void bind_all();
 
@@ -104,7 +108,8 @@ class SurfaceMaps {
     VkDeviceSize map_texels_ = 0;
     uint64_t bound_generation_ = UINT64_MAX;
     bool bound_ = false;
-    bool normals_valid_ = false;  // the normal buffers hold every vertex's normal
+    bool normals_valid_ = false;  // the vertex normal buffer holds every vertex's normal
+    bool corners_valid_ = false;  // the corner normal buffer holds every corner's normal
     float z_scale_ = 1.0f;
     uint64_t dispatches_ = 0;
 };

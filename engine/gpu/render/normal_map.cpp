@@ -155,11 +155,11 @@ std::optional<gpu::TexelRect> TerrainNormalMap::rebake(const Tin& tin, const Cha
 }
 
 void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
-    maps_.bake_region(grid_, region, t);
     const VkImage image = image_.get();
-    const VkBuffer source = maps_.normal_map();
     const bool first = !initialised_;
-    mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
+    // One submission: the bake, then the copy of its rectangle into the texture.
+    maps_.bake_region(grid_, region, t, gpu::BakeNormals::Smooth, [&](VkCommandBuffer cb) {
+        const VkBuffer source = maps_.normal_map();
         // The bake's writes -> the copy; the fragment shader's reads of the last frame -> the
         // copy's writes (one frame in flight: the caller waited for it).
         gpu::memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
