@@ -178,7 +178,7 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
     }
 
     // Phase 1: outflow of every active vertex along each of its edges, from the old heights;
-    // senders mark themselves and their neighbours as receivers.
+    // senders mark themselves and the neighbours they send to as receivers.
     run(list.size(), threaded,
         [this](std::size_t b, std::size_t e, ThreadScratch& s) { jacobi_outflow(b, e, s); });
     stats.processed = list.size();
@@ -265,10 +265,14 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         moved += sent;
         if (sent > 0.0) {
             mark(receive, i, lo, hi);
+            // Only neighbours that receive something: one that gets 0 from every sender and
+            // sends nothing itself would gather exactly 0 and keep its height.
             for (std::uint32_t k = 0; k < deg; ++k) {
-                mark(receive, target[row + k], lo, hi);
-                // Only this sender writes the slot of the edge into target (row + k).
-                if (q[k] > 0.0) inflow[reverse[row + k]] = q[k];
+                if (q[k] > 0.0) {
+                    mark(receive, target[row + k], lo, hi);
+                    // Only this sender writes the slot of the edge into target (row + k).
+                    inflow[reverse[row + k]] = q[k];
+                }
             }
         }
     }
