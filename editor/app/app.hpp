@@ -91,6 +91,15 @@ class App {
     /// Syncs the GPU mirror and re-bakes the normal map where the terrain changed (the caller
     /// waited for the previous frame).
     void update_normal_map();
+    /// Every piece of GPU work so far: frames submitted, normal-map bakes, mirror upload
+    /// batches and relaxation dispatches. An idle editor adds nothing to it.
+    std::uint64_t gpu_work() {
+        gpu::TinMirror* m = doc_.physics->mirror();
+        if (m == nullptr) m = own_mirror_.get();
+        return swapchain_->submissions() + normal_map_bakes_ +
+               (m != nullptr ? m->staging().batches_submitted() : 0) +
+               doc_.physics->gpu_dispatches();
+    }
     void draw_panels();
     void panel_tools();
     void panel_materials();

@@ -316,7 +316,7 @@ int App::run() {
     frame_terrain();
 
     int exit_code = 0;
-    std::uint64_t idle_submissions = 0;
+    std::uint64_t idle_submissions = 0, idle_gpu_work = 0;
     int frames_after_script = 0;
     if (options_.scripted()) {
         const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
@@ -344,6 +344,7 @@ int App::run() {
         if (options_.idle_seconds > 0.0) {
             // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
             const std::uint64_t before = swapchain_->submissions();
+            const std::uint64_t work_before = gpu_work();
             const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
             settings_.erosion_running = false;
             redraw_frames_ = 0;
@@ -355,6 +356,7 @@ int App::run() {
                 }
             }
             idle_submissions = swapchain_->submissions() - before;
+            idle_gpu_work = gpu_work() - work_before;
         }
     } else {
         while (!glfwWindowShouldClose(window_)) {
@@ -409,6 +411,7 @@ int App::run() {
         s["mesh_rebuilds"] = mesh_rebuilds_;
         s["mesh_vertices_recomputed"] = mesh_recomputed_;
         s["idle_submissions"] = idle_submissions;
+        s["idle_gpu_work"] = idle_gpu_work;
         s["validation_messages"] = validation;
         if (haptics_) {
             const HapticsLive l = haptics_->live();

@@ -4,6 +4,7 @@
 // (gpu/GpuSandPhysics, Jacobi on the device, heights read back into the TIN). The editor holds
 // no physics of its own; this only forwards.
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -35,6 +36,8 @@ class Erosion {
     /// Vertices the caller synced into mirror() itself (edits while erosion is paused): they
     /// may have excess and must be looked at on the next step.
     virtual void activate(std::span<const VertexId> vertices) = 0;
+    /// Compute dispatches recorded so far (0 for the CPU): idle must add none.
+    virtual std::uint64_t gpu_dispatches() = 0;
 };
 
 namespace detail {
@@ -61,6 +64,12 @@ class ErosionOf final : public Erosion {
             return nullptr;
     }
     void activate(std::span<const VertexId> vertices) override { physics_.activate(vertices); }
+    std::uint64_t gpu_dispatches() override {
+        if constexpr (std::is_same_v<Physics, gpu::GpuSandPhysics>)
+            return physics_.relaxation().dispatches_recorded();
+        else
+            return 0;
+    }
 
   private:
     ErosionBackend backend_;

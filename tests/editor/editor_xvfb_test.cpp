@@ -351,7 +351,18 @@ TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
     const EditorRun r = run_editor("idle", kFlat, "--frames 2 --idle-seconds 2");
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_EQ(r.stats.at("idle_submissions").get<int>(), 0);
+    EXPECT_EQ(r.stats.at("idle_gpu_work").get<int>(), 0);
     EXPECT_GT(r.stats.at("submissions").get<int>(), 0);
+    // With the GPU relaxation after a pour has come to rest: no frame, bake, upload or
+    // dispatch either.
+    const EditorRun g = run_editor("idle-gpu", R"([{"op": "set", "physics": "gpu"},
+        {"op": "tool", "name": "Pour"}, {"op": "click", "at": [0.5, 0.5]},
+        {"op": "erode", "frames": 30}])",
+                                   "--frames 2 --idle-seconds 2");
+    ASSERT_EQ(g.exit_code, 0) << g.log;
+    EXPECT_EQ(g.stats.at("physics").get<std::string>(), "gpu");
+    EXPECT_EQ(g.stats.at("idle_submissions").get<int>(), 0);
+    EXPECT_EQ(g.stats.at("idle_gpu_work").get<int>(), 0);
 }
 
 // The Erosion panel's GPU switch: sand poured with erosion paused, then eroded by the GPU
