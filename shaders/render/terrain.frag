@@ -20,7 +20,8 @@ layout(location = 4) in vec2 v_slide;
 
 layout(location = 0) out vec4 out_colour;
 
-// Baked on the GPU over the domain (TerrainNormalMap): xyz unit normal, row 0 = north edge.
+// Baked on the GPU over the domain (TerrainNormalMap): x and y of the unit normal, row 0 =
+// north edge.
 layout(set = 0, binding = 0) uniform sampler2D normal_map;
 
 // Integer hash (no transcendental functions: cheap on software rasterisers).
@@ -53,8 +54,8 @@ vec3 bump(vec3 n, vec3 position, float h) {
 void main() {
     // contrast.zw = 1 / domain size: centre-relative position -> texture coordinates.
     vec2 map_uv = vec2(0.5 + v_world.x * pc.contrast.z, 0.5 - v_world.y * pc.contrast.w);
-    vec3 baked = texture(normal_map, map_uv).xyz;
-    vec3 n = dot(baked, baked) > 1e-6 ? normalize(baked) : normalize(v_normal);
+    vec2 nxy = texture(normal_map, map_uv).xy;  // z > 0: the terrain is a height field
+    vec3 n = normalize(vec3(nxy, sqrt(max(1.0 - dot(nxy, nxy), 0.0))));
     // Detail normal: sand grains about 2.5 mm across, offset by the sliding texture
     // coordinates so the grain pattern moves with transported material.
     vec2 uv = v_world.xy * 400.0 + v_slide * 64.0;

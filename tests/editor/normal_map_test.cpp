@@ -96,7 +96,7 @@ TEST_F(NormalMap, ARebakeChangesOnlyItsRectangleAndEqualsAFullBake) {
     std::printf("re-baked texels %u..%u x %u..%u, %zu changed\n", t->col0, t->col1, t->row0,
                 t->row1, changed);
     EXPECT_LT(static_cast<double>(t->width()) * t->height(), 0.25 * w * h);
-    EXPECT_LT(worst, 2e-5) << "the incremental map differs from a full bake";
+    EXPECT_LT(worst, 1e-4) << "the incremental map differs from a full bake";
     // Nothing changed: nothing to re-bake.
     EXPECT_FALSE(map.rebake(tin, tin.take_changes()).has_value());
 }
@@ -113,9 +113,10 @@ TEST_F(NormalMap, ATiltedPlaneBakesItsAnalyticNormalEverywhere) {
     const std::vector<float> texels = map.read_back();
     const double len = std::sqrt(gx * gx + gy * gy + 1.0);
     for (std::size_t i = 0; i < map.grid().size(); ++i) {
-        ASSERT_NEAR(texels[4 * i], -gx / len, 1e-5) << "texel " << i;
-        ASSERT_NEAR(texels[4 * i + 1], -gy / len, 1e-5) << "texel " << i;
-        ASSERT_NEAR(texels[4 * i + 2], 1.0 / len, 1e-5) << "texel " << i;
+        // 16-bit storage: 3e-5 per component.
+        ASSERT_NEAR(texels[4 * i], -gx / len, 1e-4) << "texel " << i;
+        ASSERT_NEAR(texels[4 * i + 1], -gy / len, 1e-4) << "texel " << i;
+        ASSERT_NEAR(texels[4 * i + 2], 1.0 / len, 1e-4) << "texel " << i;
     }
 }
 

@@ -12,8 +12,13 @@ namespace sandtin::render {
 
 namespace {
 
-constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;  // the bake's vec4 texels as they are
-constexpr VkDeviceSize kTexelBytes = 16;
+// The bake's vec4 texels land in a staging image as they are, and a blit converts the
+// rectangle to the texture: x and y of the unit normal as 16-bit signed normalised values
+// (z = sqrt(1 - x^2 - y^2) > 0 in the shader). A quarter of the float texture's bytes: the
+// fragment stage samples it for every terrain pixel.
+constexpr VkFormat kStagingFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kTextureFormat = VK_FORMAT_R16G16_SNORM;
+constexpr VkDeviceSize kTexelBytes = 16;  // of the bake's buffer
 
 void grow(std::optional<Rect>& r, Vec2 p) {
     if (!r) {
@@ -71,48 +76,63 @@ TerrainNormalMap::TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain,
     : mirror_(mirror), grid_(normal_map_grid(domain, max_side)), maps_(mirror) {
     const gpu::VulkanContext& ctx = mirror.context();
     const VkDevice device = ctx.device();
-    VkFormatProperties props{};
-    vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), kFormat, &props);
-    const VkFormatFeatureFlags need =
-        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
-    if ((props.optimalTilingFeatures & need) != need)
-        throw gpu::GpuError("the device cannot sample RGBA32F images (normal map)");
+    const auto features = [&](VkFormat f) {
+        VkFormatProperties props{};
+        vkGetPhysicalDeviceFormatProperties(ctx.physical_device(), f, &props);
+        return props.optimalTilingFeatures;
+    };
+    const VkFormatFeatureFlags staging_need =
+        VK_FORMAT_FEATURE_TRANSFER_DST_BIT | VK_FORMAT_FEATURE_BLIT_SRC_BIT;
+    const VkFormatFeatureFlags texture_need = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                              VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                              VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+    if ((features(kStagingFormat) & staging_need) != staging_need ||
+        (features(kTextureFormat) & texture_need) != texture_need)
+        throw gpu::GpuError("the device cannot blit RGBA32F into RG16_SNORM images (normal map)");
     const bool linear =
-        (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+        (features(kTextureFormat) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
 
-    VkImageCreateInfo ii{};
-    ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    ii.imageType = VK_IMAGE_TYPE_2D;
-    ii.format = kFormat;
-    ii.extent = {grid_.width, grid_.height, 1};
-    ii.mipLevels = 1;
-    ii.arrayLayers = 1;
-    ii.samples = VK_SAMPLE_COUNT_1_BIT;
-    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ii.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-               VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    ii.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkImage image = VK_NULL_HANDLE;
-    gpu::check(vkCreateImage(device, &ii, nullptr, &image), "vkCreateImage (normal map)");
-    image_ = gpu::UniqueImage(device, image);
-    VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(device, image, &req);
-    VkMemoryAllocateInfo ai{};
-    ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    ai.allocationSize = req.size;
-    ai.memoryTypeIndex =
-        ctx.memory_type(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    gpu::check(vkAllocateMemory(device, &ai, nullptr, &memory), "vkAllocateMemory (normal map)");
-    memory_ = gpu::UniqueMemory(device, memory);
-    gpu::check(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory (normal map)");
+    const auto make = [&](VkFormat format, VkImageUsageFlags usage, gpu::UniqueImage& image,
+                          gpu::UniqueMemory& memory) {
+        VkImageCreateInfo ii{};
+        ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+        ii.imageType = VK_IMAGE_TYPE_2D;
+        ii.format = format;
+        ii.extent = {grid_.width, grid_.height, 1};
+        ii.mipLevels = 1;
+        ii.arrayLayers = 1;
+        ii.samples = VK_SAMPLE_COUNT_1_BIT;
+        ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+        ii.usage = usage;
+        ii.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+        ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        VkImage handle = VK_NULL_HANDLE;
+        gpu::check(vkCreateImage(device, &ii, nullptr, &handle), "vkCreateImage (normal map)");
+        image = gpu::UniqueImage(device, handle);
+        VkMemoryRequirements req{};
+        vkGetImageMemoryRequirements(device, handle, &req);
+        VkMemoryAllocateInfo ai{};
+        ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex =
+            ctx.memory_type(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        VkDeviceMemory mem = VK_NULL_HANDLE;
+        gpu::check(vkAllocateMemory(device, &ai, nullptr, &mem), "vkAllocateMemory (normal map)");
+        memory = gpu::UniqueMemory(device, mem);
+        gpu::check(vkBindImageMemory(device, handle, mem, 0), "vkBindImageMemory (normal map)");
+    };
+    make(kStagingFormat, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+         staging_, staging_memory_);
+    make(kTextureFormat,
+         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+             VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+         image_, memory_);
 
     VkImageViewCreateInfo vi{};
     vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    vi.image = image;
+    vi.image = image_.get();
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = kFormat;
+    vi.format = kTextureFormat;
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageView view = VK_NULL_HANDLE;
     gpu::check(vkCreateImageView(device, &vi, nullptr, &view), "vkCreateImageView (normal map)");
@@ -154,28 +174,42 @@ std::optional<gpu::TexelRect> TerrainNormalMap::rebake(const Tin& tin, const Cha
     return t;
 }
 
+namespace {
+
+void image_barrier(VkCommandBuffer cb, VkImage image, VkPipelineStageFlags src_stage,
+                   VkAccessFlags src_access, VkImageLayout old_layout,
+                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access,
+                   VkImageLayout new_layout) {
+    VkImageMemoryBarrier b{};
+    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+    b.srcAccessMask = src_access;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = old_layout;
+    b.newLayout = new_layout;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+}  // namespace
+
 void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
-    const VkImage image = image_.get();
+    const VkImage staging = staging_.get();
+    const VkImage texture = image_.get();
     const bool first = !initialised_;
-    // One submission: the bake, then the copy of its rectangle into the texture.
+    // One submission: the bake, the copy of its rectangle into the staging image and the blit
+    // (format conversion) of that rectangle into the texture.
     maps_.bake_region(grid_, region, t, gpu::BakeNormals::Smooth, [&](VkCommandBuffer cb) {
-        const VkBuffer source = maps_.normal_map();
-        // The bake's writes -> the copy; the fragment shader's reads of the last frame -> the
-        // copy's writes (one frame in flight: the caller waited for it).
+        // The bake's writes -> the copy. Between bakes the staging image rests as a blit
+        // source; the previous blit read it, so the copy waits for that too.
         gpu::memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        VkImageMemoryBarrier b{};
-        b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        b.srcAccessMask = first ? 0 : VK_ACCESS_SHADER_READ_BIT;
-        b.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        b.oldLayout = first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image;
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdPipelineBarrier(
-            cb, first ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+        image_barrier(cb, staging, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      first ? 0 : VK_ACCESS_TRANSFER_READ_BIT,
+                      first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         VkBufferImageCopy c{};
         c.bufferOffset = (VkDeviceSize{t.row0} * grid_.width + t.col0) * kTexelBytes;
         c.bufferRowLength = grid_.width;
@@ -183,14 +217,30 @@ void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
         c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         c.imageOffset = {static_cast<std::int32_t>(t.col0), static_cast<std::int32_t>(t.row0), 0};
         c.imageExtent = {t.width(), t.height(), 1};
-        vkCmdCopyBufferToImage(cb, source, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
-        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                             &b);
+        vkCmdCopyBufferToImage(cb, maps_.normal_map(), staging,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+        image_barrier(cb, staging, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        // The fragment shader's reads of the last frame -> the blit's writes (one frame in
+        // flight: the caller waited for it).
+        image_barrier(
+            cb, texture,
+            first ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+            first ? 0 : VK_ACCESS_SHADER_READ_BIT,
+            first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkImageBlit blit{};
+        blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        blit.srcOffsets[0] = blit.dstOffsets[0] = c.imageOffset;
+        blit.srcOffsets[1] = blit.dstOffsets[1] = {static_cast<std::int32_t>(t.col1 + 1),
+                                                   static_cast<std::int32_t>(t.row1 + 1), 1};
+        vkCmdBlitImage(cb, staging, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, texture,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        image_barrier(cb, texture, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
     initialised_ = true;
     texels_baked_ += std::uint64_t{t.width()} * t.height();
@@ -198,39 +248,38 @@ void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
 
 std::vector<float> TerrainNormalMap::read_back() const {
     const gpu::VulkanContext& ctx = mirror_.context();
-    const VkDeviceSize bytes = grid_.size() * kTexelBytes;
-    gpu::Buffer staging(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::Readback);
+    const VkDeviceSize bytes = grid_.size() * 4;  // two 16-bit values per texel
+    gpu::Buffer host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::Readback);
+    const VkImage texture = image_.get();
     ctx.submit_and_wait([&](VkCommandBuffer cb) {
-        VkImageMemoryBarrier b{};
-        b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        b.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
-        b.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = image_.get();
-        b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdPipelineBarrier(cb,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &b);
+        image_barrier(cb, texture,
+                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy c{};
         c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         c.imageExtent = {grid_.width, grid_.height, 1};
-        vkCmdCopyImageToBuffer(cb, image_.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               staging.get(), 1, &c);
-        b.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-        b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        b.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                             &b);
+        vkCmdCopyImageToBuffer(cb, texture, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.get(), 1,
+                               &c);
+        image_barrier(cb, texture, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         gpu::memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     });
-    staging.invalidate(ctx);
-    std::vector<float> out(grid_.size() * 4);
-    std::memcpy(out.data(), staging.mapped(), bytes);
+    host.invalidate(ctx);
+    std::vector<std::int16_t> raw(grid_.size() * 2);
+    std::memcpy(raw.data(), host.mapped(), bytes);
+    // Decoded as the shader does: snorm -> [-1, 1], z from the unit length.
+    std::vector<float> out(grid_.size() * 4, 0.0f);
+    for (std::size_t i = 0; i < grid_.size(); ++i) {
+        const float x = std::max(static_cast<float>(raw[2 * i]) / 32767.0f, -1.0f);
+        const float y = std::max(static_cast<float>(raw[2 * i + 1]) / 32767.0f, -1.0f);
+        out[4 * i] = x;
+        out[4 * i + 1] = y;
+        out[4 * i + 2] = std::sqrt(std::max(1.0f - x * x - y * y, 0.0f));
+    }
     return out;
 }
 

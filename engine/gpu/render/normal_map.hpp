@@ -1,7 +1,8 @@
 #pragma once
 // The terrain's baked normal map as a texture: the GPU bake of gpu/SurfaceMaps (smooth vertex
 // normals interpolated per texel, so long TIN edges shade smoothly) on a grid of texel centres
-// over the domain, copied into a sampled RGBA32F image that terrain.frag reads by world xy.
+// over the domain, converted into a sampled RG16_SNORM image (the unit normal's x and y; z > 0
+// follows) that terrain.frag reads by world xy.
 // After a change only the texels whose triangles or corner normals changed are re-baked and
 // copied: the 2-ring of the journal's dirty vertices and the corners of its dirty triangle
 // slots (a vertex normal depends on the 1-ring's heights, a texel on its triangle's corner
@@ -55,7 +56,8 @@ class TerrainNormalMap {
     gpu::TinMirror& mirror() const { return mirror_; }
     /// Texels baked since construction (a full bake counts them all).
     std::uint64_t texels_baked() const { return texels_baked_; }
-    /// The texture read back (RGBA float per texel, row-major, row 0 north): for tests.
+    /// The texture read back and decoded as the shader does (x, y, z = sqrt(1 - x^2 - y^2), 0
+    /// per texel, row-major, row 0 north): for tests.
     std::vector<float> read_back() const;
 
   private:
@@ -64,7 +66,9 @@ class TerrainNormalMap {
     gpu::TinMirror& mirror_;
     MapGrid grid_;
     gpu::SurfaceMaps maps_;
-    gpu::UniqueImage image_;
+    gpu::UniqueImage staging_;  ///< RGBA32F, as baked (a blit source between bakes)
+    gpu::UniqueMemory staging_memory_;
+    gpu::UniqueImage image_;  ///< RG16_SNORM: the normal's x and y
     gpu::UniqueMemory memory_;
     gpu::UniqueImageView view_;
     gpu::UniqueSampler sampler_;
