@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <memory>
+#include <stdexcept>
 
 namespace sandtin {
 
@@ -84,8 +85,24 @@ void TalusSolver::run(std::size_t n, bool threaded, Body body) {
     }
 }
 
+void validate_talus_settings(const TalusSettings& s) {
+    const TalusParameters& p = s.parameters;
+    // Written so that NaN fails too.
+    if (!(p.damping > 0.0 && p.damping <= 1.0))
+        throw std::invalid_argument("talus relaxation: damping must be in (0, 1]");
+    if (!(p.rest_tolerance >= 0.0))
+        throw std::invalid_argument("talus relaxation: rest_tolerance must be >= 0");
+    if (!(p.relocation_radius >= 0.0))
+        throw std::invalid_argument("talus relaxation: relocation_radius must be >= 0");
+    if (!(p.settle_margin >= 0.0 && p.settle_margin < 1.0))
+        throw std::invalid_argument("talus relaxation: settle_margin must be in [0, 1)");
+    if (!(s.randomness >= 0.0 && s.randomness < 1.0))
+        throw std::invalid_argument("talus relaxation: randomness must be in [0, 1)");
+}
+
 IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
                                     ActiveSet& active, std::vector<std::uint32_t>* split_around) {
+    validate_talus_settings(settings_);  // settings() is writable between iterations
     for (std::uint32_t v : changed_list_)
         changed_[v] = 0;
     changed_list_.clear();

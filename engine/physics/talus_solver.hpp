@@ -23,6 +23,10 @@ namespace sandtin {
 
 enum class Schedule : std::uint8_t { Sequential, Jacobi };
 
+struct TalusSettings;
+/// Throws std::invalid_argument naming the first setting out of range.
+void validate_talus_settings(const TalusSettings& settings);
+
 struct TalusSettings {
     Schedule schedule = Schedule::Sequential;
     TalusParameters parameters;
@@ -55,7 +59,9 @@ class TalusSolver {
     const TalusSettings& settings() const { return settings_; }
     std::uint64_t iteration() const { return iteration_; }
 
-    /// One iteration over the active set. Appends to `split_around` the vertices whose edges
+    /// One iteration over the active set. Throws std::invalid_argument naming the setting when
+    /// the settings are out of range (damping in (0, 1], settle margin and randomness in
+    /// [0, 1), tolerance and r_S >= 0). Appends to `split_around` the vertices whose edges
     /// longer than the relocation radius kept material from moving (duplicates possible).
     /// Updates the active set (changed vertices and their neighbours stay or become active).
     IterationStats iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,

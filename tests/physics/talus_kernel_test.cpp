@@ -6,12 +6,17 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "physics/talus_kernel.hpp"
+#include "physics/talus_solver.hpp"
 #include "reference_talus_kernel.hpp"
+#include "tin/tin.hpp"
 
 namespace sandtin {
 namespace {
@@ -65,6 +70,52 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
     EXPECT_GT(flowing_rows, 5000u);
     EXPECT_GT(split_rows, 1000u);
     EXPECT_GT(long_rows, 100u);
+}
+
+/// Settings out of range are refused by the solver with a message naming the setting.
+TEST(TalusSettings, OutOfRangeIsAClearError) {
+    const Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 4, 4);
+    AdjacencyGraph graph;
+    graph.rebuild(tin);
+    const VertexArrays& va = tin.vertices();
+    std::vector<double> h(va.size(), 0.0), b(va.size(), -1.0), tan(va.size(), 0.6);
+    h[0] = 1.0;
+    const TalusArrays arrays{h.data(), va.lumped_area.data(), b.data(), tan.data(), h.size()};
+    auto message = [&](auto change) -> std::string {
+        TalusSettings settings;
+        change(settings);
+        TalusSolver solver(settings);
+        ActiveSet active;
+        for (std::uint32_t v = 0; v < h.size(); ++v)
+            active.activate(v);
+        try {
+            solver.iterate(graph, arrays, active);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(message([](TalusSettings&) {}), "accepted");
+    EXPECT_NE(message([](TalusSettings& s) { s.parameters.damping = 0.0; }).find("damping"),
+              std::string::npos);
+    EXPECT_NE(message([](TalusSettings& s) { s.parameters.damping = 1.5; }).find("damping"),
+              std::string::npos);
+    EXPECT_NE(
+        message([](TalusSettings& s) { s.parameters.settle_margin = 1.0; }).find("settle_margin"),
+        std::string::npos);
+    EXPECT_NE(
+        message([](TalusSettings& s) { s.parameters.settle_margin = -0.1; }).find("settle_margin"),
+        std::string::npos);
+    EXPECT_NE(message([](TalusSettings& s) {
+                  s.parameters.rest_tolerance = std::nan("");
+              }).find("rest_tolerance"),
+              std::string::npos);
+    EXPECT_NE(message([](TalusSettings& s) {
+                  s.parameters.relocation_radius = -1.0;
+              }).find("relocation_radius"),
+              std::string::npos);
+    EXPECT_NE(message([](TalusSettings& s) { s.randomness = 1.0; }).find("randomness"),
+              std::string::npos);
 }
 
 }  // namespace
