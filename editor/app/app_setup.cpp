@@ -392,6 +392,12 @@ int App::run() {
         s["frames"] = times_.frame.size();
         s["frame_ms_median"] = StageTimes::median(times_.frame);
         s["tool_ms_median"] = StageTimes::median(times_.tool);
+        // A scripted drag applies its whole stroke between two frames: the largest frame's
+        // tool time is that stroke's cost.
+        s["tool_ms_max"] =
+            times_.tool.empty()
+                ? 0.0
+                : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
         s["physics_ms_median"] = StageTimes::median(times_.physics);
         s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
         s["mesh_ms_median"] = StageTimes::median(times_.mesh);
