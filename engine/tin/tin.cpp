@@ -852,6 +852,43 @@ Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
     return loc.face;
 }
 
+/// Ids of the constraints with an edge on a face whose bounding box meets `box`, ascending:
+/// every constraint whose polyline meets the box is among them. A walk over the faces under
+/// the box, so tools pay for their neighbourhood, not for every constraint in the terrain.
+std::vector<std::uint32_t> constraints_meeting_box(const Tin::Impl& m, const Rect& box) {
+    std::vector<std::uint32_t> ids;
+    if (!box.intersects(m.domain)) return ids;
+    const Vec2 centre = (box.min + box.max) * 0.5;
+    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
+                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
+    const Fh f = face_at(m, start, nullptr);
+    if (f == Fh()) return ids;
+    const std::array<Fh, 1> starts = {f};
+    walk_faces(
+        m, starts,
+        [&](Fh g) {
+            Rect r;
+            for (int i = 0; i < 3; ++i)
+                r.expand(m.va.position[g->vertex(i)->id]);
+            return r.intersects(box);
+        },
+        [](Fh, int) { return true; },
+        [&](Fh g) {
+            for (int i = 0; i < 3; ++i) {
+                if (!g->is_constrained(i)) continue;
+                const Vh a = g->vertex(CdtPlus::ccw(i));
+                const Vh b = g->vertex(CdtPlus::cw(i));
+                for (auto ctx : m.cdt.contexts(a, b)) {
+                    const auto it = m.constraint_of_cgal.find(ctx.id().vl_ptr());
+                    if (it != m.constraint_of_cgal.end()) ids.push_back(it->second);
+                }
+            }
+        });
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+}
+
 }  // namespace
 
 std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHint* hint) const {
@@ -1037,7 +1074,8 @@ std::vector<std::array<Vec2, 2>> Tin::constrained_segments(const Rect& box,
                                                            Generation older_than) const {
     const Impl& m = *impl_;
     std::vector<std::array<Vec2, 2>> out;
-    for (const detail::ConstraintEntry& e : m.constraints) {
+    for (const std::uint32_t id : constraints_meeting_box(m, box)) {
+        const detail::ConstraintEntry& e = m.constraints[id];
         if (!e.alive || e.generation >= older_than || !e.bounds.intersects(box)) continue;
         std::uint32_t previous = kNoId;
         for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
@@ -1614,7 +1652,10 @@ ConstraintId constrain_one(Tin::Impl& m, std::span<const VertexId> polyline, boo
                 const auto it = m.constraint_of_cgal.find(ctx.id().vl_ptr());
                 if (it == m.constraint_of_cgal.end()) continue;
                 auto& entry = m.constraints[it->second];
-                entry.generation = std::max(entry.generation, generation);
+                if (generation > entry.generation) {
+                    entry.generation = generation;
+                    m.note_constraint(it->second);
+                }
                 return ConstraintId{it->second};
             }
         }
@@ -1633,6 +1674,7 @@ ConstraintId constrain_one(Tin::Impl& m, std::span<const VertexId> polyline, boo
         bounds.expand(m.va.position[v.value]);
     m.constraints[id] = {cid, generation, true, bounds};
     m.constraint_of_cgal[cid.vl_ptr()] = id;
+    m.note_constraint(id);
     resolve_crossing_heights(m, cid);
     return ConstraintId{id};
 }
@@ -1706,6 +1748,39 @@ bool edge_is_delaunay(const Tin::Impl& m, Vh a, Vh b) {
                      d->point()) != CGAL::ON_POSITIVE_SIDE;
 }
 
+/// Whether releasing the whole constraint would flip nothing.
+bool constraint_is_delaunay(const Tin::Impl& m, const detail::ConstraintEntry& e) {
+    Vh previous;
+    bool first = true;
+    for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
+        if (!first && !edge_is_delaunay(m, previous, v)) return false;
+        previous = v;
+        first = false;
+    }
+    return true;
+}
+
+/// Unconstrains the listed constraints in one edit (Delaunay flips follow).
+std::size_t release_doomed(Tin::Impl& m, std::span<const std::uint32_t> doomed, VolumePolicy policy,
+                           EditReport* report, std::vector<VertexId>* released_vertices) {
+    if (doomed.empty()) return 0;
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    for (std::uint32_t id : doomed) {
+        detail::ConstraintEntry& e = m.constraints[id];
+        if (released_vertices != nullptr) {
+            for (Vh v : m.cdt.vertices_in_constraint(e.cgal_id))
+                released_vertices->push_back(VertexId{v->id});
+        }
+        m.constraint_of_cgal.erase(e.cgal_id.vl_ptr());
+        m.cdt.remove_constraint(e.cgal_id);
+        e = {};
+        m.constraint_ids.release(id);
+    }
+    finisher.finish(policy, {}, report);
+    return doomed.size();
+}
+
 }  // namespace
 
 std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy policy,
@@ -1716,9 +1791,20 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
     const Rect inside_box = bounding_box(filter.inside_polygon);
     // Ids alive before this call: pieces split off below get new ids (possibly recycled ones)
     // and must not be visited again.
+    // A spatial filter only needs the constraints under its polygon (found through the faces
+    // there); otherwise every live constraint is a candidate.
     std::vector<std::uint32_t> candidates;
-    for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
-        if (m.constraints[id].alive) candidates.push_back(id);
+    if (!filter.inside_polygon.empty() || !filter.touching_polygon.empty()) {
+        Rect box = !filter.inside_polygon.empty() ? inside_box : touch_box;
+        if (!filter.inside_polygon.empty() && !filter.touching_polygon.empty()) {
+            // Both must hold: the candidates meet both boxes, so either walk finds them.
+            box = inside_box;
+        }
+        candidates = constraints_meeting_box(m, box);
+    } else {
+        for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
+            if (m.constraints[id].alive) candidates.push_back(id);
+        }
     }
     for (const std::uint32_t id : candidates) {
         const detail::ConstraintEntry& e = m.constraints[id];
@@ -1740,20 +1826,7 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
             if (!touches) continue;
         }
         if (!filter.inside_polygon.empty() && !e.bounds.intersects(inside_box)) continue;
-        if (filter.only_if_delaunay) {
-            bool delaunay = true;
-            Vh previous;
-            bool first = true;
-            for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
-                if (!first && !edge_is_delaunay(m, previous, v)) {
-                    delaunay = false;
-                    break;
-                }
-                previous = v;
-                first = false;
-            }
-            if (!delaunay) continue;
-        }
+        if (filter.only_if_delaunay && !constraint_is_delaunay(m, e)) continue;
         if (filter.inside_polygon.empty()) {
             doomed.push_back(id);
             continue;
@@ -1800,27 +1873,40 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
             m.constraints[current].bounds = first_box;
             m.constraints[nid] = {second, m.constraints[current].generation, true, second_box};
             m.constraint_of_cgal[second.vl_ptr()] = nid;
+            m.note_constraint(nid);
             if (inside[run_start]) doomed.push_back(current);
             current = nid;
             run_start = k;
         }
     }
-    if (doomed.empty()) return 0;
-    detail::EventScope scope(m.events);
-    EditFinisher finisher(m);
-    for (std::uint32_t id : doomed) {
-        detail::ConstraintEntry& e = m.constraints[id];
-        if (released_vertices != nullptr) {
-            for (Vh v : m.cdt.vertices_in_constraint(e.cgal_id))
-                released_vertices->push_back(VertexId{v->id});
+    return release_doomed(m, doomed, policy, report, released_vertices);
+}
+
+std::size_t Tin::expire_constraints(Generation older_than, VolumePolicy policy, EditReport* report,
+                                    std::vector<VertexId>* released_vertices) {
+    Impl& m = *impl_;
+    std::vector<std::uint32_t> doomed;
+    std::vector<Impl::Expiry> later;
+    while (!m.expiry.empty() && m.expiry.top().due < older_than) {
+        const Impl::Expiry next = m.expiry.top();
+        m.expiry.pop();
+        if (next.id >= m.constraints.size()) continue;
+        const detail::ConstraintEntry& e = m.constraints[next.id];
+        if (!e.alive || e.generation != next.generation) continue;  // stale entry
+        if (constraint_is_delaunay(m, e)) {
+            doomed.push_back(next.id);
+        } else {
+            // Its neighbourhood may relax later (a stroke re-working it): look again after a
+            // wait that doubles, so a constraint that never qualifies costs O(log n) looks.
+            later.push_back({older_than + next.wait, next.generation,
+                             std::min<Generation>(2 * next.wait, Generation{1} << 40), next.id});
         }
-        m.constraint_of_cgal.erase(e.cgal_id.vl_ptr());
-        m.cdt.remove_constraint(e.cgal_id);
-        e = {};
-        m.constraint_ids.release(id);
     }
-    finisher.finish(policy, {}, report);
-    return doomed.size();
+    for (const Impl::Expiry& x : later)
+        m.expiry.push(x);
+    std::sort(doomed.begin(), doomed.end());
+    doomed.erase(std::unique(doomed.begin(), doomed.end()), doomed.end());
+    return release_doomed(m, doomed, policy, report, released_vertices);
 }
 
 bool Tin::release_constraint(ConstraintId id, VolumePolicy policy, EditReport* report) {

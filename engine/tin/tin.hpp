@@ -304,6 +304,17 @@ class Tin {
                                     std::vector<VertexId>* released_vertices = nullptr);
     bool release_constraint(ConstraintId id, VolumePolicy policy = VolumePolicy::Conserve,
                             EditReport* report = nullptr);
+    /// Lets constraints of generations below `older_than` come of age, oldest first. A
+    /// constraint is released when that re-triangulates nothing (all its edges are locally
+    /// Delaunay already, so the surface cannot change anywhere). One that cannot go is looked
+    /// at again after 16, 32, 64, ... more generations (limits passed in later calls), or
+    /// released by a later footprint. Cost O(log n) looks per constraint, not a scan of every
+    /// constraint per call, so a stamp stays local however long the stroke. After a load,
+    /// the waits start again.
+    std::size_t expire_constraints(Generation older_than,
+                                   VolumePolicy policy = VolumePolicy::Conserve,
+                                   EditReport* report = nullptr,
+                                   std::vector<VertexId>* released_vertices = nullptr);
 
     /// Attribute setters record the vertex in the change journal when the value changes.
     /// They throw std::invalid_argument for dead ids and non-finite values. set_height lowers

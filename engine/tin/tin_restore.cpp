@@ -324,6 +324,7 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
             bounds.expand(sv.position[v]);
         m.constraints[r.id] = {cid, r.generation, true, bounds};
         m.constraint_of_cgal[cid.vl_ptr()] = r.id;
+        m.note_constraint(r.id);
     }
     check_free_list(s.constraint_free_list, s.constraint_capacity, constraint_used, "constraint");
     m.constraint_ids.restore(s.constraint_capacity, s.constraint_free_list);

@@ -18,7 +18,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -333,6 +335,27 @@ struct Tin::Impl {
     std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
     IdAllocator constraint_ids{false};
     std::unordered_map<const void*, std::uint32_t> constraint_of_cgal;  ///< Vertex_list* -> id
+
+    /// Constraints by when they are next due for Tin::expire_constraints(): first when their
+    /// generation falls below the limit, then (if they could not go) after a wait that
+    /// doubles each time. An entry goes stale when its constraint is refreshed to a newer
+    /// generation or released (and its id perhaps reused); stale entries are skipped when
+    /// they reach the top.
+    struct Expiry {
+        Generation due = 0;
+        Generation generation = 0;
+        Generation wait = 0;
+        std::uint32_t id = 0;
+        friend bool operator>(const Expiry& a, const Expiry& b) {
+            return a.due != b.due ? a.due > b.due : a.id > b.id;
+        }
+    };
+    std::priority_queue<Expiry, std::vector<Expiry>, std::greater<Expiry>> expiry;
+    /// Call whenever constraint `id` is created or its generation changes.
+    void note_constraint(std::uint32_t id) {
+        const Generation g = constraints[id].generation;
+        expiry.push({g, g, 16, id});
+    }
 
     // ---- helpers shared by the translation units ----
     Vh handle(std::uint32_t id) const {
