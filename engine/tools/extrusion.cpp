@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <limits>
 
 #include "geom/polygon.hpp"
 #include "tools/slivers.hpp"
@@ -43,41 +43,65 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         weight = direction;
     }
 
-    // Ridge sample points and their cross-section factors.
+    // Stations along each control point's normal make sure a sparse terrain has vertices to
+    // carry the ridge; they are inserted on the surface, so they change nothing yet.
     static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
     std::vector<Vec2> points;
-    std::vector<double> factor;
     for (std::size_t i = 0; i < n; ++i) {
         if (!(weight[i] > 0.0)) continue;
         for (double s : kStations) {
             const Vec2 p = outer[i] + normal[i] * (s * width);
-            if (!domain.contains(p) || point_in_polygon(p, outer)) continue;
-            const double t = 2.0 * s - 1.0;
-            points.push_back(p);
-            factor.push_back(weight[i] * (1.0 - t * t));
+            if (domain.contains(p) && !point_in_polygon(p, outer)) points.push_back(p);
         }
     }
     if (points.empty()) return report;
     const std::size_t before = tin.vertex_count();
-    const std::vector<VertexId> ids =
-        tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
+    tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
     report.vertices_inserted = tin.vertex_count() - before;
 
-    // Merge duplicates (two stations on one vertex) and solve for the ridge height.
-    std::unordered_map<VertexId, double> k;
-    for (std::size_t i = 0; i < ids.size(); ++i)
-        k[ids[i]] += factor[i];
-    std::vector<std::pair<VertexId, double>> ks(k.begin(), k.end());
+    // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
+    // the stations are a small share of the band's vertices, and raising them alone would
+    // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way). A
+    // vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
+    // weight interpolated along the nearest contour edge.
+    Rect box;
+    for (Vec2 p : outer)
+        box.expand(p);
+    const Vec2 centre = (box.min + box.max) * 0.5;
+    double reach = 0.0;
+    for (Vec2 p : outer)
+        reach = std::max(reach, distance(p, centre));
+    std::vector<std::pair<VertexId, double>> ks;
+    const VertexArrays& va = tin.vertices();
+    for (VertexId v : tin.vertices_in_disc(centre, reach + width, hint)) {
+        const Vec2 p = va.position[v.value];
+        if (point_in_polygon(p, outer)) continue;
+        double best = std::numeric_limits<double>::infinity();
+        double w = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec2 a = outer[i];
+            const Vec2 b = outer[(i + 1) % n];
+            const double len2 = length_squared(b - a);
+            const double t = len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
+            const double d = distance(p, lerp(a, b, t));
+            if (d < best) {
+                best = d;
+                w = (1.0 - t) * weight[i] + t * weight[(i + 1) % n];
+            }
+        }
+        if (!(best < width) || !(w > 0.0)) continue;
+        const double t = 2.0 * best / width - 1.0;
+        const double kv = w * (1.0 - t * t);
+        if (kv > 0.0) ks.emplace_back(v, kv);
+    }
     std::sort(ks.begin(), ks.end());  // deterministic order
     double denominator = 0.0;
-    const VertexArrays& va = tin.vertices();
     for (const auto& [v, kv] : ks)
         denominator += va.lumped_area[v.value] * kv;
     if (!(denominator > 0.0)) return report;
     const double ridge_height = volume / denominator;
     const double ledger0 = tin.volume_ledger();
     for (const auto& [v, kv] : ks) {
-        if (kv <= 0.0) continue;
         tin.set_height(v, va.height[v.value] + ridge_height * kv);
         if (touched != nullptr) touched->push_back(v);
     }

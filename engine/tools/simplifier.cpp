@@ -1,5 +1,7 @@
 #include "tools/simplifier.hpp"
 
+#include "tools/slivers.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -88,8 +90,18 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
         ++report.tested;
         if (planarity_residual(tin, v) <= settings.tolerance) candidates.push_back(v);
     }
+    // The neighbourhoods the removals re-triangulate: a compensation shift there can part
+    // vertices a rounding error apart (crossings of nearly coincident old rims), which are
+    // levelled again at the end without moving volume.
+    std::vector<VertexId> rings, ring_of_one;
+    auto remember_ring = [&](VertexId v) {
+        if (settings.volume_policy != VolumePolicy::Conserve) return;
+        tin.neighbours(v, ring_of_one);
+        rings.insert(rings.end(), ring_of_one.begin(), ring_of_one.end());
+    };
     auto remove_one = [&](VertexId v) {
         EditReport edit;
+        remember_ring(v);
         if (tin.remove_vertex(v, settings.volume_policy, &edit)) {
             ++report.removed;
             report.volume_change += edit.volume_change;
@@ -128,6 +140,8 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
         std::sort(group.begin(), group.end());
         if (group.size() > 1) {
             EditReport edit;
+            for (VertexId v : group)
+                remember_ring(v);
             if (tin.remove_planar_patch(group, settings.tolerance, settings.volume_policy, &edit)) {
                 report.removed += group.size();
                 report.volume_change += edit.volume_change;
@@ -139,6 +153,11 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
         for (VertexId v : group) {
             if (tin.is_alive(v) && planarity_residual(tin, v) <= settings.tolerance) remove_one(v);
         }
+    }
+    if (!rings.empty()) {
+        std::sort(rings.begin(), rings.end());
+        rings.erase(std::unique(rings.begin(), rings.end()), rings.end());
+        level_slivers_conserving(tin, rings);
     }
     return report;
 }

@@ -12,4 +12,8 @@ namespace sandtin {
 /// the lower of their heights (`take_lower`) or the higher.
 void equalise_slivers(Tin& tin, std::span<const VertexId> vertices, bool take_lower);
 
+/// The same, but each cluster meets at its area-weighted mean height, which moves no volume:
+/// for edits that conserve volume (the simplifier's compensation shifts).
+void level_slivers_conserving(Tin& tin, std::span<const VertexId> vertices);
+
 }  // namespace sandtin

@@ -166,18 +166,59 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<double> inner_h(inner.size());
     for (std::size_t i = 0; i < inner.size(); ++i)
         inner_h[i] = imprint(inner[i], inner_terrain[i]);
+    // The test is three-dimensional: a point of I whose terrain stands off vertically but where
+    // a gap's width further in the terrain is at least halfway down to the imprint is a wall
+    // the contour grazes, not sand to move (fresh sand stands off as much a gap further in). On a
+    // steep wall a vertical test alone would call every micrometre of lateral offset between stamps
+    // (polygon scallops, a path that does not repeat exactly) active, and re-working a trail would
+    // add vertices and constraints forever.
     const double tol = tool.rim_tolerance();
+    const double lateral = tool.shape().gap;
+    const double inward_sign = signed_area(inner) > 0.0 ? 1.0 : -1.0;
+    auto stands_off = [&](Vec2 p, double z) { return std::abs(z - imprint(p, z)) > tol; };
     std::vector<std::uint8_t> inner_active(inner.size(), 0);
+    bool any_inner_active = false;
     for (std::size_t i = 0; i < inner.size(); ++i) {
         const Vec2 a = inner[i];
         const Vec2 b = inner[(i + 1) % inner.size()];
+        const double len = distance(a, b);
+        const Vec2 inward =
+            len > 0.0 ? Vec2{-(b.y - a.y), b.x - a.x} * (inward_sign / len) : Vec2{};
         for (const auto& [t, z] : tin.section(a, b, hint)) {
             const Vec2 p = lerp(a, b, t);
-            if (std::abs(z - imprint(p, z)) > tol) {
+            if (!stands_off(p, z)) continue;
+            const Vec2 q = p + inward * lateral;
+            const std::optional<double> zq = tin.height_at(q, hint);
+            const double off = std::abs(z - imprint(p, z));
+            if (!zq || std::abs(*zq - imprint(q, *zq)) > std::max(tol, 0.5 * off)) {
                 inner_active[i] = 1;
+                any_inner_active = true;
                 break;
             }
         }
+    }
+    // A curved profile also acts inside I: its interior samples decide too.
+    for (std::size_t k = 0; k < lattice.size() && !any_inner_active; ++k)
+        any_inner_active = stands_off(lattice[k], lattice_terrain[k]);
+    // Nothing to move anywhere: the terrain already holds this imprint (re-working a trail).
+    // The stamp changes nothing, so it adds no vertices, constraints or releases either.
+    // Inside I the same lateral allowance holds: a vertex standing off within a gap of the
+    // contour is a wall the contour grazes.
+    auto interior_stands_off = [&] {
+        const VertexArrays& va = tin.vertices();
+        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+            const Vec2 p = va.position[v.value];
+            if (!point_in_polygon(p, inner) || !stands_off(p, va.height[v.value])) continue;
+            double d = std::numeric_limits<double>::infinity();
+            for (std::size_t i = 0; i < inner.size() && d > lateral; ++i)
+                d = std::min(d, distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]));
+            if (d > lateral) return true;
+        }
+        return false;
+    };
+    if (!any_inner_active && !interior_stands_off()) {
+        report.enforce_ms = elapsed_ms(t0);
+        return report;
     }
     std::vector<std::uint8_t> rim_active(rim.size(), 0);
     const double reach = tool.shape().gap + spacing;
@@ -249,11 +290,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     report.constraints_released +=
         tin.release_constraints(under, VolumePolicy::Report, &edit, &released);
     if (generation > context.settings.keep_generations) {
-        ReleaseFilter expired;
-        expired.older_than = generation - context.settings.keep_generations;
-        expired.only_if_delaunay = true;
-        report.constraints_released +=
-            tin.release_constraints(expired, VolumePolicy::Report, &edit, &released);
+        report.constraints_released += tin.expire_constraints(
+            generation - context.settings.keep_generations, VolumePolicy::Report, &edit, &released);
     }
     context.simplifier.enqueue(released);
 
@@ -267,7 +305,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     }
 
     // 5. Every vertex inside I follows the profile.
-    const std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
+    std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
     const VertexArrays& va = tin.vertices();
     for (VertexId v : region) {
         const Vec2 p = va.position[v.value];
@@ -275,20 +313,27 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         const double h = imprint(p, va.height[v.value]);
         if (h != va.height[v.value]) tin.set_height(v, h);
     }
-    // Vertices already standing in the thin band between I and O (left there by earlier
-    // edits) would otherwise poke up through the new wall when the band is re-triangulated:
-    // a digging tool brings them down to the wall, the ramp from the profile at I to the rim
-    // at O.
-    if (dig) {
+    // Vertices left in the thin band between I and O by earlier edits: where both contours
+    // are constrained next to them they are removed, so the wall is the ramp from the profile
+    // at I to the rim at O and nothing else (re-working a trail would otherwise pile old rims
+    // up in the walls, where no planarity test can ever remove them). Elsewhere a digging
+    // tool brings them down to that ramp, so they cannot poke up through the new wall.
+    {
+        std::vector<VertexId> band_junk;
         for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
             const Vec2 p = va.position[v.value];
             if (!point_in_polygon(p, outer) || point_in_polygon(p, inner)) continue;
             double d_inner = std::numeric_limits<double>::infinity();
+            std::size_t nearest_inner = 0;
             for (std::size_t i = 0; i < inner.size(); ++i) {
-                d_inner = std::min(d_inner,
-                                   distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]));
+                const double d = distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]);
+                if (d < d_inner) {
+                    d_inner = d;
+                    nearest_inner = i;
+                }
             }
             double d_outer = std::numeric_limits<double>::infinity();
+            std::size_t nearest_rim = 0;
             double rim_height = 0.0;
             for (std::size_t k = 0; k < rim.size(); ++k) {
                 const Vec2 a = rim[k];
@@ -296,17 +341,30 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
                 const double d = distance_to_segment(p, a, b);
                 if (d < d_outer) {
                     d_outer = d;
+                    nearest_rim = k;
                     const double len2 = length_squared(b - a);
                     const double t =
                         len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
                     rim_height = (1.0 - t) * rim_h[k] + t * rim_h[(k + 1) % rim.size()];
                 }
             }
+            if (inner_active[nearest_inner] && rim_active[nearest_rim] &&
+                !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
+                band_junk.push_back(v);
+                continue;
+            }
+            if (!dig) continue;
             const double profile = tool.underside(at, p);
             if (!std::isfinite(profile) || !(d_inner + d_outer > 0.0)) continue;
             const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
                                 (d_inner + d_outer);
             if (va.height[v.value] > wall) tin.set_height(v, wall);
+        }
+        for (VertexId v : band_junk)
+            tin.remove_vertex(v, VolumePolicy::Report, &edit);
+        // The region's walk also collected the corners of faces reaching into the band.
+        if (!band_junk.empty()) {
+            std::erase_if(region, [&](VertexId v) { return !tin.is_alive(v); });
         }
     }
     // Vertices a rounding error apart (left where nearly coincident old rims were crossed)
@@ -351,6 +409,18 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         }
     }
     if (!cleared) context.simplifier.enqueue(region);
+    // The rest of the footprint too: a vertex of an older rim inside O may have become
+    // redundant now that the new contours run next to it (re-working a trail leaves such rims
+    // behind on every pass), although its height did not change. Outside O nothing is
+    // touched.
+    {
+        std::vector<VertexId> footprint;
+        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+            if (tin.is_alive(v) && point_in_polygon(va.position[v.value], outer))
+                footprint.push_back(v);
+        }
+        context.simplifier.enqueue(footprint);
+    }
     if (context.settings.simplify_after_edit) {
         report.simplify.accumulate(context.simplifier.run(tin, context.settings.simplify));
     }
