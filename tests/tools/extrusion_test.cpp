@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -15,6 +16,7 @@
 #include "support/tool_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tools/extrusion.hpp"
+#include "tools/sculpt_context.hpp"
 #include "tools/stamp.hpp"
 #include "tools/stroke.hpp"
 #include "tools/tool.hpp"
@@ -121,6 +123,44 @@ TEST(Extrusion, StampConservesVolumeAndDepositsOutsideOAheadOfTheMotion) {
         EXPECT_LE(d.rear, 0.05 * d.total)
             << "deposit behind the tool: " << d.rear << " of " << d.total << " m^3";
         EXPECT_GT(d.front, d.total - d.front) << "more should go ahead than behind";
+    }
+}
+
+TEST(Extrusion, RidgeHeightMatchesTheAnalyticRingOnSparseAndDenseTerrain) {
+    // One stamp into flat sand, no motion: the ridge goes all around with the same weight
+    // (the cut is the same everywhere), so its height is the parabolic ring's
+    //   V = H * integral over s in [0, w] of (1 - (2s/w - 1)^2) * 2 pi (R_o + s) ds
+    //     = H * 2 pi (2 w R_o / 3 + w^2 / 3).
+    // The peak rise must be that H whatever the density of the terrain: raising only a few
+    // inserted vertices on a dense terrain held the volume in needles several times higher.
+    for (const int points : {400, 40000}) {
+        SCOPED_TRACE(std::to_string(points) + " points");
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), static_cast<std::size_t>(points), 7,
+                                     [](Vec2) { return 0.1; });
+        SculptContext context(tin.domain());
+        ToolSpec spec;
+        spec.contour = ContourKind::Circle;
+        spec.radius = 0.04;
+        spec.control_points = 48;
+        spec.extrude = true;
+        const Tool tool = Tool::build(spec);
+        const Vec2 centre{0.5, 0.5};
+        const StampReport r = stamp(tin, tool, {centre, 0.0, 0.1 - 0.012}, context);
+        ASSERT_TRUE(r.applied);
+        EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 0.01 * r.displaced_volume);
+        const double w = tool.extrusion_width();
+        const double r_outer = spec.radius + tool.shape().gap;
+        const double expected =
+            r.displaced_volume / (2.0 * std::numbers::pi * (2.0 * w * r_outer / 3.0 + w * w / 3.0));
+        double peak = 0.0;
+        const VertexArrays& va = tin.vertices();
+        for (std::uint32_t i = 0; i < va.alive.size(); ++i) {
+            if (va.alive[i] && distance(va.position[i], centre) > r_outer)
+                peak = std::max(peak, va.height[i] - 0.1);
+        }
+        EXPECT_GT(peak, 0.8 * expected) << "peak rise " << peak << " m, ring " << expected;
+        EXPECT_LT(peak, 1.25 * expected) << "peak rise " << peak << " m, ring " << expected;
+        EXPECT_TRUE(mesh_is_sound(tin));
     }
 }
 

@@ -100,6 +100,37 @@ TEST(Stamp, FlatDigPutsEveryVertexInsideInnerContourAtToolDepth) {
                   (0.13 - at.bottom));
 }
 
+TEST(Stamp, RepeatingAStampChangesNothing) {
+    // The terrain already holds the imprint: the second stamp must not add vertices,
+    // constraints or volume changes (re-working a trail would otherwise grow the mesh forever).
+    // And a stamp that is not a repeat, a little deeper, still acts.
+    Tin tin = Tin::random_points(kUnit, 4000, 12, rolling_sand);
+    SculptContext context(tin.domain());
+    const Tool tool = Tool::build(load_tool_asset("circle"));
+    const ToolPlacement at{{0.52, 0.47}, 0.2, 0.06};
+    ASSERT_TRUE(stamp(tin, tool, at, context).applied);
+    const std::size_t vertices = tin.vertex_count();
+    const std::size_t constraints = tin.constraint_count();
+    const std::vector<double> heights = tin.vertices().height;
+    const double volume = tin.volume();
+
+    const StampReport again = stamp(tin, tool, at, context);
+    EXPECT_TRUE(again.applied);
+    EXPECT_EQ(again.vertices_inserted, 0u);
+    EXPECT_EQ(again.triangles_touched, 0u);
+    EXPECT_EQ(again.volume_change, 0.0);
+    EXPECT_EQ(tin.vertex_count(), vertices);
+    EXPECT_EQ(tin.constraint_count(), constraints);
+    EXPECT_EQ(tin.vertices().height, heights);
+    EXPECT_EQ(tin.volume(), volume);
+
+    const ToolPlacement deeper{at.centre, at.angle, at.bottom - 0.005};
+    const StampReport dug = stamp(tin, tool, deeper, context);
+    EXPECT_GT(dug.displaced_volume, 0.0);
+    EXPECT_LT(tin.volume(), volume);
+    EXPECT_TRUE(mesh_is_sound(tin));
+}
+
 TEST(Stamp, LevelModeSetsTheFootprintExactlyEvenAboveTheTerrain) {
     Tin tin = Tin::random_points(kUnit, 3000, 12, rolling_sand);
     SculptContext context(tin.domain());
