@@ -130,8 +130,7 @@ void App::panel_tools() {
         settings_.stroke_spacing = static_cast<double>(spacing) / 1000.0;
     tip("Distance between stamps along a stroke (independent of frame rate)");
     ImGui::Checkbox("Extrude", &settings_.extrude);
-    tip("Push the displaced sand into a rim beside and ahead of the tool (volume conserved).\n"
-        "On finely triangulated sand the rim can form tall spikes; erosion flattens them.");
+    tip("Push the displaced sand into a rim beside and ahead of the tool (volume conserved).");
     ImGui::SameLine();
     ImGui::Checkbox("Follow path", &settings_.follow_path);
     tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");

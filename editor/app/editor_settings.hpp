@@ -12,9 +12,9 @@ struct EditorSettings {
     double tool_radius = 0.04;     ///< metres
     double tool_depth = 0.01;      ///< metres below the terrain ahead of the tool
     double stroke_spacing = 0.01;  ///< metres between stamps
-    bool extrude = false;     ///< push displaced sand into a rim (off: the rim spikes, editor.md)
-    bool follow_path = true;  ///< tool heading follows the stroke
-    double tool_angle = 0.0;  ///< degrees, when not following the path
+    bool extrude = true;           ///< push displaced sand into a rim beside and ahead of the tool
+    bool follow_path = true;       ///< tool heading follows the stroke
+    double tool_angle = 0.0;       ///< degrees, when not following the path
     double brush_strength = 0.004;
     double pour_volume = 2e-5;  ///< m³ per click / per 10 ms of drag
     int material = 0;           ///< material painted and poured
