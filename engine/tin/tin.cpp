@@ -852,12 +852,27 @@ Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
     return loc.face;
 }
 
-/// Ids of the constraints with an edge on a face whose bounding box meets `box`, ascending:
-/// every constraint whose polyline meets the box is among them. A walk over the faces under
-/// the box, so tools pay for their neighbourhood, not for every constraint in the terrain.
+/// Ids of candidate constraints for `box`, ascending: every constraint whose polyline meets the
+/// box is among them. Either a walk over the faces under the box (tools pay for their
+/// neighbourhood, not for every constraint in the terrain) or, when that is cheaper, a scan of
+/// the constraint table by bounding box.
 std::vector<std::uint32_t> constraints_meeting_box(const Tin::Impl& m, const Rect& box) {
     std::vector<std::uint32_t> ids;
     if (!box.intersects(m.domain)) return ids;
+    // Whichever is cheaper: the walk visits about two faces per vertex under the box; the
+    // table scan one entry per live constraint (few on a fresh, dense terrain).
+    const double clipped =
+        std::max(0.0, std::min(box.max.x, m.domain.max.x) - std::max(box.min.x, m.domain.min.x)) *
+        std::max(0.0, std::min(box.max.y, m.domain.max.y) - std::max(box.min.y, m.domain.min.y));
+    const double faces_under_box = 2.0 * static_cast<double>(m.events.vertex_ids.live()) * clipped /
+                                   std::max(m.domain.width() * m.domain.height(), 1e-300);
+    if (static_cast<double>(m.constraint_ids.live()) <= faces_under_box) {
+        for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
+            if (m.constraints[id].alive && m.constraints[id].bounds.intersects(box))
+                ids.push_back(id);
+        }
+        return ids;
+    }
     const Vec2 centre = (box.min + box.max) * 0.5;
     const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
                      std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
