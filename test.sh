@@ -5,7 +5,7 @@
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer over the engine rooms' tests;
 #   3. ThreadSanitizer over the threaded parts (haptics loop, multithreaded Jacobi);
 #   4. libFuzzer (clang) on the session loader, every importer, the script parser and the
-#      haptic packet decoder, SANDTIN_FUZZ_SECONDS (default 30) each.
+#      haptic packet decoder, SANDTIN_FUZZ_SECONDS (default 20) each.
 # Arguments are passed to the first ctest (e.g. ./test.sh -L tin). SANDTIN_TEST_PASSES picks
 # passes (default "release asan tsan fuzz").
 set -euo pipefail
@@ -57,7 +57,7 @@ if has_pass fuzz; then
   section "libFuzzer"
   CC=clang-14 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSANDTIN_FUZZ=ON -DSANDTIN_BUILD_TESTS=OFF \
-    -DSANDTIN_FUZZ_SECONDS="${SANDTIN_FUZZ_SECONDS:-30}"
+    -DSANDTIN_FUZZ_SECONDS="${SANDTIN_FUZZ_SECONDS:-20}"
   cmake --build build-fuzz -j"$jobs" --target fuzz_session fuzz_script fuzz_udp_packet \
     fuzz_png fuzz_esri_ascii fuzz_exr fuzz_geotiff
   ctest --test-dir build-fuzz --output-on-failure -j"$jobs" -L '^fuzz$'
