@@ -318,11 +318,16 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // at I to the rim at O and nothing else (re-working a trail would otherwise pile old rims
     // up in the walls, where no planarity test can ever remove them). Elsewhere a digging
     // tool brings them down to that ramp, so they cannot poke up through the new wall.
+    // One walk over the tool's disc serves the band, the slivers and the footprint's
+    // re-simplification below: after this point the stamp only removes vertices.
+    std::vector<VertexId> footprint;
     {
         std::vector<VertexId> band_junk;
         for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
             const Vec2 p = va.position[v.value];
-            if (!point_in_polygon(p, outer) || point_in_polygon(p, inner)) continue;
+            if (!point_in_polygon(p, outer)) continue;
+            footprint.push_back(v);
+            if (point_in_polygon(p, inner)) continue;
             double d_inner = std::numeric_limits<double>::infinity();
             std::size_t nearest_inner = 0;
             for (std::size_t i = 0; i < inner.size(); ++i) {
@@ -365,14 +370,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         // The region's walk also collected the corners of faces reaching into the band.
         if (!band_junk.empty()) {
             std::erase_if(region, [&](VertexId v) { return !tin.is_alive(v); });
+            std::erase_if(footprint, [&](VertexId v) { return !tin.is_alive(v); });
         }
     }
     // Vertices a rounding error apart (left where nearly coincident old rims were crossed)
     // can fall on both sides of the contour and get different heights: a vertical sliver.
     // They take the lower height.
-    if (dig)
-        equalise_slivers(tin, tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint),
-                         true);
+    if (dig) equalise_slivers(tin, footprint, true);
     report.displaced_volume = -(tin.volume_ledger() - ledger_start);
     report.enforce_ms = elapsed_ms(t0);
 
@@ -413,14 +417,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // redundant now that the new contours run next to it (re-working a trail leaves such rims
     // behind on every pass), although its height did not change. Outside O nothing is
     // touched.
-    {
-        std::vector<VertexId> footprint;
-        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
-            if (tin.is_alive(v) && point_in_polygon(va.position[v.value], outer))
-                footprint.push_back(v);
-        }
-        context.simplifier.enqueue(footprint);
-    }
+    std::erase_if(footprint, [&](VertexId v) { return !tin.is_alive(v); });
+    context.simplifier.enqueue(footprint);
     if (context.settings.simplify_after_edit) {
         report.simplify.accumulate(context.simplifier.run(tin, context.settings.simplify));
     }
