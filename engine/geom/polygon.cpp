@@ -102,12 +102,16 @@ bool is_simple_polygon(std::span<const Vec2> polygon) {
     return true;
 }
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+double squared_distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
     const Vec2 ab = b - a;
     const double len2 = length_squared(ab);
-    if (len2 <= 0.0) return distance(p, a);
+    if (len2 <= 0.0) return length_squared(p - a);
     const double t = std::clamp(dot(p - a, ab) / len2, 0.0, 1.0);
-    return distance(p, a + ab * t);
+    return length_squared(p - (a + ab * t));
+}
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+    return std::sqrt(squared_distance_to_segment(p, a, b));
 }
 
 }  // namespace sandtin

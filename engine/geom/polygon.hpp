@@ -33,5 +33,7 @@ bool is_simple_polygon(std::span<const Vec2> polygon);
 
 /// Distance from p to the closed segment [a,b].
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+/// The same, squared (m²): no square root, for nearest-segment searches.
+double squared_distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
 
 }  // namespace sandtin

@@ -328,30 +328,36 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (!point_in_polygon(p, outer)) continue;
             footprint.push_back(v);
             if (point_in_polygon(p, inner)) continue;
+            // Nearest segments by squared distance (no square root per segment).
             double d_inner = std::numeric_limits<double>::infinity();
             std::size_t nearest_inner = 0;
             for (std::size_t i = 0; i < inner.size(); ++i) {
-                const double d = distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]);
-                if (d < d_inner) {
-                    d_inner = d;
+                const double d2 =
+                    squared_distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]);
+                if (d2 < d_inner) {
+                    d_inner = d2;
                     nearest_inner = i;
                 }
             }
+            d_inner = std::sqrt(d_inner);
             double d_outer = std::numeric_limits<double>::infinity();
             std::size_t nearest_rim = 0;
-            double rim_height = 0.0;
             for (std::size_t k = 0; k < rim.size(); ++k) {
-                const Vec2 a = rim[k];
-                const Vec2 b = rim[(k + 1) % rim.size()];
-                const double d = distance_to_segment(p, a, b);
-                if (d < d_outer) {
-                    d_outer = d;
+                const double d2 = squared_distance_to_segment(p, rim[k], rim[(k + 1) % rim.size()]);
+                if (d2 < d_outer) {
+                    d_outer = d2;
                     nearest_rim = k;
-                    const double len2 = length_squared(b - a);
-                    const double t =
-                        len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
-                    rim_height = (1.0 - t) * rim_h[k] + t * rim_h[(k + 1) % rim.size()];
                 }
+            }
+            d_outer = std::sqrt(d_outer);
+            double rim_height = 0.0;
+            {
+                const Vec2 a = rim[nearest_rim];
+                const Vec2 b = rim[(nearest_rim + 1) % rim.size()];
+                const double len2 = length_squared(b - a);
+                const double t = len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
+                rim_height =
+                    (1.0 - t) * rim_h[nearest_rim] + t * rim_h[(nearest_rim + 1) % rim.size()];
             }
             if (inner_active[nearest_inner] && rim_active[nearest_rim] &&
                 !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
