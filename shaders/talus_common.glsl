@@ -70,6 +70,7 @@ layout(push_constant) uniform Push {
     uint seed_lo;       // TalusSettings::seed
     uint seed_hi;
     float randomness;   // TalusSettings::randomness; 0 = no jitter
+    float settle_margin;  // TalusParameters::settle_margin: flowing edges level to (1 - m) r tan
 } pc;
 
 void set_args(uint word, uint threads) {

@@ -74,9 +74,11 @@ void main() {
                 request_split(t);
                 continue;
             }
-            sum += e;
-            largest = max(largest, e);
-            levelling += e / (inv_ai + 1.0 / area[t]);
+            // Flowing sand settles a margin below the angle it started at (== e when m = 0).
+            float excess = e + pc.settle_margin * slope;
+            sum += excess;
+            largest = max(largest, excess);
+            levelling += excess / (inv_ai + 1.0 / area[t]);
         }
         float scale = 0.0;
         if (sum > 0.0) {
@@ -101,7 +103,7 @@ void main() {
                 float e = (hi - height[t]) - slope;
                 if (e > pc.rest_tolerance * slope && e > noise_floor && !(r > pc.r_limit) &&
                     !(longest[t] > pc.r_limit)) {
-                    v = (e / (inv_ai + 1.0 / area[t])) * scale;
+                    v = ((e + pc.settle_margin * slope) / (inv_ai + 1.0 / area[t])) * scale;
                 }
             }
             q[k] = v;

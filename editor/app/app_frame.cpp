@@ -2,6 +2,8 @@
 
 #include "app.hpp"
 
+#include <algorithm>
+
 namespace sandtin::editor {
 
 // ---- Per frame ------------------------------------------------------------------------------
@@ -33,6 +35,9 @@ void App::update_simulation() {
     if (settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest())) {
         physics_kick_ = false;
         doc_.physics->settings().parameters.relocation_radius = settings_.relocation_radius;
+        // Clamped: a hand-edited settings file must not stop the physics.
+        doc_.physics->settings().parameters.settle_margin =
+            std::clamp(settings_.settle_margin, 0.0, 0.2);
         // Up to the chosen iterations, but within a time budget so the editor stays responsive
         // while a large region slides.
         std::vector<VertexId> changed;

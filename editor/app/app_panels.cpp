@@ -227,6 +227,11 @@ void App::panel_erosion() {
     if (ImGui::SliderFloat("r_S (mm)", &rs, 1.0f, 50.0f, "%.1f"))
         settings_.relocation_radius = static_cast<double>(rs) / 1000.0;
     tip("Relocation radius: material never jumps farther; longer edges are split");
+    float margin = static_cast<float>(settings_.settle_margin * 100.0);
+    if (ImGui::SliderFloat("Settle margin (%)", &margin, 0.0f, 10.0f, "%.1f"))
+        settings_.settle_margin = static_cast<double>(margin) / 100.0;
+    tip("Sand that slides comes to rest this much below its angle of repose (the dynamic\n"
+        "angle is 1-3 degrees lower). 0 = the seeds' rule: a dug slope creeps for much longer");
     float tol = static_cast<float>(settings_.simplify_tolerance * 1000.0);
     if (ImGui::SliderFloat("Simplify (mm)", &tol, 0.05f, 5.0f, "%.2f")) {
         settings_.simplify_tolerance = static_cast<double>(tol) / 1000.0;

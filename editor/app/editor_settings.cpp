@@ -31,6 +31,7 @@ void fields(EditorSettings& s, F&& f) {
     f("erosion_gpu", s.erosion_gpu);
     f("simplify_tolerance", s.simplify_tolerance);
     f("relocation_radius", s.relocation_radius);
+    f("settle_margin", s.settle_margin);
     f("overlay_wireframe", s.overlay_wireframe);
     f("overlay_active", s.overlay_active);
     f("overlay_thickness", s.overlay_thickness);

@@ -23,6 +23,10 @@ struct EditorSettings {
     bool erosion_gpu = false;            ///< relaxation on the GPU (GpuSandPhysics), else CPU
     double simplify_tolerance = 0.0005;  ///< metres
     double relocation_radius = 0.01;     ///< r_S, metres
+    /// Flowing sand rests this fraction below its angle of repose (TalusParameters::
+    /// settle_margin): a dig then comes to rest in thousands of iterations, not tens of
+    /// thousands, so the terrain goes idle.
+    double settle_margin = 0.03;
     bool overlay_wireframe = false;
     bool overlay_active = false;
     bool overlay_thickness = false;

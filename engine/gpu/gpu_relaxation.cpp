@@ -86,6 +86,7 @@ GpuRelaxation::Push GpuRelaxation::push(uint32_t mode) const {
     pc.seed_lo = static_cast<uint32_t>(settings_.seed);
     pc.seed_hi = static_cast<uint32_t>(settings_.seed >> 32);
     pc.randomness = static_cast<float>(std::clamp(settings_.randomness, 0.0, 0.99));
+    pc.settle_margin = static_cast<float>(p.settle_margin);
     return pc;
 }
 

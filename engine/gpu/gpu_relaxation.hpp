@@ -92,6 +92,7 @@ class GpuRelaxation {
         uint32_t seed_lo;
         uint32_t seed_hi;
         float randomness;
+        float settle_margin;
     };
     void ensure_buffers();
     void bind_all();

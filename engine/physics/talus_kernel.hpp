@@ -36,7 +36,7 @@ struct TalusParameters {
     double rest_tolerance = 1e-4;  ///< an edge is at rest when e <= tol * r tan(alpha)
     double relocation_radius = 0.0;  ///< r_S in metres; 0 = no limit
     /// m in [0, 1): flowing edges level towards (1 - m) r tan(alpha) (see above); 0 = the
-    /// seeds' rule, and what the compute shader does.
+    /// seeds' rule. The compute shader does the same.
     double settle_margin = 0.0;
 };
 

@@ -163,6 +163,7 @@ TEST(Settings, RoundTripAndBadFiles) {
     s.vsync = false;
     s.erosion_steps = 77;
     s.erosion_gpu = true;
+    s.settle_margin = 0.05;
     save_settings(path, s);
     std::string problem;
     EXPECT_EQ(load_settings(path, &problem), s);
