@@ -7,6 +7,7 @@
 
 #include "geom/polygon.hpp"
 #include "tools/extrusion.hpp"
+#include "tools/imprint_activity.hpp"
 #include "tools/slivers.hpp"
 
 namespace sandtin {
@@ -166,57 +167,20 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<double> inner_h(inner.size());
     for (std::size_t i = 0; i < inner.size(); ++i)
         inner_h[i] = imprint(inner[i], inner_terrain[i]);
-    // The test is three-dimensional: a point of I whose terrain stands off vertically but where
-    // a gap's width further in the terrain is at least halfway down to the imprint is a wall
-    // the contour grazes, not sand to move (fresh sand stands off as much a gap further in). On a
-    // steep wall a vertical test alone would call every micrometre of lateral offset between stamps
-    // (polygon scallops, a path that does not repeat exactly) active, and re-working a trail would
-    // add vertices and constraints forever.
+    // Which parts of I would move sand (imprint_activity.hpp); none at all: the terrain already
+    // holds this imprint (re-working a trail), and the stamp changes nothing, so it adds no
+    // vertices, constraints or releases either.
     const double tol = tool.rim_tolerance();
     const double lateral = tool.shape().gap;
-    const double inward_sign = signed_area(inner) > 0.0 ? 1.0 : -1.0;
-    auto stands_off = [&](Vec2 p, double z) { return std::abs(z - imprint(p, z)) > tol; };
-    std::vector<std::uint8_t> inner_active(inner.size(), 0);
-    bool any_inner_active = false;
-    for (std::size_t i = 0; i < inner.size(); ++i) {
-        const Vec2 a = inner[i];
-        const Vec2 b = inner[(i + 1) % inner.size()];
-        const double len = distance(a, b);
-        const Vec2 inward =
-            len > 0.0 ? Vec2{-(b.y - a.y), b.x - a.x} * (inward_sign / len) : Vec2{};
-        for (const auto& [t, z] : tin.section(a, b, hint)) {
-            const Vec2 p = lerp(a, b, t);
-            if (!stands_off(p, z)) continue;
-            const Vec2 q = p + inward * lateral;
-            const std::optional<double> zq = tin.height_at(q, hint);
-            const double off = std::abs(z - imprint(p, z));
-            if (!zq || std::abs(*zq - imprint(q, *zq)) > std::max(tol, 0.5 * off)) {
-                inner_active[i] = 1;
-                any_inner_active = true;
-                break;
-            }
-        }
-    }
+    const ImprintActivity activity =
+        inner_contour_activity(tin, inner, imprint, tol, lateral, hint);
+    const std::vector<std::uint8_t>& inner_active = activity.inner_active;
+    bool acts = activity.any_segment;
     // A curved profile also acts inside I: its interior samples decide too.
-    for (std::size_t k = 0; k < lattice.size() && !any_inner_active; ++k)
-        any_inner_active = stands_off(lattice[k], lattice_terrain[k]);
-    // Nothing to move anywhere: the terrain already holds this imprint (re-working a trail).
-    // The stamp changes nothing, so it adds no vertices, constraints or releases either.
-    // Inside I the same lateral allowance holds: a vertex standing off within a gap of the
-    // contour is a wall the contour grazes.
-    auto interior_stands_off = [&] {
-        const VertexArrays& va = tin.vertices();
-        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
-            const Vec2 p = va.position[v.value];
-            if (!point_in_polygon(p, inner) || !stands_off(p, va.height[v.value])) continue;
-            double d = std::numeric_limits<double>::infinity();
-            for (std::size_t i = 0; i < inner.size() && d > lateral; ++i)
-                d = std::min(d, distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]));
-            if (d > lateral) return true;
-        }
-        return false;
-    };
-    if (!any_inner_active && !interior_stands_off()) {
+    for (std::size_t k = 0; k < lattice.size() && !acts; ++k)
+        acts = std::abs(lattice_terrain[k] - imprint(lattice[k], lattice_terrain[k])) > tol;
+    if (!acts && !interior_stands_off(tin, inner, imprint, tol, lateral, at.centre,
+                                      tool.shape().bounding_radius, hint)) {
         report.enforce_ms = elapsed_ms(t0);
         return report;
     }
