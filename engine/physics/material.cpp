@@ -73,11 +73,15 @@ MaterialTable MaterialTable::load(const std::filesystem::path& path) {
     } catch (const nlohmann::json::parse_error& e) {
         throw JsonInputError(path.string() + ": " + e.what());
     }
+    return from_json(j, path.string());
+}
+
+MaterialTable MaterialTable::from_json(const nlohmann::json& j, const std::string& context) {
     if (!j.is_array() || j.empty())
-        throw JsonInputError(path.string() + ": expected a non-empty array of materials");
+        throw JsonInputError(context + ": expected a non-empty array of materials");
     std::vector<Material> out;
     for (std::size_t i = 0; i < j.size(); ++i) {
-        JsonFields f(j[i], path.string() + ": material " + std::to_string(i));
+        JsonFields f(j[i], context + ": material " + std::to_string(i));
         Material m;
         m.name = f.text("name", m.name);
         m.repose_dry = f.in_range("repose_dry_deg", m.repose_dry / kDegree, 1.0, 89.0) * kDegree;
@@ -105,6 +109,23 @@ MaterialTable MaterialTable::load(const std::filesystem::path& path) {
         out.push_back(std::move(m));
     }
     return MaterialTable(std::move(out));
+}
+
+nlohmann::json MaterialTable::to_json() const {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Material& m : materials_) {
+        list.push_back({{"name", m.name},
+                        {"repose_dry_deg", m.repose_dry / kDegree},
+                        {"repose_wet_deg", m.repose_wet / kDegree},
+                        {"moisture_scale", m.moisture_scale},
+                        {"slurry_start", m.slurry_start},
+                        {"repose_saturated_deg", m.repose_saturated / kDegree},
+                        {"colour", {m.colour[0], m.colour[1], m.colour[2]}},
+                        {"haptic_stiffness", m.haptic_stiffness},
+                        {"haptic_friction", m.haptic_friction},
+                        {"default_moisture", m.default_moisture}});
+    }
+    return list;
 }
 
 }  // namespace sandtin

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,11 @@ class MaterialTable {
     /// Loads a JSON array of materials (degrees for angles). Throws JsonInputError naming the
     /// entry and field for bad values.
     static MaterialTable load(const std::filesystem::path& path);
+    /// The same from an already parsed array; errors start with `context` (a file, "session
+    /// metadata").
+    static MaterialTable from_json(const nlohmann::json& list, const std::string& context);
+    /// The table as the array load() and from_json() read (degrees for angles).
+    nlohmann::json to_json() const;
 
     std::size_t size() const { return materials_.size(); }
     /// Material `id`, or the first one for ids beyond the table (so painted ids that a later
