@@ -1,6 +1,7 @@
 // GPU talus relaxation against the CPU Jacobi schedule (its exact twin in double), volume
 // conservation, idle terrain, texture sliding.
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -29,6 +30,44 @@ double gpu_volume(const std::vector<float>& heights, const Tin& tin) {
         }
     }
     return v;
+}
+
+// Heights after `iterations` of CPU Jacobi (the GPU kernel's double twin) from the terrain's
+// heights, every live vertex active at the start.
+std::vector<double> cpu_jacobi(const Tin& tin, const TinMirror& mirror, TalusSettings settings,
+                               int iterations) {
+    settings.schedule = Schedule::Jacobi;
+    TalusSolver cpu(settings);
+    const VertexArrays& va = tin.vertices();
+    const std::vector<uint32_t> all = live_ids(tin);
+    std::vector<double> h(va.height.begin(), va.height.end());
+    std::vector<double> tan_alpha(va.size());
+    for (uint32_t v : all)
+        tan_alpha[v] = mirror.materials().at(va.material[v]).talus_slope(va.moisture[v]);
+    const TalusArrays arrays{h.data(), va.lumped_area.data(), va.bedrock.data(), tan_alpha.data(),
+                             va.size()};
+    ActiveSet active;
+    active.activate(all);
+    for (int i = 0; i < iterations; ++i)
+        cpu.iterate(mirror.graph(), arrays, active);
+    return h;
+}
+
+// Largest |a - b| over the live vertices, and the terrain's height range.
+struct Difference {
+    double worst = 0.0;
+    double range = 0.0;
+};
+template <class A, class B>
+Difference difference(const Tin& tin, const A& a, const B& b) {
+    const VertexArrays& va = tin.vertices();
+    double lo = 1e300, hi = -1e300, worst = 0.0;
+    for (uint32_t v : live_ids(tin)) {
+        lo = std::min(lo, va.height[v]);
+        hi = std::max(hi, va.height[v]);
+        worst = std::max(worst, std::abs(static_cast<double>(a[v]) - static_cast<double>(b[v])));
+    }
+    return {worst, hi - lo};
 }
 
 // The collapsing part is kept small (a cone of radius 0.1, ~3 000 vertices at first) so that
@@ -95,50 +134,19 @@ TEST_F(GpuTest, RandomisedRelaxationMatchesCpuJacobi) {
     gs.randomness = 0.4;
     gs.seed = 12345678901234ull;
     GpuRelaxation gpu(mirror, gs);
-    const std::vector<uint32_t> all = live_ids(tin);
-    gpu.activate(all);
-    TalusSettings cs;
-    cs.schedule = Schedule::Jacobi;
-    cs.randomness = gs.randomness;
-    cs.seed = gs.seed;
-    TalusSolver cpu(cs);
-    const VertexArrays& va = tin.vertices();
-    std::vector<double> h(va.height.begin(), va.height.end());
-    std::vector<double> tan_alpha(va.size());
-    for (uint32_t v : all)
-        tan_alpha[v] = mirror.materials().at(va.material[v]).talus_slope(va.moisture[v]);
-    const TalusArrays arrays{h.data(), va.lumped_area.data(), va.bedrock.data(), tan_alpha.data(),
-                             va.size()};
-    ActiveSet active;
-    active.activate(all);
+    gpu.activate(live_ids(tin));
     // Two submissions: the iteration count the jitter hashes carries across them.
     gpu.run(100);
     gpu.run(100);
-    for (int i = 0; i < 200; ++i)
-        cpu.iterate(mirror.graph(), arrays, active);
-    const std::vector<float> gh = gpu.read_heights();
-    double lo = 1e300, hi = -1e300, worst = 0.0;
-    for (uint32_t v : all) {
-        lo = std::min(lo, va.height[v]);
-        hi = std::max(hi, va.height[v]);
-        worst = std::max(worst, std::abs(static_cast<double>(gh[v]) - h[v]));
-    }
-    EXPECT_LE(worst, 1e-5 * (hi - lo));
+    TalusSettings cs;
+    cs.randomness = gs.randomness;
+    cs.seed = gs.seed;
+    const std::vector<double> h = cpu_jacobi(tin, mirror, cs, 200);
+    const Difference d = difference(tin, gpu.read_heights(), h);
+    EXPECT_LE(d.worst, 1e-5 * d.range);
     // And the jitter is really on: the unjittered run ends elsewhere.
-    TalusSettings plain = cs;
-    plain.randomness = 0.0;
-    TalusSolver cpu_plain(plain);
-    std::vector<double> h2(va.height.begin(), va.height.end());
-    const TalusArrays arrays2{h2.data(), va.lumped_area.data(), va.bedrock.data(), tan_alpha.data(),
-                              va.size()};
-    ActiveSet active2;
-    active2.activate(all);
-    for (int i = 0; i < 200; ++i)
-        cpu_plain.iterate(mirror.graph(), arrays2, active2);
-    double differ = 0.0;
-    for (uint32_t v : all)
-        differ = std::max(differ, std::abs(h2[v] - h[v]));
-    EXPECT_GT(differ, 100.0 * worst);
+    cs.randomness = 0.0;
+    EXPECT_GT(difference(tin, cpu_jacobi(tin, mirror, cs, 200), h).worst, 100.0 * d.worst);
 }
 
 // The settle margin (flowing sand levels a margin below the angle that set it off): the shader
@@ -151,42 +159,16 @@ TEST_F(GpuTest, SettleMarginMatchesCpuJacobi) {
     GpuRelaxationSettings gs;
     gs.parameters.settle_margin = 0.05;
     GpuRelaxation gpu(mirror, gs);
-    const std::vector<uint32_t> all = live_ids(tin);
-    gpu.activate(all);
-    const VertexArrays& va = tin.vertices();
-    std::vector<double> tan_alpha(va.size());
-    for (uint32_t v : all)
-        tan_alpha[v] = mirror.materials().at(va.material[v]).talus_slope(va.moisture[v]);
-    auto run_cpu = [&](double margin) {
-        TalusSettings cs;
-        cs.schedule = Schedule::Jacobi;
-        cs.parameters.settle_margin = margin;
-        TalusSolver cpu(cs);
-        std::vector<double> h(va.height.begin(), va.height.end());
-        const TalusArrays arrays{h.data(), va.lumped_area.data(), va.bedrock.data(),
-                                 tan_alpha.data(), va.size()};
-        ActiveSet active;
-        active.activate(all);
-        for (int i = 0; i < 200; ++i)
-            cpu.iterate(mirror.graph(), arrays, active);
-        return h;
-    };
+    gpu.activate(live_ids(tin));
     gpu.run(200);
-    const std::vector<double> h = run_cpu(gs.parameters.settle_margin);
-    const std::vector<float> gh = gpu.read_heights();
-    double lo = 1e300, hi = -1e300, worst = 0.0;
-    for (uint32_t v : all) {
-        lo = std::min(lo, va.height[v]);
-        hi = std::max(hi, va.height[v]);
-        worst = std::max(worst, std::abs(static_cast<double>(gh[v]) - h[v]));
-    }
-    EXPECT_LE(worst, 1e-5 * (hi - lo));
+    TalusSettings cs;
+    cs.parameters.settle_margin = gs.parameters.settle_margin;
+    const std::vector<double> h = cpu_jacobi(tin, mirror, cs, 200);
+    const Difference d = difference(tin, gpu.read_heights(), h);
+    EXPECT_LE(d.worst, 1e-5 * d.range);
     // And the margin is really on: without it the run ends elsewhere.
-    const std::vector<double> h0 = run_cpu(0.0);
-    double differ = 0.0;
-    for (uint32_t v : all)
-        differ = std::max(differ, std::abs(h0[v] - h[v]));
-    EXPECT_GT(differ, 100.0 * worst);
+    cs.parameters.settle_margin = 0.0;
+    EXPECT_GT(difference(tin, cpu_jacobi(tin, mirror, cs, 200), h).worst, 100.0 * d.worst);
 }
 
 // 10^4 iterations on a 1 500-vertex pile that keeps flowing for thousands of iterations: float
