@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sandtin {
 
@@ -102,16 +103,32 @@ bool is_simple_polygon(std::span<const Vec2> polygon) {
     return true;
 }
 
-double squared_distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
     const Vec2 ab = b - a;
     const double len2 = length_squared(ab);
-    if (len2 <= 0.0) return length_squared(p - a);
+    if (len2 <= 0.0) return distance(p, a);
     const double t = std::clamp(dot(p - a, ab) / len2, 0.0, 1.0);
-    return length_squared(p - (a + ab * t));
+    return distance(p, a + ab * t);
 }
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-    return std::sqrt(squared_distance_to_segment(p, a, b));
+NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon) {
+    const std::size_t n = polygon.size();
+    NearestEdge best;
+    double best2 = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = polygon[i];
+        const Vec2 ab = polygon[(i + 1) % n] - a;
+        const double len2 = length_squared(ab);
+        const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const double d2 = length_squared(p - (a + ab * t));
+        if (d2 < best2) {
+            best2 = d2;
+            best.index = i;
+            best.t = t;
+        }
+    }
+    best.distance = std::sqrt(best2);
+    return best;
 }
 
 }  // namespace sandtin

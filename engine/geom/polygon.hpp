@@ -33,7 +33,16 @@ bool is_simple_polygon(std::span<const Vec2> polygon);
 
 /// Distance from p to the closed segment [a,b].
 double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
-/// The same, squared (m²): no square root, for nearest-segment searches.
-double squared_distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+
+/// The edge of a closed polygon nearest to p: edge `index` runs from vertex index to index + 1
+/// (wrapping), its closest point is at parameter t in [0, 1], `distance` away (m). The first
+/// of equally near edges wins; compared by squared distance, one square root in all. The
+/// polygon must have at least one vertex.
+struct NearestEdge {
+    std::size_t index = 0;
+    double t = 0.0;
+    double distance = 0.0;
+};
+NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon);
 
 }  // namespace sandtin

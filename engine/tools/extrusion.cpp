@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "geom/polygon.hpp"
 #include "tools/slivers.hpp"
@@ -76,19 +75,10 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     for (VertexId v : tin.vertices_in_disc(centre, reach + width, hint)) {
         const Vec2 p = va.position[v.value];
         if (point_in_polygon(p, outer)) continue;
-        double best = std::numeric_limits<double>::infinity();
-        double w = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const Vec2 a = outer[i];
-            const Vec2 b = outer[(i + 1) % n];
-            const double len2 = length_squared(b - a);
-            const double t = len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
-            const double d = distance(p, lerp(a, b, t));
-            if (d < best) {
-                best = d;
-                w = (1.0 - t) * weight[i] + t * weight[(i + 1) % n];
-            }
-        }
+        const NearestEdge edge = nearest_edge(p, outer);
+        const double best = edge.distance;
+        const double w =
+            (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
         if (!(best < width) || !(w > 0.0)) continue;
         const double t = 2.0 * best / width - 1.0;
         const double kv = w * (1.0 - t * t);

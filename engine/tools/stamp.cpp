@@ -292,37 +292,14 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (!point_in_polygon(p, outer)) continue;
             footprint.push_back(v);
             if (point_in_polygon(p, inner)) continue;
-            // Nearest segments by squared distance (no square root per segment).
-            double d_inner = std::numeric_limits<double>::infinity();
-            std::size_t nearest_inner = 0;
-            for (std::size_t i = 0; i < inner.size(); ++i) {
-                const double d2 =
-                    squared_distance_to_segment(p, inner[i], inner[(i + 1) % inner.size()]);
-                if (d2 < d_inner) {
-                    d_inner = d2;
-                    nearest_inner = i;
-                }
-            }
-            d_inner = std::sqrt(d_inner);
-            double d_outer = std::numeric_limits<double>::infinity();
-            std::size_t nearest_rim = 0;
-            for (std::size_t k = 0; k < rim.size(); ++k) {
-                const double d2 = squared_distance_to_segment(p, rim[k], rim[(k + 1) % rim.size()]);
-                if (d2 < d_outer) {
-                    d_outer = d2;
-                    nearest_rim = k;
-                }
-            }
-            d_outer = std::sqrt(d_outer);
-            double rim_height = 0.0;
-            {
-                const Vec2 a = rim[nearest_rim];
-                const Vec2 b = rim[(nearest_rim + 1) % rim.size()];
-                const double len2 = length_squared(b - a);
-                const double t = len2 > 0.0 ? std::clamp(dot(p - a, b - a) / len2, 0.0, 1.0) : 0.0;
-                rim_height =
-                    (1.0 - t) * rim_h[nearest_rim] + t * rim_h[(nearest_rim + 1) % rim.size()];
-            }
+            const NearestEdge to_inner = nearest_edge(p, inner);
+            const NearestEdge to_rim = nearest_edge(p, rim);
+            const std::size_t nearest_inner = to_inner.index;
+            const std::size_t nearest_rim = to_rim.index;
+            const double d_inner = to_inner.distance;
+            const double d_outer = to_rim.distance;
+            const double rim_height = (1.0 - to_rim.t) * rim_h[nearest_rim] +
+                                      to_rim.t * rim_h[(nearest_rim + 1) % rim.size()];
             if (inner_active[nearest_inner] && rim_active[nearest_rim] &&
                 !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
                 band_junk.push_back(v);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -178,6 +180,30 @@ TEST(Polygon, DistanceToSegment) {
     EXPECT_DOUBLE_EQ(distance_to_segment({3, 4}, {0, 0}, {0, 0}), 5.0);
     EXPECT_DOUBLE_EQ(distance_to_segment({4, 4}, {0, 0}, {1, 0}), 5.0);
     EXPECT_DOUBLE_EQ(distance_to_segment({0.5, 0}, {0, 0}, {1, 0}), 0.0);
+}
+
+TEST(Polygon, NearestEdgeOfAClosedPolygon) {
+    // The unit square, counter-clockwise: edge 3 is the closing one, from (0, 1) to (0, 0).
+    const std::vector<Vec2> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const NearestEdge a = nearest_edge({0.25, -0.5}, square);
+    EXPECT_EQ(a.index, 0u);
+    EXPECT_DOUBLE_EQ(a.t, 0.25);
+    EXPECT_DOUBLE_EQ(a.distance, 0.5);
+    const NearestEdge b = nearest_edge({-2.0, 0.75}, square);
+    EXPECT_EQ(b.index, 3u);
+    EXPECT_DOUBLE_EQ(b.t, 0.25);  // from (0, 1) towards (0, 0)
+    EXPECT_DOUBLE_EQ(b.distance, 2.0);
+    // Against the brute force over distance_to_segment at scattered points.
+    for (int k = 0; k < 50; ++k) {
+        const Vec2 p{-1.0 + 0.061 * k, 2.0 - 0.077 * k};
+        const NearestEdge e = nearest_edge(p, square);
+        double best = 1e300;
+        for (std::size_t i = 0; i < square.size(); ++i)
+            best = std::min(best, distance_to_segment(p, square[i], square[(i + 1) % 4]));
+        EXPECT_NEAR(e.distance, best, 1e-15);
+        EXPECT_NEAR(distance_to_segment(p, square[e.index], square[(e.index + 1) % 4]), best,
+                    1e-15);
+    }
 }
 
 }  // namespace
