@@ -1,17 +1,25 @@
 // sandtin bench haptics: the force loop at 1 kHz (configurable) on its own thread for 10 s
 // while the simulation, on this thread, follows a simulated device that strokes circles into
 // the sand, stamping and eroding after every stamp and publishing a snapshot after every step.
-// Reports the loop's period statistics and the force jumps as JSON.
+// Reports the loop's period statistics and the force jumps as JSON, and, to attribute late
+// ticks, the loop's own phase timings (loop_jitter.hpp), its scheduler counters and page
+// faults over the run, every CPU's steal time, and for each late tick what a 2 ms observer
+// (sched_sampler.hpp) saw the kernel and the hypervisor do meanwhile.
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_session.hpp"
+#include "haptics/os_counters.hpp"
+#include "haptics/realtime_thread.hpp"
+#include "haptics/sched_sampler.hpp"
 #include "haptics/simulated_device.hpp"
 #include "tools/tool_json.hpp"
 
@@ -20,8 +28,36 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
-    "[--json]";
+    "[--idle] [--pin] [--mlock] [--relative-sleep] [--no-stack-prefault] [--no-timer-slack] "
+    "[--no-sampler] [--json]";
+
+std::string load_average() {
+    const auto text = haptics::read_small_file("/proc/loadavg");
+    if (!text) return "unknown";
+    std::string s = *text;
+    // "0.41 1.39 1.72 2/345 6789": keep the three averages.
+    std::size_t spaces = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (s[i] == ' ' && ++spaces == 3) return s.substr(0, i);
+    }
+    return s;
 }
+
+nlohmann::json counters_json(const haptics::ThreadCounters& c) {
+    return {{"cpu_ms", static_cast<double>(c.sched.cpu_ns) * 1e-6},
+            {"run_queue_wait_ms", static_cast<double>(c.sched.run_delay_ns) * 1e-6},
+            {"times_scheduled", c.sched.slices},
+            {"voluntary_switches", c.voluntary_switches},
+            {"involuntary_switches", c.involuntary_switches},
+            {"minor_faults", c.minor_faults},
+            {"major_faults", c.major_faults}};
+}
+
+double ms(std::int64_t ns) {
+    return static_cast<double>(ns) * 1e-6;
+}
+
+}  // namespace
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
     using namespace sandtin::haptics;
@@ -30,6 +66,13 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                                {"--points", 1},
                                {"--spin-us", 1},
                                {"--quick", 0},
+                               {"--idle", 0},
+                               {"--pin", 0},
+                               {"--mlock", 0},
+                               {"--relative-sleep", 0},
+                               {"--no-stack-prefault", 0},
+                               {"--no-timer-slack", 0},
+                               {"--no-sampler", 0},
                                {"--json", 0}});
     args.require_positionals(0, kUsage);
     const double seconds = args.number_or("--seconds", args.has("--quick") ? 2.0 : 10.0);
@@ -37,6 +80,11 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     const std::uint64_t points = args.count_or("--points", 10000);
     if (!(seconds > 0.0) || seconds > 3600.0) throw UsageError("--seconds must be in (0, 3600]");
     if (!(rate > 0.0) || rate > kMaxLoopRateHz) throw UsageError("--rate must be in (0, 4000]");
+    const bool idle = args.has("--idle");
+    const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+    // Pinning: the loop on the last CPU, the simulation (this thread) on the first.
+    const bool pin = args.has("--pin") && cpus >= 2;
+    const std::string load_before = load_average();
 
     ScriptTerrain terrain;
     terrain.points = points;
@@ -59,28 +107,53 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     SimulatedDevice device = SimulatedDevice::replay(make_circle_trajectory(circles));
     ForceLoopConfig config;
     config.rate_hz = rate;
-    config.spin_ns =
-        std::min<std::int64_t>(config.spin_ns, static_cast<std::int64_t>(0.5e9 / rate));
+    const double spin_us = args.number_or("--spin-us", 300.0);
+    if (!(spin_us >= 0.0) || spin_us * 1e-6 * rate >= 1.0)
+        throw UsageError("--spin-us must be in [0, one period)");
+    config.spin_ns = std::min<std::int64_t>(static_cast<std::int64_t>(spin_us * 1e3),
+                                            static_cast<std::int64_t>(0.5e9 / rate));
+    config.realtime.cpu = pin ? cpus - 1 : -1;
+    config.realtime.lock_memory = args.has("--mlock");
+    config.realtime.timer_slack = !args.has("--no-timer-slack");
+    config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
+    config.absolute_sleep = !args.has("--relative-sleep");
+    config.late_tick_capacity = 256;
+    int simulation_pinned = -1;
+    if (pin && pin_this_thread(0) == 0) simulation_pinned = 0;
     ForceLoop loop(device, config);
     LiveSession session(editor, loop);
 
     std::vector<double> step_ms;
     step_ms.reserve(100000);
     std::size_t stamps = 0;
+    const std::vector<std::int64_t> steal_before = read_cpu_steal_ns();
     const auto t0 = std::chrono::steady_clock::now();
     loop.start();
+    std::optional<SchedSampler> sampler;
+    if (!args.has("--no-sampler")) {
+        while (loop.thread_id() == 0 && loop.running())
+            std::this_thread::sleep_for(std::chrono::microseconds(100));
+        if (loop.thread_id() != 0) {
+            constexpr std::int64_t kSampleNs = 2'000'000;
+            sampler.emplace(loop.thread_id(), kSampleNs,
+                            static_cast<std::size_t>(seconds * 1e9 / kSampleNs) + 1000);
+            sampler->start();
+        }
+    }
     while (loop.running()) {
-        const SessionStepReport r = session.step();
+        const SessionStepReport r = idle ? SessionStepReport{} : session.step();
         if (r.consumed) {
             step_ms.push_back(r.ms);
             stamps += r.edit.stamps;
         } else {
-            std::this_thread::sleep_for(std::chrono::microseconds(200));
+            std::this_thread::sleep_for(std::chrono::microseconds(idle ? 10000 : 200));
         }
     }
     loop.stop();
+    if (sampler) sampler->stop();
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::vector<std::int64_t> steal_after = read_cpu_steal_ns();
     const ForceLoopReport report = loop.report();
     std::sort(step_ms.begin(), step_ms.end());
     const auto pct = [&](double q) {
@@ -95,7 +168,18 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     j["seconds"] = seconds;
     j["wall_seconds"] = wall;
     j["ticks"] = report.ticks;
+    j["load_average_before"] = load_before;
+    j["load_average_after"] = load_average();
     j["realtime_priority"] = report.realtime;
+    const RealtimeGrant& g = report.realtime_grant;
+    j["realtime"] = {{"sched_fifo", g.fifo},
+                     {"loop_cpu", g.cpu},
+                     {"simulation_cpu", simulation_pinned},
+                     {"timer_slack_1ns", g.timer_slack},
+                     {"mlockall", g.memory_locked},
+                     {"stack_prefaulted_kib", g.stack_prefaulted_bytes / 1024},
+                     {"absolute_sleep", config.absolute_sleep},
+                     {"refused", g.refused}};
     j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
     j["period_ms"] = {{"p50", report.periods.p50_ms},
                       {"p99", report.periods.p99_ms},
@@ -109,7 +193,62 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                     {"jumps_over_0_5", report.force_jumps_over_half_newton}};
     j["stale_ticks"] = report.stale_ticks;
     j["snapshots_taken"] = report.snapshots_taken;
-    j["simulation"] = {{"steps", step_ms.size()},
+
+    // Where the time went.
+    const JitterSummary& js = report.jitter;
+    j["jitter"] = {{"max_work_ms", ms(js.max_work_ns)},
+                   {"max_wake_late_ms", ms(js.max_wake_late_ns)},
+                   {"max_spin_gap_ms", ms(js.max_spin_gap_ns)},
+                   {"wakes_after_deadline", js.wakes_after_deadline},
+                   {"spin_gaps_over_50us", js.long_spin_gaps},
+                   {"spin_gaps_over_50us_total_ms", ms(js.long_spin_gap_total_ns)},
+                   {"late_threshold_ms", report.periods.target_ms * 1.5},
+                   {"late_ticks", js.late_ticks},
+                   {"late_by_work", js.late_by_work},
+                   {"late_by_wakeup", js.late_by_wakeup},
+                   {"late_by_spin_gap", js.late_by_spin_gap}};
+    j["loop_thread_during_ticks"] = counters_json(report.during_ticks);
+    nlohmann::json steal = nlohmann::json::array();
+    for (std::size_t c = 0; c < std::min(steal_before.size(), steal_after.size()); ++c)
+        steal.push_back(ms(steal_after[c] - steal_before[c]));
+    j["steal_ms_per_cpu"] = steal;
+    nlohmann::json late = nlohmann::json::array();
+    const std::vector<TickPhases>& late_ticks = loop.late_ticks();
+    // The worst first; the list is capped so the report stays readable.
+    std::vector<TickPhases> worst(late_ticks.begin(), late_ticks.end());
+    std::sort(worst.begin(), worst.end(),
+              [](const TickPhases& a, const TickPhases& b) { return a.period_ns > b.period_ns; });
+    for (std::size_t i = 0; i < std::min<std::size_t>(worst.size(), 12); ++i) {
+        const TickPhases& t = worst[i];
+        nlohmann::json e = {{"tick", t.tick},
+                            {"period_ms", ms(t.period_ns)},
+                            {"cause", to_string(late_cause(t))},
+                            {"previous_work_ms", ms(t.work_ns)},
+                            {"slept", t.slept},
+                            {"wake_late_ms", ms(t.wake_late_ns)},
+                            {"spin_gap_ms", ms(t.spin_gap_ns)},
+                            {"cpu", t.cpu}};
+        if (sampler) {
+            const WindowAttribution a =
+                attribute_window(sampler->samples(), t.start_ns - t.period_ns, t.start_ns, t.cpu);
+            if (a.covered) {
+                e["observed_over_ms"] = ms(a.span_ns);
+                e["loop_run_queue_wait_ms"] = ms(a.run_delay_ns);
+                e["steal_on_cpu_ms"] = ms(a.steal_on_cpu_ns);
+                e["steal_all_cpus_ms"] = ms(a.steal_all_cpus_ns);
+            }
+        }
+        late.push_back(e);
+    }
+    j["late_ticks_worst_first"] = late;
+    if (sampler) {
+        j["sampler"] = {{"available", sampler->available()},
+                        {"samples", sampler->samples().size()},
+                        {"interval_ms", 2.0}};
+    }
+
+    j["simulation"] = {{"idle", idle},
+                       {"steps", step_ms.size()},
                        {"steps_per_second", static_cast<double>(step_ms.size()) / wall},
                        {"stamps", stamps},
                        {"step_ms_p50", pct(0.5)},

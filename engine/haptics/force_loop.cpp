@@ -1,7 +1,7 @@
 #include "haptics/force_loop.hpp"
 
-#include <pthread.h>
-#include <sched.h>
+#include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -32,13 +32,20 @@ std::int64_t checked_period(const ForceLoopConfig& c) {
 
 ForceLoopConfig with_rate(ForceLoopConfig c) {
     c.renderer.rate_hz = c.rate_hz;
+    c.realtime.fifo = c.try_realtime;
     return c;
 }
 
-bool request_realtime() {
-    sched_param p{};
-    p.sched_priority = sched_get_priority_min(SCHED_FIFO) + 10;
-    return pthread_setschedparam(pthread_self(), SCHED_FIFO, &p) == 0;
+void sleep_until_ns(std::int64_t t, bool absolute) {
+    if (!absolute) {
+        std::this_thread::sleep_until(
+            std::chrono::steady_clock::time_point(std::chrono::nanoseconds(t)));
+        return;
+    }
+    // steady_clock is CLOCK_MONOTONIC in libstdc++ and libc++ on Linux, so the deadlines are
+    // in the same time base. EINTR (a signal) just returns early; the spin covers it.
+    const timespec ts{static_cast<time_t>(t / 1'000'000'000), static_cast<long>(t % 1'000'000'000)};
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr);
 }
 
 }  // namespace
@@ -47,7 +54,8 @@ ForceLoop::ForceLoop(HapticDevice& device, ForceLoopConfig config)
     : device_(device),
       config_(with_rate(config)),
       period_ns_(checked_period(config_)),
-      periods_(period_ns_) {
+      periods_(period_ns_),
+      jitter_(period_ns_ * 3 / 2, config_.late_tick_capacity) {
     ForceRenderer check(config_.renderer);  // validates the renderer settings now
     records_.reserve(config_.record_capacity);
 }
@@ -95,12 +103,17 @@ ForceLoopReport ForceLoop::report() const {
 
 void ForceLoop::run() {
     ForceLoopReport report;
-    if (config_.try_realtime) report.realtime = request_realtime();
+    report.realtime_grant = make_this_thread_realtime(config_.realtime);
+    report.realtime = report.realtime_grant.fifo;
+    thread_id_.store(static_cast<int>(gettid()), std::memory_order_release);
     ForceRenderer renderer(config_.renderer);
     periods_.clear();
+    jitter_.clear();
     DeviceState state;
     Vec3 last_force;
     std::int64_t previous_start = 0;
+    std::int64_t work_ns = 0;  // the previous tick's body
+    const ThreadCounters counters_before = read_this_thread_counters();
     std::int64_t deadline = monotonic_ns() + period_ns_;
     bool unseen_snapshot = false;
     double fade = 1.0;  // the stop ramp
@@ -111,16 +124,31 @@ void ForceLoop::run() {
     for (std::uint64_t tick = 0;; ++tick) {
         const bool stopping = stop_requested_.load(std::memory_order_acquire);
         if (stopping && (fade <= 0.0 || length(last_force) == 0.0)) break;
-        // Sleep, then spin to the deadline.
-        const auto sleep_until = deadline - config_.spin_ns;
-        if (monotonic_ns() < sleep_until) {
-            std::this_thread::sleep_until(
-                std::chrono::steady_clock::time_point(std::chrono::nanoseconds(sleep_until)));
-        }
+        // Sleep, then spin to the deadline, timing both.
+        TickPhases phases;
+        phases.tick = tick;
+        phases.work_ns = work_ns;
+        const auto sleep_point = deadline - config_.spin_ns;
         std::int64_t now = monotonic_ns();
-        while (now < deadline)
+        if (now < sleep_point) {
+            sleep_until_ns(sleep_point, config_.absolute_sleep);
             now = monotonic_ns();
-        if (tick > 0) periods_.add(now - previous_start);
+            phases.slept = true;
+            phases.wake_late_ns = std::max<std::int64_t>(0, now - sleep_point);
+        }
+        while (now < deadline) {
+            const std::int64_t t = monotonic_ns();
+            phases.spin_gap_ns = std::max(phases.spin_gap_ns, t - now);
+            now = t;
+        }
+        if (tick > 0) {
+            periods_.add(now - previous_start);
+            phases.start_ns = now;
+            phases.period_ns = now - previous_start;
+            phases.lateness_ns = now - deadline;
+            phases.cpu = current_cpu();
+            jitter_.add(phases);
+        }
         previous_start = now;
 
         if (device_.read(state) == ReadStatus::Lost) {
@@ -157,6 +185,7 @@ void ForceLoop::run() {
         if (out.stale) ++report.stale_ticks;
         last_force = out.force;
         report.ticks = tick + 1;
+        work_ns = monotonic_ns() - now;
 
         deadline += period_ns_;
         // Ticks missed entirely are not made up: when the next deadline has already passed,
@@ -164,6 +193,8 @@ void ForceLoop::run() {
         if (deadline <= now) deadline = now + period_ns_;
     }
     device_.write_force({});
+    report.during_ticks = difference(read_this_thread_counters(), counters_before);
+    report.jitter = jitter_.summary();
     report_ = report;
     running_.store(false, std::memory_order_release);
 }

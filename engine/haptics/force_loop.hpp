@@ -11,6 +11,12 @@
 // over `stop_ramp_ns` first, so quitting never jerks the user's hand. It stops by itself when
 // the device is lost. The last force it writes is zero. A late tick is not made up: the schedule
 // restarts from now, so a stall never causes a burst of catch-up ticks.
+//
+// The tick path makes no system call other than reading the clock and the absolute-time sleep
+// (clock_nanosleep TIMER_ABSTIME), and never allocates (records and statistics are
+// preallocated). Each tick's phases (loop_jitter.hpp) are measured so late ticks can be
+// attributed; the thread's scheduler counters and page faults are read just before the first
+// and just after the last tick (os_counters.hpp).
 
 #include <atomic>
 #include <cstdint>
@@ -21,7 +27,10 @@
 #include "haptics/force_renderer.hpp"
 #include "haptics/haptic_device.hpp"
 #include "haptics/haptic_snapshot.hpp"
+#include "haptics/loop_jitter.hpp"
+#include "haptics/os_counters.hpp"
 #include "haptics/period_stats.hpp"
+#include "haptics/realtime_thread.hpp"
 #include "haptics/triple_buffer.hpp"
 
 namespace sandtin::haptics {
@@ -41,6 +50,15 @@ struct ForceLoopConfig {
     std::int64_t stop_ramp_ns = 50'000'000;
     /// Ask for SCHED_FIFO; refused without privileges, which is reported, not an error.
     bool try_realtime = true;
+    /// The rest of the thread's real-time set-up (realtime_thread.hpp); its `fifo` is
+    /// overwritten with try_realtime. Defaults: timer slack 1 ns and a pre-faulted stack; no
+    /// pinning and no mlockall (process-wide: the caller opts in).
+    RealtimeRequest realtime;
+    /// Sleep with clock_nanosleep(TIMER_ABSTIME) (true) or std::this_thread::sleep_until,
+    /// which sleeps a relative interval computed from a clock read (false; for comparison).
+    bool absolute_sleep = true;
+    /// Keep the phases of this many late ticks (period > 1.5 periods), preallocated.
+    std::size_t late_tick_capacity = 64;
 };
 
 /// One tick, as the simulation sees it and as recordings store it.
@@ -64,6 +82,11 @@ struct ForceLoopReport {
     std::uint64_t force_jumps_over_half_newton = 0;
     std::uint64_t stale_ticks = 0;
     std::uint64_t snapshots_taken = 0;
+    RealtimeGrant realtime_grant;  ///< what the thread's set-up got
+    JitterSummary jitter;          ///< where the ticks' time went
+    /// The loop thread's scheduler counters and faults from just before the first tick to
+    /// just after the last (the stop ramp included).
+    ThreadCounters during_ticks;
 };
 
 /// Monotonic clock in nanoseconds (steady_clock).
@@ -93,6 +116,11 @@ class ForceLoop {
     // ---- After stop() ----
     ForceLoopReport report() const;
     const std::vector<TickRecord>& records() const { return records_; }
+    /// The first late_tick_capacity ticks whose period exceeded 1.5 periods.
+    const std::vector<TickPhases>& late_ticks() const { return jitter_.late_ticks(); }
+
+    /// The loop thread's kernel thread id once it runs (0 before), for observers.
+    int thread_id() const { return thread_id_.load(std::memory_order_acquire); }
     const ForceLoopConfig& config() const { return config_; }
 
   private:
@@ -106,10 +134,12 @@ class ForceLoop {
     std::uint64_t next_sequence_ = 1;  // simulation thread
     std::atomic<bool> stop_requested_{false};
     std::atomic<bool> running_{false};
+    std::atomic<int> thread_id_{0};
     std::thread thread_;
     bool opened_ = false;
     // Owned by the loop thread while it runs; read after join.
     PeriodStats periods_;
+    JitterStats jitter_;
     std::vector<TickRecord> records_;
     ForceLoopReport report_;
 };

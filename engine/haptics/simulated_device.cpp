@@ -62,8 +62,11 @@ void SimulatedDevice::open() {
     if (opened_) throw std::runtime_error(name() + ": already open");
     opened_ = true;
     next_ = 0;
+    // One force per sample plus the loop's final zero. Written once here so that the loop
+    // thread's push_back never allocates nor touches a fresh page (a page fault can wait for
+    // another thread's mmap/munmap).
+    forces_.assign(trajectory_.samples.size() + 1, Vec3{});
     forces_.clear();
-    forces_.reserve(trajectory_.samples.size());
 }
 
 void SimulatedDevice::close() {

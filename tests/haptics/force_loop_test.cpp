@@ -54,6 +54,19 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
     // One period per tick, counting the last one, whose read found the device gone.
     EXPECT_EQ(report.periods.count, trajectory.samples.size());
     EXPECT_EQ(report.snapshots_taken, 1u);
+    // The phase timings cover the same ticks as the periods; kept late ticks are late.
+    EXPECT_EQ(report.jitter.ticks, report.periods.count);
+    EXPECT_FALSE(report.realtime_grant.fifo);
+    EXPECT_FALSE(report.realtime);
+    EXPECT_LE(loop.late_ticks().size(), report.jitter.late_ticks);
+    for (const TickPhases& t : loop.late_ticks())
+        EXPECT_GT(t.period_ns, 250'000 * 3 / 2);
+    EXPECT_EQ(report.jitter.late_ticks, report.jitter.late_by_work + report.jitter.late_by_wakeup +
+                                            report.jitter.late_by_spin_gap);
+    EXPECT_GE(report.jitter.worst.period_ns,
+              static_cast<std::int64_t>(report.periods.max_ms * 1e6) - 1);
+    EXPECT_EQ(report.during_ticks.major_faults, 0);
+    EXPECT_GT(loop.thread_id(), 0);
     // The device got one force per sample plus the final zero.
     ASSERT_EQ(device.forces().size(), trajectory.samples.size() + 1);
     EXPECT_EQ(device.forces().back(), (Vec3{}));
