@@ -6,6 +6,8 @@
 // faults over the run, every CPU's steal time, and for each late tick what a 2 ms observer
 // (sched_sampler.hpp) saw the kernel and the hypervisor do meanwhile.
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +23,7 @@
 #include "haptics/realtime_thread.hpp"
 #include "haptics/sched_sampler.hpp"
 #include "haptics/simulated_device.hpp"
+#include "haptics/spin_probe.hpp"
 #include "tools/tool_json.hpp"
 
 namespace sandtin::cli {
@@ -28,7 +31,9 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
-    "[--idle] [--pin] [--mlock] [--relative-sleep] [--no-stack-prefault] [--no-timer-slack] "
+    "[--idle | --probe] [--pin] [--mlock] [--wake-latency-zero] [--keep-heap] [--relative-sleep] "
+    "[--no-stack-prefault] "
+    "[--no-timer-slack] "
     "[--no-sampler] [--json]";
 
 std::string load_average() {
@@ -57,6 +62,45 @@ double ms(std::int64_t ns) {
     return static_cast<double>(ns) * 1e-6;
 }
 
+// --probe: no loop, no simulation; a SCHED_FIFO thread spins in 10 ms bursts (50 % duty) and
+// reports every gap > 20 us between consecutive clock reads, against the CPUs' steal time.
+int run_spin_probe_bench(double seconds, bool pin, bool wake_latency_zero) {
+    using namespace sandtin::haptics;
+    SpinProbeOptions o;
+    o.seconds = seconds;
+    const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+    o.realtime.cpu = pin ? cpus - 1 : -1;
+    const std::string load_before = load_average();
+    std::optional<CpuWakeLatencyHold> hold;
+    if (wake_latency_zero) hold.emplace(0);
+    const SpinProbeResult r = run_spin_probe(o);
+    nlohmann::json steal = nlohmann::json::array();
+    for (const std::int64_t s : r.steal_ns)
+        steal.push_back(ms(s));
+    const auto& b = r.gaps.bucket_counts();
+    nlohmann::json j;
+    j["benchmark"] = "haptics_spin_probe";
+    j["seconds"] = seconds;
+    j["load_average_before"] = load_before;
+    j["load_average_after"] = load_average();
+    j["sched_fifo"] = r.grant.fifo;
+    j["cpu"] = r.grant.cpu;
+    j["cpu_wake_latency_zero"] = hold && hold->held();
+    j["burst_ms"] = ms(o.burst_ns);
+    j["sleep_ms"] = ms(o.sleep_ns);
+    j["threshold_us"] = static_cast<double>(o.threshold_ns) * 1e-3;
+    j["spinning_ms"] = ms(r.gaps.observed_ns());
+    j["gaps"] = r.gaps.gaps();
+    j["gaps_total_ms"] = ms(r.gaps.stolen_ns());
+    j["max_gap_ms"] = ms(r.gaps.max_gap_ns());
+    j["gaps_by_size"] = {{"20us_100us", b[0]}, {"100us_500us", b[1]}, {"500us_1ms", b[2]},
+                         {"1ms_2ms", b[3]},    {"2ms_10ms", b[4]},    {"over_10ms", b[5]}};
+    j["probe_thread"] = counters_json(r.during);
+    j["steal_ms_per_cpu"] = steal;
+    std::cout << j.dump(2) << "\n";
+    return 0;
+}
+
 }  // namespace
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
@@ -67,8 +111,11 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                                {"--spin-us", 1},
                                {"--quick", 0},
                                {"--idle", 0},
+                               {"--probe", 0},
                                {"--pin", 0},
                                {"--mlock", 0},
+                               {"--wake-latency-zero", 0},
+                               {"--keep-heap", 0},
                                {"--relative-sleep", 0},
                                {"--no-stack-prefault", 0},
                                {"--no-timer-slack", 0},
@@ -81,6 +128,18 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     if (!(seconds > 0.0) || seconds > 3600.0) throw UsageError("--seconds must be in (0, 3600]");
     if (!(rate > 0.0) || rate > kMaxLoopRateHz) throw UsageError("--rate must be in (0, 4000]");
     const bool idle = args.has("--idle");
+    // --keep-heap: the allocator never gives memory back (no trimming, no mmap'd chunks), so
+    // the simulation's large frees never munmap: a test of whether its address-space changes
+    // (mmap lock, TLB shootdowns, pages returned to the hypervisor) delay the loop.
+    const bool keep_heap = args.has("--keep-heap");
+    if (keep_heap) {
+        mallopt(M_TRIM_THRESHOLD, 1 << 30);
+        mallopt(M_MMAP_MAX, 0);
+    }
+    if (args.has("--probe")) {
+        if (idle) throw UsageError("--probe and --idle exclude each other");
+        return run_spin_probe_bench(seconds, args.has("--pin"), args.has("--wake-latency-zero"));
+    }
     const int cpus = static_cast<int>(std::thread::hardware_concurrency());
     // Pinning: the loop on the last CPU, the simulation (this thread) on the first.
     const bool pin = args.has("--pin") && cpus >= 2;
@@ -117,6 +176,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     config.realtime.timer_slack = !args.has("--no-timer-slack");
     config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
     config.absolute_sleep = !args.has("--relative-sleep");
+    config.hold_cpu_wake_latency = args.has("--wake-latency-zero");
     config.late_tick_capacity = 256;
     int simulation_pinned = -1;
     if (pin && pin_this_thread(0) == 0) simulation_pinned = 0;
@@ -179,7 +239,11 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                      {"mlockall", g.memory_locked},
                      {"stack_prefaulted_kib", g.stack_prefaulted_bytes / 1024},
                      {"absolute_sleep", config.absolute_sleep},
+                     {"keep_heap", keep_heap},
+                     {"cpu_wake_latency_zero", report.cpu_wake_latency_held},
                      {"refused", g.refused}};
+    if (!report.cpu_wake_latency_error.empty())
+        j["realtime"]["refused_wake_latency"] = report.cpu_wake_latency_error;
     j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
     j["period_ms"] = {{"p50", report.periods.p50_ms},
                       {"p99", report.periods.p99_ms},
@@ -212,6 +276,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     for (std::size_t c = 0; c < std::min(steal_before.size(), steal_after.size()); ++c)
         steal.push_back(ms(steal_after[c] - steal_before[c]));
     j["steal_ms_per_cpu"] = steal;
+    std::int64_t late_total = 0;
+    for (const TickPhases& t : loop.late_ticks())
+        late_total += t.period_ns - static_cast<std::int64_t>(1e9 / rate);
+    j["late_ticks_total_excess_ms"] = ms(late_total);
     nlohmann::json late = nlohmann::json::array();
     const std::vector<TickPhases>& late_ticks = loop.late_ticks();
     // The worst first; the list is capped so the report stays readable.

@@ -68,6 +68,7 @@ void ForceLoop::start() {
     if (thread_.joinable() || opened_) throw std::logic_error("force loop: already started");
     device_.open();
     opened_ = true;
+    if (config_.hold_cpu_wake_latency) wake_latency_ = std::make_unique<CpuWakeLatencyHold>(0);
     stop_requested_.store(false);
     running_.store(true, std::memory_order_release);
     thread_ = std::thread([this] { run(); });
@@ -77,6 +78,11 @@ void ForceLoop::stop() {
     stop_requested_.store(true, std::memory_order_release);
     if (thread_.joinable()) thread_.join();
     running_.store(false, std::memory_order_release);
+    if (wake_latency_) {
+        report_.cpu_wake_latency_held = wake_latency_->held();
+        report_.cpu_wake_latency_error = wake_latency_->error();
+        wake_latency_.reset();
+    }
     if (opened_) {
         device_.close();
         opened_ = false;

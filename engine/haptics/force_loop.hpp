@@ -20,10 +20,12 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "haptics/cpu_wake_latency.hpp"
 #include "haptics/force_renderer.hpp"
 #include "haptics/haptic_device.hpp"
 #include "haptics/haptic_snapshot.hpp"
@@ -57,6 +59,9 @@ struct ForceLoopConfig {
     /// Sleep with clock_nanosleep(TIMER_ABSTIME) (true) or std::this_thread::sleep_until,
     /// which sleeps a relative interval computed from a clock read (false; for comparison).
     bool absolute_sleep = true;
+    /// While the loop runs, ask the kernel to keep every CPU's wake-up latency at 0 (idle CPUs
+    /// poll instead of halting; cpu_wake_latency.hpp). Machine-wide while held: opt in.
+    bool hold_cpu_wake_latency = false;
     /// Keep the phases of this many late ticks (period > 1.5 periods), preallocated.
     std::size_t late_tick_capacity = 64;
 };
@@ -83,7 +88,9 @@ struct ForceLoopReport {
     std::uint64_t stale_ticks = 0;
     std::uint64_t snapshots_taken = 0;
     RealtimeGrant realtime_grant;  ///< what the thread's set-up got
-    JitterSummary jitter;          ///< where the ticks' time went
+    bool cpu_wake_latency_held = false;
+    std::string cpu_wake_latency_error;  ///< why it was not held, when asked
+    JitterSummary jitter;                ///< where the ticks' time went
     /// The loop thread's scheduler counters and faults from just before the first tick to
     /// just after the last (the stop ramp included).
     ThreadCounters during_ticks;
@@ -137,6 +144,7 @@ class ForceLoop {
     std::atomic<int> thread_id_{0};
     std::thread thread_;
     bool opened_ = false;
+    std::unique_ptr<CpuWakeLatencyHold> wake_latency_;  // while running, when asked
     // Owned by the loop thread while it runs; read after join.
     PeriodStats periods_;
     JitterStats jitter_;

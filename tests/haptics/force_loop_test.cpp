@@ -67,6 +67,8 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
               static_cast<std::int64_t>(report.periods.max_ms * 1e6) - 1);
     EXPECT_EQ(report.during_ticks.major_faults, 0);
     EXPECT_GT(loop.thread_id(), 0);
+    EXPECT_FALSE(report.cpu_wake_latency_held);  // not asked for
+    EXPECT_EQ(report.cpu_wake_latency_error, "");
     // The device got one force per sample plus the final zero.
     ASSERT_EQ(device.forces().size(), trajectory.samples.size() + 1);
     EXPECT_EQ(device.forces().back(), (Vec3{}));
