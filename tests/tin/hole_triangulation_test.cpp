@@ -1,0 +1,248 @@
+// The hole triangulation (engine/tin/detail): a triangulation of a simple counter-clockwise
+// polygon with no added points. Oracles, all re-derived from the polygon and the returned index
+// triples: Euler's count n - 2, positive orientation in extended precision, triangle areas
+// summing to the shoelace area, every polygon edge used exactly once in its own direction and
+// every diagonal exactly twice (once per direction), and every diagonal locally Delaunay (the
+// polygon edges are the only constraints). Non-simple and clockwise inputs must give nothing.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <numbers>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geom/vec2.hpp"
+#include "support/tin_oracles.hpp"
+#include "tin/detail/hole_triangulation.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::ld;
+using test::orient2;
+using Triangles = std::vector<std::array<std::size_t, 3>>;
+
+long double shoelace(const std::vector<Vec2>& poly) {
+    long double s = 0.0L;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly[i];
+        const Vec2 b = poly[(i + 1) % poly.size()];
+        s += ld(a.x) * ld(b.y) - ld(b.x) * ld(a.y);
+    }
+    return s / 2.0L;
+}
+
+/// In-circle of d against the counter-clockwise triangle (a, b, c), relative to the squared
+/// spread: positive when d is strictly inside the circumcircle.
+long double relative_in_circle(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    const long double ax = ld(a.x) - ld(d.x), ay = ld(a.y) - ld(d.y);
+    const long double bx = ld(b.x) - ld(d.x), by = ld(b.y) - ld(d.y);
+    const long double cx = ld(c.x) - ld(d.x), cy = ld(c.y) - ld(d.y);
+    const long double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const long double det =
+        ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+    return det / ((a2 + b2 + c2) * (a2 + b2 + c2));
+}
+
+/// Every property a triangulation of the simple CCW polygon must have.
+void expect_triangulates(const std::vector<Vec2>& poly, const Triangles& tris) {
+    const std::size_t n = poly.size();
+    ASSERT_EQ(tris.size(), n - 2);
+    long double area = 0.0L;
+    // Directed edge (from, to) -> (triangle, corner opposite).
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, std::size_t>> directed;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+        const auto& t = tris[k];
+        for (std::size_t i : t)
+            ASSERT_LT(i, n);
+        ASSERT_TRUE(t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) << "triangle " << k;
+        const long double a2 = orient2(poly[t[0]], poly[t[1]], poly[t[2]]);
+        EXPECT_GT(a2, 0.0L) << "triangle " << k << " is not counter-clockwise with positive area";
+        area += a2 / 2.0L;
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::size_t from = t[(i + 1) % 3];
+            const std::size_t to = t[(i + 2) % 3];
+            EXPECT_TRUE(directed.emplace(std::make_pair(from, to), std::make_pair(k, i)).second)
+                << "directed edge " << from << "->" << to << " used twice";
+        }
+    }
+    const long double expected = shoelace(poly);
+    EXPECT_LE(std::abs(area - expected), 1e-12L * std::abs(expected))
+        << "areas " << static_cast<double>(area) << " vs shoelace "
+        << static_cast<double>(expected);
+    std::size_t boundary = 0;
+    std::size_t diagonal_halves = 0;
+    for (const auto& [edge, where] : directed) {
+        const auto [from, to] = edge;
+        if ((from + 1) % n == to) {
+            ++boundary;  // a polygon edge in its own direction
+            EXPECT_EQ(directed.count({to, from}), 0u)
+                << "polygon edge " << from << "->" << to << " used from outside";
+            continue;
+        }
+        EXPECT_NE((to + 1) % n, from) << "polygon edge " << to << "->" << from << " reversed";
+        const auto twin = directed.find({to, from});
+        if (twin == directed.end()) {
+            ADD_FAILURE() << "diagonal " << from << "->" << to << " has no twin";
+            continue;
+        }
+        ++diagonal_halves;
+        // Locally Delaunay: the far corner of the twin triangle is not inside this circumcircle.
+        const auto& t = tris[where.first];
+        const std::size_t far = tris[twin->second.first][twin->second.second];
+        EXPECT_LE(relative_in_circle(poly[t[0]], poly[t[1]], poly[t[2]], poly[far]), 1e-12L)
+            << "diagonal " << from << "-" << to << " is not locally Delaunay";
+    }
+    EXPECT_EQ(boundary, n) << "every polygon edge exactly once";
+    EXPECT_EQ(diagonal_halves, 2 * (n - 3)) << "n - 3 diagonals, each used twice";
+}
+
+std::vector<Vec2> regular_polygon(std::size_t n, Vec2 centre, double radius, double phase) {
+    std::vector<Vec2> p;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double a =
+            phase + 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(n);
+        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
+    }
+    return p;
+}
+
+/// Star-shaped around `centre`: increasing angles (jittered within their sector), random radii.
+std::vector<Vec2> random_star(std::size_t n, Vec2 centre, std::uint64_t seed) {
+    std::mt19937_64 rng = test::test_rng(seed);
+    std::uniform_real_distribution<double> jitter(0.05, 0.95);
+    std::uniform_real_distribution<double> radius(0.2, 1.0);
+    std::vector<Vec2> p;
+    for (std::size_t k = 0; k < n; ++k) {
+        const double a = 2.0 * std::numbers::pi * (static_cast<double>(k) + jitter(rng)) /
+                         static_cast<double>(n);
+        const double r = radius(rng);
+        p.push_back({centre.x + r * std::cos(a), centre.y + r * std::sin(a)});
+    }
+    return p;
+}
+
+/// A comb: a base along y = 0 and `teeth` teeth of random heights with narrow gaps, plus
+/// `base_points` exactly collinear points along the base. Counter-clockwise.
+std::vector<Vec2> comb(int teeth, int base_points, std::uint64_t seed) {
+    std::mt19937_64 rng = test::test_rng(seed);
+    std::uniform_real_distribution<double> height(1.0, 3.0);
+    const double width = 0.6;  // tooth width; gaps are 1 - width, floor at y = 0.25
+    const double right = static_cast<double>(teeth - 1) + width;
+    std::vector<Vec2> p;
+    for (int k = 0; k <= base_points; ++k)
+        p.push_back({right * k / (base_points + 1), 0.0});
+    p.push_back({right, 0.0});
+    for (int i = teeth - 1; i >= 0; --i) {
+        const double x = static_cast<double>(i);
+        const double h = height(rng);
+        p.push_back({x + width, h});
+        p.push_back({x, h});
+        if (i > 0) {
+            p.push_back({x, 0.25});
+            p.push_back({x - 1.0 + width, 0.25});
+        }
+    }
+    return p;
+}
+
+TEST(HoleTriangulation, ConvexPolygons) {
+    const std::vector<Vec2> triangle = {{0, 0}, {1, 0}, {0, 1}};
+    expect_triangulates(triangle, detail::triangulate_simple_polygon(triangle));
+    const std::vector<Vec2> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    expect_triangulates(square, detail::triangulate_simple_polygon(square));
+    // Cocircular: every diagonal choice is Delaunay; still n - 2 proper triangles.
+    for (std::size_t n : {5u, 17u, 300u}) {
+        SCOPED_TRACE(n);
+        const auto poly = regular_polygon(n, {0.31, -0.7}, 0.05, 0.123);
+        expect_triangulates(poly, detail::triangulate_simple_polygon(poly));
+    }
+}
+
+TEST(HoleTriangulation, RandomStarShapedPolygons) {
+    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+        SCOPED_TRACE(seed);
+        const auto poly = random_star(100 + 25 * seed, {0.5, 0.25}, seed);
+        ASSERT_GT(shoelace(poly), 0.0L);
+        expect_triangulates(poly, detail::triangulate_simple_polygon(poly));
+    }
+}
+
+TEST(HoleTriangulation, CombPolygons) {
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+        SCOPED_TRACE(seed);
+        const auto poly = comb(static_cast<int>(20 * seed), static_cast<int>(7 * seed), seed);
+        ASSERT_GT(poly.size(), 80u);
+        expect_triangulates(poly, detail::triangulate_simple_polygon(poly));
+    }
+}
+
+TEST(HoleTriangulation, CollinearConsecutivePoints) {
+    // An integer square with 49 collinear points on each side: no triangle may take three
+    // points of one side (zero area).
+    std::vector<Vec2> square;
+    const int m = 50;
+    for (int k = 0; k < m; ++k)
+        square.push_back({static_cast<double>(k), 0.0});
+    for (int k = 0; k < m; ++k)
+        square.push_back({static_cast<double>(m), static_cast<double>(k)});
+    for (int k = 0; k < m; ++k)
+        square.push_back({static_cast<double>(m - k), static_cast<double>(m)});
+    for (int k = 0; k < m; ++k)
+        square.push_back({0.0, static_cast<double>(m - k)});
+    expect_triangulates(square, detail::triangulate_simple_polygon(square));
+    // A triangle with a long straight side and one far apex: the apex sees them all.
+    std::vector<Vec2> fan;
+    for (int k = 0; k <= 200; ++k)
+        fan.push_back({k * 0.01, 0.0});
+    fan.push_back({1.0, 1e-3});
+    expect_triangulates(fan, detail::triangulate_simple_polygon(fan));
+    // Collinear runs inside a non-convex polygon: an L whose sides are subdivided.
+    std::vector<Vec2> ell;
+    const std::vector<Vec2> corners = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const Vec2 a = corners[i];
+        const Vec2 b = corners[(i + 1) % corners.size()];
+        for (int k = 0; k < 8; ++k)
+            ell.push_back(a + (b - a) * (k / 8.0));
+    }
+    expect_triangulates(ell, detail::triangulate_simple_polygon(ell));
+}
+
+TEST(HoleTriangulation, RejectsNonSimpleAndClockwise) {
+    auto rejected = [](const std::vector<Vec2>& poly, const char* what) {
+        SCOPED_TRACE(what);
+        EXPECT_TRUE(detail::triangulate_simple_polygon(poly).empty());
+    };
+    rejected({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, "bow-tie");
+    rejected({{0, 0}, {0, 1}, {1, 1}, {1, 0}}, "clockwise square");
+    {
+        auto poly = random_star(200, {0, 0}, 77);
+        std::reverse(poly.begin(), poly.end());
+        rejected(poly, "clockwise star");
+    }
+    rejected({{0, 0}, {1, 0}, {1, 0}, {1, 1}, {0, 1}}, "repeated consecutive point");
+    rejected({{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}, {1, 1}}, "repeated non-consecutive point");
+    // Vertex 4 lies on edge 0-1: two quadrilaterals touching at a point of an edge.
+    rejected({{0, 0}, {4, 0}, {4, 4}, {3, 4}, {2, 0}, {1, 4}, {0, 4}}, "vertex on another edge");
+    // A notch from the left side whose tip touches the right side.
+    rejected({{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 2.5}, {4, 2}, {0, 1.5}}, "notch touching");
+    rejected({{0, 0}, {1, 0}}, "two points");
+    rejected({}, "empty");
+    // A comb with one tooth crossing its neighbour.
+    auto crossed = comb(10, 3, 5);
+    for (Vec2& p : crossed) {
+        if (p.y > 0.5 && p.x == 4.0) p.x = 5.3;  // tooth 4's left side leans past tooth 5
+    }
+    rejected(crossed, "crossing teeth");
+}
+
+}  // namespace
+}  // namespace sandtin

@@ -1,0 +1,268 @@
+// remove_in_patches: bulk removal of offered vertices, a connected patch at a time. Oracles:
+// the offered set and the pre-edit neighbourhoods (which vertices died, which were on a
+// constraint or the border, who was next to a constrained vertex), the brute-force volume,
+// the disc test of support/region_oracles.hpp, and the CGAL-free mesh checks.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "support/region_oracles.hpp"
+#include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
+#include "tin/tin.hpp"
+#include "tools/clear_patches.hpp"
+
+namespace sandtin {
+namespace {
+
+using test::in_disc;
+using test::live_ids;
+
+const Rect kUnit = Rect::from_size(1.0, 1.0);
+
+double bumpy(Vec2 p) {
+    return 0.2 + 0.03 * std::sin(41.0 * p.x + 0.4) * std::cos(37.0 * p.y - 0.1) +
+           0.05 * (p.x - 0.5) * (p.x - 0.5);
+}
+
+void constrain(Tin& tin, const std::vector<Vec2>& pts, bool closed, Generation generation) {
+    std::vector<double> hs;
+    for (Vec2 p : pts)
+        hs.push_back(bumpy(p));
+    const std::vector<VertexId> ids = tin.insert_points(pts, hs);
+    tin.insert_constraint(ids, closed, generation);
+}
+
+/// Runs remove_in_patches and checks everything that must hold whatever it decides: only
+/// offered, interior, unconstrained vertices die, and none that was next to a constrained
+/// vertex; nothing else moves; the counts, the report and the volume agree.
+/// With `may_border`, also: every removed vertex's surviving neighbours satisfy it.
+PatchClearing clear_and_check(
+    Tin& tin, const std::vector<VertexId>& offered,
+    const std::function<bool(VertexId v, VertexId w)>& may_border = nullptr) {
+    const std::set<VertexId> offer(offered.begin(), offered.end());
+    std::set<VertexId>
+        protected_vertices;  // on a constraint or the border, or next to a constraint
+    for (VertexId v : live_ids(tin)) {
+        if (!tin.is_on_constraint(v) && !tin.is_boundary(v)) continue;
+        protected_vertices.insert(v);
+        if (!tin.is_on_constraint(v)) continue;
+        std::vector<VertexId> around;
+        tin.neighbours(v, around);
+        protected_vertices.insert(around.begin(), around.end());
+    }
+    std::map<VertexId, std::vector<VertexId>> rings;  // before the edit
+    for (VertexId v : offered) {
+        if (tin.is_alive(v)) tin.neighbours(v, rings[v]);
+    }
+    const test::TinState before = test::capture(tin);
+    const std::size_t n0 = tin.vertex_count();
+    const std::size_t constrained_edges = tin.constrained_edge_count();
+    const auto constraints = tin.constraints();
+    const double v0 = tin.volume();
+    const double brute0 = test::brute_force_volume(tin);
+    EditReport report;
+    const PatchClearing out = remove_in_patches(tin, offered, &report, may_border);
+
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+    EXPECT_TRUE(test::mesh_is_sound(tin));
+    EXPECT_EQ(out.candidates, offered.size());
+    std::size_t died = 0;
+    std::size_t offered_alive = 0;
+    const VertexArrays& was = before.snapshot.vertices;
+    for (std::uint32_t i = 0; i < was.size(); ++i) {
+        if (!was.alive[i]) continue;
+        const VertexId v{i};
+        if (!tin.is_alive(v)) {
+            ++died;
+            EXPECT_TRUE(offer.count(v)) << "removed vertex " << i << " was not offered";
+            EXPECT_FALSE(protected_vertices.count(v))
+                << "removed vertex " << i << " was on or next to a constraint, or on the border";
+            if (may_border) {
+                for (VertexId w : rings.at(v)) {
+                    if (tin.is_alive(w)) {
+                        EXPECT_TRUE(may_border(v, w)) << i << " went while " << w.value << " stays";
+                    }
+                }
+            }
+            continue;
+        }
+        offered_alive += offer.count(v);
+        EXPECT_EQ(tin.position(v), was.position[i]);
+        EXPECT_EQ(tin.height(v), was.height[i]) << "VolumePolicy::Report moves no height";
+    }
+    std::size_t offered_live_before = 0;
+    for (VertexId v : offer)
+        offered_live_before += (v.value < was.size() && was.alive[v.value]) ? 1 : 0;
+    EXPECT_EQ(out.removed, died);
+    EXPECT_EQ(out.removed + offered_alive, offered_live_before);
+    EXPECT_EQ(tin.vertex_count(), n0 - died);
+    EXPECT_EQ(report.vertices_removed, died);
+    EXPECT_EQ(report.vertices_created, 0u);
+    EXPECT_EQ(tin.constrained_edge_count(), constrained_edges);
+    const auto after = tin.constraints();
+    EXPECT_EQ(after.size(), constraints.size());
+    for (std::size_t k = 0; k < std::min(after.size(), constraints.size()); ++k)
+        EXPECT_EQ(after[k].vertices, constraints[k].vertices);
+    const double dv = tin.volume() - v0;
+    EXPECT_TRUE(test::close_rel(report.volume_change, dv, 1e-12, 1e-15 * std::abs(v0)))
+        << report.volume_change << " vs " << dv;
+    EXPECT_TRUE(test::close_rel(report.volume_change, test::brute_force_volume(tin) - brute0, 1e-9,
+                                1e-15 * std::abs(v0)));
+    if (died == 0) test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+    return out;
+}
+
+TEST(ClearPatches, DenseTerrainWithConstraints) {
+    for (std::uint64_t seed : {601u, 602u}) {
+        SCOPED_TRACE(seed);
+        Tin tin = test::smooth_terrain(kUnit, 20000, seed, bumpy, 0.02);
+        constrain(tin, {{0.45, 0.45}, {0.55, 0.47}, {0.52, 0.56}}, true, 1);  // a ring
+        constrain(tin, {{0.3, 0.6}, {0.42, 0.66}}, false, 2);
+        constrain(tin, {{0.35, 0.7}, {0.4, 0.58}}, false, 3);  // crosses the previous one
+        constrain(tin, {{0.6, 0.3}, {0.66, 0.31}}, false, 4);
+        ASSERT_TRUE(tin.check_valid().ok());
+        // A big disc holding all the constraints, one at the border, a few dead ids and repeats.
+        std::vector<VertexId> offered = in_disc(tin, {0.5, 0.5}, 0.22);
+        const std::vector<VertexId> border = in_disc(tin, {0.0, 0.3}, 0.08);
+        offered.insert(offered.end(), border.begin(), border.end());
+        offered.push_back(offered[10]);
+        offered.push_back(VertexId{tin.vertex_capacity() + 3});
+        ASSERT_GT(offered.size(), 3000u);
+        const PatchClearing out = clear_and_check(tin, offered);
+        EXPECT_GE(out.patches, 1u);
+        EXPECT_GT(out.removed, 0u);
+    }
+}
+
+TEST(ClearPatches, TwoDisjointDiscsAreTwoPatches) {
+    Tin tin = Tin::random_points(kUnit, 8000, 611, bumpy);
+    std::vector<VertexId> offered = test::grow_to_disc(tin, in_disc(tin, {0.3, 0.3}, 0.07));
+    const std::vector<VertexId> second = test::grow_to_disc(tin, in_disc(tin, {0.7, 0.6}, 0.09));
+    ASSERT_TRUE(test::region_is_disc(tin, offered));
+    ASSERT_TRUE(test::region_is_disc(tin, second));
+    const std::size_t first_size = offered.size();
+    offered.insert(offered.end(), second.begin(), second.end());
+    const PatchClearing out = clear_and_check(tin, offered);
+    EXPECT_EQ(out.patches, 2u);
+    EXPECT_EQ(out.refused, 0u);
+    EXPECT_EQ(out.removed, first_size + second.size());
+}
+
+TEST(ClearPatches, DropsTheNeighboursOfAConstrainedVertexAndRemovesTheRest) {
+    // A constraint crossing the rim of the offered disc: what the drop rule keeps (its vertices
+    // and their neighbours) reaches the outside, so the rest is still one disc.
+    Tin tin = Tin::random_points(kUnit, 8000, 621, bumpy);
+    constrain(tin, {{0.585, 0.5}, {0.64, 0.505}}, false, 1);
+    const std::vector<VertexId> offered = test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
+    // As one patch it does not qualify (it holds a constraint).
+    {
+        const test::TinState before = test::capture(tin);
+        EXPECT_FALSE(tin.remove_patch(offered));
+        test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+    }
+    std::set<VertexId> kept;  // the constrained vertices and their neighbours must stay
+    for (VertexId v : offered) {
+        if (tin.is_on_constraint(v)) {
+            std::vector<VertexId> around;
+            tin.neighbours(v, around);
+            kept.insert(v);
+            kept.insert(around.begin(), around.end());
+        }
+    }
+    std::size_t kept_at_least = 0;
+    for (VertexId v : offered)
+        kept_at_least += kept.count(v);
+    ASSERT_GT(kept_at_least, 0u);
+    const PatchClearing out = clear_and_check(tin, offered);
+    EXPECT_GE(out.patches, 1u);
+    EXPECT_EQ(out.refused, 0u);
+    EXPECT_GT(out.removed, offered.size() * 8 / 10) << out.removed << " of " << offered.size();
+    EXPECT_LE(out.removed, offered.size() - kept_at_least);
+}
+
+TEST(ClearPatches, RemovesMostOfASetAroundAnInteriorConstraint) {
+    // The drop rule keeps the constrained vertices and their neighbours inside the set, so the
+    // rest is a ring, which no single remove_patch takes: it has to go in pieces.
+    for (std::uint64_t seed : {622u, 623u, 624u}) {
+        SCOPED_TRACE(seed);
+        Tin tin = Tin::random_points(kUnit, 8000, seed, bumpy);
+        constrain(tin, {{0.49, 0.5}, {0.515, 0.505}}, false, 1);
+        const std::vector<VertexId> offered =
+            test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
+        const PatchClearing out = clear_and_check(tin, offered);
+        EXPECT_GE(out.patches, 2u);
+        EXPECT_GT(out.removed, offered.size() * 8 / 10) << out.removed << " of " << offered.size();
+    }
+}
+
+TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
+    {  // Nobody may border anything that stays: nothing goes.
+        Tin tin = Tin::random_points(kUnit, 4000, 651, bumpy);
+        const std::vector<VertexId> offered = in_disc(tin, {0.5, 0.5}, 0.1);
+        const PatchClearing out =
+            clear_and_check(tin, offered, [](VertexId, VertexId) { return false; });
+        EXPECT_EQ(out.removed, 0u);
+    }
+    {  // Survivors left of x = 0.5 may not border a removed vertex.
+        Tin tin = Tin::random_points(kUnit, 4000, 652, bumpy);
+        const std::vector<VertexId> offered =
+            test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
+        const Tin* t = &tin;
+        const PatchClearing out = clear_and_check(
+            tin, offered, [t](VertexId, VertexId w) { return t->position(w).x > 0.5; });
+        EXPECT_GT(out.removed, 0u);
+        EXPECT_LT(out.removed, offered.size());
+    }
+    {  // Always allowed: the same as no rule.
+        Tin a = Tin::random_points(kUnit, 4000, 653, bumpy);
+        Tin b = Tin::random_points(kUnit, 4000, 653, bumpy);
+        const std::vector<VertexId> offered = test::grow_to_disc(a, in_disc(a, {0.5, 0.5}, 0.1));
+        const PatchClearing with =
+            clear_and_check(a, offered, [](VertexId, VertexId) { return true; });
+        const PatchClearing without = clear_and_check(b, offered);
+        EXPECT_EQ(with.removed, without.removed);
+        EXPECT_EQ(test::triangle_set(a), test::triangle_set(b));
+    }
+}
+
+TEST(ClearPatches, IslandsAndAnnuliNeverBreakTheMesh) {
+    // The set surrounds vertices it does not offer: whatever is removed, the checks hold.
+    Tin tin = Tin::random_points(kUnit, 8000, 631, bumpy);
+    const std::vector<VertexId> disc = test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
+    std::vector<VertexId> annulus;
+    for (VertexId v : disc) {
+        if (distance(tin.position(v), Vec2{0.5, 0.5}) > 0.03) annulus.push_back(v);
+    }
+    clear_and_check(tin, annulus);
+    Tin other = Tin::random_points(kUnit, 8000, 632, bumpy);
+    std::vector<VertexId> holed = test::grow_to_disc(other, in_disc(other, {0.5, 0.5}, 0.1));
+    const auto nearest = std::min_element(holed.begin(), holed.end(), [&](VertexId a, VertexId b) {
+        return distance(other.position(a), Vec2{0.5, 0.5}) <
+               distance(other.position(b), Vec2{0.5, 0.5});
+    });
+    holed.erase(nearest);
+    clear_and_check(other, holed);
+}
+
+TEST(ClearPatches, NothingToDo) {
+    Tin tin = Tin::random_points(kUnit, 2000, 641, bumpy);
+    EXPECT_EQ(clear_and_check(tin, {}).removed, 0u);
+    // Only border vertices.
+    std::vector<VertexId> border;
+    for (VertexId v : live_ids(tin)) {
+        if (tin.is_boundary(v)) border.push_back(v);
+    }
+    const PatchClearing out = clear_and_check(tin, border);
+    EXPECT_EQ(out.removed, 0u);
+    EXPECT_EQ(out.patches, 0u);
+}
+
+}  // namespace
+}  // namespace sandtin
