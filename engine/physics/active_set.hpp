@@ -61,6 +61,26 @@ class ActiveSet {
         bits_[v >> 6] &= ~(std::uint64_t{1} << (v & 63u));
         std::erase(list_, v);
     }
+    /// Renames every member v to new_id[v] (ids must be in range and distinct), keeping the
+    /// list order and the quiet counts: the relaxation continues exactly as before in the new
+    /// numbering. Members whose new id is `drop` leave.
+    void renumber(std::span<const std::uint32_t> new_id, std::uint32_t drop) {
+        std::vector<std::uint32_t> list;
+        std::vector<std::uint8_t> quiet;
+        list.reserve(list_.size());
+        for (std::uint32_t v : list_) {
+            bits_[v >> 6] = 0;
+            const std::uint32_t w = new_id[v];
+            if (w == drop) continue;
+            list.push_back(w);
+            quiet.push_back(quiet_[v]);
+        }
+        list_.clear();
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            activate(list[k]);
+            quiet_[list[k]] = quiet[k];
+        }
+    }
     void clear() {
         for (std::uint32_t v : list_)
             bits_[v >> 6] = 0;

@@ -1,6 +1,8 @@
 #include "physics/adjacency_graph.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace sandtin {
 
@@ -11,6 +13,20 @@ constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 /// Room for a few more neighbours than now, rounded to 4 slots.
 std::uint32_t row_capacity(std::uint32_t degree) {
     return (degree + 2 + 3) & ~3u;
+}
+
+std::uint32_t tin_of(const VertexNumbering* numbering, std::uint32_t v) {
+    return numbering != nullptr ? numbering->tin_id(v) : v;
+}
+
+/// Local id of live TIN vertex t.
+std::uint32_t local_of(const VertexNumbering* numbering, std::uint32_t t) {
+    if (numbering == nullptr) return t;
+    const std::uint32_t v = numbering->local(t);
+    if (v == VertexNumbering::kNone)
+        throw std::logic_error("adjacency graph: live vertex " + std::to_string(t) +
+                               " is not numbered");
+    return v;
 }
 
 }  // namespace
@@ -32,8 +48,8 @@ void AdjacencyGraph::ensure_vertices(std::uint32_t n) {
     mark_.resize(n, 0);
 }
 
-void AdjacencyGraph::rebuild(const Tin& tin) {
-    const std::uint32_t n = tin.vertex_capacity();
+void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
+    const std::uint32_t n = numbering != nullptr ? numbering->size() : tin.vertex_capacity();
     offset_.assign(n, 0);
     degree_.assign(n, 0);
     capacity_.assign(n, 0);
@@ -45,14 +61,15 @@ void AdjacencyGraph::rebuild(const Tin& tin) {
     std::vector<VertexId> ring;
     const VertexArrays& va = tin.vertices();
     for (std::uint32_t v = 0; v < n; ++v) {
-        if (!va.alive[v]) continue;
-        tin.neighbours(VertexId{v}, ring);
+        const std::uint32_t t = tin_of(numbering, v);
+        if (t >= va.size() || !va.alive[t]) continue;
+        tin.neighbours(VertexId{t}, ring);
         offset_[v] = static_cast<std::uint32_t>(target_.size());
         degree_[v] = static_cast<std::uint32_t>(ring.size());
         capacity_[v] = row_capacity(degree_[v]);
         for (VertexId w : ring) {
-            target_.push_back(w.value);
-            length_.push_back(distance(va.position[v], va.position[w.value]));
+            target_.push_back(local_of(numbering, w.value));
+            length_.push_back(distance(va.position[t], va.position[w.value]));
         }
         target_.resize(offset_[v] + capacity_[v], kNone);
         length_.resize(offset_[v] + capacity_[v], 0.0);
@@ -73,15 +90,17 @@ void AdjacencyGraph::rebuild(const Tin& tin) {
     }
 }
 
-void AdjacencyGraph::write_row(const Tin& tin, std::uint32_t v, std::vector<VertexId>& ring) {
+void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering, std::uint32_t v,
+                               std::vector<VertexId>& ring) {
     const VertexArrays& va = tin.vertices();
-    if (v >= va.size() || !va.alive[v]) {
+    const std::uint32_t t = tin_of(numbering, v);
+    if (t >= va.size() || !va.alive[t]) {
         slack_ += degree_[v];
         degree_[v] = 0;
         longest_[v] = 0.0;
         return;
     }
-    tin.neighbours(VertexId{v}, ring);
+    tin.neighbours(VertexId{t}, ring);
     const auto deg = static_cast<std::uint32_t>(ring.size());
     if (deg > capacity_[v]) {
         slack_ += capacity_[v];
@@ -96,8 +115,8 @@ void AdjacencyGraph::write_row(const Tin& tin, std::uint32_t v, std::vector<Vert
     degree_[v] = deg;
     slack_ += capacity_[v] - deg;
     for (std::uint32_t k = 0; k < deg; ++k) {
-        target_[offset_[v] + k] = ring[k].value;
-        length_[offset_[v] + k] = distance(va.position[v], va.position[ring[k].value]);
+        target_[offset_[v] + k] = local_of(numbering, ring[k].value);
+        length_[offset_[v] + k] = distance(va.position[t], va.position[ring[k].value]);
     }
     refresh_longest(v);
 }
@@ -116,18 +135,21 @@ void AdjacencyGraph::fix_reverse(std::uint32_t v) {
     }
 }
 
-void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed) {
+void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed,
+                            const VertexNumbering* numbering) {
     if (changed.empty()) return;
-    ensure_vertices(tin.vertex_capacity());
+    ensure_vertices(numbering != nullptr ? numbering->size() : tin.vertex_capacity());
     std::vector<VertexId> ring;
     std::vector<std::uint32_t> touched;
     if (mark_.size() < offset_.size()) mark_.resize(offset_.size(), 0);
     std::vector<std::uint8_t>& seen = mark_;
     for (VertexId c : changed) {
-        if (c.value >= offset_.size() || seen[c.value]) continue;
-        seen[c.value] = 1;
-        write_row(tin, c.value, ring);
-        touched.push_back(c.value);
+        // A vertex born and dead between two updates was never numbered: it has no row.
+        const std::uint32_t v = numbering != nullptr ? numbering->local(c.value) : c.value;
+        if (v >= offset_.size() || seen[v]) continue;
+        seen[v] = 1;
+        write_row(tin, numbering, v, ring);
+        touched.push_back(v);
     }
     // Rows next to rewritten ones hold reverse slots into them.
     const std::size_t direct = touched.size();
@@ -144,7 +166,7 @@ void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed) {
     for (std::uint32_t v : touched)
         seen[v] = 0;
     if (slack_ * 2 > target_.size() && target_.size() > 4096) {
-        rebuild(tin);
+        rebuild(tin, numbering);
         return;
     }
     for (std::uint32_t v : touched) {
@@ -159,6 +181,18 @@ void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed) {
 void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
                             const std::vector<std::vector<double>>& lengths) {
     const auto n = static_cast<std::uint32_t>(rows.size());
+    if (lengths.size() != n)
+        throw std::invalid_argument("adjacency graph: one row of lengths per row of neighbours");
+    for (std::uint32_t v = 0; v < n; ++v) {
+        if (lengths[v].size() != rows[v].size())
+            throw std::invalid_argument("adjacency graph: row " + std::to_string(v) +
+                                        " has a different number of neighbours and lengths");
+        for (std::uint32_t w : rows[v]) {
+            if (w >= n || w == v)
+                throw std::invalid_argument("adjacency graph: row " + std::to_string(v) +
+                                            " lists an invalid neighbour " + std::to_string(w));
+        }
+    }
     offset_.assign(n, 0);
     degree_.assign(n, 0);
     capacity_.assign(n, 0);
@@ -177,6 +211,15 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v)
         fix_reverse(v);
+    for (std::uint32_t v = 0; v < n; ++v) {
+        for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k) {
+            if (reverse_[k] == kNone || !(length_[reverse_[k]] == length_[k]))
+                throw std::invalid_argument(
+                    "adjacency graph: edge " + std::to_string(v) + " -> " +
+                    std::to_string(target_[k]) +
+                    (reverse_[k] == kNone ? " has no opposite edge" : " has another length back"));
+        }
+    }
     dirty_flag_.assign(n, 0);
     dirty_rows_.clear();
 }
@@ -189,23 +232,33 @@ std::vector<std::uint32_t> AdjacencyGraph::take_dirty_rows() {
     return out;
 }
 
-bool AdjacencyGraph::matches(const Tin& tin) const {
+bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) const {
     const VertexArrays& va = tin.vertices();
     std::vector<VertexId> ring;
-    for (std::uint32_t v = 0; v < va.size(); ++v) {
-        if (!va.alive[v]) {
-            if (v < degree_.size() && degree_[v] != 0) return false;
+    auto local = [&](std::uint32_t t) { return numbering != nullptr ? numbering->local(t) : t; };
+    if (numbering != nullptr) {
+        for (std::uint32_t v = 0; v < numbering->size(); ++v) {
+            const std::uint32_t t = numbering->tin_id(v);
+            if (numbering->local(t) != v) return false;
+            if ((t >= va.size() || !va.alive[t]) && v < degree_.size() && degree_[v] != 0)
+                return false;
+        }
+    }
+    for (std::uint32_t t = 0; t < va.size(); ++t) {
+        const std::uint32_t v = local(t);
+        if (!va.alive[t]) {
+            if (numbering == nullptr && v < degree_.size() && degree_[v] != 0) return false;
             continue;
         }
         if (v >= degree_.size()) return false;
-        tin.neighbours(VertexId{v}, ring);
+        tin.neighbours(VertexId{t}, ring);
         if (ring.size() != degree_[v]) return false;
         for (std::uint32_t k = 0; k < degree_[v]; ++k) {
             const std::uint32_t slot = offset_[v] + k;
-            if (target_[slot] != ring[k].value) return false;
+            if (target_[slot] != local(ring[k].value)) return false;
             const std::uint32_t r = reverse_[slot];
-            if (r == kNone || target_[r] != v) return false;
-            if (std::abs(length_[slot] - distance(va.position[v], va.position[ring[k].value])) >
+            if (r == kNone || target_[r] != v || !(length_[r] == length_[slot])) return false;
+            if (std::abs(length_[slot] - distance(va.position[t], va.position[ring[k].value])) >
                 0.0)
                 return false;
         }

@@ -8,24 +8,34 @@
 //
 // Invariants (checked by matches()): for every live vertex v, the row of v lists exactly its
 // TIN neighbours in counter-clockwise order; reverse(k) of the slot k = (v -> w) is the slot of
-// (w -> v).
+// (w -> v), and both slots hold the same length bit for bit (the Jacobi receiver recomputes
+// what a sender computed along the opposite slot).
+//
+// Rows and targets are in a VertexNumbering's local ids when one is given (the relaxation's
+// locality order), else in TIN ids. Row v lists the neighbours of TIN vertex tin_id(v) in the
+// same counter-clockwise order either way, so a kernel sums in the same order.
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
 
 class AdjacencyGraph {
   public:
-    /// Builds the rows of every live vertex.
-    void rebuild(const Tin& tin);
-    /// Rewrites the rows of `changed` (vertices whose star changed, born or died) and fixes the
-    /// reverse slots around them. Compacts when more than half the pool is slack.
-    void update(const Tin& tin, std::span<const VertexId> changed);
-    /// Builds a graph from explicit rows (regular grids). rows[v] lists v's neighbours.
+    /// Builds the rows of every live vertex. With a numbering, every live vertex must be
+    /// numbered, and the numbering must outlive the graph's next rebuild/update/matches call.
+    void rebuild(const Tin& tin, const VertexNumbering* numbering = nullptr);
+    /// Rewrites the rows of `changed` (TIN ids of vertices whose star changed, born or died)
+    /// and fixes the reverse slots around them. Compacts when more than half the pool is
+    /// slack. Pass the numbering the graph was built with.
+    void update(const Tin& tin, std::span<const VertexId> changed,
+                const VertexNumbering* numbering = nullptr);
+    /// Builds a graph from explicit rows (regular grids). rows[v] lists v's neighbours. Throws
+    /// std::invalid_argument when an edge has no opposite edge or a different length there.
     void assign(const std::vector<std::vector<std::uint32_t>>& rows,
                 const std::vector<std::vector<double>>& lengths);
 
@@ -46,10 +56,11 @@ class AdjacencyGraph {
     /// Rows whose slots moved or changed since the last call (GPU upload ranges).
     std::vector<std::uint32_t> take_dirty_rows();
     /// True when every row matches the TIN (tests and check paths).
-    bool matches(const Tin& tin) const;
+    bool matches(const Tin& tin, const VertexNumbering* numbering = nullptr) const;
 
   private:
-    void write_row(const Tin& tin, std::uint32_t v, std::vector<VertexId>& scratch);
+    void write_row(const Tin& tin, const VertexNumbering* numbering, std::uint32_t v,
+                   std::vector<VertexId>& scratch);
     void fix_reverse(std::uint32_t v);
     void ensure_vertices(std::uint32_t n);
     void refresh_longest(std::uint32_t v);

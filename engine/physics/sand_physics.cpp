@@ -27,18 +27,108 @@ void PhysicsStepReport::accumulate(const PhysicsStepReport& o) {
     at_rest = o.at_rest;
 }
 
-SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings)
-    : tin_(tin), materials_(std::move(materials)), solver_(settings) {
+SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings,
+                         VertexOrder order)
+    : tin_(tin), materials_(std::move(materials)), solver_(settings), order_(order) {
     subscription_ = tin_.subscribe_vertex_changes();
-    graph_.rebuild(tin_);
     const VertexArrays& va = tin_.vertices();
-    height_.assign(va.height.begin(), va.height.end());
-    tan_alpha_.resize(va.size());
     material_seen_.assign(va.material.begin(), va.material.end());
     moisture_seen_.assign(va.moisture.begin(), va.moisture.end());
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v]) tan_alpha_[v] = materials_.at(va.material[v]).talus_slope(va.moisture[v]);
+    if (order_ == VertexOrder::Strips) {
+        numbering_.assign_strips(tin_);
+    } else {
+        numbering_.assign_identity(tin_);
     }
+    graph_.rebuild(tin_, &numbering_);
+    grow_local();
+}
+
+void SandPhysics::load(std::uint32_t l) {
+    const VertexArrays& va = tin_.vertices();
+    const std::uint32_t t = numbering_.tin_id(l);
+    const bool alive = t < va.size() && va.alive[t];
+    height_[l] = alive ? va.height[t] : 0.0;
+    tan_alpha_[l] = alive ? materials_.at(va.material[t]).talus_slope(va.moisture[t]) : 0.0;
+    if (!numbering_.identity()) {
+        area_[l] = alive ? va.lumped_area[t] : 0.0;
+        bedrock_[l] = alive ? va.bedrock[t] : 0.0;
+    }
+}
+
+void SandPhysics::grow_local() {
+    const std::uint32_t n = numbering_.size();
+    const auto old = static_cast<std::uint32_t>(height_.size());
+    if (n <= old) return;
+    height_.resize(n);
+    tan_alpha_.resize(n);
+    if (!numbering_.identity()) {
+        area_.resize(n);
+        bedrock_.resize(n);
+    }
+    for (std::uint32_t l = old; l < n; ++l)
+        load(l);
+}
+
+TalusArrays SandPhysics::arrays() {
+    const VertexArrays& va = tin_.vertices();
+    if (numbering_.identity())
+        return {height_.data(),    va.lumped_area.data(), va.bedrock.data(),
+                tan_alpha_.data(), height_.size(),        nullptr};
+    return {height_.data(),    area_.data(),   bedrock_.data(),
+            tan_alpha_.data(), height_.size(), numbering_.tin_ids().data()};
+}
+
+void SandPhysics::number(std::span<const VertexId> vertices) {
+    const VertexArrays& va = tin_.vertices();
+    bool added = false;
+    for (VertexId v : vertices) {
+        if (v.value < va.size() && va.alive[v.value] &&
+            numbering_.local(v.value) == VertexNumbering::kNone) {
+            numbering_.add(v.value);
+            added = true;
+        }
+    }
+    if (added) grow_local();
+}
+
+void SandPhysics::apply_topology(std::span<const VertexId> topology) {
+    if (topology.empty()) return;
+    number(topology);
+    graph_.update(tin_, topology, &numbering_);
+}
+
+bool SandPhysics::is_active(VertexId v) const {
+    const std::uint32_t l = numbering_.local(v.value);
+    return l != VertexNumbering::kNone && active_.contains(l);
+}
+
+void SandPhysics::renumber() {
+    const VertexNumbering old = numbering_;
+    numbering_.assign_strips(tin_);
+    const std::uint32_t n = numbering_.size();
+    std::vector<std::uint32_t> new_id(old.size());
+    for (std::uint32_t l = 0; l < old.size(); ++l)
+        new_id[l] = numbering_.local(old.tin_id(l));
+    // Heights and slopes move with their vertices (height_ may hold what the TIN has not been
+    // given yet); area and bedrock are reloaded from the TIN.
+    std::vector<double> height(n), tan_alpha(n);
+    for (std::uint32_t l = 0; l < old.size(); ++l) {
+        if (new_id[l] == VertexNumbering::kNone) continue;
+        height[new_id[l]] = height_[l];
+        tan_alpha[new_id[l]] = tan_alpha_[l];
+    }
+    height_ = std::move(height);
+    tan_alpha_ = std::move(tan_alpha);
+    area_.resize(n);
+    bedrock_.resize(n);
+    const VertexArrays& va = tin_.vertices();
+    for (std::uint32_t l = 0; l < n; ++l) {
+        area_[l] = va.lumped_area[numbering_.tin_id(l)];
+        bedrock_[l] = va.bedrock[numbering_.tin_id(l)];
+    }
+    active_.renumber(new_id, VertexNumbering::kNone);
+    graph_.rebuild(tin_, &numbering_);
+    ++renumberings_;
 }
 
 SandPhysics::~SandPhysics() {
@@ -55,48 +145,63 @@ void SandPhysics::set_materials(MaterialTable materials) {
 }
 
 void SandPhysics::activate(std::span<const VertexId> vertices) {
+    number(vertices);
     for (VertexId v : vertices) {
-        if (tin_.is_alive(v)) active_.activate(v.value);
+        if (tin_.is_alive(v)) active_.activate(numbering_.local(v.value));
     }
 }
 
 void SandPhysics::activate_all() {
     const VertexArrays& va = tin_.vertices();
+    std::vector<VertexId> live;
+    live.reserve(tin_.vertex_count());
     for (std::uint32_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v]) active_.activate(v);
+        if (va.alive[v]) live.push_back(VertexId{v});
     }
+    number(live);
+    for (VertexId v : live)
+        active_.activate(numbering_.local(v.value));
 }
 
 void SandPhysics::sync() {
     const VertexChanges changes = tin_.take_vertex_changes(subscription_);
     const VertexArrays& va = tin_.vertices();
-    if (height_.size() < va.size()) {
-        height_.resize(va.size(), 0.0);
-        tan_alpha_.resize(va.size(), 0.0);
+    if (material_seen_.size() < va.size()) {
         material_seen_.resize(va.size(), 0xFFFF);
         moisture_seen_.resize(va.size(), -1.0f);
     }
-    if (!changes.topology.empty()) graph_.update(tin_, changes.topology);
+    apply_topology(changes.topology);
+    const bool copies = !numbering_.identity();
     auto refresh = [&](VertexId v) {
+        const std::uint32_t l = numbering_.local(v.value);
         if (!va.alive[v.value]) {
-            active_.remove(v.value);
+            if (l != VertexNumbering::kNone) active_.remove(l);
             return;
         }
-        height_[v.value] = va.height[v.value];
+        height_[l] = va.height[v.value];
+        if (copies) {
+            area_[l] = va.lumped_area[v.value];  // changes with the star: in `topology`
+            bedrock_[l] = va.bedrock[v.value];
+        }
         // tan(repose) only when the material or moisture changed: heights change far more often.
         if (material_seen_[v.value] != va.material[v.value] ||
             moisture_seen_[v.value] != va.moisture[v.value]) {
             material_seen_[v.value] = va.material[v.value];
             moisture_seen_[v.value] = va.moisture[v.value];
-            tan_alpha_[v.value] =
-                materials_.at(va.material[v.value]).talus_slope(va.moisture[v.value]);
+            tan_alpha_[l] = materials_.at(va.material[v.value]).talus_slope(va.moisture[v.value]);
         }
-        active_.activate(v.value);
+        active_.activate(l);
     };
+    // A vertex whose attributes changed without its star is numbered already, unless it was
+    // born before the last sync and never seen: number() covers that.
+    number(changes.attributes);
     for (VertexId v : changes.attributes)
         refresh(v);
     for (VertexId v : changes.topology)
         refresh(v);
+    if (copies &&
+        numbering_.appended() >= std::max<std::size_t>(kRenumberMinimum, numbering_.size() / 4))
+        renumber();
 }
 
 std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
@@ -242,7 +347,8 @@ std::size_t SandPhysics::refine_around(std::span<const VertexId> vertices) {
         sync();
         std::vector<std::uint32_t> around;
         for (VertexId v : vertices) {
-            if (tin_.is_alive(v) && graph_.longest_edge(v.value) > rs * (1.0 + 1e-9))
+            if (tin_.is_alive(v) &&
+                graph_.longest_edge(numbering_.local(v.value)) > rs * (1.0 + 1e-9))
                 around.push_back(v.value);
         }
         const std::size_t added = refine(around);
@@ -257,7 +363,7 @@ void SandPhysics::flush(std::vector<VertexId>* changed_out) {
     if (write_ids_.empty()) return;
     write_values_.clear();
     for (VertexId v : write_ids_) {
-        write_values_.push_back(height_[v.value]);
+        write_values_.push_back(height_[numbering_.local(v.value)]);
         write_pending_[v.value] = 0;
     }
     tin_.set_heights(write_ids_, write_values_);
@@ -266,13 +372,13 @@ void SandPhysics::flush(std::vector<VertexId>* changed_out) {
     write_ids_.clear();
     const VertexChanges echo = tin_.take_vertex_changes(subscription_);
     // set_heights changes attributes only; anything else would be an edit we must not drop.
-    if (!echo.topology.empty()) graph_.update(tin_, echo.topology);
+    apply_topology(echo.topology);
 }
 
 PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* changed_out) {
     PhysicsStepReport report;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<std::uint32_t> split_around;
+    std::vector<std::uint32_t> split_local, split_around;
     // Heights stay in height_ for the whole step: writing them into the TIN every iteration and
     // reading them back through the change journal cost about 12 % of the step
     // (physics-perf.md). They go into the TIN at the end and before refinement, which
@@ -282,20 +388,31 @@ PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* chang
         if (active_.empty()) break;
         const VertexArrays& va = tin_.vertices();
         if (write_pending_.size() < va.size()) write_pending_.resize(va.size(), 0);
-        const TalusArrays arrays{height_.data(), va.lumped_area.data(), va.bedrock.data(),
-                                 tan_alpha_.data(), va.size()};
-        const IterationStats stats = solver_.iterate(graph_, arrays, active_, &split_around);
+        const IterationStats stats = solver_.iterate(graph_, arrays(), active_, &split_local);
         ++report.iterations;
         report.vertex_updates += stats.processed;
         report.changed += stats.changed;
         report.volume_moved += stats.volume_moved;
-        for (std::uint32_t v : solver_.changed()) {
+        for (std::uint32_t l : solver_.changed()) {
+            const std::uint32_t v = numbering_.tin_id(l);
             if (!write_pending_[v]) {
                 write_pending_[v] = 1;
                 write_ids_.push_back(VertexId{v});
             }
         }
-        if (!split_around.empty()) {
+        if (!split_local.empty()) {
+            split_around.clear();
+            for (std::uint32_t l : split_local)
+                split_around.push_back(numbering_.tin_id(l));
+            split_local.clear();
+            // Jacobi reports them in the order of its (local) ids; refinement depends on the
+            // order, so it gets them in TIN-id order, whatever the numbering. The sequential
+            // schedule's order is its visiting order, the same in every numbering.
+            if (solver_.settings().schedule == Schedule::Jacobi) {
+                std::sort(split_around.begin(), split_around.end());
+                split_around.erase(std::unique(split_around.begin(), split_around.end()),
+                                   split_around.end());
+            }
             flush(changed_out);
             report.refined += refine(split_around);
             sync();

@@ -3,6 +3,14 @@
 // moisture, bedrock, and refinement of long edges at the relocation radius r_S (so a pile
 // poured onto two flat triangles grows its own detail). It follows every change to the TIN
 // (tools, brushes, undo) through a Tin change subscription: whatever changed becomes active.
+//
+// The relaxation runs in its own vertex numbering (VertexNumbering, strips by default): the
+// graph, the per-vertex arrays and the active set are laid out for locality, which is worth
+// about 45 % of Jacobi throughput at 10⁶ active vertices over the TIN's ids. The numbering is
+// invisible outside: heights are bit for bit those of a run in TIN ids (each row keeps its
+// order, the jitter hashes TIN ids, and the sequential schedule visits vertices in the same
+// activation order). Vertices born later are appended; once they are a quarter of the
+// numbering (and at least kRenumberMinimum), everything is renumbered in strips again.
 
 #include <memory>
 #include <span>
@@ -11,6 +19,7 @@
 #include "physics/adjacency_graph.hpp"
 #include "physics/material.hpp"
 #include "physics/talus_solver.hpp"
+#include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -26,10 +35,17 @@ struct PhysicsStepReport {
     void accumulate(const PhysicsStepReport& o);
 };
 
+/// The numbering the relaxation runs in (see above).
+enum class VertexOrder : std::uint8_t {
+    Tin,     ///< the TIN's own ids
+    Strips,  ///< strips two mean spacings tall, in x order (the default)
+};
+
 class SandPhysics {
   public:
     /// Subscribes to the TIN's changes; the TIN must outlive the physics.
-    SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings = {});
+    SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings = {},
+                VertexOrder order = VertexOrder::Strips);
     ~SandPhysics();
     SandPhysics(const SandPhysics&) = delete;
     SandPhysics& operator=(const SandPhysics&) = delete;
@@ -42,8 +58,8 @@ class SandPhysics {
     /// Every live vertex becomes active (e.g. after loading a terrain that is not at rest).
     void activate_all();
     std::size_t active_count() const { return active_.size(); }
-    /// The vertices still being relaxed (ids).
-    const ActiveSet& active() const { return active_; }
+    /// True while vertex v is still being relaxed.
+    bool is_active(VertexId v) const;
     bool at_rest() const { return active_.empty(); }
 
     /// Runs up to `iterations` relaxation iterations (stops early at rest). Vertices whose
@@ -59,12 +75,31 @@ class SandPhysics {
     /// vertices inserted; no-op without a relocation radius.
     std::size_t refine_around(std::span<const VertexId> vertices);
 
+    /// The relaxation's graph, in numbering()'s local ids.
     const AdjacencyGraph& graph() const { return graph_; }
-    /// tan(angle of repose) of each vertex, from its material and moisture.
-    const std::vector<double>& talus_slopes() const { return tan_alpha_; }
+    const VertexNumbering& numbering() const { return numbering_; }
+    /// Times the strip numbering was rebuilt since construction (tests, stats).
+    std::size_t renumberings() const { return renumberings_; }
+
+    /// Appended vertices that trigger a renumbering at least (below, appending is cheaper).
+    static constexpr std::size_t kRenumberMinimum = 4096;
 
   private:
     void sync();
+    /// Numbers the born vertices among `topology`, grows the local arrays and rewrites the
+    /// graph rows of `topology`.
+    void apply_topology(std::span<const VertexId> topology);
+    /// Numbers the live vertices among `vertices` that are not yet (before sync() has seen
+    /// them), so they can be activated.
+    void number(std::span<const VertexId> vertices);
+    /// Numbers the live vertices in strips again and rebuilds the graph and the local arrays.
+    void renumber();
+    /// Grows the local arrays to the numbering and loads area, bedrock and height of local id
+    /// l from the TIN (the strip numbering keeps its own copies of area and bedrock).
+    void grow_local();
+    void load(std::uint32_t l);
+    /// The arrays the solver reads, in local ids.
+    TalusArrays arrays();
     /// Writes the heights the relaxation changed since the last flush into the TIN (once per
     /// step, and before refinement reads them), and drops the journal entries that write
     /// makes: they echo values height_ already holds, and the solver has already activated
@@ -78,16 +113,23 @@ class SandPhysics {
     Tin& tin_;
     MaterialTable materials_;
     TalusSolver solver_;
-    AdjacencyGraph graph_;
-    ActiveSet active_;
+    VertexOrder order_;
+    VertexNumbering numbering_;
+    std::size_t renumberings_ = 0;
+    AdjacencyGraph graph_;  ///< local ids
+    ActiveSet active_;      ///< local ids
     std::uint32_t subscription_;
+    // Per local id.
     std::vector<double> height_;
     std::vector<double> tan_alpha_;
+    std::vector<double> area_;     ///< strip numbering only (else the TIN's array is read)
+    std::vector<double> bedrock_;  ///< strip numbering only
+    // Per TIN id.
     std::vector<std::uint16_t> material_seen_;  ///< material/moisture tan_alpha_ was computed for
     std::vector<float> moisture_seen_;
     std::vector<VertexId> write_ids_;  ///< changed since the last flush, each once
     std::vector<double> write_values_;
-    std::vector<std::uint8_t> write_pending_;  ///< per vertex: listed in write_ids_
+    std::vector<std::uint8_t> write_pending_;  ///< per TIN id: listed in write_ids_
     std::vector<std::uint8_t> split_requested_;
     LocateHint hint_;
 };

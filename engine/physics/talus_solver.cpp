@@ -45,9 +45,10 @@ TalusSolver::TalusSolver(TalusSettings settings) : settings_(settings) {
     pool_ = std::make_unique<ThreadPool>(std::max(1, settings_.threads));
 }
 
-double TalusSolver::random_factor(std::uint32_t v) const {
+double TalusSolver::random_factor(const TalusArrays& a, std::uint32_t v) const {
     if (settings_.randomness <= 0.0) return 1.0;
-    return 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, v, iteration_);
+    const std::uint32_t id = a.id != nullptr ? a.id[v] : v;
+    return 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, id, iteration_);
 }
 
 void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
@@ -143,7 +144,7 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
         ++stats.processed;
         const double sent = talus_outflow(i, begin, degree, target, length, longest, a.height,
                                           a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                          random_factor(i), q, [&](std::uint32_t v) {
+                                          random_factor(a, i), q, [&](std::uint32_t v) {
                                               if (split_around != nullptr)
                                                   split_around->push_back(v);
                                           });
@@ -276,7 +277,7 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         }
         const double sent =
             talus_outflow(i, 0, deg, target + row, length + row, longest, a.height, a.area,
-                          a.bedrock, a.tan_alpha[i], settings_.parameters, random_factor(i), q,
+                          a.bedrock, a.tan_alpha[i], settings_.parameters, random_factor(a, i), q,
                           [&s](std::uint32_t v) { s.splits.push_back(v); });
         out[i] = sent;
         moved += sent;

@@ -43,6 +43,10 @@ struct TalusArrays {
     const double* bedrock = nullptr;    ///< m
     const double* tan_alpha = nullptr;  ///< tan of the angle of repose
     std::size_t size = 0;
+    /// The TIN id of each index when the arrays are in another numbering (VertexNumbering):
+    /// the jitter is hashed from it, so a renumbered run draws the same numbers. Null: the
+    /// index is the id.
+    const std::uint32_t* id = nullptr;
 };
 
 struct IterationStats {
@@ -104,7 +108,8 @@ class TalusSolver {
     /// Runs body(begin, end, scratch) over [0, n) on the pool, or inline when n is small.
     template <class Body>
     void run(std::size_t n, bool threaded, Body body);
-    double random_factor(std::uint32_t v) const;
+    /// The jitter of vertex v (an index into the arrays).
+    double random_factor(const TalusArrays& a, std::uint32_t v) const;
     void ensure(const AdjacencyGraph& g, std::size_t vertices);
 
     TalusSettings settings_;
