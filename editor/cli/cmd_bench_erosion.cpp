@@ -2,7 +2,8 @@
 // (issue 4; the seeds' Fig. 8.4a compares the same two), and CPU Jacobi throughput.
 //
 //   sandtin bench erosion [--json] [--quick] [--out DIR] [--throughput]
-//   (--throughput: only the CPU Jacobi throughput on about 10⁶ vertices, 1 and 2 threads)
+//   (--throughput: only the CPU Jacobi throughput on about 10⁶ vertices, 1 and 2 threads, of
+//   the solver on three numberings of one graph and of SandPhysics in TIN and strip order)
 //
 // Scenes:
 //  - cone: V = 0.01 m³ poured at the centre of a flat 1 m square (dry sand, 32°). The TIN
@@ -370,6 +371,60 @@ nlohmann::json jacobi_throughputs(bool quick, int runs) {
     return list;
 }
 
+/// The same 10⁶-vertex rough scene relaxed through SandPhysics (Jacobi), in the TIN's ids and
+/// in the physics' own strip numbering: what a real scene gets, including the per-step sync
+/// and the write-back of the heights into the TIN. Each run restores the heights, builds a
+/// fresh SandPhysics (not timed), takes one warm-up iteration and then times one step of
+/// `kTimed` iterations; updates per CPU-second, median of `runs`.
+nlohmann::json sand_physics_throughputs(bool quick, int runs) {
+    constexpr int kTimed = 6;
+    const int n = quick ? 200 : 999;
+    Tin tin = Tin::regular_grid(
+        Rect::from_size(1.0, 1.0), n, n,
+        [](Vec2 p) { return 0.02 * std::sin(400.0 * p.x) * std::cos(300.0 * p.y); },
+        TinOptions{false});
+    std::vector<VertexId> ids;
+    std::vector<double> initial;
+    for (std::uint32_t v = 0; v < tin.vertices().size(); ++v) {
+        if (!tin.vertices().alive[v]) continue;
+        ids.push_back(VertexId{v});
+        initial.push_back(tin.vertices().height[v]);
+    }
+    nlohmann::json list = nlohmann::json::array();
+    for (VertexOrder order : {VertexOrder::Tin, VertexOrder::Strips}) {
+        for (int threads : {1, 2}) {
+            std::vector<double> cpu_rates;
+            std::size_t per_iteration = 0;
+            for (int run = 0; run < runs; ++run) {
+                tin.set_heights(ids, initial);
+                TalusSettings settings;
+                settings.schedule = Schedule::Jacobi;
+                settings.threads = threads;
+                SandPhysics physics(tin, MaterialTable::presets(), settings, order);
+                physics.activate_all();
+                physics.step(1);
+                const double cpu0 = process_cpu_ms();
+                const PhysicsStepReport r = physics.step(kTimed);
+                const double cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
+                per_iteration = r.vertex_updates / static_cast<std::size_t>(kTimed);
+                cpu_rates.push_back(static_cast<double>(r.vertex_updates) / cpu_s);
+            }
+            list.push_back(
+                {{"vertices", ids.size()},
+                 {"numbering",
+                  order == VertexOrder::Tin ? "sand-physics tin ids" : "sand-physics strips"},
+                 {"threads", threads},
+                 {"processed_per_iteration", per_iteration},
+                 {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
+                 {"runs_per_cpu_s", cpu_rates},
+                 {"timer", "CPU time of one SandPhysics::step(" + std::to_string(kTimed) +
+                               ") after a warm-up iteration, median of " + std::to_string(runs) +
+                               " runs"}});
+        }
+    }
+    return list;
+}
+
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
     std::ofstream out(path);
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
@@ -448,6 +503,7 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         nlohmann::json j;
         j["bench"] = "erosion";
         j["jacobi_throughput"] = jacobi_throughputs(quick, 5);
+        j["sand_physics_throughput"] = sand_physics_throughputs(quick, 5);
         std::cout << j.dump(2) << "\n";
         return 0;
     }
@@ -520,6 +576,7 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
     }
     j["cone_target"] = target;
     j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
+    j["sand_physics_throughput"] = sand_physics_throughputs(quick, 3);
 
     if (args.has("--out")) {
         const std::filesystem::path dir = args.text("--out");
