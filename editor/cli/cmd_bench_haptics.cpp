@@ -31,7 +31,8 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
-    "[--idle | --probe] [--pin] [--mlock] [--wake-latency-zero] [--keep-heap] [--relative-sleep] "
+    "[--idle [--burn] | --probe] [--pin] [--mlock] [--wake-latency-zero] [--keep-heap] "
+    "[--relative-sleep] "
     "[--no-stack-prefault] "
     "[--no-timer-slack] "
     "[--no-sampler] [--json]";
@@ -112,6 +113,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                                {"--quick", 0},
                                {"--idle", 0},
                                {"--probe", 0},
+                               {"--burn", 0},
                                {"--pin", 0},
                                {"--mlock", 0},
                                {"--wake-latency-zero", 0},
@@ -136,6 +138,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
         mallopt(M_TRIM_THRESHOLD, 1 << 30);
         mallopt(M_MMAP_MAX, 0);
     }
+    // --idle --burn: instead of the simulation, this thread computes without system calls or
+    // memory traffic, to tell "the other CPU is busy" apart from "the simulation's kernel work".
+    const bool burn = args.has("--burn");
+    if (burn && !idle) throw UsageError("--burn goes with --idle");
     if (args.has("--probe")) {
         if (idle) throw UsageError("--probe and --idle exclude each other");
         return run_spin_probe_bench(seconds, args.has("--pin"), args.has("--wake-latency-zero"));
@@ -205,6 +211,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
         if (r.consumed) {
             step_ms.push_back(r.ms);
             stamps += r.edit.stamps;
+        } else if (burn) {
+            const std::int64_t until = monotonic_ns() + 10'000'000;
+            while (monotonic_ns() < until) {
+            }
         } else {
             std::this_thread::sleep_for(std::chrono::microseconds(idle ? 10000 : 200));
         }
@@ -316,6 +326,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     }
 
     j["simulation"] = {{"idle", idle},
+                       {"burn", burn},
                        {"steps", step_ms.size()},
                        {"steps_per_second", static_cast<double>(step_ms.size()) / wall},
                        {"stamps", stamps},

@@ -141,6 +141,18 @@ int run_haptics(const std::vector<std::string>& raw) {
                       {"p99", r.loop.periods.p99_ms},
                       {"max", r.loop.periods.max_ms}};
     j["overruns"] = r.loop.periods.overruns;
+    // Where late ticks' time went (loop_jitter.hpp); "work" includes the device's socket I/O.
+    const auto& jitter = r.loop.jitter;
+    j["late_ticks"] = {{"over_ms", r.loop.periods.target_ms * 1.5},
+                       {"count", jitter.late_ticks},
+                       {"by_work", jitter.late_by_work},
+                       {"by_wakeup", jitter.late_by_wakeup},
+                       {"by_spin_gap", jitter.late_by_spin_gap},
+                       {"max_wake_late_ms", static_cast<double>(jitter.max_wake_late_ns) * 1e-6},
+                       {"max_spin_gap_ms", static_cast<double>(jitter.max_spin_gap_ns) * 1e-6},
+                       {"max_work_ms", static_cast<double>(jitter.max_work_ns) * 1e-6}};
+    j["realtime"] = {{"sched_fifo", r.loop.realtime_grant.fifo},
+                     {"refused", r.loop.realtime_grant.refused}};
     j["force_n"] = {{"max", r.loop.max_force}, {"max_jump", r.loop.max_force_jump}};
     j["device"] = {{"poses", r.device.poses},
                    {"malformed", r.device.malformed},

@@ -87,15 +87,17 @@ std::optional<std::string> read_small_file(const char* path) {
 
 ThreadCounters read_this_thread_counters() {
     ThreadCounters c;
-    if (const auto text = read_small_file("/proc/thread-self/schedstat")) {
-        if (const auto s = parse_schedstat(*text)) c.sched = *s;
-    }
+    // Faults first: reading the proc file below allocates, which may fault and must not be
+    // counted against what came before the call.
     rusage u{};
     if (getrusage(RUSAGE_THREAD, &u) == 0) {
         c.voluntary_switches = u.ru_nvcsw;
         c.involuntary_switches = u.ru_nivcsw;
         c.minor_faults = u.ru_minflt;
         c.major_faults = u.ru_majflt;
+    }
+    if (const auto text = read_small_file("/proc/thread-self/schedstat")) {
+        if (const auto s = parse_schedstat(*text)) c.sched = *s;
     }
     return c;
 }
