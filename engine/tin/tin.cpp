@@ -13,6 +13,7 @@
 
 #include "geom/polygon.hpp"
 #include "tin/detail/cgal_tin.hpp"
+#include "tin/detail/hole_triangulation.hpp"
 #include "util/compensated_sum.hpp"
 
 namespace sandtin {
@@ -767,6 +768,29 @@ void Tin::neighbours(VertexId v, std::vector<VertexId>& out) const {
     } while (++vc != done);
 }
 
+Tin::VertexStar Tin::star(VertexId v, std::vector<VertexId>& out) const {
+    out.clear();
+    require(is_alive(v), "star: vertex id is not alive");
+    const Impl& m = *impl_;
+    const Vh vh = m.handle(v);
+    VertexStar result;
+    auto fc = m.cdt.incident_faces(vh);
+    const auto done = fc;
+    do {
+        const int j = fc->index(vh);
+        const Vh w = fc->vertex(CdtPlus::ccw(j));
+        // The edge v-w is opposite the third corner; each edge is seen once, from the face
+        // where w follows v counter-clockwise.
+        if (fc->is_constrained(CdtPlus::cw(j))) result.constrained = true;
+        if (m.cdt.is_infinite(w)) {
+            result.boundary = true;
+        } else {
+            out.push_back(VertexId{w->id});
+        }
+    } while (++fc != done);
+    return result;
+}
+
 bool Tin::is_boundary(VertexId v) const {
     require(is_alive(v), "is_boundary: vertex id is not alive");
     const Impl& m = *impl_;
@@ -803,6 +827,12 @@ double Tin::volume(double datum) const {
 namespace {
 
 bool triangle_meets_disc(Vec2 a, Vec2 b, Vec2 c, Vec2 centre, double radius) {
+    // Most faces of a walk have a corner in the disc; only those along its edge need the rest.
+    const double r2 = radius * radius;
+    if (length_squared(a - centre) <= r2 || length_squared(b - centre) <= r2 ||
+        length_squared(c - centre) <= r2) {
+        return true;
+    }
     const double d1 = cross(b - a, centre - a);
     const double d2 = cross(c - b, centre - b);
     const double d3 = cross(a - c, centre - c);
@@ -1350,21 +1380,40 @@ double plane_fit_residual(const std::vector<Vec2>& xy, const std::vector<double>
 
 }  // namespace
 
+bool Tin::remove_patch(std::span<const VertexId> vertices, VolumePolicy policy,
+                       EditReport* report) {
+    return remove_planar_patch(vertices, std::numeric_limits<double>::infinity(), policy, report);
+}
+
 bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double tolerance,
                               VolumePolicy policy, EditReport* report) {
     Impl& m = *impl_;
     if (vertices.empty()) return true;
+    struct BoundaryEdge {
+        Vh from, to;
+        Fh outside;
+        int outside_index;
+        bool constrained;
+    };
+    // Per-vertex marks, reused between calls and cleared entry by entry, so a patch costs its
+    // own size and not the terrain's: in the set, and 1 + the index of the boundary edge that
+    // starts at the vertex (0: none).
     static thread_local std::vector<std::uint8_t> in_set;
+    static thread_local std::vector<std::uint32_t> edge_from;
     static thread_local DirtySet face_in_region;
     if (in_set.size() < m.va.size()) in_set.resize(m.va.size(), 0);
+    if (edge_from.size() < m.va.size()) edge_from.resize(m.va.size(), 0);
+    std::vector<BoundaryEdge> edges;
     auto cleanup = [&] {
         for (VertexId v : vertices) {
             if (v.value < in_set.size()) in_set[v.value] = 0;
         }
+        for (const BoundaryEdge& e : edges)
+            edge_from[e.from->id] = 0;
         face_in_region.clear();
     };
     for (VertexId v : vertices) {
-        if (!m.alive(v) || in_set[v.value] || is_boundary(v) || is_on_constraint(v)) {
+        if (!m.alive(v) || in_set[v.value]) {
             cleanup();
             return false;
         }
@@ -1373,27 +1422,34 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     // The faces around the set, and their boundary as directed edges with the region on the left.
     std::vector<Fh> faces;
     for (VertexId v : vertices) {
-        auto fc = m.cdt.incident_faces(m.handle(v));
+        const Vh vh = m.handle(v);
+        auto fc = m.cdt.incident_faces(vh);
         const auto done = fc;
         do {
             const Fh f = fc;
+            // A vertex on the border (an infinite face) or on a constraint (each edge at v is
+            // opposite cw of v in one face) is not removable.
+            if (m.cdt.is_infinite(f) || f->is_constrained(CdtPlus::cw(f->index(vh)))) {
+                cleanup();
+                return false;
+            }
             if (!face_in_region.contains(f->slot)) {
                 face_in_region.mark(f->slot);
                 faces.push_back(f);
             }
         } while (++fc != done);
     }
-    struct BoundaryEdge {
-        Vh from, to;
-        Fh outside;
-        int outside_index;
-        bool constrained;
-    };
-    std::unordered_map<std::uint32_t, BoundaryEdge> next;  // keyed by the start vertex id
     for (const Fh f : faces) {
         for (int i = 0; i < 3; ++i) {
             const Fh g = f->neighbor(i);
-            if (face_in_region.contains(g->slot)) continue;
+            if (face_in_region.contains(g->slot)) {
+                // A constrained chord across the region would not survive the re-fill.
+                if (f->is_constrained(i)) {
+                    cleanup();
+                    return false;
+                }
+                continue;
+            }
             const Vh from = f->vertex(CdtPlus::ccw(i));
             const Vh to = f->vertex(CdtPlus::cw(i));
             if (m.cdt.is_infinite(from) || m.cdt.is_infinite(to) || in_set[from->id] ||
@@ -1401,26 +1457,27 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
                 cleanup();
                 return false;
             }
-            if (!next.emplace(from->id, BoundaryEdge{from, to, g, m.cdt.mirror_index(f, i),
-                                                     f->is_constrained(i)})
-                     .second) {
+            if (edge_from[from->id] != 0) {
                 cleanup();
                 return false;  // the boundary touches itself: not a disc
             }
+            edges.push_back({from, to, g, m.cdt.mirror_index(f, i), f->is_constrained(i)});
+            edge_from[from->id] = static_cast<std::uint32_t>(edges.size());
         }
     }
     std::vector<BoundaryEdge> loop;
-    if (!next.empty()) {
-        std::uint32_t at = next.begin()->first;
-        for (std::size_t k = 0; k <= next.size(); ++k) {
-            const auto it = next.find(at);
-            if (it == next.end()) break;
-            loop.push_back(it->second);
-            at = it->second.to->id;
-            if (at == next.begin()->first) break;
+    if (!edges.empty()) {
+        const std::uint32_t start = edges.front().from->id;
+        std::uint32_t at = start;
+        for (std::size_t k = 0; k <= edges.size(); ++k) {
+            if (edge_from[at] == 0) break;
+            const BoundaryEdge& e = edges[edge_from[at] - 1];
+            loop.push_back(e);
+            at = e.to->id;
+            if (at == start) break;
         }
     }
-    if (loop.size() != next.size() || loop.size() < 3) {
+    if (loop.size() != edges.size() || loop.size() < 3) {
         cleanup();
         return false;  // several boundary loops: the set surrounds something it does not remove
     }
@@ -1429,68 +1486,38 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     for (const Fh f : faces) {
         for (int i = 0; i < 3; ++i) {
             const Vh v = f->vertex(i);
-            if (!in_set[v->id] && next.find(v->id) == next.end()) {
+            if (!in_set[v->id] && edge_from[v->id] == 0) {
                 cleanup();
                 return false;
             }
         }
     }
-    // Planarity of the whole patch.
-    std::vector<Vec2> xy;
-    std::vector<double> z;
-    for (const BoundaryEdge& e : loop) {
-        xy.push_back(m.va.position[e.from->id]);
-        z.push_back(m.va.height[e.from->id]);
-    }
-    for (VertexId v : vertices) {
-        xy.push_back(m.va.position[v.value]);
-        z.push_back(m.va.height[v.value]);
-    }
-    if (!(plane_fit_residual(xy, z, xy.front()) <= tolerance)) {
-        cleanup();
-        return false;
-    }
-    // Ear clipping of the boundary polygon with exact predicates, before anything changes.
-    const auto orientation = detail::Kernel().orientation_2_object();
-    std::vector<std::size_t> poly(loop.size());
-    for (std::size_t k = 0; k < poly.size(); ++k)
-        poly[k] = k;
-    auto pt = [&](std::size_t k) -> const detail::Point& { return loop[k].from->point(); };
-    std::vector<std::array<std::size_t, 3>> ears;
-    while (poly.size() > 3) {
-        bool clipped = false;
-        for (std::size_t i = 0; i < poly.size() && !clipped; ++i) {
-            const std::size_t a = poly[(i + poly.size() - 1) % poly.size()];
-            const std::size_t b = poly[i];
-            const std::size_t c = poly[(i + 1) % poly.size()];
-            if (orientation(pt(a), pt(b), pt(c)) != CGAL::LEFT_TURN) continue;
-            bool blocked = false;
-            for (std::size_t k : poly) {
-                if (k == a || k == b || k == c) continue;
-                // Inside or on the ear's closed triangle blocks it (also catches collinear
-                // boundary points the new diagonal would run through).
-                if (orientation(pt(a), pt(b), pt(k)) != CGAL::RIGHT_TURN &&
-                    orientation(pt(b), pt(c), pt(k)) != CGAL::RIGHT_TURN &&
-                    orientation(pt(c), pt(a), pt(k)) != CGAL::RIGHT_TURN) {
-                    blocked = true;
-                    break;
-                }
-            }
-            if (blocked) continue;
-            ears.push_back({a, b, c});
-            poly.erase(poly.begin() + static_cast<std::ptrdiff_t>(i));
-            clipped = true;
+    // Planarity of the whole patch (none asked for with an infinite tolerance).
+    if (std::isfinite(tolerance)) {
+        std::vector<Vec2> xy;
+        std::vector<double> z;
+        for (const BoundaryEdge& e : loop) {
+            xy.push_back(m.va.position[e.from->id]);
+            z.push_back(m.va.height[e.from->id]);
         }
-        if (!clipped) {
+        for (VertexId v : vertices) {
+            xy.push_back(m.va.position[v.value]);
+            z.push_back(m.va.height[v.value]);
+        }
+        if (!(plane_fit_residual(xy, z, xy.front()) <= tolerance)) {
             cleanup();
             return false;
         }
     }
-    if (orientation(pt(poly[0]), pt(poly[1]), pt(poly[2])) != CGAL::LEFT_TURN) {
+    // The hole's triangles (constrained Delaunay inside its boundary), before anything changes.
+    std::vector<Vec2> ring(loop.size());
+    for (std::size_t k = 0; k < loop.size(); ++k)
+        ring[k] = m.va.position[loop[k].from->id];
+    const std::vector<std::array<std::size_t, 3>> ears = detail::triangulate_simple_polygon(ring);
+    if (ears.empty()) {
         cleanup();
         return false;
     }
-    ears.push_back({poly[0], poly[1], poly[2]});
 
     // Surgery on the data structure: delete the region, glue the ear triangles in, flip to
     // constrained Delaunay.

@@ -191,6 +191,14 @@ class Tin {
     void neighbours(VertexId v, std::vector<VertexId>& out) const;
     bool is_boundary(VertexId v) const;       ///< on the domain border
     bool is_on_constraint(VertexId v) const;  ///< incident to a constrained edge
+    /// What one walk around a vertex finds: Tin::star.
+    struct VertexStar {
+        bool boundary = false;     ///< as is_boundary()
+        bool constrained = false;  ///< as is_on_constraint()
+    };
+    /// neighbours(), is_boundary() and is_on_constraint() in one walk around v, for loops that
+    /// need all three on many vertices.
+    VertexStar star(VertexId v, std::vector<VertexId>& neighbours_out) const;
     /// True when the edge (a, b) exists and is constrained.
     bool is_constrained_edge(VertexId a, VertexId b) const;
 
@@ -277,6 +285,12 @@ class Tin {
     bool remove_planar_patch(std::span<const VertexId> vertices, double tolerance,
                              VolumePolicy policy = VolumePolicy::Conserve,
                              EditReport* report = nullptr);
+    /// remove_planar_patch without the planarity test: removes a connected set of interior
+    /// vertices whose triangles form a disc, whatever their heights, and fills the hole from its
+    /// boundary. For edits that overwrite the surface there anyway (a stamp clears the sand its
+    /// imprint replaces before enforcing its contours through it). Same conditions otherwise.
+    bool remove_patch(std::span<const VertexId> vertices,
+                      VolumePolicy policy = VolumePolicy::Report, EditReport* report = nullptr);
 
     /// Constrains the segment a-b. Crossings with existing constraints become new vertices at
     /// the height of the crossed constraint. Re-inserting an existing constraint refreshes its

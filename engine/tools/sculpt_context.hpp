@@ -15,6 +15,9 @@ struct SculptSettings {
     /// changes no triangle (their edges are Delaunay anyway); the rest go when a later stamp
     /// covers them.
     Generation keep_generations = 64;
+    /// A stamp removes the sand its imprint replaces in bulk before enforcing its contours
+    /// (clear_patches.hpp). Same result; off only to compare against the plain path.
+    bool clear_before_imprint = true;
 };
 
 class SculptContext {

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "geom/polygon.hpp"
+#include "geom/polygon_inclusion.hpp"
+#include "tools/clear_patches.hpp"
 #include "tools/extrusion.hpp"
 #include "tools/imprint_activity.hpp"
 #include "tools/slivers.hpp"
@@ -23,6 +25,10 @@ void StampReport::accumulate(const StampReport& o) {
     triangles_touched += o.triangles_touched;
     constraints_released += o.constraints_released;
     simplify.accumulate(o.simplify);
+    cleared.candidates += o.cleared.candidates;
+    cleared.removed += o.cleared.removed;
+    cleared.patches += o.cleared.patches;
+    cleared.refused += o.cleared.refused;
     enforce_ms += o.enforce_ms;
     simplify_ms += o.simplify_ms;
     extrude_ms += o.extrude_ms;
@@ -240,6 +246,67 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         tin.insert_constraints(segments, generation, VolumePolicy::Report, &edit);
     };
 
+    // Where a point between the contours sits relative to them: its nearest I and rim
+    // segments, and whether both are enforced (then the wall there is just the I-to-O ramp).
+    struct BandPosition {
+        NearestEdge to_inner;
+        NearestEdge to_rim;
+        bool both_active = false;
+    };
+    auto band_position = [&](Vec2 p) {
+        BandPosition b{nearest_edge(p, inner), nearest_edge(p, rim), false};
+        b.both_active = inner_active[b.to_inner.index] && rim_active[b.to_rim.index];
+        return b;
+    };
+    const VertexArrays& va = tin.vertices();
+    const PolygonInclusion in_outer(outer, at.centre);
+    const PolygonInclusion in_inner(inner, at.centre);
+
+    // Sand the imprint is about to replace goes first, in bulk (clear_patches.hpp). The contours
+    // then cross a few long triangles instead of every triangle of dense sand. Only vertices
+    // that the stamp would remove anyway go, so the vertices left, and with them the
+    // constrained Delaunay triangulation and the surface, are the same as without this step (a
+    // test compares both paths; the terrain along the contours was sampled above):
+    // - in the wall band next to enforced contours, every unconstrained vertex (removed below);
+    // - under a flat profile, with simplification on, a vertex the imprint moves, when all its
+    //   neighbours end on the floor too or lie across an enforced part of I: its star is then
+    //   flat after the stamp, and the simplifier would remove it.
+    if (context.settings.clear_before_imprint) {
+        const bool clear_inside = tool.profile().is_flat() && context.settings.simplify_after_edit;
+        std::vector<VertexId> doomed;
+        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+            const Vec2 p = va.position[v.value];
+            if (!in_outer.contains(p)) continue;
+            if (in_inner.contains(p)) {
+                const double h = va.height[v.value];
+                if (clear_inside && imprint(p, h) != h) doomed.push_back(v);
+            } else if (band_position(p).both_active) {
+                doomed.push_back(v);
+            }
+        }
+        std::vector<std::uint8_t> on_profile(inner.size());
+        for (std::size_t k = 0; k < inner.size(); ++k)
+            on_profile[k] = inner_h[k] == tool.underside(at, inner[k]) ? 1 : 0;
+        auto may_border = [&](VertexId v, VertexId w) {
+            const Vec2 pv = va.position[v.value];
+            if (!in_inner.contains(pv)) return true;  // a wall-band vertex
+            const Vec2 pw = va.position[w.value];
+            if (in_inner.contains(pw)) {
+                return imprint(pw, va.height[w.value]) == tool.underside(at, pw);
+            }
+            // Across I: only through an enforced segment whose ends sit on the profile.
+            for (std::size_t k = 0; k < inner.size(); ++k) {
+                const std::size_t next = (k + 1) % inner.size();
+                if ((!inner_active[k] || !on_profile[k] || !on_profile[next]) &&
+                    segments_intersect(pv, pw, inner[k], inner[next])) {
+                    return false;
+                }
+            }
+            return true;
+        };
+        report.cleared = remove_in_patches(tin, doomed, &edit, may_border);
+    }
+
     // 3. Outer contour at the terrain's heights.
     enforce(rim, rim_h, rim_active);
 
@@ -270,10 +337,9 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
 
     // 5. Every vertex inside I follows the profile.
     std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
-    const VertexArrays& va = tin.vertices();
     for (VertexId v : region) {
         const Vec2 p = va.position[v.value];
-        if (!point_in_polygon(p, inner)) continue;
+        if (!in_inner.contains(p)) continue;
         const double h = imprint(p, va.height[v.value]);
         if (h != va.height[v.value]) tin.set_height(v, h);
     }
@@ -289,19 +355,17 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         std::vector<VertexId> band_junk;
         for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
             const Vec2 p = va.position[v.value];
-            if (!point_in_polygon(p, outer)) continue;
+            if (!in_outer.contains(p)) continue;
             footprint.push_back(v);
-            if (point_in_polygon(p, inner)) continue;
-            const NearestEdge to_inner = nearest_edge(p, inner);
-            const NearestEdge to_rim = nearest_edge(p, rim);
-            const std::size_t nearest_inner = to_inner.index;
+            if (in_inner.contains(p)) continue;
+            const BandPosition band = band_position(p);
+            const NearestEdge& to_rim = band.to_rim;
             const std::size_t nearest_rim = to_rim.index;
-            const double d_inner = to_inner.distance;
+            const double d_inner = band.to_inner.distance;
             const double d_outer = to_rim.distance;
             const double rim_height = (1.0 - to_rim.t) * rim_h[nearest_rim] +
                                       to_rim.t * rim_h[(nearest_rim + 1) % rim.size()];
-            if (inner_active[nearest_inner] && rim_active[nearest_rim] &&
-                !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
+            if (band.both_active && !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
                 band_junk.push_back(v);
                 continue;
             }
@@ -338,12 +402,12 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         bool level = true;
         std::vector<VertexId> interior;
         for (VertexId v : region) {
-            if (va.height[v.value] != at.bottom && point_in_polygon(va.position[v.value], inner)) {
+            if (va.height[v.value] != at.bottom && in_inner.contains(va.position[v.value])) {
                 level = false;
                 break;
             }
             if (!tin.is_on_constraint(v) && !tin.is_boundary(v) &&
-                point_in_polygon(va.position[v.value], inner)) {
+                in_inner.contains(va.position[v.value])) {
                 interior.push_back(v);
             }
         }

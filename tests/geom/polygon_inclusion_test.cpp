@@ -162,5 +162,22 @@ TEST(PolygonInclusion, CentreOnTheBorder) {
     check_everywhere(poly, poly[7], 43);
 }
 
+TEST(PolygonInclusion, BorderToleranceSeenFromAnOutsideCentre) {
+    // Within point_in_polygon's border band (about 1e-12 off an edge, counted as inside) but
+    // nearer the outside centre than the edge is: the shortcut must not answer "outside".
+    const std::vector<Vec2> diamond = {{1, 0}, {2, 1}, {1, 2}, {0, 1}};
+    const PolygonInclusion inclusion(diamond, {0.0, 0.0});
+    for (double e : {3e-13, 1e-12, 2e-12, 1e-11}) {
+        const Vec2 p{0.5 - e, 0.5 - e};
+        EXPECT_EQ(inclusion.contains(p), point_in_polygon(p, diamond)) << e;
+    }
+    // The same just beyond the farthest vertex, seen from far away.
+    const PolygonInclusion far(diamond, {-10.0, 1.0});
+    for (double e : {3e-13, 1e-12, 2e-12, 1e-11}) {
+        const Vec2 p{2.0 + e, 1.0};
+        EXPECT_EQ(far.contains(p), point_in_polygon(p, diamond)) << e;
+    }
+}
+
 }  // namespace
 }  // namespace sandtin

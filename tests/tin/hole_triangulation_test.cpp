@@ -244,5 +244,14 @@ TEST(HoleTriangulation, RejectsNonSimpleAndClockwise) {
     rejected(crossed, "crossing teeth");
 }
 
+TEST(HoleTriangulation, AllCollinearIsNotAPolygon) {
+    // Zero area: the triangulation of the points is one-dimensional (it used to crash).
+    EXPECT_TRUE(
+        detail::triangulate_simple_polygon(std::vector<Vec2>{{0, 0}, {1, 0}, {2, 0}}).empty());
+    EXPECT_TRUE(detail::triangulate_simple_polygon(
+                    std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {1.5, 1.5}})
+                    .empty());
+}
+
 }  // namespace
 }  // namespace sandtin
