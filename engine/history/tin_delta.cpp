@@ -5,6 +5,8 @@
 
 #include "history/tin_delta.hpp"
 
+#include "tin/bulk_removal.hpp"
+
 #include <algorithm>
 #include <map>
 #include <span>
@@ -166,15 +168,22 @@ ApplyReport apply_delta(Tin& tin, const TinDelta& delta, DeltaSide target) {
         }
     }
 
-    // 2. Remove vertices that only the source state has.
+    // 2. Remove vertices that only the source state has: in connected patches first (a stroke's
+    //    worth of vertices one by one took most of a redo), then one by one for what a patch
+    //    could not take (next to a constraint, or around a vertex that stays).
+    std::vector<VertexId> doomed;
     for (const VertexChange& c : delta.vertices) {
         if (!source_of(c) || target_of(c)) continue;
         const VertexId v = vertex_at(tin, source_of(c)->position, hint);
-        if (!v.valid()) continue;
+        if (v.valid()) doomed.push_back(v);
+    }
+    report.vertices_removed += remove_in_patches(tin, doomed, nullptr).removed;
+    for (VertexId v : doomed) {
+        if (!tin.is_alive(v)) continue;
         if (tin.remove_vertex(v, VolumePolicy::Report)) {
             ++report.vertices_removed;
         } else {
-            report.unrestored.push_back(source_of(c)->position);
+            report.unrestored.push_back(tin.position(v));
         }
     }
 

@@ -16,7 +16,7 @@ struct SculptSettings {
     /// covers them.
     Generation keep_generations = 64;
     /// A stamp removes the sand its imprint replaces in bulk before enforcing its contours
-    /// (clear_patches.hpp). Same result; off only to compare against the plain path.
+    /// (tin/bulk_removal.hpp). Same result; off only to compare against the plain path.
     bool clear_before_imprint = true;
 };
 

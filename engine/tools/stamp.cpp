@@ -7,7 +7,7 @@
 
 #include "geom/polygon.hpp"
 #include "geom/polygon_inclusion.hpp"
-#include "tools/clear_patches.hpp"
+#include "tin/bulk_removal.hpp"
 #include "tools/extrusion.hpp"
 #include "tools/imprint_activity.hpp"
 #include "tools/slivers.hpp"
@@ -262,7 +262,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const PolygonInclusion in_outer(outer, at.centre);
     const PolygonInclusion in_inner(inner, at.centre);
 
-    // Sand the imprint is about to replace goes first, in bulk (clear_patches.hpp). The contours
+    // Sand the imprint is about to replace goes first, in bulk (tin/bulk_removal.hpp). The contours
     // then cross a few long triangles instead of every triangle of dense sand. Only vertices
     // that the stamp would remove anyway go, so the vertices left, and with them the
     // constrained Delaunay triangulation and the surface, are the same as without this step (a

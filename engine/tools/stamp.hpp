@@ -12,8 +12,8 @@
 
 #include <optional>
 
+#include "tin/bulk_removal.hpp"
 #include "tin/tin.hpp"
-#include "tools/clear_patches.hpp"
 #include "tools/sculpt_context.hpp"
 #include "tools/tool.hpp"
 
@@ -30,7 +30,7 @@ struct StampReport {
     std::size_t triangles_touched = 0;  ///< triangle slots the stamp changed
     std::size_t constraints_released = 0;
     SimplifyReport simplify;
-    PatchClearing cleared;     ///< sand removed in bulk before the contours (clear_patches.hpp)
+    BulkRemoval cleared;       ///< sand removed in bulk before the contours (tin/bulk_removal.hpp)
     double enforce_ms = 0.0;   ///< steps 1-5
     double simplify_ms = 0.0;  ///< step 6
     double extrude_ms = 0.0;   ///< step 7

@@ -1,4 +1,4 @@
-// The stamp's bulk clearing (SculptSettings::clear_before_imprint, tools/clear_patches) is a
+// The stamp's bulk clearing (SculptSettings::clear_before_imprint, tin/bulk_removal) is a
 // speed-up only: it removes first what the stamp would remove anyway. Oracle: the same edits
 // with the clearing off, on identical terrains, must leave the same vertices at the same
 // heights and the same surface, on flat, curved and partly-below-the-floor sand, with round

@@ -1,10 +1,8 @@
 #pragma once
-// Bulk removal of vertices an edit is about to overwrite. A stamp on dense sand would otherwise
-// enforce its contours through every triangle of that sand (CGAL flips each crossed edge),
-// set every vertex under the imprint to the profile, and then test and remove each one again.
-// Removing them first, a connected patch at a time, makes the contours cross a few long
-// triangles instead, so the stamp's cost follows the number of vertices it replaces, not the
-// density of what it crosses.
+// Removal of many vertices at once, a connected patch at a time (Tin::remove_patch), where
+// removing them one by one would fill a hole and re-flip its neighbourhood per vertex. Used by
+// a stamp to clear the dense sand its imprint replaces before enforcing its contours through
+// it, and by redo to take out the vertices an edit removed.
 
 #include <cstddef>
 #include <functional>
@@ -14,7 +12,7 @@
 
 namespace sandtin {
 
-struct PatchClearing {
+struct BulkRemoval {
     std::size_t candidates = 0;  ///< vertices offered
     std::size_t removed = 0;     ///< vertices removed
     std::size_t patches = 0;     ///< connected patches removed in one step each
@@ -31,7 +29,7 @@ struct PatchClearing {
 /// are skipped. `may_border(v, w)`, when given, says whether vertex v of the set may go while
 /// its neighbour w stays: the caller's condition for the removal to leave the surface it would
 /// have made anyway (a vertex that fails it stays, and so may its neighbours in turn).
-PatchClearing remove_in_patches(
+BulkRemoval remove_in_patches(
     Tin& tin, std::span<const VertexId> vertices, EditReport* report,
     const std::function<bool(VertexId v, VertexId w)>& may_border = nullptr);
 

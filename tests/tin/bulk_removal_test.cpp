@@ -15,8 +15,8 @@
 #include "support/region_oracles.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
+#include "tin/bulk_removal.hpp"
 #include "tin/tin.hpp"
-#include "tools/clear_patches.hpp"
 
 namespace sandtin {
 namespace {
@@ -43,7 +43,7 @@ void constrain(Tin& tin, const std::vector<Vec2>& pts, bool closed, Generation g
 /// offered, interior, unconstrained vertices die, and none that was next to a constrained
 /// vertex; nothing else moves; the counts, the report and the volume agree.
 /// With `may_border`, also: every removed vertex's surviving neighbours satisfy it.
-PatchClearing clear_and_check(
+BulkRemoval clear_and_check(
     Tin& tin, const std::vector<VertexId>& offered,
     const std::function<bool(VertexId v, VertexId w)>& may_border = nullptr) {
     const std::set<VertexId> offer(offered.begin(), offered.end());
@@ -68,7 +68,7 @@ PatchClearing clear_and_check(
     const double v0 = tin.volume();
     const double brute0 = test::brute_force_volume(tin);
     EditReport report;
-    const PatchClearing out = remove_in_patches(tin, offered, &report, may_border);
+    const BulkRemoval out = remove_in_patches(tin, offered, &report, may_border);
 
     EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
     EXPECT_TRUE(test::mesh_is_sound(tin));
@@ -135,7 +135,7 @@ TEST(ClearPatches, DenseTerrainWithConstraints) {
         offered.push_back(offered[10]);
         offered.push_back(VertexId{tin.vertex_capacity() + 3});
         ASSERT_GT(offered.size(), 3000u);
-        const PatchClearing out = clear_and_check(tin, offered);
+        const BulkRemoval out = clear_and_check(tin, offered);
         EXPECT_GE(out.patches, 1u);
         EXPECT_GT(out.removed, 0u);
     }
@@ -149,7 +149,7 @@ TEST(ClearPatches, TwoDisjointDiscsAreTwoPatches) {
     ASSERT_TRUE(test::region_is_disc(tin, second));
     const std::size_t first_size = offered.size();
     offered.insert(offered.end(), second.begin(), second.end());
-    const PatchClearing out = clear_and_check(tin, offered);
+    const BulkRemoval out = clear_and_check(tin, offered);
     EXPECT_EQ(out.patches, 2u);
     EXPECT_EQ(out.refused, 0u);
     EXPECT_EQ(out.removed, first_size + second.size());
@@ -180,7 +180,7 @@ TEST(ClearPatches, DropsTheNeighboursOfAConstrainedVertexAndRemovesTheRest) {
     for (VertexId v : offered)
         kept_at_least += kept.count(v);
     ASSERT_GT(kept_at_least, 0u);
-    const PatchClearing out = clear_and_check(tin, offered);
+    const BulkRemoval out = clear_and_check(tin, offered);
     EXPECT_GE(out.patches, 1u);
     EXPECT_EQ(out.refused, 0u);
     EXPECT_GT(out.removed, offered.size() * 8 / 10) << out.removed << " of " << offered.size();
@@ -196,7 +196,7 @@ TEST(ClearPatches, RemovesMostOfASetAroundAnInteriorConstraint) {
         constrain(tin, {{0.49, 0.5}, {0.515, 0.505}}, false, 1);
         const std::vector<VertexId> offered =
             test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
-        const PatchClearing out = clear_and_check(tin, offered);
+        const BulkRemoval out = clear_and_check(tin, offered);
         EXPECT_GE(out.patches, 2u);
         EXPECT_GT(out.removed, offered.size() * 8 / 10) << out.removed << " of " << offered.size();
     }
@@ -206,7 +206,7 @@ TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
     {  // Nobody may border anything that stays: nothing goes.
         Tin tin = Tin::random_points(kUnit, 4000, 651, bumpy);
         const std::vector<VertexId> offered = in_disc(tin, {0.5, 0.5}, 0.1);
-        const PatchClearing out =
+        const BulkRemoval out =
             clear_and_check(tin, offered, [](VertexId, VertexId) { return false; });
         EXPECT_EQ(out.removed, 0u);
     }
@@ -215,7 +215,7 @@ TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
         const std::vector<VertexId> offered =
             test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
         const Tin* t = &tin;
-        const PatchClearing out = clear_and_check(
+        const BulkRemoval out = clear_and_check(
             tin, offered, [t](VertexId, VertexId w) { return t->position(w).x > 0.5; });
         EXPECT_GT(out.removed, 0u);
         EXPECT_LT(out.removed, offered.size());
@@ -224,9 +224,9 @@ TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
         Tin a = Tin::random_points(kUnit, 4000, 653, bumpy);
         Tin b = Tin::random_points(kUnit, 4000, 653, bumpy);
         const std::vector<VertexId> offered = test::grow_to_disc(a, in_disc(a, {0.5, 0.5}, 0.1));
-        const PatchClearing with =
+        const BulkRemoval with =
             clear_and_check(a, offered, [](VertexId, VertexId) { return true; });
-        const PatchClearing without = clear_and_check(b, offered);
+        const BulkRemoval without = clear_and_check(b, offered);
         EXPECT_EQ(with.removed, without.removed);
         EXPECT_EQ(test::triangle_set(a), test::triangle_set(b));
     }
@@ -259,7 +259,7 @@ TEST(ClearPatches, NothingToDo) {
     for (VertexId v : live_ids(tin)) {
         if (tin.is_boundary(v)) border.push_back(v);
     }
-    const PatchClearing out = clear_and_check(tin, border);
+    const BulkRemoval out = clear_and_check(tin, border);
     EXPECT_EQ(out.removed, 0u);
     EXPECT_EQ(out.patches, 0u);
 }

@@ -1,4 +1,4 @@
-#include "tools/clear_patches.hpp"
+#include "tin/bulk_removal.hpp"
 
 #include <algorithm>
 #include <vector>
@@ -48,7 +48,7 @@ std::vector<std::vector<VertexId>> components(const Tin& tin, std::vector<Vertex
 /// longer side and tries each connected piece again, a few levels deep. A ring cut in two is
 /// two discs.
 void remove_or_split(Tin& tin, std::vector<VertexId> patch, EditReport* report, int depth,
-                     PatchClearing& out) {
+                     BulkRemoval& out) {
     std::erase_if(patch, [&](VertexId v) { return !tin.is_alive(v); });
     if (patch.empty()) return;
     if (tin.remove_patch(patch, VolumePolicy::Report, report)) {
@@ -83,9 +83,9 @@ void remove_or_split(Tin& tin, std::vector<VertexId> patch, EditReport* report, 
 
 }  // namespace
 
-PatchClearing remove_in_patches(Tin& tin, std::span<const VertexId> vertices, EditReport* report,
-                                const std::function<bool(VertexId v, VertexId w)>& may_border) {
-    PatchClearing out;
+BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, EditReport* report,
+                              const std::function<bool(VertexId v, VertexId w)>& may_border) {
+    BulkRemoval out;
     out.candidates = vertices.size();
     // Reused between calls: a stamp offers a few hundred vertices of a terrain of millions, and
     // the flag array must not cost O(terrain) per stamp (it is cleared entry by entry below).
