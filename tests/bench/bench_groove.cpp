@@ -15,6 +15,10 @@ struct GrooveRun {
     double simplify_ms = 0.0;
     double per_stamp_median_ms = 0.0;
     double per_stamp_p90_ms = 0.0;
+    /// Vertices a stamp removes (the fresh sand it digs out, cleared in bulk or simplified):
+    /// at 10^6 points hundreds per stamp, the part of a stamp's work that grows with density.
+    double removed_per_stamp_median = 0.0;
+    double cleared_per_stamp_median = 0.0;
     std::size_t stamps = 0;
     std::size_t vertices_before = 0;
     std::size_t vertices_after = 0;
@@ -28,11 +32,12 @@ struct GrooveRun {
 /// (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the diagonal. Stamps are
 /// r/4 = 1 cm apart, so consecutive footprints overlap by 7/8 and the walls are smooth to
 /// 0.3 mm.
-GrooveRun run_groove(std::size_t n, double trace, bool validate) {
+GrooveRun run_groove(std::size_t n, double trace, bool validate, bool clear_before_imprint = true) {
     TinOptions options;
     options.track_changes = false;
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), n, 2009, {}, options);
     SculptContext context(tin.domain());
+    context.settings.clear_before_imprint = clear_before_imprint;
     ToolSpec spec;
     spec.contour = ContourKind::Circle;
     spec.radius = 0.04;
@@ -57,6 +62,14 @@ GrooveRun run_groove(std::size_t n, double trace, bool validate) {
     for (const StampReport& s : stamps)
         per.push_back(s.enforce_ms + s.simplify_ms + s.extrude_ms);
     run.per_stamp_median_ms = median(per);
+    std::vector<double> removed;
+    std::vector<double> cleared;
+    for (const StampReport& s : stamps) {
+        removed.push_back(static_cast<double>(s.vertices_removed));
+        cleared.push_back(static_cast<double>(s.cleared.removed));
+    }
+    run.removed_per_stamp_median = median(removed);
+    run.cleared_per_stamp_median = median(cleared);
     std::sort(per.begin(), per.end());
     run.per_stamp_p90_ms = per.empty() ? 0.0 : per[per.size() * 9 / 10];
     run.stamps = stamps.size();
@@ -75,6 +88,8 @@ nlohmann::json to_json(const GrooveRun& r) {
             {"erosion_ms", nullptr},
             {"per_stamp_median_ms", r.per_stamp_median_ms},
             {"per_stamp_p90_ms", r.per_stamp_p90_ms},
+            {"removed_per_stamp_median", r.removed_per_stamp_median},
+            {"cleared_per_stamp_median", r.cleared_per_stamp_median},
             {"vertices_before", r.vertices_before},
             {"vertices_after", r.vertices_after},
             {"triangles_touched", r.triangles_touched},
@@ -96,14 +111,28 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     for (std::size_t n : sizes) {
         // Median over repetitions of the whole groove; the per-stamp figures are from the
         // repetition with the median total.
+        // The same groove without the stamp's bulk clearing (SculptSettings::
+        // clear_before_imprint), alternating with the default runs, for the ratio.
         std::vector<GrooveRun> runs;
+        std::vector<GrooveRun> plain;
         const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
-        for (int r = 0; r < reps; ++r)
+        for (int r = 0; r < reps; ++r) {
             runs.push_back(run_groove(n, 0.8, r == 0));
-        std::sort(runs.begin(), runs.end(),
-                  [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
+            plain.push_back(run_groove(n, 0.8, false, false));
+        }
+        auto by_total = [](const GrooveRun& a, const GrooveRun& b) {
+            return a.total_ms < b.total_ms;
+        };
+        std::sort(runs.begin(), runs.end(), by_total);
+        std::sort(plain.begin(), plain.end(), by_total);
         const GrooveRun& mid = runs[runs.size() / 2];
+        const GrooveRun& plain_mid = plain[plain.size() / 2];
         nlohmann::json row = to_json(mid);
+        row["without_bulk_clearing"] = {
+            {"per_stamp_median_ms", plain_mid.per_stamp_median_ms},
+            {"total_ms", plain_mid.total_ms},
+            {"vertices_after", plain_mid.vertices_after},
+            {"per_stamp_ratio", mid.per_stamp_median_ms / plain_mid.per_stamp_median_ms}};
         row["points"] = n;
         row["repetitions"] = reps;
         row["valid"] = runs.front().valid && runs.back().valid;
