@@ -170,7 +170,8 @@ ApplyReport apply_delta(Tin& tin, const TinDelta& delta, DeltaSide target) {
 
     // 2. Remove vertices that only the source state has: in connected patches first (a stroke's
     //    worth of vertices one by one took most of a redo), then one by one for what a patch
-    //    could not take (next to a constraint, or around a vertex that stays).
+    //    could not take (next to a constraint, or around a vertex that stays), and those an
+    //    edit created on the domain border (a stroke across the edge).
     std::vector<VertexId> doomed;
     for (const VertexChange& c : delta.vertices) {
         if (!source_of(c) || target_of(c)) continue;
@@ -180,7 +181,8 @@ ApplyReport apply_delta(Tin& tin, const TinDelta& delta, DeltaSide target) {
     report.vertices_removed += remove_in_patches(tin, doomed, nullptr).removed;
     for (VertexId v : doomed) {
         if (!tin.is_alive(v)) continue;
-        if (tin.remove_vertex(v, VolumePolicy::Report)) {
+        if (tin.remove_vertex(v, VolumePolicy::Report) ||
+            tin.remove_border_vertex(v, VolumePolicy::Report)) {
             ++report.vertices_removed;
         } else {
             report.unrestored.push_back(tin.position(v));

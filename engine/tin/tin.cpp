@@ -1342,6 +1342,48 @@ bool Tin::remove_vertex(VertexId v, VolumePolicy policy, EditReport* report) {
     return true;
 }
 
+bool Tin::remove_border_vertex(VertexId v, VolumePolicy policy, EditReport* report) {
+    Impl& m = *impl_;
+    require(is_alive(v), "remove_border_vertex: vertex id is not alive");
+    if (is_on_constraint(v)) return false;
+    // The two border neighbours: the finite ends of the infinite faces around v.
+    const Vh vh = m.handle(v);
+    std::array<Vh, 2> ends{};
+    int found = 0;
+    auto fc = m.cdt.incident_faces(vh);
+    const auto done = fc;
+    do {
+        if (!m.cdt.is_infinite(fc)) continue;
+        const int j = fc->index(vh);
+        for (int k : {CdtPlus::ccw(j), CdtPlus::cw(j)}) {
+            const Vh w = fc->vertex(k);
+            if (!m.cdt.is_infinite(w) && found < 2 && (found == 0 || ends[0] != w)) {
+                ends[static_cast<std::size_t>(found++)] = w;
+            }
+        }
+    } while (++fc != done);
+    if (found != 2) return false;  // not on the border
+    // On one side of the rectangle with both neighbours: then removing v leaves that side
+    // straight (a corner, or a vertex between two sides, would cut the domain).
+    const Vec2 p = m.va.position[v.value];
+    const Vec2 a = m.va.position[ends[0]->id];
+    const Vec2 b = m.va.position[ends[1]->id];
+    const Rect& d = m.domain;
+    auto same_side = [&](auto coordinate, double side) {
+        return coordinate(p) == side && coordinate(a) == side && coordinate(b) == side;
+    };
+    const bool straight = same_side([](Vec2 q) { return q.x; }, d.min.x) ||
+                          same_side([](Vec2 q) { return q.x; }, d.max.x) ||
+                          same_side([](Vec2 q) { return q.y; }, d.min.y) ||
+                          same_side([](Vec2 q) { return q.y; }, d.max.y);
+    if (!straight) return false;
+    detail::EventScope scope(m.events);
+    EditFinisher finisher(m);
+    m.cdt.remove(vh);
+    finisher.finish(policy, {}, report);
+    return true;
+}
+
 namespace {
 
 /// Least-squares plane z = a x + b y + c through points (relative to `origin` for conditioning);

@@ -275,6 +275,13 @@ class Tin {
     /// constraint. With VolumePolicy::Conserve the ring around the hole absorbs the volume change.
     bool remove_vertex(VertexId v, VolumePolicy policy = VolumePolicy::Conserve,
                        EditReport* report = nullptr);
+    /// Removes a vertex on the domain border that lies on a straight stretch of it: both of
+    /// its border neighbours are on the same side of the domain rectangle, so the border stays
+    /// where it was. Returns false (and changes nothing) for interior vertices, the domain's
+    /// corners, and vertices on a constraint. For undo, which must take out the vertices an
+    /// edit created on the border; the tools never remove border vertices.
+    bool remove_border_vertex(VertexId v, VolumePolicy policy = VolumePolicy::Conserve,
+                              EditReport* report = nullptr);
 
     /// Removes a connected set of interior vertices in one step when the triangles around them
     /// form a disc whose boundary, together with the set, lies within `tolerance` metres

@@ -187,5 +187,62 @@ TEST(RemoveVertex, RemovingEveryInteriorVertexLeavesTheRectangle) {
     expect_sound(tin);
 }
 
+TEST(RemoveBorderVertex, MidSideVerticesGoAndTheRectangleStays) {
+    // Vertices on every side of the domain, including two next to each other on one side, and
+    // interior vertices: every non-corner border vertex goes, and with it the border gets
+    // exactly the heights of the line between its remaining neighbours.
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 200, 21, bumpy);
+    const std::vector<Vec2> on_border = {
+        {2.0, 0.0}, {2.5, 0.0}, {4.0, 1.5}, {1.0, 4.0}, {0.0, 3.0}};
+    std::vector<double> hs;
+    for (Vec2 p : on_border)
+        hs.push_back(bumpy(p));
+    const std::vector<VertexId> ids = tin.insert_points(on_border, hs);
+    for (VertexId v : interior_ids(tin))
+        EXPECT_FALSE(tin.remove_border_vertex(v)) << "interior";
+    const TinSnapshot before = tin.snapshot();
+    std::size_t corners = 0;
+    for (VertexId v : test::live_ids(tin)) {
+        const Vec2 p = tin.position(v);
+        if ((p.x == 0.0 || p.x == 4.0) && (p.y == 0.0 || p.y == 4.0)) {
+            EXPECT_FALSE(tin.remove_border_vertex(v)) << "corner";
+            ++corners;
+        }
+    }
+    EXPECT_EQ(corners, 4u);
+    test::expect_snapshots_equal(before, tin.snapshot());
+    for (VertexId v : ids) {
+        const double v0 = tin.volume();
+        EditReport report;
+        ASSERT_TRUE(tin.remove_border_vertex(v, VolumePolicy::Report, &report));
+        EXPECT_FALSE(tin.is_alive(v));
+        EXPECT_EQ(report.vertices_removed, 1u);
+        EXPECT_NEAR(tin.volume() - v0, report.volume_change, 1e-12);
+        expect_sound(tin);
+    }
+    // The domain is still the whole rectangle: every border point has a height, the linear
+    // one between the corners now that no other vertex is on the border.
+    LocateHint hint;
+    for (double t = 0.0; t <= 1.0; t += 0.125) {
+        const Vec2 p{4.0 * t, 0.0};
+        ASSERT_TRUE(tin.height_at(p, &hint).has_value());
+        EXPECT_NEAR(*tin.height_at(p, &hint), (1.0 - t) * bumpy({0, 0}) + t * bumpy({4, 0}), 1e-12);
+    }
+    EXPECT_NEAR(tin.volume(), test::brute_force_volume(tin), 1e-9);
+}
+
+TEST(RemoveBorderVertex, ConstrainedBorderVertexIsRefused) {
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 50, 22, bumpy);
+    const VertexId edge = tin.insert_point({2.0, 0.0}, 1.0);
+    const VertexId inside = tin.insert_point({2.0, 1.0}, 1.0);
+    tin.insert_constraint(edge, inside, 1);
+    const TinSnapshot before = tin.snapshot();
+    EXPECT_FALSE(tin.remove_border_vertex(edge));
+    test::expect_snapshots_equal(before, tin.snapshot());
+    ASSERT_EQ(tin.release_constraints({}), 1u);
+    EXPECT_TRUE(tin.remove_border_vertex(edge));
+    expect_sound(tin);
+}
+
 }  // namespace
 }  // namespace sandtin
