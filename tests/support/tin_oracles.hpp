@@ -151,14 +151,10 @@ inline std::set<Tri> triangle_set(const Tin& tin) {
     return s;
 }
 
-/// In-circle determinant of `q` against the counter-clockwise triangle `t`, in extended
+/// In-circle determinant of `q` against the counter-clockwise triangle (p0, p1, p2), in extended
 /// precision and relative to the squared spread of the points: positive when q lies strictly
 /// inside the circumcircle, about zero when cocircular.
-inline long double relative_in_circle(const Tin& tin, const Tri& t, VertexId q_id) {
-    const Vec2 p0 = tin.position(t[0]);
-    const Vec2 p1 = tin.position(t[1]);
-    const Vec2 p2 = tin.position(t[2]);
-    const Vec2 q = tin.position(q_id);
+inline long double relative_in_circle(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 q) {
     const long double ax = ld(p0.x) - ld(q.x), ay = ld(p0.y) - ld(q.y);
     const long double bx = ld(p1.x) - ld(q.x), by = ld(p1.y) - ld(q.y);
     const long double cx = ld(p2.x) - ld(q.x), cy = ld(p2.y) - ld(q.y);
@@ -166,6 +162,10 @@ inline long double relative_in_circle(const Tin& tin, const Tri& t, VertexId q_i
     const long double det =
         ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
     return det / ((a2 + b2 + c2) * (a2 + b2 + c2));
+}
+inline long double relative_in_circle(const Tin& tin, const Tri& t, VertexId q_id) {
+    return relative_in_circle(tin.position(t[0]), tin.position(t[1]), tin.position(t[2]),
+                              tin.position(q_id));
 }
 
 /// Interior edges, as (smaller id, larger id), whose two triangles are not clearly Delaunay:

@@ -20,6 +20,7 @@
 
 #include "geom/vec2.hpp"
 #include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
 #include "tin/detail/hole_triangulation.hpp"
 
 namespace sandtin {
@@ -30,26 +31,10 @@ using test::orient2;
 using Triangles = std::vector<std::array<std::size_t, 3>>;
 
 long double shoelace(const std::vector<Vec2>& poly) {
-    long double s = 0.0L;
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-        const Vec2 a = poly[i];
-        const Vec2 b = poly[(i + 1) % poly.size()];
-        s += ld(a.x) * ld(b.y) - ld(b.x) * ld(a.y);
-    }
-    return s / 2.0L;
+    return test::signed_area_ld(poly);
 }
 
-/// In-circle of d against the counter-clockwise triangle (a, b, c), relative to the squared
-/// spread: positive when d is strictly inside the circumcircle.
-long double relative_in_circle(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-    const long double ax = ld(a.x) - ld(d.x), ay = ld(a.y) - ld(d.y);
-    const long double bx = ld(b.x) - ld(d.x), by = ld(b.y) - ld(d.y);
-    const long double cx = ld(c.x) - ld(d.x), cy = ld(c.y) - ld(d.y);
-    const long double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    const long double det =
-        ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
-    return det / ((a2 + b2 + c2) * (a2 + b2 + c2));
-}
+using test::relative_in_circle;
 
 /// Every property a triangulation of the simple CCW polygon must have.
 void expect_triangulates(const std::vector<Vec2>& poly, const Triangles& tris) {
