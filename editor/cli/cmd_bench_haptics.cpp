@@ -31,7 +31,8 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
-    "[--idle [--burn] | --probe] [--pin] [--mlock] [--wake-latency-zero] [--keep-heap] "
+    "[--idle [--burn] | --probe] [--pin | --loop-cpu N] [--mlock] [--wake-latency-zero] "
+    "[--keep-heap] "
     "[--relative-sleep] "
     "[--no-stack-prefault] "
     "[--no-timer-slack] "
@@ -115,6 +116,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                                {"--probe", 0},
                                {"--burn", 0},
                                {"--pin", 0},
+                               {"--loop-cpu", 1},
                                {"--mlock", 0},
                                {"--wake-latency-zero", 0},
                                {"--keep-heap", 0},
@@ -178,6 +180,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     config.spin_ns = std::min<std::int64_t>(static_cast<std::int64_t>(spin_us * 1e3),
                                             static_cast<std::int64_t>(0.5e9 / rate));
     config.realtime.cpu = pin ? cpus - 1 : -1;
+    if (args.has("--loop-cpu")) {
+        if (pin) throw UsageError("--pin and --loop-cpu exclude each other");
+        config.realtime.cpu = static_cast<int>(args.count("--loop-cpu"));
+    }
     config.realtime.lock_memory = args.has("--mlock");
     config.realtime.timer_slack = !args.has("--no-timer-slack");
     config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
@@ -299,6 +305,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     for (std::size_t i = 0; i < std::min<std::size_t>(worst.size(), 12); ++i) {
         const TickPhases& t = worst[i];
         nlohmann::json e = {{"tick", t.tick},
+                            {"start_monotonic_ns", t.start_ns},
                             {"period_ms", ms(t.period_ns)},
                             {"cause", to_string(late_cause(t))},
                             {"previous_work_ms", ms(t.work_ns)},
