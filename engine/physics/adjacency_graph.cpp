@@ -10,9 +10,9 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
-/// Room for a few more neighbours than now, rounded to 4 slots.
-std::uint32_t row_capacity(std::uint32_t degree) {
-    return (degree + 2 + 3) & ~3u;
+/// Room for a few more neighbours than now, rounded to 4 slots; or exactly the degree.
+std::uint32_t row_capacity(std::uint32_t degree, RowSlack slack) {
+    return slack == RowSlack::Some ? (degree + 2 + 3) & ~3u : degree;
 }
 
 std::uint32_t tin_of(const VertexNumbering* numbering, std::uint32_t v) {
@@ -66,7 +66,7 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
         tin.neighbours(VertexId{t}, ring);
         offset_[v] = static_cast<std::uint32_t>(target_.size());
         degree_[v] = static_cast<std::uint32_t>(ring.size());
-        capacity_[v] = row_capacity(degree_[v]);
+        capacity_[v] = row_capacity(degree_[v], slack_policy_);
         for (VertexId w : ring) {
             target_.push_back(local_of(numbering, w.value));
             length_.push_back(distance(va.position[t], va.position[w.value]));
@@ -105,7 +105,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
     if (deg > capacity_[v]) {
         slack_ += capacity_[v];
         offset_[v] = static_cast<std::uint32_t>(target_.size());
-        capacity_[v] = row_capacity(deg);
+        capacity_[v] = row_capacity(deg, slack_policy_);
         target_.resize(target_.size() + capacity_[v], kNone);
         length_.resize(length_.size() + capacity_[v], 0.0);
         reverse_.resize(reverse_.size() + capacity_[v], kNone);

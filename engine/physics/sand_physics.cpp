@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace sandtin {
 
@@ -103,6 +104,8 @@ bool SandPhysics::is_active(VertexId v) const {
 }
 
 void SandPhysics::renumber() {
+    // Only sync() renumbers, and every sync() in a step follows a flush(): nothing is pending.
+    if (!write_local_.empty()) throw std::logic_error("sand physics: renumbering with writes");
     const VertexNumbering old = numbering_;
     numbering_.assign_strips(tin_);
     const std::uint32_t n = numbering_.size();
@@ -360,16 +363,18 @@ std::size_t SandPhysics::refine_around(std::span<const VertexId> vertices) {
 }
 
 void SandPhysics::flush(std::vector<VertexId>* changed_out) {
-    if (write_ids_.empty()) return;
+    if (write_local_.empty()) return;
+    write_ids_.clear();
     write_values_.clear();
-    for (VertexId v : write_ids_) {
-        write_values_.push_back(height_[numbering_.local(v.value)]);
-        write_pending_[v.value] = 0;
+    for (std::uint32_t l : write_local_) {
+        write_ids_.push_back(VertexId{numbering_.tin_id(l)});
+        write_values_.push_back(height_[l]);
+        write_pending_[l] = 0;
     }
+    write_local_.clear();
     tin_.set_heights(write_ids_, write_values_);
     if (changed_out != nullptr)
         changed_out->insert(changed_out->end(), write_ids_.begin(), write_ids_.end());
-    write_ids_.clear();
     const VertexChanges echo = tin_.take_vertex_changes(subscription_);
     // set_heights changes attributes only; anything else would be an edit we must not drop.
     apply_topology(echo.topology);
@@ -386,18 +391,16 @@ PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* chang
     sync();
     for (int it = 0; it < iterations; ++it) {
         if (active_.empty()) break;
-        const VertexArrays& va = tin_.vertices();
-        if (write_pending_.size() < va.size()) write_pending_.resize(va.size(), 0);
+        if (write_pending_.size() < height_.size()) write_pending_.resize(height_.size(), 0);
         const IterationStats stats = solver_.iterate(graph_, arrays(), active_, &split_local);
         ++report.iterations;
         report.vertex_updates += stats.processed;
         report.changed += stats.changed;
         report.volume_moved += stats.volume_moved;
         for (std::uint32_t l : solver_.changed()) {
-            const std::uint32_t v = numbering_.tin_id(l);
-            if (!write_pending_[v]) {
-                write_pending_[v] = 1;
-                write_ids_.push_back(VertexId{v});
+            if (!write_pending_[l]) {
+                write_pending_[l] = 1;
+                write_local_.push_back(l);
             }
         }
         if (!split_local.empty()) {

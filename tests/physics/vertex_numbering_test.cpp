@@ -1,8 +1,9 @@
 // The relaxation's own vertex numbering (VertexNumbering, strips): a bijection onto the live
-// vertices in strip order; a graph built in it matches the TIN; and the numbering changes no
-// result: the Jacobi solver on a renumbered graph and arrays gives the heights of the TIN-id
-// solver bit for bit, and SandPhysics in strip order gives the terrain of SandPhysics in TIN
-// order bit for bit, through refinement, inserted and removed vertices and a renumbering.
+// vertices in strip order; a graph built in it (with or without room in its rows) matches the
+// TIN through local edits; and the numbering changes no result: the Jacobi solver on a
+// renumbered graph and arrays gives the heights of the TIN-id solver bit for bit, and
+// SandPhysics in strip order gives the terrain of SandPhysics in TIN order bit for bit,
+// through refinement, inserted and removed vertices and a renumbering.
 
 #include <gtest/gtest.h>
 
@@ -116,6 +117,41 @@ TEST(VertexNumbering, RenumberedGraphHasTheSameRowsAndLengths) {
     EXPECT_TRUE(own.matches(tin));
     EXPECT_TRUE(local.matches(tin, &n));
     EXPECT_TRUE(same_rows());
+}
+
+TEST(AdjacencyGraph, PackedRowsFollowLocalEdits) {
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 2000, 6);
+    VertexNumbering n;
+    n.assign_strips(tin);
+    AdjacencyGraph packed(RowSlack::None), roomy;
+    packed.rebuild(tin, &n);
+    roomy.rebuild(tin, &n);
+    std::size_t slots = 0;
+    for (std::uint32_t v = 0; v < n.size(); ++v)
+        slots += packed.degree(v);
+    EXPECT_EQ(packed.slot_count(), slots);  // no empty slot
+    EXPECT_GT(roomy.slot_count(), slots);
+    const std::uint32_t sub = tin.subscribe_vertex_changes();
+    std::mt19937_64 rng(2);
+    std::uniform_real_distribution<double> u(0.05, 0.95);
+    for (int round = 0; round < 30; ++round) {
+        std::vector<Vec2> points(40);
+        for (Vec2& p : points)
+            p = {u(rng), u(rng)};
+        tin.insert_points_on_surface(points);
+        for (int k = 0; k < 10; ++k) {
+            const auto t = static_cast<std::uint32_t>(rng() % tin.vertex_capacity());
+            if (tin.is_alive(VertexId{t})) tin.remove_vertex(VertexId{t});
+        }
+        const VertexChanges changes = tin.take_vertex_changes(sub);
+        for (VertexId v : changes.topology) {
+            if (tin.is_alive(v)) n.add(v.value);
+        }
+        packed.update(tin, changes.topology, &n);
+        roomy.update(tin, changes.topology, &n);
+        ASSERT_TRUE(packed.matches(tin, &n)) << "round " << round;
+        ASSERT_TRUE(roomy.matches(tin, &n)) << "round " << round;
+    }
 }
 
 TEST(AdjacencyGraph, AssignRefusesRowsWithoutTheirOppositeEdge) {
