@@ -107,102 +107,152 @@ ForceLoopReport ForceLoop::report() const {
     return r;
 }
 
-void ForceLoop::run() {
-    ForceLoopReport report;
-    report.realtime_grant = make_this_thread_realtime(config_.realtime);
-    report.realtime = report.realtime_grant.fifo;
-    thread_id_.store(static_cast<int>(gettid()), std::memory_order_release);
-    ForceRenderer renderer(config_.renderer);
-    periods_.clear();
-    jitter_.clear();
+// What the ticks share, owned by whichever thread holds the tick token.
+struct ForceLoop::TickState {
+    explicit TickState(const ForceRendererConfig& c) : renderer(c) {}
+    ForceRenderer renderer;
     DeviceState state;
     Vec3 last_force;
     std::int64_t previous_start = 0;
     std::int64_t work_ns = 0;  // the previous tick's body
-    const ThreadCounters counters_before = read_this_thread_counters();
-    std::int64_t deadline = monotonic_ns() + period_ns_;
     bool unseen_snapshot = false;
     double fade = 1.0;  // the stop ramp
-    const double fade_step =
-        config_.stop_ramp_ns > 0
-            ? static_cast<double>(period_ns_) / static_cast<double>(config_.stop_ramp_ns)
-            : 1.0;
-    for (std::uint64_t tick = 0;; ++tick) {
-        const bool stopping = stop_requested_.load(std::memory_order_acquire);
-        if (stopping && (fade <= 0.0 || length(last_force) == 0.0)) break;
-        // Sleep, then spin to the deadline, timing both.
+    ForceLoopReport report;
+};
+
+void ForceLoop::run() {
+    TickState s(config_.renderer);
+    s.report.realtime_grant = make_this_thread_realtime(config_.realtime);
+    s.report.realtime = s.report.realtime_grant.fifo;
+    thread_id_.store(static_cast<int>(gettid()), std::memory_order_release);
+    periods_.clear();
+    jitter_.clear();
+    const ThreadCounters counters_before = read_this_thread_counters();
+    deadline_.store(monotonic_ns() + period_ns_, std::memory_order_relaxed);
+    finished_.store(false, std::memory_order_relaxed);
+    token_.store(0, std::memory_order_release);
+    std::thread backup;
+    if (config_.backup_thread) {
+        backup = std::thread([this, &s] {
+            RealtimeRequest r = config_.realtime;
+            r.lock_memory = false;  // process-wide: done once, by the primary
+            r.cpu = config_.backup_cpu;
+            make_this_thread_realtime(r);
+            wait_and_tick(s, true);
+        });
+    }
+    wait_and_tick(s, false);
+    if (backup.joinable()) backup.join();
+    s.report.during_ticks = difference(read_this_thread_counters(), counters_before);
+    s.report.jitter = jitter_.summary();
+    report_ = s.report;
+    running_.store(false, std::memory_order_release);
+}
+
+void ForceLoop::wait_and_tick(TickState& s, bool backup) {
+    for (;;) {
+        if (finished_.load(std::memory_order_acquire)) return;
+        const std::uint64_t tick = token_.load(std::memory_order_acquire);
+        if ((tick & kTickOwned) != 0) continue;  // the other thread is ticking: a few us
+        const std::int64_t deadline = deadline_.load(std::memory_order_acquire);
+        if (token_.load(std::memory_order_acquire) != tick) continue;  // changed meanwhile
+        // Sleep, then spin to the deadline, timing both. The backup wakes only `backup_margin_ns`
+        // after the deadline, to take the tick if the primary has not (its wake-up was late).
         TickPhases phases;
         phases.tick = tick;
-        phases.work_ns = work_ns;
-        const auto sleep_point = deadline - config_.spin_ns;
+        const auto wake_point =
+            backup ? deadline + config_.backup_margin_ns : deadline - config_.spin_ns;
         std::int64_t now = monotonic_ns();
-        if (now < sleep_point) {
-            sleep_until_ns(sleep_point, config_.absolute_sleep);
+        if (now < wake_point) {
+            sleep_until_ns(wake_point, config_.absolute_sleep);
             now = monotonic_ns();
             phases.slept = true;
-            phases.wake_late_ns = std::max<std::int64_t>(0, now - sleep_point);
+            phases.wake_late_ns = std::max<std::int64_t>(0, now - wake_point);
         }
         while (now < deadline) {
             const std::int64_t t = monotonic_ns();
             phases.spin_gap_ns = std::max(phases.spin_gap_ns, t - now);
             now = t;
         }
-        if (tick > 0) {
-            periods_.add(now - previous_start);
-            phases.start_ns = now;
-            phases.period_ns = now - previous_start;
-            phases.lateness_ns = now - deadline;
-            phases.cpu = current_cpu();
-            jitter_.add(phases);
+        std::uint64_t expected = tick;
+        if (!token_.compare_exchange_strong(expected, tick | kTickOwned,
+                                            std::memory_order_acq_rel)) {
+            continue;  // the other thread took this tick
         }
-        previous_start = now;
-
-        if (device_.read(state) == ReadStatus::Lost) {
-            report.device_lost = true;
-            break;
-        }
-        // A snapshot taken while the device has no pose yet is handed over at its first pose.
-        if (snapshots_.update()) {
-            ++report.snapshots_taken;
-            unseen_snapshot = true;
-        }
-        TickOutput out;
-        if (state.valid) {
-            out =
-                renderer.tick(state.position, now, unseen_snapshot ? &snapshots_.front() : nullptr);
-            unseen_snapshot = false;
-        }
-        if (stopping) {
-            fade = std::max(0.0, fade - fade_step);
-            out.force = out.force * fade;
-        }
-        device_.write_force({out.force, out.contact, out.stale});
-
-        TickRecord& record = ticks_.back();
-        record = {tick, now, state, out.force, out.contact, out.stale, out.snapshot_sequence};
-        if (records_.size() < records_.capacity()) records_.push_back(record);
-        ticks_.publish();
-
-        const double magnitude = length(out.force);
-        report.max_force = std::max(report.max_force, magnitude);
-        const double jump = length(out.force - last_force);
-        report.max_force_jump = std::max(report.max_force_jump, jump);
-        if (jump > 0.5) ++report.force_jumps_over_half_newton;
-        if (out.stale) ++report.stale_ticks;
-        last_force = out.force;
-        report.ticks = tick + 1;
-        work_ns = monotonic_ns() - now;
-
-        deadline += period_ns_;
-        // Ticks missed entirely are not made up: when the next deadline has already passed,
-        // the schedule restarts from now.
-        if (deadline <= now) deadline = now + period_ns_;
+        phases.work_ns = s.work_ns;
+        const bool more = run_tick(s, tick, now, deadline, phases, backup);
+        if (!more) finished_.store(true, std::memory_order_release);
+        token_.store(tick + 1, std::memory_order_release);
+        if (!more) return;
     }
-    device_.write_force({});
-    report.during_ticks = difference(read_this_thread_counters(), counters_before);
-    report.jitter = jitter_.summary();
-    report_ = report;
-    running_.store(false, std::memory_order_release);
+}
+
+bool ForceLoop::run_tick(TickState& s, std::uint64_t tick, std::int64_t now, std::int64_t deadline,
+                         TickPhases phases, bool backup) {
+    const bool stopping = stop_requested_.load(std::memory_order_acquire);
+    if (stopping && (s.fade <= 0.0 || length(s.last_force) == 0.0)) {
+        device_.write_force({});
+        return false;
+    }
+    if (tick > 0) {
+        periods_.add(now - s.previous_start);
+        phases.start_ns = now;
+        phases.period_ns = now - s.previous_start;
+        phases.lateness_ns = now - deadline;
+        phases.cpu = current_cpu();
+        jitter_.add(phases);
+    }
+    s.previous_start = now;
+    if (backup) ++s.report.ticks_by_backup;
+
+    if (device_.read(s.state) == ReadStatus::Lost) {
+        s.report.device_lost = true;
+        device_.write_force({});
+        return false;
+    }
+    // A snapshot taken while the device has no pose yet is handed over at its first pose.
+    if (snapshots_.update()) {
+        ++s.report.snapshots_taken;
+        s.unseen_snapshot = true;
+    }
+    TickOutput out;
+    if (s.state.valid) {
+        out = s.renderer.tick(s.state.position, now,
+                              s.unseen_snapshot ? &snapshots_.front() : nullptr);
+        s.unseen_snapshot = false;
+    }
+    if (stopping) {
+        const double fade_step =
+            config_.stop_ramp_ns > 0
+                ? static_cast<double>(period_ns_) / static_cast<double>(config_.stop_ramp_ns)
+                : 1.0;
+        s.fade = std::max(0.0, s.fade - fade_step);
+        out.force = out.force * s.fade;
+    }
+    device_.write_force({out.force, out.contact, out.stale});
+
+    TickRecord& record = ticks_.back();
+    record = {tick, now, s.state, out.force, out.contact, out.stale, out.snapshot_sequence};
+    if (records_.size() < records_.capacity()) records_.push_back(record);
+    ticks_.publish();
+
+    ForceLoopReport& report = s.report;
+    const double magnitude = length(out.force);
+    report.max_force = std::max(report.max_force, magnitude);
+    const double jump = length(out.force - s.last_force);
+    report.max_force_jump = std::max(report.max_force_jump, jump);
+    if (jump > 0.5) ++report.force_jumps_over_half_newton;
+    if (out.stale) ++report.stale_ticks;
+    s.last_force = out.force;
+    report.ticks = tick + 1;
+    s.work_ns = monotonic_ns() - now;
+
+    // Ticks missed entirely are not made up: when the next deadline has already passed, the
+    // schedule restarts from now.
+    std::int64_t next = deadline + period_ns_;
+    if (next <= now) next = now + period_ns_;
+    deadline_.store(next, std::memory_order_release);
+    return true;
 }
 
 }  // namespace sandtin::haptics

@@ -62,6 +62,18 @@ struct ForceLoopConfig {
     /// While the loop runs, ask the kernel to keep every CPU's wake-up latency at 0 (idle CPUs
     /// poll instead of halting; cpu_wake_latency.hpp). Machine-wide while held: opt in.
     bool hold_cpu_wake_latency = false;
+    /// A second, backup thread that sleeps until `backup_margin_ns` after each deadline and
+    /// takes the tick if the primary has not started it (its wake-up came late). Ticks are
+    /// handed between the two through one atomic token, so exactly one runs each tick and
+    /// the device is never used by both at once. For machines whose timer wake-ups are
+    /// sometimes late by milliseconds (virtual machines): two CPUs are rarely late together.
+    /// The backup costs one wake-up per tick on another CPU. Requires a device that may be
+    /// driven from either thread (both built-in devices can).
+    bool backup_thread = false;
+    std::int64_t backup_margin_ns = 250'000;
+    /// Pin the backup to this CPU (-1: not pinned). It only helps when it cannot share the
+    /// primary's CPU, so pin both (realtime.cpu and this) to different CPUs.
+    int backup_cpu = -1;
     /// Keep the phases of this many late ticks (period > 1.5 periods), preallocated.
     std::size_t late_tick_capacity = 64;
 };
@@ -94,6 +106,7 @@ struct ForceLoopReport {
     /// The loop thread's scheduler counters and faults from just before the first tick to
     /// just after the last (the stop ramp included).
     ThreadCounters during_ticks;
+    std::uint64_t ticks_by_backup = 0;  ///< ticks the backup thread ran (backup_thread)
 };
 
 /// Monotonic clock in nanoseconds (steady_clock).
@@ -131,7 +144,14 @@ class ForceLoop {
     const ForceLoopConfig& config() const { return config_; }
 
   private:
+    struct TickState;
+    static constexpr std::uint64_t kTickOwned = std::uint64_t{1} << 63;
+
     void run();
+    void wait_and_tick(TickState& s, bool backup);
+    /// One tick, by the holder of the token; false when the loop ends (after a zero force).
+    bool run_tick(TickState& s, std::uint64_t tick, std::int64_t now, std::int64_t deadline,
+                  TickPhases phases, bool backup);
 
     HapticDevice& device_;
     ForceLoopConfig config_;
@@ -142,6 +162,12 @@ class ForceLoop {
     std::atomic<bool> stop_requested_{false};
     std::atomic<bool> running_{false};
     std::atomic<int> thread_id_{0};
+    // The tick schedule between the primary and the backup thread: token_ holds the number of
+    // the next tick to run, with kTickOwned set while a thread runs it; deadline_ is that
+    // tick's deadline (written before the token is released).
+    std::atomic<std::uint64_t> token_{0};
+    std::atomic<std::int64_t> deadline_{0};
+    std::atomic<bool> finished_{false};
     std::thread thread_;
     bool opened_ = false;
     std::unique_ptr<CpuWakeLatencyHold> wake_latency_;  // while running, when asked

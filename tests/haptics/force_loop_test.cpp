@@ -26,7 +26,9 @@ HapticSnapshot flat_snapshot(double h) {
     return s;
 }
 
-TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
+// With `backup`, a second thread races the primary for every tick (margin 0: both are at the
+// deadline), so ticks change hands often; the result must not depend on who ran which tick.
+void check_runs_to_the_end_like_the_offline_renderer(bool backup) {
     StrokeTrajectorySpec spec;
     spec.start_x = 0.5;
     spec.end_x = 0.5 + 1e-9;
@@ -40,6 +42,8 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
     config.renderer.stale_after_ns = 3'600'000'000'000;  // never stale in this test
     config.renderer.ramp_ns = 1'000'000;
     config.try_realtime = false;
+    config.backup_thread = backup;
+    config.backup_margin_ns = 0;
     ForceLoop loop(device, config);
     loop.publish(flat_snapshot(0.0));  // before start: the first tick takes it
     loop.start();
@@ -92,6 +96,21 @@ TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
     }
     // 4 mm deep on flat sand: 800 (0.004 + 0.000625) = 3.7 N once blended and ramped in.
     EXPECT_NEAR(max_force, 3.7, 1e-9);
+    // Every tick ran exactly once, in order, whichever thread ran it.
+    for (std::size_t i = 0; i < loop.records().size(); ++i)
+        EXPECT_EQ(loop.records()[i].tick, i);
+    EXPECT_LE(report.ticks_by_backup, report.ticks);
+    if (!backup) {
+        EXPECT_EQ(report.ticks_by_backup, 0u);
+    }
+}
+
+TEST(ForceLoop, RunsUntilTheTrajectoryEndsAndMatchesTheOfflineRenderer) {
+    check_runs_to_the_end_like_the_offline_renderer(false);
+}
+
+TEST(ForceLoop, WithABackupThreadEveryTickRunsOnceAndTheForcesAreTheSame) {
+    check_runs_to_the_end_like_the_offline_renderer(true);
 }
 
 TEST(ForceLoop, StopFadesTheForceOutInsteadOfDroppingIt) {

@@ -1,7 +1,7 @@
 // The loop thread never allocates while it ticks: this executable replaces the global
 // operator new with one that counts per thread, and a device wrapper (whose read() runs on the
-// loop thread) notes the count at every tick. Between the first and the last tick the count
-// must not move, while the simulation side publishes snapshots and polls ticks, and the loop
+// loop thread) notes the count at every tick. Between its first and last tick no loop thread's
+// count may move, while the simulation side publishes snapshots and polls ticks, and the loop
 // records every tick and keeps late-tick phases.
 // Its own executable, because replacing operator new is global to the program.
 
@@ -18,7 +18,10 @@
 
 namespace {
 thread_local std::uint64_t allocations = 0;
-}
+// The count at this thread's previous device read; "none" before its first.
+constexpr std::uint64_t kNone = ~std::uint64_t{0};
+thread_local std::uint64_t seen_at_last_read = kNone;
+}  // namespace
 
 void* operator new(std::size_t size) {
     ++allocations;
@@ -40,8 +43,11 @@ class CountingDevice final : public HapticDevice {
     explicit CountingDevice(SimulatedDevice& inner) : inner_(inner) {}
     void open() override { inner_.open(); }
     ReadStatus read(DeviceState& state) override {
-        if (reads_ == 0) first_ = allocations;
-        last_ = allocations;
+        // Between two reads on the same thread lie a whole tick and the wait for the next:
+        // count what that thread allocated there. (With a backup thread the reads alternate
+        // between two threads; each keeps its own count.)
+        if (seen_at_last_read != kNone) during_ += allocations - seen_at_last_read;
+        seen_at_last_read = allocations;
         ++reads_;
         return inner_.read(state);
     }
@@ -51,16 +57,15 @@ class CountingDevice final : public HapticDevice {
     std::string name() const override { return "counting " + inner_.name(); }
 
     std::uint64_t reads() const { return reads_; }
-    std::uint64_t allocations_during_ticks() const { return last_ - first_; }
+    std::uint64_t allocations_during_ticks() const { return during_; }
 
   private:
     SimulatedDevice& inner_;
     std::uint64_t reads_ = 0;
-    std::uint64_t first_ = 0;
-    std::uint64_t last_ = 0;
+    std::uint64_t during_ = 0;
 };
 
-TEST(ForceLoopAllocation, TicksNeverAllocate) {
+void check_ticks_never_allocate(bool backup) {
     StrokeTrajectorySpec spec;
     spec.dwell = 0.05;
     spec.start_x = 0.45;
@@ -74,6 +79,8 @@ TEST(ForceLoopAllocation, TicksNeverAllocate) {
     config.try_realtime = false;
     config.record_capacity = trajectory.samples.size();
     config.late_tick_capacity = trajectory.samples.size();  // every tick may be "late" here
+    config.backup_thread = backup;
+    config.backup_margin_ns = 0;  // it races the primary for every tick
     ForceLoop loop(device, config);
     HapticSnapshot s;
     s.control_count = 3;
@@ -95,6 +102,14 @@ TEST(ForceLoopAllocation, TicksNeverAllocate) {
     EXPECT_GT(polled, 0u);
     EXPECT_EQ(loop.records().size(), trajectory.samples.size());
     EXPECT_GT(loop.report().snapshots_taken, 0u);
+}
+
+TEST(ForceLoopAllocation, TicksNeverAllocate) {
+    check_ticks_never_allocate(false);
+}
+
+TEST(ForceLoopAllocation, TicksNeverAllocateWithABackupThread) {
+    check_ticks_never_allocate(true);
 }
 
 TEST(ForceLoopAllocation, TheCounterSeesAllocations) {
