@@ -105,7 +105,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
     if (deg > capacity_[v]) {
         slack_ += capacity_[v];
         offset_[v] = static_cast<std::uint32_t>(target_.size());
-        capacity_[v] = row_capacity(deg, slack_policy_);
+        capacity_[v] = row_capacity(deg, RowSlack::Some);  // it grew: it may grow again
         target_.resize(target_.size() + capacity_[v], kNone);
         length_.resize(length_.size() + capacity_[v], 0.0);
         reverse_.resize(reverse_.size() + capacity_[v], kNone);

@@ -25,9 +25,10 @@
 namespace sandtin {
 
 /// Whether rebuilt rows get room to grow. Some: a local re-triangulation rewrites most rows in
-/// place (the GPU mirror uploads only those). None: rows are packed, so the kernels stream no
-/// empty slots (measured: SandPhysics Jacobi at 10⁶ vertices in strip order 12.8 -> 13.5 M
-/// updates per CPU-second); a row that grows moves to the end of the pool.
+/// place (the GPU mirror uploads only those). None: rebuilt rows are packed, so the kernels
+/// stream no empty slots (measured: SandPhysics Jacobi at 10⁶ vertices in strip order 12.8 ->
+/// 13.5 M updates per CPU-second); a row that grows moves to the end of the pool, with room
+/// (where the terrain is being refined, it grows again).
 enum class RowSlack : std::uint8_t { Some, None };
 
 class AdjacencyGraph {

@@ -30,7 +30,12 @@ void PhysicsStepReport::accumulate(const PhysicsStepReport& o) {
 
 SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings,
                          VertexOrder order)
-    : tin_(tin), materials_(std::move(materials)), solver_(settings), order_(order) {
+    : tin_(tin),
+      materials_(std::move(materials)),
+      solver_(settings),
+      order_(order != VertexOrder::Auto              ? order
+             : settings.schedule == Schedule::Jacobi ? VertexOrder::Strips
+                                                     : VertexOrder::Tin) {
     subscription_ = tin_.subscribe_vertex_changes();
     const VertexArrays& va = tin_.vertices();
     material_seen_.assign(va.material.begin(), va.material.end());

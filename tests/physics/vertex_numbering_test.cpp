@@ -342,6 +342,18 @@ void compare_physics(Schedule schedule, double randomness, double relocation_rad
     EXPECT_GT(moved, 2000u);
 }
 
+TEST(VertexNumbering, SandPhysicsPicksStripsForJacobiAndTinIdsForSequential) {
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 500, 2);
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    EXPECT_FALSE(SandPhysics(tin, MaterialTable::presets(), settings).numbering().identity());
+    settings.schedule = Schedule::Sequential;
+    EXPECT_TRUE(SandPhysics(tin, MaterialTable::presets(), settings).numbering().identity());
+    EXPECT_FALSE(SandPhysics(tin, MaterialTable::presets(), settings, VertexOrder::Strips)
+                     .numbering()
+                     .identity());
+}
+
 TEST(VertexNumbering, SandPhysicsInStripOrderGivesTheTerrainOfTinOrderBitForBit) {
     compare_physics(Schedule::Jacobi, 0.0, 0.0);
     compare_physics(Schedule::Jacobi, 0.3, 0.02);
