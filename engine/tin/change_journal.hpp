@@ -45,7 +45,12 @@ class DirtySet {
         out.swap(list_);
         return out;
     }
-    void clear() { take(); }
+    /// Empties the set in O(count), keeping its buffers (the walks clear theirs on every call).
+    void clear() {
+        for (std::uint32_t id : list_)
+            flags_[id] = 0;
+        list_.clear();
+    }
 
   private:
     std::vector<std::uint8_t> flags_;
