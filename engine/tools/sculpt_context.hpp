@@ -2,6 +2,8 @@
 // State that lives across edits of one sculpting session: the stamp generation counter, the
 // point-location hint along the tool path, and the simplification queue.
 
+#include <cstddef>
+
 #include "tin/tin.hpp"
 #include "tools/simplifier.hpp"
 
@@ -18,6 +20,10 @@ struct SculptSettings {
     /// A stamp removes the sand its imprint replaces in bulk before enforcing its contours
     /// (tin/bulk_removal.hpp). Same result; off only to compare against the plain path.
     bool clear_before_imprint = true;
+    /// ... when at least this many vertices qualify. Measured on the seeds' groove: at 10^5
+    /// points (about 60 per stamp) clearing cost 7 % more CPU than the plain path, at 10^6
+    /// (about 800) 30 % less.
+    std::size_t min_bulk_clearing = 200;
 };
 
 class SculptContext {

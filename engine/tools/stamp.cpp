@@ -304,7 +304,10 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             }
             return true;
         };
-        report.cleared = remove_in_patches(tin, doomed, &edit, may_border);
+        // A few vertices cost more to clear in patches (a hole triangulation per patch) than
+        // the plain path spends crossing them (SculptSettings::min_bulk_clearing).
+        if (doomed.size() >= context.settings.min_bulk_clearing)
+            report.cleared = remove_in_patches(tin, doomed, &edit, may_border);
     }
 
     // 3. Outer contour at the terrain's heights.

@@ -72,6 +72,7 @@ Outcome run(const Edit& e, bool clear) {
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = e.simplify;
     context.settings.clear_before_imprint = clear;
+    context.settings.min_bulk_clearing = 0;  // these scenes are small: clear whatever qualifies
     const Tool tool = Tool::build(e.tool);
     if (e.path.size() == 1) {
         out.report = stamp(tin, tool, {e.path[0], 0.3, e.bottom}, context);
