@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <thread>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -23,7 +24,7 @@ constexpr const char* kUsage =
     "sandtin haptics serve -o out.sandtin [-i in.sandtin | --size W H --height Z --points N "
     "--seed S] [--port P] [--port-file F] [--tool tool.json | --tool-json '{...}'] "
     "[--spacing M] [--erode N] [--relocation-radius M] [--rate HZ] [--max-seconds S] "
-    "[--record rec.haptic.json] [--json]";
+    "[--record rec.haptic.json] [--backup] [--json]";
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
     const std::vector<std::uint8_t> bytes = read_file(path, 1u << 24);
@@ -53,6 +54,7 @@ int run_haptics(const std::vector<std::string>& raw) {
                                {"--rate", 1},
                                {"--max-seconds", 1},
                                {"--record", 1},
+                               {"--backup", 0},
                                {"--json", 0}});
     args.require_positionals(1, kUsage);
     if (args.positionals()[0] != "serve")
@@ -69,6 +71,16 @@ int run_haptics(const std::vector<std::string>& raw) {
         throw UsageError("--rate must be in (0, 4000]");
     options.loop.spin_ns = std::min<std::int64_t>(
         options.loop.spin_ns, static_cast<std::int64_t>(0.5e9 / options.loop.rate_hz));
+    // --backup: a second loop thread on another CPU takes any tick whose primary woke late
+    // (force_loop.hpp); it only helps from another CPU, so with 2+ CPUs both are pinned.
+    if (args.has("--backup")) {
+        options.loop.backup_thread = true;
+        const int cpus = static_cast<int>(std::thread::hardware_concurrency());
+        if (cpus >= 2) {
+            options.loop.realtime.cpu = cpus - 1;
+            options.loop.backup_cpu = 0;
+        }
+    }
     options.max_seconds = args.number_or("--max-seconds", 600.0);
     if (!(options.max_seconds > 0.0) || options.max_seconds > 600.0)
         throw UsageError("--max-seconds must be in (0, 600]");
@@ -152,7 +164,9 @@ int run_haptics(const std::vector<std::string>& raw) {
                        {"max_spin_gap_ms", static_cast<double>(jitter.max_spin_gap_ns) * 1e-6},
                        {"max_work_ms", static_cast<double>(jitter.max_work_ns) * 1e-6}};
     j["realtime"] = {{"sched_fifo", r.loop.realtime_grant.fifo},
-                     {"refused", r.loop.realtime_grant.refused}};
+                     {"refused", r.loop.realtime_grant.refused},
+                     {"backup_thread", options.loop.backup_thread},
+                     {"ticks_by_backup", r.loop.ticks_by_backup}};
     j["force_n"] = {{"max", r.loop.max_force}, {"max_jump", r.loop.max_force_jump}};
     j["device"] = {{"poses", r.device.poses},
                    {"malformed", r.device.malformed},

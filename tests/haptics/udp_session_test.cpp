@@ -44,8 +44,10 @@ std::vector<LoggedForce> read_force_log(const std::filesystem::path& path) {
     return out;
 }
 
-TEST(UdpSession, ReplayProcessDrivesAHeadlessSessionOverLoopback) {
-    const std::filesystem::path dir = test::scratch_dir("udp");
+// With `backup`, a second loop thread races the primary for every tick (margin 0), so the UDP
+// device is driven from both threads in turn; the round trip must be just as exact.
+void check_replay_process_drives_a_headless_session(bool backup) {
+    const std::filesystem::path dir = test::scratch_dir(backup ? "udp_backup" : "udp");
     const std::string trajectory_path = SANDTIN_HAPTICS_ASSETS "/stroke.traj";
     const Trajectory trajectory = load_trajectory(trajectory_path);
     const ScriptTerrain terrain = test::test_terrain();
@@ -62,6 +64,8 @@ TEST(UdpSession, ReplayProcessDrivesAHeadlessSessionOverLoopback) {
     ForceLoopConfig config;
     config.record_capacity = 4 * trajectory.samples.size();
     config.try_realtime = false;
+    config.backup_thread = backup;
+    config.backup_margin_ns = 0;
     ForceLoop loop(device, config);
     LiveSession session(editor, loop);
     loop.start();
@@ -125,6 +129,17 @@ TEST(UdpSession, ReplayProcessDrivesAHeadlessSessionOverLoopback) {
     const nlohmann::json report = replay_recording(rec, replayed, replay_context, dir);
     EXPECT_TRUE(report["result_matches_recording"].get<bool>());
     test::expect_same_terrain(live, replayed);
+    // Every tick ran once, in order, whichever thread ran it.
+    for (std::size_t i = 0; i < records.size(); ++i)
+        ASSERT_EQ(records[i].tick, i);
+}
+
+TEST(UdpSession, ReplayProcessDrivesAHeadlessSessionOverLoopback) {
+    check_replay_process_drives_a_headless_session(false);
+}
+
+TEST(UdpSession, WithABackupLoopThreadTheRoundTripIsAsExact) {
+    check_replay_process_drives_a_headless_session(true);
 }
 
 }  // namespace
