@@ -131,4 +131,11 @@ NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon) {
     return best;
 }
 
+double polygon_perimeter(std::span<const Vec2> polygon) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+        sum += distance(polygon[i], polygon[(i + 1) % polygon.size()]);
+    return sum;
+}
+
 }  // namespace sandtin

@@ -12,6 +12,8 @@ namespace sandtin {
 
 /// Signed area in m²: positive for counter-clockwise vertex order.
 double signed_area(std::span<const Vec2> polygon);
+/// Length of the closed polygon's boundary (metres).
+double polygon_perimeter(std::span<const Vec2> polygon);
 
 /// Bounding box of the points.
 Rect bounding_box(std::span<const Vec2> points);

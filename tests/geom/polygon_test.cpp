@@ -206,5 +206,19 @@ TEST(Polygon, NearestEdgeOfAClosedPolygon) {
     }
 }
 
+TEST(Polygon, PerimeterOfClosedPolygons) {
+    const std::vector<Vec2> square = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+    EXPECT_DOUBLE_EQ(polygon_perimeter(square), 8.0);
+    const std::vector<Vec2> triangle = {{0, 0}, {3, 0}, {3, 4}};  // 3-4-5
+    EXPECT_DOUBLE_EQ(polygon_perimeter(triangle), 12.0);
+    // A regular n-gon inscribed in the unit circle: 2 n sin(pi / n), towards 2 pi.
+    std::vector<Vec2> ngon;
+    for (int k = 0; k < 1000; ++k)
+        ngon.push_back({std::cos(2.0 * std::numbers::pi * k / 1000),
+                        std::sin(2.0 * std::numbers::pi * k / 1000)});
+    EXPECT_NEAR(polygon_perimeter(ngon), 2000.0 * std::sin(std::numbers::pi / 1000), 1e-12);
+    EXPECT_EQ(polygon_perimeter(std::vector<Vec2>{}), 0.0);
+}
+
 }  // namespace
 }  // namespace sandtin
