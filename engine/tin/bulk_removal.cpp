@@ -109,7 +109,6 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
         c.ring.insert(c.ring.end(), around.begin(), around.end());
         c.first.push_back(static_cast<std::uint32_t>(c.ring.size()));
     }
-    const std::vector<VertexId> all = c.ids;  // to clear the flags of dropped vertices too
     auto in_set = [&](VertexId w) { return w.value < c.in.size() && c.in[w.value] != 0; };
 
     // A patch is removed with the triangles around it. Two things there would not survive the
@@ -168,7 +167,7 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
         }
         remove_or_split(tin, patch, report, 0, out);
     }
-    for (VertexId v : all)
+    for (VertexId v : c.ids)  // dropped ones included: ids keeps every vertex taken in
         c.in[v.value] = 0;
     return out;
 }
