@@ -2,13 +2,18 @@
 // the offered set and the pre-edit neighbourhoods (which vertices died, which were on a
 // constraint or the border, who was next to a constrained vertex), the brute-force volume,
 // the disc test of support/region_oracles.hpp, and the CGAL-free mesh checks.
+// Which vertices go is compared with a brute-force reference of the drop rule: full passes
+// over the set, repeated until nothing changes.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
+#include <random>
 #include <set>
 #include <vector>
 
@@ -262,6 +267,174 @@ TEST(ClearPatches, NothingToDo) {
     const BulkRemoval out = clear_and_check(tin, border);
     EXPECT_EQ(out.removed, 0u);
     EXPECT_EQ(out.patches, 0u);
+}
+
+// ---- The drop rule against a brute-force fixed point -------------------------------------
+
+using MayBorder = std::function<bool(VertexId v, VertexId w)>;
+
+/// The set the drop rule leaves, by its definition: start from the offered live vertices
+/// that are neither on the border nor on a constraint; then, over and over, mark every vertex
+/// of the set that has a neighbour w outside it which is on a constraint, or is an island
+/// (not on the border, and of every two consecutive neighbours of w at least one is in the
+/// set), or which `may_border` refuses; drop all marked at once; until a pass marks nothing.
+/// Public Tin queries only. `passes` receives the number of passes that dropped something.
+std::set<VertexId> reference_drop_rule(const Tin& tin, const std::vector<VertexId>& offered,
+                                       const MayBorder& may_border, int* passes) {
+    std::set<VertexId> set;
+    std::vector<VertexId> ring;
+    for (VertexId v : offered) {
+        if (!tin.is_alive(v)) continue;
+        const Tin::VertexStar star = tin.star(v, ring);
+        if (!star.boundary && !star.constrained) set.insert(v);
+    }
+    *passes = 0;
+    std::vector<VertexId> around;
+    for (;;) {
+        std::vector<VertexId> marked;
+        for (VertexId v : set) {
+            tin.neighbours(v, ring);
+            for (VertexId w : ring) {
+                if (set.count(w)) continue;
+                const Tin::VertexStar star = tin.star(w, around);
+                bool island = !star.boundary;
+                for (std::size_t k = 0; island && k < around.size(); ++k) {
+                    island = set.count(around[k]) || set.count(around[(k + 1) % around.size()]);
+                }
+                if (star.constrained || island || (may_border && !may_border(v, w))) {
+                    marked.push_back(v);
+                    break;
+                }
+            }
+        }
+        if (marked.empty()) return set;
+        ++*passes;
+        for (VertexId v : marked)
+            set.erase(v);
+    }
+}
+
+/// Runs remove_in_patches and compares the vertices that died with the reference set. When
+/// no piece was refused, every vertex of the reference set must go and no other; a refused
+/// piece stays, so then the dead are only a subset (the cases below are chosen so that
+/// nothing is refused, and say so). Returns the reference's pass count.
+int expect_removal_follows_the_rule(Tin& tin, const std::vector<VertexId>& offered,
+                                    const MayBorder& may_border, bool expect_no_refusal) {
+    int passes = 0;
+    const std::set<VertexId> expected = reference_drop_rule(tin, offered, may_border, &passes);
+    const std::vector<VertexId> alive_before = live_ids(tin);
+    EditReport report;
+    const BulkRemoval out = remove_in_patches(tin, offered, &report, may_border);
+    const ValidationReport valid = tin.check_valid();
+    EXPECT_TRUE(valid.ok()) << valid.summary();
+    std::set<VertexId> died;
+    for (VertexId v : alive_before) {
+        if (!tin.is_alive(v)) died.insert(v);
+    }
+    EXPECT_EQ(out.removed, died.size());
+    EXPECT_EQ(report.vertices_removed, died.size());
+    if (expect_no_refusal) {
+        EXPECT_EQ(out.refused, 0u);
+    }
+    std::size_t not_in_reference = 0;
+    for (VertexId v : died)
+        not_in_reference += expected.count(v) ? 0 : 1;
+    EXPECT_EQ(not_in_reference, 0u) << "vertices removed that the drop rule keeps";
+    if (out.refused == 0) {
+        std::size_t missing = 0;
+        for (VertexId v : expected)
+            missing += died.count(v) ? 0 : 1;
+        EXPECT_EQ(missing, 0u) << "vertices the drop rule lets go that stayed, of "
+                               << expected.size() << " (passes " << passes << ")";
+    }
+    return passes;
+}
+
+/// Segments between fresh end points, each its own constraint (insert_constraints).
+void constrain_segments(Tin& tin, const std::vector<std::array<Vec2, 2>>& segments) {
+    std::vector<Vec2> pts;
+    std::vector<double> hs;
+    for (const auto& s : segments) {
+        for (Vec2 p : s) {
+            pts.push_back(p);
+            hs.push_back(bumpy(p));
+        }
+    }
+    const std::vector<VertexId> ids = tin.insert_points(pts, hs);
+    std::vector<std::array<VertexId, 2>> pairs;
+    for (std::size_t k = 0; k + 1 < ids.size(); k += 2)
+        pairs.push_back({ids[k], ids[k + 1]});
+    tin.insert_constraints(pairs, 1);
+}
+
+/// Deterministic, asymmetric refusal of about one pair in `one_in`.
+MayBorder hashed_refusal(std::uint32_t one_in) {
+    return [one_in](VertexId v, VertexId w) {
+        std::uint64_t h = (std::uint64_t{v.value} << 32 | w.value) * 0x9E3779B97F4A7C15ull;
+        h ^= h >> 29;
+        return h % one_in != 0;
+    };
+}
+
+TEST(ClearPatches, DropRuleMatchesTheFixedPointOfFullPasses) {
+    int most_passes = 0;
+    for (std::uint64_t seed : {661u, 662u, 663u, 664u}) {
+        SCOPED_TRACE(seed);
+        std::mt19937_64 rng = test::test_rng(seed);
+        std::uniform_real_distribution<double> u(0.3, 0.7);
+        const Vec2 c{u(rng), u(rng)};
+        {  // A disc with a constraint through it and one just outside.
+            Tin tin = Tin::random_points(kUnit, 5000, seed, bumpy);
+            constrain_segments(tin, {{Vec2{c.x - 0.05, c.y - 0.02}, Vec2{c.x + 0.2, c.y + 0.03}},
+                                     {Vec2{c.x - 0.1, c.y + 0.14}, Vec2{c.x + 0.1, c.y + 0.15}}});
+            const std::vector<VertexId> offered = in_disc(tin, c, 0.13);
+            most_passes =
+                std::max(most_passes, expect_removal_follows_the_rule(tin, offered, nullptr, true));
+        }
+        {  // A blob of three discs, pairs refused by a hash.
+            Tin tin = Tin::random_points(kUnit, 5000, seed + 10, bumpy);
+            std::vector<VertexId> offered = in_disc(tin, c, 0.08);
+            for (const Vec2 d : {Vec2{0.07, 0.02}, Vec2{-0.03, 0.08}}) {
+                const std::vector<VertexId> more = in_disc(tin, c + d, 0.06);
+                offered.insert(offered.end(), more.begin(), more.end());
+            }
+            most_passes = std::max(most_passes, expect_removal_follows_the_rule(
+                                                    tin, offered, hashed_refusal(9), true));
+        }
+        {  // A disc that may not border survivors across a line through it.
+            Tin tin = Tin::random_points(kUnit, 5000, seed + 20, bumpy);
+            const Tin* t = &tin;
+            const double cut = c.x + 0.3 * c.y;
+            const MayBorder same_side = [t, cut](VertexId v, VertexId w) {
+                const Vec2 a = t->position(v);
+                const Vec2 b = t->position(w);
+                return (a.x + 0.3 * a.y < cut) == (b.x + 0.3 * b.y < cut);
+            };
+            const std::vector<VertexId> offered = in_disc(tin, c, 0.12);
+            most_passes = std::max(most_passes,
+                                   expect_removal_follows_the_rule(tin, offered, same_side, true));
+        }
+        {  // Holes: the disc minus small discs, one around a single vertex, plus a constraint
+           // near the rim and refusals.
+            Tin tin = Tin::random_points(kUnit, 5000, seed + 30, bumpy);
+            constrain_segments(tin, {{Vec2{c.x + 0.11, c.y - 0.05}, Vec2{c.x + 0.13, c.y + 0.06}}});
+            const std::vector<VertexId> disc = in_disc(tin, c, 0.12);
+            const VertexId centre =
+                *std::min_element(disc.begin(), disc.end(), [&](auto a, auto b) {
+                    return distance(tin.position(a), c) < distance(tin.position(b), c);
+                });
+            std::vector<VertexId> offered;
+            for (VertexId v : disc) {
+                const Vec2 p = tin.position(v);
+                if (v == centre || distance(p, c + Vec2{0.05, 0.04}) < 0.025) continue;
+                offered.push_back(v);
+            }
+            most_passes = std::max(most_passes, expect_removal_follows_the_rule(
+                                                    tin, offered, hashed_refusal(23), true));
+        }
+    }
+    // The cases must exercise the later passes, where the worklist replaces the full passes.
+    EXPECT_GE(most_passes, 3);
 }
 
 }  // namespace

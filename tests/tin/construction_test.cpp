@@ -4,14 +4,21 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
+#include "support/tool_oracles.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -380,6 +387,234 @@ TEST(Construction, MoveKeepsTheTerrain) {
     c = std::move(b);
     test::expect_snapshots_equal(before, c.snapshot());
     EXPECT_TRUE(c.check_valid().ok());
+}
+
+// ---- A fresh build, checked in full -------------------------------------------------------
+// The bulk build lays its faces out anew in memory before handing out slots; none of that may
+// show. Oracles: distinct input positions, Euler's formula with the border vertices as hull,
+// orientation and empty circumcircles in extended precision, and vertex rings re-derived from
+// triangles().
+
+/// Checks a freshly built terrain of exactly the positions in `distinct` (corners included).
+void expect_fresh_build_sound(const Tin& tin, const std::set<std::pair<double, double>>& distinct,
+                              std::uint64_t seed) {
+    const ValidationReport r = tin.check_valid();
+    ASSERT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(tin.vertex_count(), distinct.size());
+    std::size_t hull = 0;
+    for (const auto& [x, y] : distinct)
+        hull += test::on_domain_border(tin.domain(), {x, y}) ? 1 : 0;
+    EXPECT_EQ(test::border_vertex_count(tin), hull);
+    const auto tris = tin.triangles();
+    EXPECT_EQ(tris.size(), 2 * distinct.size() - 2 - hull);
+    EXPECT_EQ(tin.triangle_count(), tris.size());
+    // Slots name the same triangles as triangles().
+    std::set<test::Tri> by_slot;
+    for (TriangleSlot t = 0; t < tin.slot_capacity(); ++t) {
+        const auto tri = tin.slot_triangle(t);
+        if (tri[0].valid()) by_slot.insert(test::canonical(tri));
+    }
+    EXPECT_EQ(by_slot, test::triangle_set(tin));
+    // Counter-clockwise, and rings: the neighbours of each vertex, in order, from triangles().
+    std::map<VertexId, std::map<VertexId, VertexId>> next_around;  // v -> (a -> b): (v, a, b)
+    std::size_t clockwise = 0;
+    for (const test::Tri& t : tris) {
+        if (!(test::orient2(tin.position(t[0]), tin.position(t[1]), tin.position(t[2])) > 0.0L))
+            ++clockwise;
+        for (std::size_t i = 0; i < 3; ++i)
+            next_around[t[i]][t[(i + 1) % 3]] = t[(i + 2) % 3];
+    }
+    EXPECT_EQ(clockwise, 0u);
+    std::size_t bad_rings = 0;
+    std::vector<VertexId> ring;
+    for (VertexId v : test::live_ids(tin)) {
+        tin.neighbours(v, ring);
+        const auto& next = next_around[v];
+        std::set<VertexId> expected;
+        for (const auto& [a, b] : next) {
+            expected.insert(a);
+            expected.insert(b);
+        }
+        bool ok = std::set<VertexId>(ring.begin(), ring.end()) == expected &&
+                  ring.size() == expected.size();
+        // Consecutive neighbours, cyclically, span a triangle with v, except once on the
+        // border, where the ring skips the outside (wherever it starts).
+        const bool border = tin.is_boundary(v);
+        std::size_t gaps = 0;
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+            const auto it = next.find(ring[k]);
+            gaps += it != next.end() && it->second == ring[(k + 1) % ring.size()] ? 0 : 1;
+        }
+        ok = ok && gaps == (border ? 1u : 0u);
+        bad_rings += ok ? 0 : 1;
+        EXPECT_EQ(border, test::on_domain_border(tin.domain(), tin.position(v)));
+    }
+    EXPECT_EQ(bad_rings, 0u) << "vertices whose neighbours() differ from triangles()";
+    // Empty circles: every triangle against its corners' neighbours (which include the far
+    // corners of its three neighbours), and a sample against every vertex.
+    std::size_t inside = 0;
+    for (const test::Tri& t : tris) {
+        for (VertexId corner : t) {
+            tin.neighbours(corner, ring);
+            for (VertexId q : ring) {
+                if (q != t[0] && q != t[1] && q != t[2])
+                    inside += test::relative_in_circle(tin, t, q) > 1e-12L ? 1 : 0;
+            }
+        }
+    }
+    EXPECT_EQ(inside, 0u) << "neighbours inside a triangle's circumcircle";
+    std::mt19937_64 rng = test::test_rng(seed);
+    std::uniform_int_distribution<std::size_t> pick(0, tris.size() - 1);
+    const std::vector<VertexId> all = test::live_ids(tin);
+    std::size_t sample_inside = 0;
+    for (int s = 0; s < 60; ++s) {
+        const test::Tri& t = tris[pick(rng)];
+        for (VertexId q : all) {
+            if (q != t[0] && q != t[1] && q != t[2])
+                sample_inside += test::relative_in_circle(tin, t, q) > 1e-12L ? 1 : 0;
+        }
+    }
+    EXPECT_EQ(sample_inside, 0u) << "vertices inside a sampled triangle's circumcircle";
+}
+
+/// Edits right after the build: insertions, a constraint, single and patch removals.
+void expect_fresh_build_edits(Tin& tin, std::uint64_t seed) {
+    const Rect d = tin.domain();
+    auto valid = [&](const char* after) {
+        const ValidationReport r = tin.check_valid();
+        EXPECT_TRUE(r.ok()) << after << ": " << r.summary();
+        const auto problems = test::mesh_problems(tin);
+        EXPECT_TRUE(problems.empty()) << after << ": " << test::join(problems);
+    };
+    std::mt19937_64 rng = test::test_rng(seed + 1);
+    std::uniform_real_distribution<double> ux(d.min.x, d.max.x);
+    std::uniform_real_distribution<double> uy(d.min.y, d.max.y);
+    std::vector<Vec2> pts;
+    for (int k = 0; k < 100; ++k)
+        pts.push_back({ux(rng), uy(rng)});
+    const std::size_t n0 = tin.vertex_count();
+    tin.insert_points(pts, std::vector<double>(pts.size(), 0.5));
+    EXPECT_EQ(tin.vertex_count(), n0 + pts.size());
+    valid("insert_points");
+    const VertexId a = tin.insert_point(d.min + Vec2{0.2 * d.width(), 0.3 * d.height()}, 0.1);
+    const VertexId b = tin.insert_point(d.min + Vec2{0.8 * d.width(), 0.6 * d.height()}, 0.2);
+    ASSERT_TRUE(tin.insert_constraint(a, b, 1).valid());
+    EXPECT_TRUE(tin.is_constrained_edge(a, b) || tin.constrained_edge_count() > 1);
+    valid("insert_constraint");
+    std::size_t removed = 0;
+    for (VertexId v : test::live_ids(tin)) {
+        if (v.value % 7 == 3 && !tin.is_boundary(v) && !tin.is_on_constraint(v))
+            removed += tin.remove_vertex(v) ? 1 : 0;
+    }
+    EXPECT_GT(removed, 0u);
+    valid("remove_vertex");
+    // A patch away from the constraint (which runs from 0.2/0.3 to 0.8/0.6 of the domain).
+    std::vector<VertexId> patch;
+    const Vec2 c = d.min + Vec2{0.7 * d.width(), 0.2 * d.height()};
+    const double r = 0.08 * std::min(d.width(), d.height());
+    for (VertexId v : test::live_ids(tin)) {
+        if (distance(tin.position(v), c) < r) patch.push_back(v);
+    }
+    if (patch.size() >= 3 && tin.remove_patch(patch)) {
+        for (VertexId v : patch)
+            EXPECT_FALSE(tin.is_alive(v));
+    }
+    valid("remove_patch");
+}
+
+TEST(Construction, FreshRandomBuildsAreSoundAndEditable) {
+    const Rect d{{-2.0, 1.0}, {3.0, 4.5}};
+    for (const auto& [count, seed] :
+         {std::pair<std::size_t, std::uint64_t>{1, 801}, {40, 802}, {2500, 803}, {20000, 804}}) {
+        SCOPED_TRACE(count);
+        Tin tin = Tin::random_points(d, count, seed, [](Vec2 p) { return 0.1 * p.x; });
+        std::set<std::pair<double, double>> distinct;
+        for (VertexId v : test::live_ids(tin))
+            distinct.insert({tin.position(v).x, tin.position(v).y});
+        ASSERT_EQ(distinct.size(), count + 4);
+        expect_fresh_build_sound(tin, distinct, seed);
+        if (count >= 40) expect_fresh_build_edits(tin, seed);
+    }
+}
+
+TEST(Construction, FreshBuildsFromPointsWithDuplicatesAndBorderPoints) {
+    const Rect d{{0.0, 0.0}, {8.0, 5.0}};
+    for (const auto& [count, seed] :
+         {std::pair<std::size_t, std::uint64_t>{30, 811}, {3000, 812}, {15000, 813}}) {
+        SCOPED_TRACE(count);
+        std::mt19937_64 rng = test::test_rng(seed);
+        std::uniform_real_distribution<double> ux(d.min.x, d.max.x);
+        std::uniform_real_distribution<double> uy(d.min.y, d.max.y);
+        std::uniform_int_distribution<int> side(0, 3);
+        std::vector<Vec2> pts;
+        for (std::size_t k = 0; k < count; ++k)
+            pts.push_back({ux(rng), uy(rng)});
+        // Points on the border, two corners among them, and duplicates of everything.
+        for (std::size_t k = 0; k < count / 10 + 4; ++k) {
+            switch (side(rng)) {
+                case 0:
+                    pts.push_back({ux(rng), d.min.y});
+                    break;
+                case 1:
+                    pts.push_back({ux(rng), d.max.y});
+                    break;
+                case 2:
+                    pts.push_back({d.min.x, uy(rng)});
+                    break;
+                default:
+                    pts.push_back({d.max.x, uy(rng)});
+                    break;
+            }
+        }
+        pts.push_back(d.min);
+        pts.push_back({d.max.x, d.min.y});
+        std::uniform_int_distribution<std::size_t> any(0, pts.size() - 1);
+        for (std::size_t k = 0; k < count / 5 + 3; ++k)
+            pts.push_back(pts[any(rng)]);
+        std::shuffle(pts.begin(), pts.end(), rng);
+        std::vector<double> hs;
+        for (std::size_t k = 0; k < pts.size(); ++k)
+            hs.push_back(0.01 * static_cast<double>(k % 97));
+        std::set<std::pair<double, double>> distinct;
+        for (Vec2 p : pts)
+            distinct.insert({p.x, p.y});
+        for (Vec2 c : {d.min, d.max, Vec2{d.min.x, d.max.y}, Vec2{d.max.x, d.min.y}})
+            distinct.insert({c.x, c.y});
+        ASSERT_LT(distinct.size(), pts.size() + 4) << "the input must hold duplicates";
+        Tin tin = Tin::from_points(d, pts, hs);
+        expect_fresh_build_sound(tin, distinct, seed);
+        expect_fresh_build_edits(tin, seed);
+    }
+}
+
+TEST(Construction, FreshBuildMatchesIncrementalInsertion) {
+    // Random points are in general position, so the Delaunay triangulation is unique: the
+    // bulk build and one insertion at a time into the bare rectangle give the same triangles
+    // (compared by corner positions, since ids differ).
+    const Rect d = Rect::from_size(3.0, 2.0);
+    const std::vector<Vec2> pts =
+        test::random_points_in(Rect{{0.01, 0.01}, {2.99, 1.99}}, 3000, 821);
+    const std::vector<double> hs(pts.size(), 0.0);
+    const Tin bulk = Tin::from_points(d, pts, hs);
+    Tin incremental = Tin::flat_rectangle(d);
+    for (Vec2 p : pts)
+        incremental.insert_point(p, 0.0);
+    using PositionTri = std::array<std::pair<double, double>, 3>;
+    auto by_position = [](const Tin& tin) {
+        std::set<PositionTri> out;
+        for (const test::Tri& t : tin.triangles()) {
+            PositionTri p;
+            for (std::size_t i = 0; i < 3; ++i)
+                p[i] = {tin.position(t[i]).x, tin.position(t[i]).y};
+            // Rotate so the smallest position comes first (keeps the orientation).
+            while (!(p[0] < p[1] && p[0] < p[2]))
+                p = {p[1], p[2], p[0]};
+            out.insert(p);
+        }
+        return out;
+    };
+    EXPECT_EQ(bulk.triangle_count(), incremental.triangle_count());
+    EXPECT_TRUE(by_position(bulk) == by_position(incremental));
 }
 
 }  // namespace

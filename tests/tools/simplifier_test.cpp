@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
@@ -361,6 +362,132 @@ TEST(Simplifier, PlanarPatchRefusesAndChangesNothing) {
         }
         expect_refused(tin, set, 1e-9, "border vertex");
     }
+}
+
+// ---- One simplifier for many runs ------------------------------------------------------------
+
+/// Sets every live vertex within `r` of `c` on the plane (flattened sand to simplify).
+std::vector<VertexId> level_disc(Tin& tin, Vec2 c, double r, const test::Plane& plane) {
+    std::vector<VertexId> in = interior_in_disc(tin, c, r);
+    for (VertexId v : in)
+        tin.set_height(v, plane(tin.position(v)));
+    return in;
+}
+
+/// Points in the disc (c, r), on the plane, inserted in one batch; returns their ids.
+std::vector<VertexId> insert_on_plane(Tin& tin, Vec2 c, double r, std::size_t tries,
+                                      std::uint64_t seed, const test::Plane& plane) {
+    std::vector<Vec2> pts;
+    for (Vec2 p : test::random_points_in(Rect{c - Vec2{r, r}, c + Vec2{r, r}}, tries, seed)) {
+        if (distance(p, c) < r) pts.push_back(p);
+    }
+    std::vector<double> hs;
+    for (Vec2 p : pts)
+        hs.push_back(plane(p));
+    return tin.insert_points(pts, hs);
+}
+
+/// A sequence of edits and simplifier runs, identical for both terrains; `run` simplifies
+/// the given vertices (through a kept or a fresh Simplifier). Ids are recycled at once (no
+/// change tracking), so later insertions take ids that earlier runs flagged. Queues are
+/// sparse on flat ground: a flag left over from an earlier run would join a recycled vertex
+/// that was not queued to a queued neighbour's planar patch, and it would go.
+template <class Run>
+void edit_and_simplify(Tin& tin, Run&& run) {
+    SimplifySettings settings;
+    settings.tolerance = 2e-4;
+    auto every_third = [&](const std::vector<VertexId>& vs, std::uint32_t rest) {
+        std::vector<VertexId> out;
+        for (VertexId v : vs) {
+            if (tin.is_alive(v) && v.value % 3 == rest) out.push_back(v);
+        }
+        return out;
+    };
+    // 1. High ids: dense new points on a plane; a third of them queued (singletons and small
+    // groups).
+    const test::Plane a{0.02, 0.01, 0.09};
+    const Vec2 ca{0.3, 0.35};
+    const std::uint32_t first_new = tin.vertex_capacity();
+    const std::vector<VertexId> fresh = insert_on_plane(tin, ca, 0.09, 1500, 371, a);
+    const std::vector<VertexId> disc_a = level_disc(tin, ca, 0.1, a);
+    std::vector<VertexId> queue;
+    for (VertexId v : every_third(fresh, 0)) {
+        if (v.value >= first_new) queue.push_back(v);
+    }
+    ASSERT_GT(queue.size(), 200u);
+    run(tin, queue, settings);
+    // 2. Low ids: a disc of the original points on another plane, with curved sand around it
+    // (some candidates there survive the run).
+    const std::vector<VertexId> b = level_disc(tin, {0.6, 0.6}, 0.1, {-0.01, 0.03, 0.1});
+    ASSERT_GT(b.size(), 100u);
+    run(tin, interior_in_disc(tin, {0.6, 0.6}, 0.16), settings);
+    // 3. New points on the first plane take the ids freed by the first run; only another third
+    // of the old vertices there is queued.
+    const std::vector<VertexId> recycled = insert_on_plane(tin, ca, 0.09, 600, 372, a);
+    std::size_t reused = 0;
+    for (VertexId v : recycled)
+        reused += v.value < first_new + fresh.size() ? 1 : 0;
+    ASSERT_GT(reused, 50u);
+    run(tin, every_third(disc_a, 1), settings);
+    // 4. A disc overlapping both on a third plane, all queued.
+    level_disc(tin, {0.45, 0.5}, 0.12, {0.015, 0.015, 0.085});
+    run(tin, interior_in_disc(tin, {0.45, 0.5}, 0.3), settings);
+    // 5. An empty run, then everything on a looser tolerance.
+    run(tin, {}, settings);
+    settings.tolerance = 1e-3;
+    run(tin, live_ids(tin), settings);
+}
+
+TEST(Simplifier, OneSimplifierForManyRunsActsAsAFreshOnePerRun) {
+    TinOptions options;
+    options.track_changes = false;
+    Tin kept_tin = Tin::random_points(kUnit, 6000, 370, test::rolling_sand, options);
+    Tin fresh_tin = Tin::random_points(kUnit, 6000, 370, test::rolling_sand, options);
+    std::vector<SimplifyReport> kept_reports;
+    std::vector<SimplifyReport> fresh_reports;
+    Simplifier kept;
+    edit_and_simplify(kept_tin, [&](Tin& tin, const std::vector<VertexId>& queue,
+                                    const SimplifySettings& settings) {
+        kept.enqueue(queue);
+        kept_reports.push_back(kept.run(tin, settings));
+        EXPECT_EQ(kept.queued(), 0u);
+    });
+    edit_and_simplify(fresh_tin, [&](Tin& tin, const std::vector<VertexId>& queue,
+                                     const SimplifySettings& settings) {
+        Simplifier once;
+        once.enqueue(queue);
+        fresh_reports.push_back(once.run(tin, settings));
+    });
+    ASSERT_EQ(kept_reports.size(), 6u);
+    ASSERT_EQ(fresh_reports.size(), 6u);
+    std::size_t removed = 0;
+    for (std::size_t k = 0; k < kept_reports.size(); ++k) {
+        SCOPED_TRACE("run " + std::to_string(k));
+        EXPECT_EQ(kept_reports[k].tested, fresh_reports[k].tested);
+        EXPECT_EQ(kept_reports[k].removed, fresh_reports[k].removed);
+        EXPECT_EQ(kept_reports[k].volume_change, fresh_reports[k].volume_change);
+        removed += kept_reports[k].removed;
+    }
+    EXPECT_GT(kept_reports[0].removed, 200u) << "the high-id run";
+    EXPECT_GT(kept_reports[1].removed, 50u);
+    EXPECT_GT(kept_reports[2].removed, 50u);
+    EXPECT_GT(kept_reports[3].removed, 50u);
+    EXPECT_GT(removed, 1000u);
+    EXPECT_TRUE(kept_tin.check_valid().ok()) << kept_tin.check_valid().summary();
+    EXPECT_TRUE(mesh_is_sound(kept_tin));
+    // The whole terrain, bit for bit: alive flags, positions, heights and every other field.
+    const TinSnapshot a = kept_tin.snapshot();
+    const TinSnapshot b = fresh_tin.snapshot();
+    ASSERT_EQ(a.vertices.size(), b.vertices.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+        differ += a.vertices.alive[i] != b.vertices.alive[i] ||
+                          (a.vertices.alive[i] && a.vertices.height[i] != b.vertices.height[i])
+                      ? 1
+                      : 0;
+    }
+    EXPECT_EQ(differ, 0u) << "vertices alive in one terrain only, or at another height";
+    test::expect_snapshots_equal(a, b);
 }
 
 }  // namespace
