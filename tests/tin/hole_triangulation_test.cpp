@@ -4,6 +4,8 @@
 // summing to the shoelace area, every polygon edge used exactly once in its own direction and
 // every diagonal exactly twice (once per direction), and every diagonal locally Delaunay (the
 // polygon edges are the only constraints). Non-simple and clockwise inputs must give nothing.
+// The optional triangle adjacency is checked against the triples alone: the triangle across
+// each edge has that edge reversed and names this one back; -1 exactly on the polygon's edges.
 
 #include <gtest/gtest.h>
 
@@ -138,6 +140,88 @@ std::vector<Vec2> comb(int teeth, int base_points, std::uint64_t seed) {
     return p;
 }
 
+/// The triangle adjacency `neighbours` returns for `tris`, checked against the triples alone:
+/// across the edge opposite corner i (from corner i + 1 to corner i + 2) lies a triangle that
+/// has the same edge in the other direction and names this triangle back, or -1 exactly where
+/// the edge is a polygon edge k -> k + 1. Each polygon edge is -1 once; n - 3 diagonals give
+/// 2 (n - 3) interior half-edges.
+void expect_adjacency(const std::vector<Vec2>& poly, const Triangles& tris,
+                      const std::vector<std::array<int, 3>>& neighbours) {
+    const std::size_t n = poly.size();
+    ASSERT_EQ(neighbours.size(), tris.size());
+    std::vector<int> polygon_edge_seen(n, 0);
+    std::size_t interior_halves = 0;
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+        for (std::size_t i = 0; i < 3; ++i) {
+            const std::size_t from = tris[t][(i + 1) % 3];
+            const std::size_t to = tris[t][(i + 2) % 3];
+            const int across = neighbours[t][i];
+            if (across == -1) {
+                EXPECT_EQ((from + 1) % n, to)
+                    << "triangle " << t << " corner " << i << ": -1 on the non-polygon edge "
+                    << from << "->" << to;
+                if (from < n) ++polygon_edge_seen[from];
+                continue;
+            }
+            ASSERT_GE(across, 0) << "triangle " << t << " corner " << i;
+            ASSERT_LT(static_cast<std::size_t>(across), tris.size())
+                << "triangle " << t << " corner " << i;
+            const auto u = static_cast<std::size_t>(across);
+            EXPECT_NE(u, t) << "triangle " << t << " is its own neighbour";
+            EXPECT_NE((from + 1) % n, to)
+                << "polygon edge " << from << "->" << to << " has a triangle outside it";
+            ++interior_halves;
+            // The shared edge, in the neighbour, runs the other way (both are counter-clockwise).
+            std::size_t j = 3;
+            for (std::size_t k = 0; k < 3; ++k) {
+                if (tris[u][(k + 1) % 3] == to && tris[u][(k + 2) % 3] == from) j = k;
+            }
+            ASSERT_LT(j, 3u) << "triangle " << u << " (across corner " << i << " of " << t
+                             << ") does not have the edge " << to << "->" << from;
+            EXPECT_EQ(neighbours[u][j], static_cast<int>(t))
+                << "triangle " << u << " does not name " << t << " back across " << to << "-"
+                << from;
+        }
+    }
+    for (std::size_t k = 0; k < n; ++k)
+        EXPECT_EQ(polygon_edge_seen[k], 1) << "polygon edge " << k << "->" << (k + 1) % n;
+    EXPECT_EQ(interior_halves, 2 * (n - 3));
+}
+
+/// Triangulates with and without the adjacency: the triangles must be the same, and both must
+/// pass their checks. The output vector starts with stale entries, which must not survive.
+void expect_triangulates_with_adjacency(const std::vector<Vec2>& poly) {
+    const Triangles plain = detail::triangulate_simple_polygon(poly);
+    std::vector<std::array<int, 3>> neighbours(poly.size() + 7, std::array<int, 3>{5, -3, 99});
+    const Triangles tris = detail::triangulate_simple_polygon(poly, &neighbours);
+    EXPECT_EQ(tris, plain) << "the out-parameter changed the triangulation";
+    expect_triangulates(poly, tris);
+    expect_adjacency(poly, tris, neighbours);
+}
+
+/// A band winding `turns` times around `centre`: the outer edge outwards along the spiral
+/// r = r0 + growth * angle, then back along the inner edge. Width below the pitch, so the turns
+/// never touch. Counter-clockwise; deeply non-convex.
+std::vector<Vec2> spiral(double turns, std::size_t points_per_side, Vec2 centre) {
+    const double r0 = 0.3;
+    const double growth = 0.1;  // pitch 2 pi growth = 0.63
+    const double width = 0.35;
+    const double end = 2.0 * std::numbers::pi * turns;
+    std::vector<Vec2> p;
+    auto at = [&](double a, double r) {
+        return Vec2{centre.x + r * std::cos(a), centre.y + r * std::sin(a)};
+    };
+    for (std::size_t k = 0; k < points_per_side; ++k) {
+        const double a = end * static_cast<double>(k) / static_cast<double>(points_per_side - 1);
+        p.push_back(at(a, r0 + growth * a + width));
+    }
+    for (std::size_t k = points_per_side; k-- > 0;) {
+        const double a = end * static_cast<double>(k) / static_cast<double>(points_per_side - 1);
+        p.push_back(at(a, r0 + growth * a));
+    }
+    return p;
+}
+
 TEST(HoleTriangulation, ConvexPolygons) {
     const std::vector<Vec2> triangle = {{0, 0}, {1, 0}, {0, 1}};
     expect_triangulates(triangle, detail::triangulate_simple_polygon(triangle));
@@ -236,6 +320,45 @@ TEST(HoleTriangulation, AllCollinearIsNotAPolygon) {
     EXPECT_TRUE(detail::triangulate_simple_polygon(
                     std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {1.5, 1.5}})
                     .empty());
+}
+
+TEST(HoleTriangulation, AdjacencyOfConvexAndCollinearPolygons) {
+    expect_triangulates_with_adjacency({{0, 0}, {1, 0}, {0, 1}});
+    expect_triangulates_with_adjacency({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+    for (std::size_t n : {5u, 17u, 300u}) {
+        SCOPED_TRACE(n);
+        expect_triangulates_with_adjacency(regular_polygon(n, {0.31, -0.7}, 0.05, 0.123));
+    }
+    std::vector<Vec2> fan;
+    for (int k = 0; k <= 200; ++k)
+        fan.push_back({k * 0.01, 0.0});
+    fan.push_back({1.0, 1e-3});
+    expect_triangulates_with_adjacency(fan);
+    std::vector<Vec2> ell;
+    const std::vector<Vec2> corners = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const Vec2 a = corners[i];
+        const Vec2 b = corners[(i + 1) % corners.size()];
+        for (int k = 0; k < 8; ++k)
+            ell.push_back(a + (b - a) * (k / 8.0));
+    }
+    expect_triangulates_with_adjacency(ell);
+}
+
+TEST(HoleTriangulation, AdjacencyOfStarsCombsAndSpirals) {
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+        SCOPED_TRACE(seed);
+        expect_triangulates_with_adjacency(random_star(20 + 37 * seed, {0.5, 0.25}, seed + 100));
+        expect_triangulates_with_adjacency(
+            comb(static_cast<int>(3 + 4 * seed), static_cast<int>(seed % 5), seed));
+    }
+    for (double turns : {0.6, 1.5, 3.25}) {
+        SCOPED_TRACE(turns);
+        const auto poly = spiral(turns, 40 + static_cast<std::size_t>(60 * turns), {2.0, -1.0});
+        ASSERT_TRUE(test::is_simple(poly));
+        ASSERT_GT(shoelace(poly), 0.0L);
+        expect_triangulates_with_adjacency(poly);
+    }
 }
 
 }  // namespace
