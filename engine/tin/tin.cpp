@@ -118,7 +118,60 @@ void Tin::Impl::ensure_slot_capacity() {
     if (events.face_of_slot.size() < n) events.face_of_slot.resize(n, nullptr);
 }
 
+void Tin::Impl::lay_out_faces_by_vertex() {
+    detail::Tds& tds = cdt.tds();
+    const std::size_t vertex_count = va.size();
+    // Counting sort of the faces by their lowest corner id (the vertex at infinity has the
+    // largest id, so it never is the key of a face with a finite corner).
+    std::vector<std::uint32_t> first(vertex_count + 2, 0);
+    auto key = [&](const detail::Face& f) {
+        const std::uint32_t k = std::min({f.vertex(0)->id, f.vertex(1)->id, f.vertex(2)->id});
+        return k == kNoId ? static_cast<std::uint32_t>(vertex_count) : k;
+    };
+    for (auto f = tds.faces().begin(); f != tds.faces().end(); ++f)
+        ++first[key(*f) + 1];
+    for (std::size_t k = 1; k < first.size(); ++k)
+        first[k] += first[k - 1];
+    const std::size_t face_count = first.back();
+    struct FaceRecord {
+        std::array<Vh, 3> corner;
+        std::array<std::uint32_t, 3> neighbour;  ///< new positions
+        std::array<bool, 3> constrained;
+    };
+    std::vector<FaceRecord> records(face_count);
+    // The slot field is unused until the slots are handed out below: it holds the new position.
+    for (auto f = tds.faces().begin(); f != tds.faces().end(); ++f)
+        f->slot = first[key(*f)]++;
+    for (auto f = tds.faces().begin(); f != tds.faces().end(); ++f) {
+        FaceRecord& r = records[f->slot];
+        for (int i = 0; i < 3; ++i) {
+            r.corner[static_cast<std::size_t>(i)] = f->vertex(i);
+            r.neighbour[static_cast<std::size_t>(i)] = f->neighbor(i)->slot;
+            r.constrained[static_cast<std::size_t>(i)] = f->is_constrained(i);
+        }
+    }
+    tds.faces().clear();
+    std::vector<Fh> created(face_count);
+    for (std::size_t k = 0; k < face_count; ++k) {
+        const FaceRecord& r = records[k];
+        created[k] = tds.create_face(r.corner[0], r.corner[1], r.corner[2]);
+    }
+    for (std::size_t k = 0; k < face_count; ++k) {
+        const FaceRecord& r = records[k];
+        const Fh f = created[k];
+        f->set_neighbors(created[r.neighbour[0]], created[r.neighbour[1]], created[r.neighbour[2]]);
+        f->set_constraints(r.constrained[0], r.constrained[1], r.constrained[2]);
+        for (int i = 0; i < 3; ++i)
+            f->vertex(i)->set_face(f);
+    }
+}
+
 void Tin::Impl::finish_bulk_build() {
+    // A fresh Delaunay triangulation leaves its faces scattered in memory (insertion frees and
+    // reuses them all over): laid out again in the order of their vertices' ids, which follow
+    // the Hilbert insertion order, a local edit reads neighbouring memory instead of one cache
+    // miss per face.
+    lay_out_faces_by_vertex();
     // Headroom: the first edits of a fresh terrain would otherwise grow these per-slot arrays
     // at once, copying them whole in the middle of a stroke (measured: 15 ms at 10^6 points).
     const std::size_t faces = cdt.tds().number_of_full_dim_faces();

@@ -375,6 +375,9 @@ struct Tin::Impl {
     /// After a build without events: gives every face a slot, every vertex its lumped area,
     /// and marks everything dirty for the first take_changes().
     void finish_bulk_build();
+    /// Re-creates the faces of a freshly built triangulation in the order of their lowest
+    /// corner id (only without events, before slots are handed out, and without constraints).
+    void lay_out_faces_by_vertex();
 };
 
 }  // namespace sandtin
