@@ -1,6 +1,7 @@
 #include "tin/bulk_removal.hpp"
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 namespace sandtin {
@@ -14,6 +15,7 @@ struct Candidates {
     std::vector<VertexId> ring;
     std::vector<std::uint8_t> in;        ///< by VertexId::value: 0 out, 1 in, 2 in a patch
     std::vector<std::uint32_t> slot_of;  ///< VertexId::value -> index in ids (valid when `in`)
+    std::vector<std::uint8_t> verdict;   ///< by VertexId::value: scratch, all 0 between uses
 };
 
 /// Connected components of `part` (alive vertices) over the TIN's current edges.
@@ -94,6 +96,7 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
     if (c.in.size() < capacity) {
         c.in.resize(capacity, 0);
         c.slot_of.resize(capacity, 0);
+        c.verdict.resize(capacity, 0);
     }
     c.ids.clear();
     c.first.assign(1, 0);
@@ -117,36 +120,62 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
     // (an island: no two consecutive neighbours outside the set; its neighbours stay too).
     // The caller's may_border rule works the same way. Dropping a vertex can make it an island
     // (or break the rule) in turn, hence the loop to a fixed point.
+    // In the first pass every vertex outside the set next to it is judged once (constrained,
+    // or an island); later passes only look at the vertices dropped in the pass before:
+    // dropping shrinks the set, which can turn an island into a non-island but never the
+    // other way round, so a vertex that passed keeps passing against its old outside
+    // neighbours. The result is that of re-running the full pass until nothing changes.
     std::vector<std::uint32_t> drop;
     std::vector<VertexId> others;
     // `others` holds the neighbours of the vertex whose star is given.
-    auto is_island = [&](const Tin::VertexStar& star) {
-        if (star.boundary) return false;
-        for (std::size_t k = 0; k < others.size(); ++k) {
-            if (!in_set(others[k]) && !in_set(others[(k + 1) % others.size()])) return false;
+    auto is_island = [&](std::span<const VertexId> ring) {
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+            if (!in_set(ring[k]) && !in_set(ring[(k + 1) % ring.size()])) return false;
         }
         return true;
     };
-    for (bool changed = true; changed;) {
-        changed = false;
-        drop.clear();
-        for (std::size_t i = 0; i < c.ids.size(); ++i) {
-            if (!in_set(c.ids[i])) continue;
-            for (std::uint32_t k = c.first[i]; k < c.first[i + 1]; ++k) {
-                const VertexId w = c.ring[k];
-                if (in_set(w)) continue;
+    auto ring_of = [&](std::uint32_t i) {
+        return std::span<const VertexId>(c.ring.data() + c.first[i], c.first[i + 1] - c.first[i]);
+    };
+    std::vector<VertexId> judged;  // outside vertices with a verdict (cleared at the end)
+    for (std::size_t i = 0; i < c.ids.size(); ++i) {
+        for (const VertexId w : ring_of(static_cast<std::uint32_t>(i))) {
+            if (in_set(w)) continue;
+            std::uint8_t& verdict = c.verdict[w.value];  // 0 unknown, 1 may border, 2 may not
+            if (verdict == 0) {
                 const Tin::VertexStar star = tin.star(w, others);
-                if (star.constrained || is_island(star) ||
-                    (may_border && !may_border(c.ids[i], w))) {
-                    drop.push_back(static_cast<std::uint32_t>(i));
-                    break;
+                verdict = star.constrained || (!star.boundary && is_island(others)) ? 2 : 1;
+                judged.push_back(w);
+            }
+            if (verdict == 2 || (may_border && !may_border(c.ids[i], w))) {
+                drop.push_back(static_cast<std::uint32_t>(i));
+                break;
+            }
+        }
+    }
+    for (const VertexId w : judged)
+        c.verdict[w.value] = 0;
+    std::vector<std::uint32_t> dropped;
+    while (!drop.empty()) {
+        for (std::uint32_t i : drop)
+            c.in[c.ids[i].value] = 0;
+        dropped.swap(drop);
+        drop.clear();
+        for (std::uint32_t d : dropped) {
+            const std::span<const VertexId> ring = ring_of(d);
+            const bool island = is_island(ring);
+            for (const VertexId w : ring) {
+                if (!in_set(w)) continue;
+                const std::uint32_t i = c.slot_of[w.value];
+                if (c.verdict[w.value] != 0) continue;  // already dropped in this pass
+                if (island || (may_border && !may_border(w, c.ids[d]))) {
+                    c.verdict[w.value] = 1;
+                    drop.push_back(i);
                 }
             }
         }
-        for (std::uint32_t i : drop) {
-            c.in[c.ids[i].value] = 0;
-            changed = true;
-        }
+        for (std::uint32_t i : drop)
+            c.verdict[c.ids[i].value] = 0;
     }
 
     // Connected patches, by breadth-first search within the set.
