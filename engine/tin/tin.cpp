@@ -1610,13 +1610,15 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     std::vector<Vec2> ring(loop.size());
     for (std::size_t k = 0; k < loop.size(); ++k)
         ring[k] = m.va.position[loop[k].from->id];
-    const std::vector<std::array<std::size_t, 3>> ears = detail::triangulate_simple_polygon(ring);
+    std::vector<std::array<int, 3>> across;
+    const std::vector<std::array<std::size_t, 3>> ears =
+        detail::triangulate_simple_polygon(ring, &across);
     if (ears.empty()) {
         cleanup();
         return false;
     }
 
-    // Surgery on the data structure: delete the region, glue the ear triangles in, flip to
+    // Surgery on the data structure: delete the region, glue the hole's triangles in, flip to
     // constrained Delaunay.
     detail::EventScope scope(m.events);
     EditFinisher finisher(m);
@@ -1629,28 +1631,27 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
         tds.delete_face(f);
     for (const Vh v : doomed)
         tds.delete_vertex(v);
-    std::unordered_map<std::uint64_t, std::pair<Fh, int>> half_edges;
-    auto key = [](std::size_t a, std::size_t b) {
-        return (static_cast<std::uint64_t>(a) << 32) | b;
-    };
+    std::vector<Fh> created(ears.size());
+    for (std::size_t t = 0; t < ears.size(); ++t) {
+        const auto& ear = ears[t];
+        created[t] = tds.create_face(loop[ear[0]].from, loop[ear[1]].from, loop[ear[2]].from);
+    }
     CdtPlus::List_edges to_check;
-    for (const auto& ear : ears) {
-        const Fh f = tds.create_face(loop[ear[0]].from, loop[ear[1]].from, loop[ear[2]].from);
+    for (std::size_t t = 0; t < ears.size(); ++t) {
+        const auto& ear = ears[t];
+        const Fh f = created[t];
         for (int i = 0; i < 3; ++i) {
-            // Edge opposite corner i runs from corner ccw(i) to corner cw(i).
-            const std::size_t from = ear[static_cast<std::size_t>(CdtPlus::ccw(i))];
-            const std::size_t to = ear[static_cast<std::size_t>(CdtPlus::cw(i))];
+            const auto corner = static_cast<std::size_t>(i);
             f->vertex(i)->set_face(f);
-            if ((from + 1) % loop.size() == to) {
-                const BoundaryEdge& e = loop[from];
+            if (across[t][corner] >= 0) {
+                f->set_neighbor(i, created[static_cast<std::size_t>(across[t][corner])]);
+            } else {
+                // On the hole's boundary: the edge from corner ccw(i) to corner cw(i) is
+                // boundary edge number ear[ccw(i)].
+                const BoundaryEdge& e = loop[ear[static_cast<std::size_t>(CdtPlus::ccw(i))]];
                 f->set_neighbor(i, e.outside);
                 e.outside->set_neighbor(e.outside_index, f);
                 if (e.constrained) f->set_constraint(i, true);
-            } else if (const auto twin = half_edges.find(key(to, from)); twin != half_edges.end()) {
-                f->set_neighbor(i, twin->second.first);
-                twin->second.first->set_neighbor(twin->second.second, f);
-            } else {
-                half_edges.emplace(key(from, to), std::make_pair(f, i));
             }
             to_check.emplace_back(f, i);
         }

@@ -16,6 +16,9 @@ namespace sandtin::detail {
 /// vector when the polygon is not simple (repeated points, touching or crossing edges, a
 /// boundary point on another edge) or is clockwise. Exact predicates; O(n log n), where the
 /// ear clipping it replaces was quadratic to cubic in the hole's boundary length.
-std::vector<std::array<std::size_t, 3>> triangulate_simple_polygon(std::span<const Vec2> polygon);
+/// With `neighbours`, it also receives for each triangle, per corner i, the index of the
+/// triangle across the edge opposite corner i, or -1 where that edge is on the polygon.
+std::vector<std::array<std::size_t, 3>> triangulate_simple_polygon(
+    std::span<const Vec2> polygon, std::vector<std::array<int, 3>>* neighbours = nullptr);
 
 }  // namespace sandtin::detail
