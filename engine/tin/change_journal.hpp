@@ -27,8 +27,8 @@ std::uint64_t count_in_ranges(const std::vector<IdRange>& ranges);
 class DirtySet {
   public:
     void mark(std::uint32_t id) {
-        if (id >= flags_.size())
-            flags_.resize(static_cast<std::size_t>(id) + 1 + flags_.size() / 2, 0);
+        if (id >= flags_.size()) [[unlikely]]
+            grow(id);
         if (!flags_[id]) {
             flags_[id] = 1;
             list_.push_back(id);
@@ -53,6 +53,11 @@ class DirtySet {
     }
 
   private:
+    /// Out of line, so that mark() stays small enough to inline in the walks.
+    [[gnu::noinline]] void grow(std::uint32_t id) {
+        flags_.resize(static_cast<std::size_t>(id) + 1 + flags_.size() / 2, 0);
+    }
+
     std::vector<std::uint8_t> flags_;
     std::vector<std::uint32_t> list_;
 };

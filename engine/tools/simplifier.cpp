@@ -113,10 +113,10 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
     // planar within the tolerance (a stamp's floor): O(size) instead of one Delaunay hole fill
     // per vertex. Anything else goes one by one, each re-tested against its current
     // neighbourhood, so errors cannot pile up on curved sand.
-    std::vector<std::uint8_t> is_candidate;
+    std::vector<std::uint8_t>& is_candidate = candidate_flag_;
     for (VertexId v : candidates) {
         if (v.value >= is_candidate.size())
-            is_candidate.resize(static_cast<std::size_t>(v.value) + 1, 0);
+            is_candidate.resize(static_cast<std::size_t>(v.value) + 1 + is_candidate.size() / 2, 0);
         is_candidate[v.value] = 1;
     }
     std::vector<VertexId> group, ring, stack;

@@ -50,6 +50,9 @@ class Simplifier {
   private:
     std::vector<VertexId> queue_;
     std::vector<std::uint8_t> queued_flag_;
+    /// By VertexId: a candidate of the current run not yet grouped. All 0 between runs, so a
+    /// run costs its candidates and not the terrain.
+    std::vector<std::uint8_t> candidate_flag_;
 };
 
 }  // namespace sandtin

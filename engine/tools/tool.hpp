@@ -76,7 +76,9 @@ class Tool {
     }
     /// Height of the tool's underside above world point p (m); +infinity where it has no contact.
     double underside(const ToolPlacement& at, Vec2 world) const {
-        return at.bottom + profile_.offset(to_local(at, world));
+        // A flat profile needs no local coordinates (and so no sine and cosine per point).
+        return profile_.is_flat() ? at.bottom + profile_.offset(Vec2{})
+                                  : at.bottom + profile_.offset(to_local(at, world));
     }
 
   private:
