@@ -263,6 +263,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         b.both_active = inner_active[b.to_inner.index] && rim_active[b.to_rim.index];
         return b;
     };
+    // Whether a point's nearest segments are both enforced, without looking for them when every
+    // segment of both contours is (the common case of a stamp into sand).
+    const bool all_active =
+        std::all_of(inner_active.begin(), inner_active.end(),
+                    [](std::uint8_t a) { return a != 0; }) &&
+        std::all_of(rim_active.begin(), rim_active.end(), [](std::uint8_t a) { return a != 0; });
+    auto both_active_at = [&](Vec2 p) { return all_active || band_position(p).both_active; };
     const VertexArrays& va = tin.vertices();
     const PolygonInclusion in_outer(outer, at.centre);
     const PolygonInclusion in_inner(inner, at.centre);
@@ -295,7 +302,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (in_inner.contains(p)) {
                 const double h = va.height[v.value];
                 if (clear_inside && imprint(p, h) != h) doomed.push_back(v);
-            } else if (band_position(p).both_active) {
+            } else if (both_active_at(p)) {
                 doomed.push_back(v);
             }
         }
@@ -376,6 +383,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (!in_outer.contains(p)) continue;
             footprint.push_back(v);
             if (in_inner.contains(p)) continue;
+            if (both_active_at(p) && !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
+                band_junk.push_back(v);
+                continue;
+            }
+            if (!dig) continue;
             const BandPosition band = band_position(p);
             const NearestEdge& to_rim = band.to_rim;
             const std::size_t nearest_rim = to_rim.index;
@@ -383,11 +395,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             const double d_outer = to_rim.distance;
             const double rim_height = (1.0 - to_rim.t) * rim_h[nearest_rim] +
                                       to_rim.t * rim_h[(nearest_rim + 1) % rim.size()];
-            if (band.both_active && !tin.is_on_constraint(v) && !tin.is_boundary(v)) {
-                band_junk.push_back(v);
-                continue;
-            }
-            if (!dig) continue;
             const double profile = tool.underside(at, p);
             if (!std::isfinite(profile) || !(d_inner + d_outer > 0.0)) continue;
             const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
