@@ -111,9 +111,18 @@ std::vector<std::array<std::size_t, 3>> triangulate_simple_polygon(
     // inside is the constrained one. Every boundary edge present also means the polygon is
     // simple (crossing or touching edges cannot all be edges of one triangulation).
     {
+        // All at once: CGAL sorts them along a space-filling curve in randomised rounds. In ring
+        // order nearly every point would land outside the hull built so far.
+        std::vector<std::pair<K::Point_2, std::size_t>> points;
+        points.reserve(n);
+        for (std::size_t k = 0; k < n; ++k)
+            points.emplace_back(K::Point_2(polygon[k].x, polygon[k].y), k);
         Dt dt;
-        std::vector<Dt::Vertex_handle> handles;
-        if (!insert_points(dt, polygon, handles)) return {};
+        dt.insert(points.begin(), points.end());
+        if (dt.number_of_vertices() != n || dt.dimension() < 2) return {};  // repeated; a line
+        std::vector<Dt::Vertex_handle> handles(n);
+        for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+            handles[v->info()] = v;
         bool all_edges = true;
         for (std::size_t k = 0; k < n && all_edges; ++k)
             all_edges = dt.is_edge(handles[k], handles[(k + 1) % n]);
