@@ -15,6 +15,7 @@
 #include "tin/detail/cgal_tin.hpp"
 #include "tin/detail/hole_triangulation.hpp"
 #include "util/compensated_sum.hpp"
+#include "util/visit_marks.hpp"
 
 namespace sandtin {
 
@@ -903,7 +904,7 @@ bool triangle_meets_disc(Vec2 a, Vec2 b, Vec2 c, Vec2 centre, double radius) {
 template <class Enter, class Cross, class Visit>
 void walk_faces(const Tin::Impl& m, std::span<const Fh> starts, Enter&& enter, Cross&& cross_edge,
                 Visit&& visit) {
-    static thread_local DirtySet seen;
+    static thread_local VisitMarks seen;
     static thread_local std::vector<Fh> queue;
     seen.clear();
     queue.clear();
@@ -1003,7 +1004,7 @@ std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHi
     const Fh f = face_at(m, start, hint);
     if (f == Fh()) return out;
     const double r2 = radius * radius;
-    static thread_local DirtySet taken;
+    static thread_local VisitMarks taken;
     taken.clear();
     const std::array<Fh, 1> starts = {f};
     walk_faces(
@@ -1043,7 +1044,7 @@ std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
                        3.0;
         return point_in_polygon(c, bound);
     };
-    static thread_local DirtySet taken;
+    static thread_local VisitMarks taken;
     taken.clear();
     walk_faces(
         m, starts, centroid_inside, [](Fh g, int i) { return !g->is_constrained(i); },
@@ -1497,7 +1498,7 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     // starts at the vertex (0: none).
     static thread_local std::vector<std::uint8_t> in_set;
     static thread_local std::vector<std::uint32_t> edge_from;
-    static thread_local DirtySet face_in_region;
+    static thread_local VisitMarks face_in_region;
     if (in_set.size() < m.va.size()) in_set.resize(m.va.size(), 0);
     if (edge_from.size() < m.va.size()) edge_from.resize(m.va.size(), 0);
     std::vector<BoundaryEdge> edges;

@@ -14,6 +14,7 @@
 #include "support/tin_oracles.hpp"
 #include "tin/change_journal.hpp"
 #include "tin/tin.hpp"
+#include "util/visit_marks.hpp"
 
 namespace sandtin {
 namespace {
@@ -393,6 +394,30 @@ TEST(DirtySetTest, RandomAgainstStdSet) {
         ASSERT_TRUE(s.contains(id));
         ASSERT_EQ(s.ids().size(), model.size());
     }
+}
+
+TEST(VisitMarksTest, RandomAgainstStdSet) {
+    // Marks against a std::set through many O(1) clears, with ids that make the marks grow
+    // after some walks (grown entries must not look marked in the current walk).
+    std::mt19937_64 rng = test::test_rng(11);
+    VisitMarks marks;
+    std::set<std::uint32_t> model;
+    std::uint32_t range = 64;
+    for (int i = 0; i < 50000; ++i) {
+        if (rng() % 500 == 0) {
+            marks.clear();
+            model.clear();
+            range = std::min<std::uint32_t>(range * 2, 1u << 20);
+        }
+        const auto id = static_cast<std::uint32_t>(rng() % range);
+        const auto probe = static_cast<std::uint32_t>(rng() % (2 * range));
+        ASSERT_EQ(marks.contains(probe), model.count(probe) == 1) << "probe " << probe;
+        ASSERT_EQ(marks.insert(id), model.insert(id).second) << "id " << id;
+        ASSERT_TRUE(marks.contains(id));
+    }
+    marks.clear();
+    for (std::uint32_t id = 0; id < 2 * range; id += 97)
+        EXPECT_FALSE(marks.contains(id)) << id;
 }
 
 }  // namespace
