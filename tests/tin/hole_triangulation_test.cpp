@@ -91,6 +91,28 @@ void expect_triangulates(const std::vector<Vec2>& poly, const Triangles& tris) {
     EXPECT_EQ(diagonal_halves, 2 * (n - 3)) << "n - 3 diagonals, each used twice";
 }
 
+/// A triangle with a long straight side of 201 collinear points and one far apex.
+std::vector<Vec2> long_side_fan() {
+    std::vector<Vec2> fan;
+    for (int k = 0; k <= 200; ++k)
+        fan.push_back({k * 0.01, 0.0});
+    fan.push_back({1.0, 1e-3});
+    return fan;
+}
+
+/// An L whose sides are subdivided: collinear runs inside a non-convex polygon.
+std::vector<Vec2> subdivided_ell() {
+    std::vector<Vec2> ell;
+    const std::vector<Vec2> corners = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+        const Vec2 a = corners[i];
+        const Vec2 b = corners[(i + 1) % corners.size()];
+        for (int k = 0; k < 8; ++k)
+            ell.push_back(a + (b - a) * (k / 8.0));
+    }
+    return ell;
+}
+
 std::vector<Vec2> regular_polygon(std::size_t n, Vec2 centre, double radius, double phase) {
     std::vector<Vec2> p;
     for (std::size_t k = 0; k < n; ++k) {
@@ -268,20 +290,10 @@ TEST(HoleTriangulation, CollinearConsecutivePoints) {
         square.push_back({0.0, static_cast<double>(m - k)});
     expect_triangulates(square, detail::triangulate_simple_polygon(square));
     // A triangle with a long straight side and one far apex: the apex sees them all.
-    std::vector<Vec2> fan;
-    for (int k = 0; k <= 200; ++k)
-        fan.push_back({k * 0.01, 0.0});
-    fan.push_back({1.0, 1e-3});
+    const std::vector<Vec2> fan = long_side_fan();
     expect_triangulates(fan, detail::triangulate_simple_polygon(fan));
     // Collinear runs inside a non-convex polygon: an L whose sides are subdivided.
-    std::vector<Vec2> ell;
-    const std::vector<Vec2> corners = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-        const Vec2 a = corners[i];
-        const Vec2 b = corners[(i + 1) % corners.size()];
-        for (int k = 0; k < 8; ++k)
-            ell.push_back(a + (b - a) * (k / 8.0));
-    }
+    const std::vector<Vec2> ell = subdivided_ell();
     expect_triangulates(ell, detail::triangulate_simple_polygon(ell));
 }
 
@@ -329,19 +341,9 @@ TEST(HoleTriangulation, AdjacencyOfConvexAndCollinearPolygons) {
         SCOPED_TRACE(n);
         expect_triangulates_with_adjacency(regular_polygon(n, {0.31, -0.7}, 0.05, 0.123));
     }
-    std::vector<Vec2> fan;
-    for (int k = 0; k <= 200; ++k)
-        fan.push_back({k * 0.01, 0.0});
-    fan.push_back({1.0, 1e-3});
+    const std::vector<Vec2> fan = long_side_fan();
     expect_triangulates_with_adjacency(fan);
-    std::vector<Vec2> ell;
-    const std::vector<Vec2> corners = {{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-        const Vec2 a = corners[i];
-        const Vec2 b = corners[(i + 1) % corners.size()];
-        for (int k = 0; k < 8; ++k)
-            ell.push_back(a + (b - a) * (k / 8.0));
-    }
+    const std::vector<Vec2> ell = subdivided_ell();
     expect_triangulates_with_adjacency(ell);
 }
 
