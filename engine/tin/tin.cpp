@@ -907,6 +907,7 @@ void walk_faces(const Tin::Impl& m, std::span<const Fh> starts, Enter&& enter, C
     static thread_local VisitMarks seen;
     static thread_local std::vector<Fh> queue;
     seen.clear();
+    seen.reserve_ids(m.events.face_of_slot.size());
     queue.clear();
     for (Fh f : starts) {
         if (m.cdt.is_infinite(f) || seen.contains(f->slot) || !enter(f)) continue;
@@ -1006,6 +1007,7 @@ std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHi
     const double r2 = radius * radius;
     static thread_local VisitMarks taken;
     taken.clear();
+    taken.reserve_ids(m.events.vertex_of_id.size());
     const std::array<Fh, 1> starts = {f};
     walk_faces(
         m, starts,
@@ -1046,6 +1048,7 @@ std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
     };
     static thread_local VisitMarks taken;
     taken.clear();
+    taken.reserve_ids(m.events.vertex_of_id.size());
     walk_faces(
         m, starts, centroid_inside, [](Fh g, int i) { return !g->is_constrained(i); },
         [&](Fh g) {
@@ -1501,6 +1504,7 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     static thread_local VisitMarks face_in_region;
     if (in_set.size() < m.va.size()) in_set.resize(m.va.size(), 0);
     if (edge_from.size() < m.va.size()) edge_from.resize(m.va.size(), 0);
+    face_in_region.reserve_ids(m.events.face_of_slot.size());
     std::vector<BoundaryEdge> edges;
     auto cleanup = [&] {
         for (VertexId v : vertices) {

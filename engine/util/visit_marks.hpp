@@ -4,6 +4,7 @@
 // "seen already?" (DirtySet also keeps the list of ids, and empties it id by id).
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,11 @@ class VisitMarks {
         if (id >= marks_.size()) [[unlikely]]
             grow(id);
         marks_[id] = walk_;
+    }
+    /// Room for ids below `count` at once (a walk that knows its id range calls this first,
+    /// instead of growing step by step as it meets larger ids).
+    void reserve_ids(std::size_t count) {
+        if (marks_.size() < count) marks_.resize(count, 0u);
     }
     /// Marks `id`; true when it was not marked yet.
     bool insert(std::uint32_t id) {

@@ -418,6 +418,12 @@ TEST(VisitMarksTest, RandomAgainstStdSet) {
     marks.clear();
     for (std::uint32_t id = 0; id < 2 * range; id += 97)
         EXPECT_FALSE(marks.contains(id)) << id;
+    // Room reserved mid-walk holds no marks; the ones set before stay.
+    marks.mark(7);
+    marks.reserve_ids(8 * static_cast<std::size_t>(range));
+    EXPECT_TRUE(marks.contains(7));
+    for (std::uint32_t id = 2 * range; id < 8 * range; id += 101)
+        EXPECT_FALSE(marks.contains(id)) << id;
 }
 
 }  // namespace
