@@ -926,7 +926,6 @@ void walk_faces(const Tin::Impl& m, std::span<const Fh> starts, Enter&& enter, C
             queue.push_back(g);
         }
     }
-    seen.clear();
 }
 
 Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
@@ -1026,7 +1025,6 @@ std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHi
                 }
             }
         });
-    taken.clear();
     return out;
 }
 
@@ -1060,7 +1058,6 @@ std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
                 }
             }
         });
-    taken.clear();
     return out;
 }
 
@@ -1504,6 +1501,7 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
     static thread_local VisitMarks face_in_region;
     if (in_set.size() < m.va.size()) in_set.resize(m.va.size(), 0);
     if (edge_from.size() < m.va.size()) edge_from.resize(m.va.size(), 0);
+    face_in_region.clear();  // O(1): marks of earlier calls no longer count
     face_in_region.reserve_ids(m.events.face_of_slot.size());
     std::vector<BoundaryEdge> edges;
     auto cleanup = [&] {
@@ -1512,7 +1510,6 @@ bool Tin::remove_planar_patch(std::span<const VertexId> vertices, double toleran
         }
         for (const BoundaryEdge& e : edges)
             edge_from[e.from->id] = 0;
-        face_in_region.clear();
     };
     for (VertexId v : vertices) {
         if (!m.alive(v) || in_set[v.value]) {

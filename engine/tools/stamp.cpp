@@ -306,30 +306,31 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
                 doomed.push_back(v);
             }
         }
-        std::vector<std::uint8_t> on_profile(inner.size());
-        for (std::size_t k = 0; k < inner.size(); ++k)
-            on_profile[k] = inner_h[k] == tool.underside(at, inner[k]) ? 1 : 0;
-        auto may_border = [&](VertexId v, VertexId w) {
-            const Vec2 pv = va.position[v.value];
-            if (!in_inner.contains(pv)) return true;  // a wall-band vertex
-            const Vec2 pw = va.position[w.value];
-            if (in_inner.contains(pw)) {
-                return imprint(pw, va.height[w.value]) == tool.underside(at, pw);
-            }
-            // Across I: only through an enforced segment whose ends sit on the profile.
-            for (std::size_t k = 0; k < inner.size(); ++k) {
-                const std::size_t next = (k + 1) % inner.size();
-                if ((!inner_active[k] || !on_profile[k] || !on_profile[next]) &&
-                    segments_intersect(pv, pw, inner[k], inner[next])) {
-                    return false;
-                }
-            }
-            return true;
-        };
         // A few vertices cost more to clear in patches (a hole triangulation per patch) than
         // the plain path spends crossing them (SculptSettings::min_bulk_clearing).
-        if (doomed.size() >= context.settings.min_bulk_clearing)
+        if (doomed.size() >= context.settings.min_bulk_clearing) {
+            std::vector<std::uint8_t> on_profile(inner.size());
+            for (std::size_t k = 0; k < inner.size(); ++k)
+                on_profile[k] = inner_h[k] == tool.underside(at, inner[k]) ? 1 : 0;
+            auto may_border = [&](VertexId v, VertexId w) {
+                const Vec2 pv = va.position[v.value];
+                if (!in_inner.contains(pv)) return true;  // a wall-band vertex
+                const Vec2 pw = va.position[w.value];
+                if (in_inner.contains(pw)) {
+                    return imprint(pw, va.height[w.value]) == tool.underside(at, pw);
+                }
+                // Across I: only through an enforced segment whose ends sit on the profile.
+                for (std::size_t k = 0; k < inner.size(); ++k) {
+                    const std::size_t next = (k + 1) % inner.size();
+                    if ((!inner_active[k] || !on_profile[k] || !on_profile[next]) &&
+                        segments_intersect(pv, pw, inner[k], inner[next])) {
+                        return false;
+                    }
+                }
+                return true;
+            };
             report.cleared = remove_in_patches(tin, doomed, &edit, may_border);
+        }
     }
 
     // 3. Outer contour at the terrain's heights.

@@ -376,7 +376,8 @@ struct Tin::Impl {
     /// and marks everything dirty for the first take_changes().
     void finish_bulk_build();
     /// Re-creates the faces of a freshly built triangulation in the order of their lowest
-    /// corner id (only without events, before slots are handed out, and without constraints).
+    /// corner id, with their neighbours and constraint flags (vertices, and so constraints, are
+    /// untouched). Only without events and before slots are handed out: it uses the slot field.
     void lay_out_faces_by_vertex();
 };
 
