@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "gpu/gpu_error.hpp"
+#include "gpu/image.hpp"
 
 namespace sandtin::editor {
 
@@ -58,8 +59,7 @@ void Swapchain::destroy_targets() {
     framebuffers_.clear();
     views_.clear();
     depth_view_.reset();
-    depth_image_.reset();
-    depth_memory_.reset();
+    depth_image_ = gpu::Image();
 }
 
 void Swapchain::recreate(VkExtent2D extent, bool vsync) {
@@ -137,51 +137,15 @@ void Swapchain::create(VkExtent2D wanted, bool vsync) {
     vkGetSwapchainImagesKHR(device, swapchain, &n, images_.data());
 
     for (VkImage image : images_) {
-        VkImageViewCreateInfo v{};
-        v.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-        v.image = image;
-        v.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        v.format = format_;
-        v.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view = VK_NULL_HANDLE;
-        check(vkCreateImageView(device, &v, nullptr, &view), "vkCreateImageView");
-        views_.emplace_back(device, view);
+        views_.push_back(
+            gpu::create_image_view(device, image, format_, VK_IMAGE_ASPECT_COLOR_BIT, "swapchain"));
     }
 
     // Depth buffer.
-    VkImageCreateInfo di{};
-    di.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    di.imageType = VK_IMAGE_TYPE_2D;
-    di.format = VK_FORMAT_D32_SFLOAT;
-    di.extent = {extent_.width, extent_.height, 1};
-    di.mipLevels = 1;
-    di.arrayLayers = 1;
-    di.samples = VK_SAMPLE_COUNT_1_BIT;
-    di.tiling = VK_IMAGE_TILING_OPTIMAL;
-    di.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
-    VkImage depth = VK_NULL_HANDLE;
-    check(vkCreateImage(device, &di, nullptr, &depth), "vkCreateImage (depth)");
-    depth_image_ = gpu::UniqueImage(device, depth);
-    VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(device, depth, &req);
-    VkMemoryAllocateInfo mem{};
-    mem.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    mem.allocationSize = req.size;
-    mem.memoryTypeIndex =
-        context_.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    check(vkAllocateMemory(device, &mem, nullptr, &memory), "vkAllocateMemory (depth)");
-    depth_memory_ = gpu::UniqueMemory(device, memory);
-    check(vkBindImageMemory(device, depth, memory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo dv{};
-    dv.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    dv.image = depth;
-    dv.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    dv.format = VK_FORMAT_D32_SFLOAT;
-    dv.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-    VkImageView depth_view = VK_NULL_HANDLE;
-    check(vkCreateImageView(device, &dv, nullptr, &depth_view), "vkCreateImageView (depth)");
-    depth_view_ = gpu::UniqueImageView(device, depth_view);
+    depth_image_ = gpu::Image(context_, {VK_FORMAT_D32_SFLOAT, extent_,
+                                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "depth"});
+    depth_view_ = gpu::create_image_view(device, depth_image_.get(), VK_FORMAT_D32_SFLOAT,
+                                         VK_IMAGE_ASPECT_DEPTH_BIT, "depth");
 
     if (recreate_pass || !render_pass_) {
         VkAttachmentDescription att[2]{};
@@ -283,31 +247,20 @@ bool Swapchain::end_frame(bool capture) {
             readback_ = gpu::Buffer(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                     gpu::MemoryUse::Readback);
         }
-        VkImageMemoryBarrier to_src{};
-        to_src.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        to_src.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-        to_src.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        to_src.oldLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-        to_src.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        to_src.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        to_src.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        to_src.image = image;
-        to_src.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        vkCmdPipelineBarrier(command_buffer_, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                             VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &to_src);
+        gpu::image_barrier(command_buffer_, image, VK_IMAGE_ASPECT_COLOR_BIT,
+                           VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                           VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {extent_.width, extent_.height, 1};
         vkCmdCopyImageToBuffer(command_buffer_, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                readback_.get(), 1, &region);
-        VkImageMemoryBarrier back = to_src;
-        back.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-        back.dstAccessMask = 0;
-        back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-        back.newLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-        vkCmdPipelineBarrier(command_buffer_, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                             &back);
+        gpu::image_barrier(
+            command_buffer_, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
         gpu::buffer_barrier(command_buffer_, readback_.get(), VK_PIPELINE_STAGE_TRANSFER_BIT,
                             VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                             VK_ACCESS_HOST_READ_BIT);

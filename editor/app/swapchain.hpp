@@ -10,6 +10,7 @@
 
 #include "formats/png_image.hpp"
 #include "gpu/buffer.hpp"
+#include "gpu/image.hpp"
 #include "gpu/vk_handle.hpp"
 #include "gpu/vulkan_context.hpp"
 
@@ -58,8 +59,7 @@ class Swapchain {
     UniqueSwapchain swapchain_;
     std::vector<VkImage> images_;
     std::vector<gpu::UniqueImageView> views_;
-    gpu::UniqueImage depth_image_;
-    gpu::UniqueMemory depth_memory_;
+    gpu::Image depth_image_;
     gpu::UniqueImageView depth_view_;
     UniqueRenderPass render_pass_;
     std::vector<UniqueFramebuffer> framebuffers_;

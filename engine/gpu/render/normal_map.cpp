@@ -6,6 +6,7 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/gpu_error.hpp"
+#include "gpu/image.hpp"
 #include "gpu/vulkan_context.hpp"
 
 namespace sandtin::render {
@@ -92,51 +93,17 @@ TerrainNormalMap::TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain,
     const bool linear =
         (features(kTextureFormat) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
 
-    const auto make = [&](VkFormat format, VkImageUsageFlags usage, gpu::UniqueImage& image,
-                          gpu::UniqueMemory& memory) {
-        VkImageCreateInfo ii{};
-        ii.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-        ii.imageType = VK_IMAGE_TYPE_2D;
-        ii.format = format;
-        ii.extent = {grid_.width, grid_.height, 1};
-        ii.mipLevels = 1;
-        ii.arrayLayers = 1;
-        ii.samples = VK_SAMPLE_COUNT_1_BIT;
-        ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-        ii.usage = usage;
-        ii.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-        ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        VkImage handle = VK_NULL_HANDLE;
-        gpu::check(vkCreateImage(device, &ii, nullptr, &handle), "vkCreateImage (normal map)");
-        image = gpu::UniqueImage(device, handle);
-        VkMemoryRequirements req{};
-        vkGetImageMemoryRequirements(device, handle, &req);
-        VkMemoryAllocateInfo ai{};
-        ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-        ai.allocationSize = req.size;
-        ai.memoryTypeIndex =
-            ctx.memory_type(req.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        VkDeviceMemory mem = VK_NULL_HANDLE;
-        gpu::check(vkAllocateMemory(device, &ai, nullptr, &mem), "vkAllocateMemory (normal map)");
-        memory = gpu::UniqueMemory(device, mem);
-        gpu::check(vkBindImageMemory(device, handle, mem, 0), "vkBindImageMemory (normal map)");
-    };
-    make(kStagingFormat, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-         staging_, staging_memory_);
-    make(kTextureFormat,
-         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-             VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-         image_, memory_);
-
-    VkImageViewCreateInfo vi{};
-    vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
-    vi.image = image_.get();
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = kTextureFormat;
-    vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view = VK_NULL_HANDLE;
-    gpu::check(vkCreateImageView(device, &vi, nullptr, &view), "vkCreateImageView (normal map)");
-    view_ = gpu::UniqueImageView(device, view);
+    staging_ = gpu::Image(ctx, {kStagingFormat,
+                                {grid_.width, grid_.height},
+                                VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                "normal map staging"});
+    image_ = gpu::Image(ctx, {kTextureFormat,
+                              {grid_.width, grid_.height},
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                              "normal map"});
+    view_ = gpu::create_image_view(device, image_.get(), kTextureFormat, VK_IMAGE_ASPECT_COLOR_BIT,
+                                   "normal map");
 
     VkSamplerCreateInfo si{};
     si.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
@@ -174,26 +141,6 @@ std::optional<gpu::TexelRect> TerrainNormalMap::rebake(const Tin& tin, const Cha
     return t;
 }
 
-namespace {
-
-void image_barrier(VkCommandBuffer cb, VkImage image, VkPipelineStageFlags src_stage,
-                   VkAccessFlags src_access, VkImageLayout old_layout,
-                   VkPipelineStageFlags dst_stage, VkAccessFlags dst_access,
-                   VkImageLayout new_layout) {
-    VkImageMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    b.oldLayout = old_layout;
-    b.newLayout = new_layout;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
-}
-
-}  // namespace
-
 void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
     const VkImage staging = staging_.get();
     const VkImage texture = image_.get();
@@ -205,11 +152,11 @@ void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
         // source; the previous blit read it, so the copy waits for that too.
         gpu::memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        image_barrier(cb, staging, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      first ? 0 : VK_ACCESS_TRANSFER_READ_BIT,
-                      first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        gpu::image_barrier(cb, staging, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           first ? 0 : VK_ACCESS_TRANSFER_READ_BIT,
+                           first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         VkBufferImageCopy c{};
         c.bufferOffset = (VkDeviceSize{t.row0} * grid_.width + t.col0) * kTexelBytes;
         c.bufferRowLength = grid_.width;
@@ -219,13 +166,14 @@ void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
         c.imageExtent = {t.width(), t.height(), 1};
         vkCmdCopyBufferToImage(cb, maps_.normal_map(), staging,
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
-        image_barrier(cb, staging, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        gpu::image_barrier(cb, staging, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         // The fragment shader's reads of the last frame -> the blit's writes (one frame in
         // flight: the caller waited for it).
-        image_barrier(
-            cb, texture,
+        gpu::image_barrier(
+            cb, texture, VK_IMAGE_ASPECT_COLOR_BIT,
             first ? VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT : VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
             first ? 0 : VK_ACCESS_SHADER_READ_BIT,
             first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
@@ -238,9 +186,10 @@ void TerrainNormalMap::bake(const Rect& region, gpu::TexelRect t) {
                                                    static_cast<std::int32_t>(t.row1 + 1), 1};
         vkCmdBlitImage(cb, staging, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, texture,
                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
-        image_barrier(cb, texture, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        gpu::image_barrier(cb, texture, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
     initialised_ = true;
     texels_baked_ += std::uint64_t{t.width()} * t.height();
@@ -252,19 +201,20 @@ std::vector<float> TerrainNormalMap::read_back() const {
     gpu::Buffer host(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::Readback);
     const VkImage texture = image_.get();
     ctx.submit_and_wait([&](VkCommandBuffer cb) {
-        image_barrier(cb, texture,
-                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        gpu::image_barrier(cb, texture, VK_IMAGE_ASPECT_COLOR_BIT,
+                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy c{};
         c.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         c.imageExtent = {grid_.width, grid_.height, 1};
         vkCmdCopyImageToBuffer(cb, texture, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.get(), 1,
                                &c);
-        image_barrier(cb, texture, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        gpu::image_barrier(cb, texture, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         gpu::memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                             VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     });

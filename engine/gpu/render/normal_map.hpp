@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "geom/rect.hpp"
+#include "gpu/image.hpp"
 #include "gpu/surface_maps.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "gpu/vk_handle.hpp"
@@ -66,10 +67,8 @@ class TerrainNormalMap {
     gpu::TinMirror& mirror_;
     MapGrid grid_;
     gpu::SurfaceMaps maps_;
-    gpu::UniqueImage staging_;  ///< RGBA32F, as baked (a blit source between bakes)
-    gpu::UniqueMemory staging_memory_;
-    gpu::UniqueImage image_;  ///< RG16_SNORM: the normal's x and y
-    gpu::UniqueMemory memory_;
+    gpu::Image staging_;  ///< RGBA32F, as baked (a blit source between bakes)
+    gpu::Image image_;    ///< RG16_SNORM: the normal's x and y
     gpu::UniqueImageView view_;
     gpu::UniqueSampler sampler_;
     bool initialised_ = false;  ///< the image left UNDEFINED layout
