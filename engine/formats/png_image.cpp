@@ -38,6 +38,15 @@ void read_bytes(png_structp png, png_bytep out, png_size_t n) {
     state->offset += n;
 }
 
+// Builds its message in its own frame: temporaries of the string concatenation must not live
+// in decode_into's, which longjmp may leave.
+[[gnu::noinline]] void report_oversize(ReadState& state, png_uint_32 w, png_uint_32 h,
+                                       const PngLimits& limits) {
+    state.error = "image of " + std::to_string(w) + " x " + std::to_string(h) +
+                  " pixels exceeds the limit of " + std::to_string(limits.max_width) + " x " +
+                  std::to_string(limits.max_height);
+}
+
 // libpng reports errors with longjmp, so no C++ object with a destructor may live in the frame
 // that calls setjmp: the decode loop works on plain pointers owned by the caller.
 bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLimits& limits,
@@ -52,9 +61,7 @@ bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLim
         return false;
     }
     if (w > limits.max_width || h > limits.max_height) {
-        state.error = "image of " + std::to_string(w) + " x " + std::to_string(h) +
-                      " pixels exceeds the limit of " + std::to_string(limits.max_width) + " x " +
-                      std::to_string(limits.max_height);
+        report_oversize(state, w, h, limits);
         return false;
     }
     const int color = png_get_color_type(png, info);
