@@ -42,8 +42,9 @@ bool LiveEditor::touches_sand(const ToolPlacement& at) {
         return h && *h > at.bottom;
     };
     if (below(at.centre)) return true;
+    const ToolFrame frame(*tool_, at);
     for (const Vec2& local : tool_->shape().inner) {
-        if (below(tool_->to_world(at, local))) return true;
+        if (below(frame.to_world(local))) return true;
     }
     return false;
 }

@@ -35,9 +35,10 @@ HapticSnapshot build_snapshot(const Tin& tin, const Tool& tool, const ToolPlacem
     const std::vector<Vec2>& ring = tool.shape().outer;
     const std::size_t n = std::min(ring.size(), kMaxControlPoints);
     s.control_count = static_cast<std::uint32_t>(n);
+    const ToolFrame frame(tool, at);
     for (std::size_t i = 0; i < n; ++i) {
         const Vec2 local = ring[i * ring.size() / n];
-        const Vec2 p = clamp_to(domain, tool.to_world(at, local));
+        const Vec2 p = clamp_to(domain, frame.to_world(local));
         s.control[i] = p;
         s.control_height[i] = tin.height_at(p, hint).value_or(centre_height);
     }

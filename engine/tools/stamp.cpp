@@ -125,10 +125,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const Rect domain = tin.domain();
     const double spacing = tool.rim_spacing();
     const double eps = 1e-9 * std::max(tool.radius(), 1e-9);
+    const ToolFrame frame(tool, at);
     auto to_world = [&](std::span<const Vec2> local) {
         std::vector<Vec2> out;
         for (Vec2 p : subdivide_contour(local, spacing))
-            out.push_back(tool.to_world(at, p));
+            out.push_back(frame.to_world(p));
         return out;
     };
     std::vector<Vec2> outer = drop_near_duplicates(
@@ -165,7 +166,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     }
     const bool dig = tool.spec().mode == ImprintMode::Dig;
     auto imprint = [&](Vec2 p, double terrain) {
-        const double u = tool.underside(at, p);
+        const double u = frame.underside(p);
         if (!std::isfinite(u)) return terrain;  // no contact there
         return dig ? std::min(terrain, u) : u;
     };
@@ -311,13 +312,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         if (doomed.size() >= context.settings.min_bulk_clearing) {
             std::vector<std::uint8_t> on_profile(inner.size());
             for (std::size_t k = 0; k < inner.size(); ++k)
-                on_profile[k] = inner_h[k] == tool.underside(at, inner[k]) ? 1 : 0;
+                on_profile[k] = inner_h[k] == frame.underside(inner[k]) ? 1 : 0;
             auto may_border = [&](VertexId v, VertexId w) {
                 const Vec2 pv = va.position[v.value];
                 if (!in_inner.contains(pv)) return true;  // a wall-band vertex
                 const Vec2 pw = va.position[w.value];
                 if (in_inner.contains(pw)) {
-                    return imprint(pw, va.height[w.value]) == tool.underside(at, pw);
+                    return imprint(pw, va.height[w.value]) == frame.underside(pw);
                 }
                 // Across I: only through an enforced segment whose ends sit on the profile.
                 for (std::size_t k = 0; k < inner.size(); ++k) {
@@ -396,7 +397,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             const double d_outer = to_rim.distance;
             const double rim_height = (1.0 - to_rim.t) * rim_h[nearest_rim] +
                                       to_rim.t * rim_h[(nearest_rim + 1) % rim.size()];
-            const double profile = tool.underside(at, p);
+            const double profile = frame.underside(p);
             if (!std::isfinite(profile) || !(d_inner + d_outer > 0.0)) continue;
             const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
                                 (d_inner + d_outer);

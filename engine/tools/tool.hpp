@@ -2,6 +2,7 @@
 // A sculpting tool: its footprint (inner and outer contour), its underside profile and the
 // parameters of how it is stamped. Built once from a ToolSpec; stamping only reads it.
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -68,6 +69,7 @@ class Tool {
     double rim_tolerance() const { return rim_tolerance_; }
     double extrusion_width() const { return extrusion_width_; }
 
+    /// One-off mappings; a loop over many points uses a ToolFrame (one sine and cosine).
     Vec2 to_world(const ToolPlacement& at, Vec2 local) const {
         return at.centre + rotate(local, at.angle);
     }
@@ -75,11 +77,7 @@ class Tool {
         return rotate(world - at.centre, -at.angle);
     }
     /// Height of the tool's underside above world point p (m); +infinity where it has no contact.
-    double underside(const ToolPlacement& at, Vec2 world) const {
-        // A flat profile needs no local coordinates (and so no sine and cosine per point).
-        return profile_.is_flat() ? at.bottom + profile_.offset(Vec2{})
-                                  : at.bottom + profile_.offset(to_local(at, world));
-    }
+    double underside(const ToolPlacement& at, Vec2 world) const;
 
   private:
     ToolSpec spec_;
@@ -90,6 +88,40 @@ class Tool {
     double rim_tolerance_ = 0.0;
     double extrusion_width_ = 0.0;
 };
+
+/// A tool at one placement, with the heading's cosine and sine evaluated once: a stamp maps
+/// every contour point and asks the underside at every vertex under the tool. Refers to the
+/// tool, which must outlive it.
+class ToolFrame {
+  public:
+    ToolFrame(const Tool& tool, const ToolPlacement& at)
+        : tool_(&tool), at_(at), cos_(std::cos(at.angle)), sin_(std::sin(at.angle)) {}
+
+    const ToolPlacement& placement() const { return at_; }
+    Vec2 to_world(Vec2 local) const {
+        return at_.centre + Vec2{cos_ * local.x - sin_ * local.y, sin_ * local.x + cos_ * local.y};
+    }
+    Vec2 to_local(Vec2 world) const {
+        const Vec2 d = world - at_.centre;
+        return {cos_ * d.x + sin_ * d.y, -sin_ * d.x + cos_ * d.y};
+    }
+    /// Height of the underside above world point p (m); +infinity where it has no contact.
+    double underside(Vec2 world) const {
+        const ToolProfile& profile = tool_->profile();
+        // A flat profile needs no local coordinates.
+        return at_.bottom + profile.offset(profile.is_flat() ? Vec2{} : to_local(world));
+    }
+
+  private:
+    const Tool* tool_;
+    ToolPlacement at_;
+    double cos_;
+    double sin_;
+};
+
+inline double Tool::underside(const ToolPlacement& at, Vec2 world) const {
+    return ToolFrame(*this, at).underside(world);
+}
 
 /// The boundary loop of a mesh seen from below (x, y of its open border), centred and scaled
 /// like ToolProfile::mesh_imprint. Throws std::invalid_argument when the mesh has no border.

@@ -51,6 +51,37 @@ TEST(ToolProfile, HalfSphereIsTheLowerHemisphere) {
     EXPECT_THROW(ToolProfile::half_sphere(-1.0), std::invalid_argument);
 }
 
+// ToolFrame evaluates the heading once; against the analytic rotation and the ball's formula.
+TEST(ToolFrame, MapsLikeTheRotationAndGivesTheBallsUnderside) {
+    ToolSpec spec;
+    spec.radius = 0.04;
+    spec.profile = ProfileKind::HalfSphere;
+    spec.sphere_radius = 0.05;
+    const Tool tool = Tool::build(spec);
+    const ToolPlacement at{{0.3, 0.7}, std::numbers::pi / 2.0, -0.01};
+    const ToolFrame frame(tool, at);
+    // A quarter turn counter-clockwise takes local +x to world +y.
+    const Vec2 w = frame.to_world({0.02, 0.0});
+    EXPECT_NEAR(w.x, 0.3, 1e-17);
+    EXPECT_NEAR(w.y, 0.72, 1e-16);
+    for (Vec2 q : test::random_points_in(Rect{{0.2, 0.6}, {0.4, 0.8}}, 500, 9)) {
+        const Vec2 local = frame.to_local(q);
+        const Vec2 back = frame.to_world(local);
+        EXPECT_NEAR(back.x, q.x, 1e-15);
+        EXPECT_NEAR(back.y, q.y, 1e-15);
+        // Distance from the centre is kept, so the ball's offset depends on it alone.
+        const double d2 = (q.x - 0.3) * (q.x - 0.3) + (q.y - 0.7) * (q.y - 0.7);
+        const double r = 0.05;
+        const double expected = at.bottom + (d2 < r * r ? r - std::sqrt(r * r - d2) : r);
+        EXPECT_NEAR(frame.underside(q), expected, 1e-15);
+        // The one-off form agrees bit for bit (it builds a frame).
+        EXPECT_EQ(tool.underside(at, q), frame.underside(q));
+        const Vec2 one_off = tool.to_local(at, q);
+        EXPECT_EQ(one_off.x, local.x);
+        EXPECT_EQ(one_off.y, local.y);
+    }
+}
+
 // A spherical cap (the bottom of a ball of radius R, out to rho_max) as a triangle mesh, moved
 // to `centre` and lifted by `lift`, with a flat lid above it that the imprint must ignore.
 struct Dome {
