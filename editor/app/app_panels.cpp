@@ -300,6 +300,9 @@ void App::panel_haptics() {
     ImGui::Text("%.0f Hz, %llu ticks%s", l.rate_hz, static_cast<unsigned long long>(l.ticks),
                 l.device_lost ? ", device lost" : "");
     tip("Measured loop rate and ticks since connecting");
+    ImGui::Text("backup tick thread %s", l.backup_thread ? "on" : "off (one CPU)");
+    tip("With two or more CPUs a second thread runs any tick whose wake-up is more than\n"
+        "0.25 ms late, so a stalled CPU does not stall the force");
     ImGui::Text("force %.2f N %s", l.force_n, l.contact ? "(in contact)" : "");
     tip("Force the device renders now");
     haptic_forces_.push_back(static_cast<float>(l.force_n));

@@ -421,9 +421,13 @@ int App::run() {
         s["validation_messages"] = validation;
         if (haptics_) {
             const HapticsLive l = haptics_->live();
-            s["haptics"] = {{"device", l.device},   {"rate_hz", l.rate_hz},
-                            {"ticks", l.ticks},     {"force_n", l.force_n},
-                            {"contact", l.contact}, {"device_lost", l.device_lost}};
+            s["haptics"] = {{"device", l.device},
+                            {"rate_hz", l.rate_hz},
+                            {"ticks", l.ticks},
+                            {"force_n", l.force_n},
+                            {"contact", l.contact},
+                            {"device_lost", l.device_lost},
+                            {"backup_thread", l.backup_thread}};
         }
         if (cursor_) s["cursor"] = {cursor_->x, cursor_->y, cursor_->z};
         double px = 0, py = 0;

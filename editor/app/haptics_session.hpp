@@ -29,6 +29,7 @@ struct HapticsLive {
     double force_n = 0.0;  ///< |F| of the newest tick
     bool contact = false;
     bool device_lost = false;
+    bool backup_thread = false;  ///< a second thread covers late ticks (2+ CPUs)
     std::uint64_t ticks = 0;
     Vec3 pen;  ///< device position of the newest tick (m)
 };
@@ -56,6 +57,7 @@ class HapticsSession {
     haptics::TickRecord rate_from_{};  ///< the tick the rate is measured from
     double rate_hz_ = 0.0;
     std::int64_t started_ns_ = 0;
+    bool backup_thread_ = false;
     LocateHint hint_;
 };
 
