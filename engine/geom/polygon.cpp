@@ -28,20 +28,9 @@ bool point_in_polygon(Vec2 p, std::span<const Vec2> polygon) {
     if (n < 3) return false;
     bool inside = false;
     for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
-        const Vec2 a = polygon[i];
-        const Vec2 b = polygon[j];
-        // On the border (collinear with an edge and inside its box) counts as inside; the
-        // tolerance is relative to the edge so it scales with the coordinates.
-        if (p.x >= std::min(a.x, b.x) && p.x <= std::max(a.x, b.x) && p.y >= std::min(a.y, b.y) &&
-            p.y <= std::max(a.y, b.y)) {
-            const double c = cross(b - a, p - a);
-            const double scale = std::abs(b.x - a.x) + std::abs(b.y - a.y);
-            if (std::abs(c) <= 1e-12 * scale * (scale + std::abs(p.x) + std::abs(p.y))) return true;
-        }
-        if ((a.y > p.y) != (b.y > p.y)) {
-            const double x_cross = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
-            if (p.x < x_cross) inside = !inside;
-        }
+        const EdgeTest t = polygon_edge_test(p, polygon[i], polygon[j]);
+        if (t == EdgeTest::OnBorder) return true;
+        if (t == EdgeTest::Crosses) inside = !inside;
     }
     return inside;
 }

@@ -3,6 +3,8 @@
 // releases and which vertices a footprint covers, where a rounding-level misjudgement on the
 // boundary is harmless; the triangulation itself uses CGAL's exact predicates.
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 
 #include "geom/rect.hpp"
@@ -21,6 +23,27 @@ Rect bounding_box(std::span<const Vec2> points);
 /// True when p is inside the closed polygon (crossing-number rule; border counts as inside
 /// within rounding). Works for non-convex polygons; the polygon is implicitly closed.
 bool point_in_polygon(Vec2 p, std::span<const Vec2> polygon);
+
+/// What one edge (a, b) contributes to point_in_polygon at p: p lies on it within rounding, the
+/// rightward ray from p crosses it, or neither. Only an edge whose closed y-range holds p.y
+/// can be anything but None, which lets an index of edges by height skip the others.
+enum class EdgeTest : unsigned char { None, Crosses, OnBorder };
+inline EdgeTest polygon_edge_test(Vec2 p, Vec2 a, Vec2 b) {
+    // On the border (collinear with an edge and inside its box) counts as inside; the
+    // tolerance is relative to the edge so it scales with the coordinates.
+    if (p.x >= std::min(a.x, b.x) && p.x <= std::max(a.x, b.x) && p.y >= std::min(a.y, b.y) &&
+        p.y <= std::max(a.y, b.y)) {
+        const double c = cross(b - a, p - a);
+        const double scale = std::abs(b.x - a.x) + std::abs(b.y - a.y);
+        if (std::abs(c) <= 1e-12 * scale * (scale + std::abs(p.x) + std::abs(p.y)))
+            return EdgeTest::OnBorder;
+    }
+    if ((a.y > p.y) != (b.y > p.y)) {
+        const double x_cross = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+        if (p.x < x_cross) return EdgeTest::Crosses;
+    }
+    return EdgeTest::None;
+}
 
 /// True when the closed segments [a,b] and [c,d] share a point.
 bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);

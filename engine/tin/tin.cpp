@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "geom/polygon.hpp"
+#include "geom/polygon_inclusion.hpp"
 #include "tin/detail/cgal_tin.hpp"
 #include "tin/detail/hole_triangulation.hpp"
 #include "util/compensated_sum.hpp"
@@ -1038,11 +1039,14 @@ std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
         const Fh f = face_at(m, s, hint);
         if (f != Fh()) starts.push_back(f);
     }
+    // Seen from the first seed: the walk tests a centroid per face, and a tool's subdivided
+    // contour has hundreds of edges (PolygonInclusion gives point_in_polygon's answers).
+    const PolygonInclusion inside(bound, seeds.empty() ? Vec2{} : seeds.front());
     auto centroid_inside = [&](Fh g) {
         const Vec2 c = (m.va.position[g->vertex(0)->id] + m.va.position[g->vertex(1)->id] +
                         m.va.position[g->vertex(2)->id]) /
                        3.0;
-        return point_in_polygon(c, bound);
+        return inside.contains(c);
     };
     static thread_local VisitMarks taken;
     taken.clear();

@@ -179,5 +179,82 @@ TEST(PolygonInclusion, BorderToleranceSeenFromAnOutsideCentre) {
     }
 }
 
+/// Each edge split into `parts` equal pieces, as the stamp subdivides a tool's contours.
+std::vector<Vec2> subdivided(const std::vector<Vec2>& poly, int parts) {
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+        const Vec2 a = poly[i];
+        const Vec2 b = poly[(i + 1) % poly.size()];
+        for (int k = 0; k < parts; ++k)
+            out.push_back(a + (b - a) * (static_cast<double>(k) / parts));
+    }
+    return out;
+}
+
+/// Points on the horizontal line through every vertex, across the whole box (the crossing
+/// number's classic edge case: the ray passes through a vertex).
+std::vector<Vec2> through_vertices(const std::vector<Vec2>& poly, std::uint64_t seed) {
+    const Rect box = bounding_box(poly);
+    std::mt19937_64 rng = test::test_rng(seed);
+    std::uniform_real_distribution<double> x(box.min.x - 0.1, box.max.x + 0.1);
+    std::vector<Vec2> out;
+    for (const Vec2 v : poly) {
+        for (int k = 0; k < 20; ++k)
+            out.push_back({x(rng), v.y});
+    }
+    return out;
+}
+
+// Contours with more edges than the whole-polygon test is kept for go through the index of
+// edges by height; the answers must stay point_in_polygon's, bit for bit.
+TEST(PolygonInclusion, BandedLetterAndStarAgreeEverywhere) {
+    const std::vector<Vec2> letter = subdivided(kLambda, 25);  // 200 edges
+    ASSERT_TRUE(test::is_simple(letter));
+    Counts n = check_everywhere(letter, {0.6, 0.5}, 51);
+    EXPECT_GT(n.inside, 10000u);
+    EXPECT_GT(n.outside, 50000u);
+    check_everywhere(letter, {0.5, 0.1}, 52);  // centre in the notch
+    check_everywhere(letter, letter[37], 53);  // centre on the border
+    Counts lines;
+    expect_same(PolygonInclusion(letter, {0.6, 0.5}), letter, through_vertices(letter, 54), lines);
+
+    // A star of 150 spikes: a horizontal line meets many edges, and a band holds many.
+    std::vector<Vec2> star;
+    for (int k = 0; k < 300; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 300;
+        const double r = k % 2 == 0 ? 0.3 : 0.12;
+        star.push_back({0.5 + r * std::cos(a), 0.5 + r * std::sin(a)});
+    }
+    n = check_everywhere(star, {0.5, 0.5}, 55);
+    EXPECT_GT(n.inside, 5000u);
+    expect_same(PolygonInclusion(star, {0.5, 0.5}), star, through_vertices(star, 56), lines);
+}
+
+TEST(PolygonInclusion, BandedCombWithHorizontalEdges) {
+    // A comb: 20 teeth with horizontal tops and bottoms, each edge split in three, so whole
+    // edges lie exactly on band heights; seen from a centre in the spine and one far outside.
+    std::vector<Vec2> comb = {{0.0, 0.0}, {2.0, 0.0}};
+    for (int t = 19; t >= 0; --t) {
+        const double x = 0.1 * t;
+        comb.push_back({x + 0.1, 0.2});
+        comb.push_back({x + 0.1, 1.0});
+        comb.push_back({x + 0.05, 1.0});
+        comb.push_back({x + 0.05, 0.2});
+    }
+    comb.pop_back();
+    comb.back() = {0.0, 1.0};
+    const std::vector<Vec2> fine = subdivided(comb, 3);
+    ASSERT_TRUE(test::is_simple(fine));
+    const Counts n = check_everywhere(fine, {1.0, 0.1}, 61);
+    EXPECT_GT(n.inside, 5000u);
+    check_everywhere(fine, {5.0, 5.0}, 62);
+    Counts lines;
+    expect_same(PolygonInclusion(fine, {1.0, 0.1}), fine, through_vertices(fine, 63), lines);
+    // Not finite: outside, as point_in_polygon says.
+    const PolygonInclusion inclusion(fine, {1.0, 0.1});
+    EXPECT_FALSE(inclusion.contains({0.5, std::nan("")}));
+    EXPECT_FALSE(inclusion.contains({std::nan(""), 0.5}));
+}
+
 }  // namespace
 }  // namespace sandtin
