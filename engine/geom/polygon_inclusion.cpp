@@ -9,7 +9,7 @@ namespace sandtin {
 namespace {
 
 // Below this many edges the whole-polygon test is as fast as the band look-up.
-constexpr std::size_t kBandedMinimum = 24;
+constexpr std::size_t kBandedMinimum = 8;
 
 }  // namespace
 
@@ -34,14 +34,16 @@ PolygonInclusion::PolygonInclusion(std::span<const Vec2> polygon, Vec2 centre)
     reach_squared_ = outer_radius * outer_radius;
 
     const std::size_t n = polygon.size();
-    if (n < kBandedMinimum) return;
-    y_min_ = y_max_ = polygon[0].y;
     for (Vec2 v : polygon) {
-        if (!std::isfinite(v.x) || !std::isfinite(v.y)) return;  // point_in_polygon decides
-        y_min_ = std::min(y_min_, v.y);
-        y_max_ = std::max(y_max_, v.y);
+        if (!std::isfinite(v.x) || !std::isfinite(v.y)) {
+            box_ = Rect();  // point_in_polygon decides every point
+            return;
+        }
+        box_.expand(v);
     }
-    if (!(y_max_ > y_min_)) return;
+    y_min_ = box_.min.y;
+    y_max_ = box_.max.y;
+    if (n < kBandedMinimum || !(y_max_ > y_min_)) return;
     // About one band per two edges: a subdivided contour's edges are short, so each meets one
     // or two bands, and a band holds the few edges a horizontal line crosses there.
     const std::size_t bands = std::clamp<std::size_t>(n / 2, 4, 4096);
@@ -66,6 +68,48 @@ PolygonInclusion::PolygonInclusion(std::span<const Vec2> polygon, Vec2 centre)
         for (std::uint32_t b = lo; b <= hi; ++b)
             band_edge_[fill[b]++] = static_cast<std::uint32_t>(i);
     }
+}
+
+namespace {
+
+/// Closed triangle, either orientation.
+bool in_triangle(Vec2 p, Vec2 a, Vec2 b, Vec2 c) {
+    const double d1 = cross(b - a, p - a);
+    const double d2 = cross(c - b, p - b);
+    const double d3 = cross(a - c, p - c);
+    return (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0);
+}
+
+}  // namespace
+
+bool PolygonInclusion::border_meets_triangle(Vec2 a, Vec2 b, Vec2 c) const {
+    Rect t;
+    t.expand(a);
+    t.expand(b);
+    t.expand(c);
+    if (box_.empty() || !t.intersects(box_)) return false;
+    // Such an edge's height range meets the triangle's.
+    const std::size_t n = polygon_.size();
+    const auto touches = [&](std::size_t i) {
+        const Vec2 p = polygon_[i];
+        const Vec2 q = polygon_[i == 0 ? n - 1 : i - 1];
+        return in_triangle(p, a, b, c) || segments_intersect(p, q, a, b) ||
+               segments_intersect(p, q, b, c) || segments_intersect(p, q, c, a);
+    };
+    if (band_start_.empty()) {
+        for (std::size_t i = 0; i < n; ++i) {
+            if (touches(i)) return true;
+        }
+        return false;
+    }
+    const std::uint32_t first = band_of(std::max(t.min.y, y_min_));
+    const std::uint32_t last = band_of(std::min(t.max.y, y_max_));
+    for (std::uint32_t band = first; band <= last; ++band) {
+        for (std::uint32_t k = band_start_[band]; k < band_start_[band + 1]; ++k) {
+            if (touches(band_edge_[k])) return true;
+        }
+    }
+    return false;
 }
 
 bool PolygonInclusion::banded_test(Vec2 p) const {

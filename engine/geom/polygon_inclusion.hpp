@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geom/polygon.hpp"
+#include "geom/rect.hpp"
 
 namespace sandtin {
 
@@ -28,6 +29,18 @@ class PolygonInclusion {
         return banded_test(p);
     }
 
+    /// True when the closed triangle abc meets the region: a corner inside (as contains()
+    /// decides) or an edge of the polygon touching the triangle. The faces that meet a
+    /// connected polygon form a connected set, so a walk over them reaches every vertex inside.
+    bool meets_triangle(Vec2 a, Vec2 b, Vec2 c) const {
+        return contains(a) || contains(b) || contains(c) || border_meets_triangle(a, b, c);
+    }
+    /// True when an edge of the polygon touches the closed triangle abc (for walks that know
+    /// their corners' answers already).
+    bool border_meets_triangle(Vec2 a, Vec2 b, Vec2 c) const;
+
+    std::span<const Vec2> polygon() const { return polygon_; }
+
   private:
     /// Band of height y: monotone in y, so an edge spanning [y_lo, y_hi] is listed in every
     /// band from band_of(y_lo) to band_of(y_hi), which includes band_of(y) for any y between.
@@ -43,6 +56,7 @@ class PolygonInclusion {
     bool centre_inside_ = false;
     double clear_squared_ = 0.0;
     double reach_squared_ = 0.0;
+    Rect box_;  ///< the polygon's bounding box (empty when a vertex is not finite)
     // Band index (empty for small polygons, which point_in_polygon tests faster as a whole):
     // band b lists, in band_edge_[band_start_[b] .. band_start_[b + 1]), the edges (i, i - 1)
     // whose closed height range meets it.

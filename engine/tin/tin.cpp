@@ -1029,6 +1029,60 @@ std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHi
     return out;
 }
 
+std::vector<VertexId> Tin::vertices_in_polygon(const PolygonInclusion& region,
+                                               LocateHint* hint) const {
+    const Impl& m = *impl_;
+    std::vector<VertexId> out;
+    const std::span<const Vec2> polygon = region.polygon();
+    if (polygon.size() < 3) return out;
+    // Start at up to four of the polygon's own vertices that lie in the domain: the face under
+    // a border point meets the region.
+    std::vector<Fh> starts;
+    const std::size_t step = std::max<std::size_t>(polygon.size() / 4, 1);
+    for (std::size_t i = 0; i < polygon.size(); i += step) {
+        if (!is_finite(polygon[i]) || !m.domain.contains(polygon[i])) continue;
+        const Fh f = face_at(m, polygon[i], hint);
+        if (f != Fh()) starts.push_back(f);
+    }
+    if (starts.empty()) {
+        // No vertex in the domain (a polygon around or across it): test every vertex.
+        for (auto v = m.cdt.finite_vertices_begin(); v != m.cdt.finite_vertices_end(); ++v) {
+            if (region.contains(m.va.position[v->id])) out.push_back(VertexId{v->id});
+        }
+        return out;
+    }
+    // Each vertex's answer once: a walk meets a vertex from each of its faces, and a face's
+    // test asks about its three corners.
+    static thread_local VisitMarks decided;
+    static thread_local std::vector<std::uint8_t> inside;
+    decided.clear();
+    decided.reserve_ids(m.events.vertex_of_id.size());
+    if (inside.size() < m.events.vertex_of_id.size()) inside.resize(m.events.vertex_of_id.size());
+    const auto is_inside = [&](std::uint32_t id) {
+        if (!decided.contains(id)) {
+            decided.mark(id);
+            const bool in = region.contains(m.va.position[id]);
+            inside[id] = in ? 1 : 0;
+            if (in) out.push_back(VertexId{id});
+        }
+        return inside[id] != 0;
+    };
+    walk_faces(
+        m, starts,
+        [&](Fh g) {
+            const std::uint32_t a = g->vertex(0)->id, b = g->vertex(1)->id, c = g->vertex(2)->id;
+            // Every corner decided (and each inside one collected) before the border test.
+            const bool in_a = is_inside(a);
+            const bool in_b = is_inside(b);
+            const bool in_c = is_inside(c);
+            return in_a || in_b || in_c ||
+                   region.border_meets_triangle(m.va.position[a], m.va.position[b],
+                                                m.va.position[c]);
+        },
+        [](Fh, int) { return true; }, [](Fh) {});
+    return out;
+}
+
 std::vector<VertexId> Tin::vertices_in_region(std::span<const Vec2> seeds,
                                               std::span<const Vec2> bound, LocateHint* hint) const {
     const Impl& m = *impl_;

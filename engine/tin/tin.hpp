@@ -36,6 +36,8 @@
 
 namespace sandtin {
 
+class PolygonInclusion;
+
 struct TinOptions {
     /// Record changes for take_changes(). While tracking is on, freed ids and slots are only
     /// recycled after take_changes(), so turn it off when nothing consumes the journal.
@@ -216,6 +218,11 @@ class Tin {
     /// disc (constrained edges do not stop the walk).
     std::vector<VertexId> vertices_in_disc(Vec2 centre, double radius,
                                            LocateHint* hint = nullptr) const;
+    /// Vertices inside (and on) the polygon of `region`, as region.contains() decides, found
+    /// by walking the faces that meet it (constrained edges do not stop the walk): a tool's
+    /// footprint without the rest of its bounding disc. The polygon must be connected.
+    std::vector<VertexId> vertices_in_polygon(const PolygonInclusion& region,
+                                              LocateHint* hint = nullptr) const;
     /// Corners of the faces reachable from the faces containing `seeds` without crossing a
     /// constrained edge and whose centroids lie inside the closed polygon `bound`: the
     /// vertices inside (and on) a constrained contour.

@@ -297,9 +297,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         expected_inside >= 4.0 * static_cast<double>(context.settings.min_bulk_clearing)) {
         const bool clear_inside = tool.profile().is_flat() && context.settings.simplify_after_edit;
         std::vector<VertexId> doomed;
-        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+        for (VertexId v : tin.vertices_in_polygon(in_outer, hint)) {
             const Vec2 p = va.position[v.value];
-            if (!in_outer.contains(p)) continue;
             if (in_inner.contains(p)) {
                 const double h = va.height[v.value];
                 if (clear_inside && imprint(p, h) != h) doomed.push_back(v);
@@ -380,9 +379,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<VertexId> footprint;
     {
         std::vector<VertexId> band_junk;
-        for (VertexId v : tin.vertices_in_disc(at.centre, tool.shape().bounding_radius, hint)) {
+        for (VertexId v : tin.vertices_in_polygon(in_outer, hint)) {
             const Vec2 p = va.position[v.value];
-            if (!in_outer.contains(p)) continue;
             footprint.push_back(v);
             if (in_inner.contains(p)) continue;
             if (both_active_at(p) && !tin.is_on_constraint(v) && !tin.is_boundary(v)) {

@@ -11,6 +11,8 @@
 #include <set>
 #include <vector>
 
+#include "geom/polygon.hpp"
+#include "geom/polygon_inclusion.hpp"
 #include "support/random_edits.hpp"
 #include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
@@ -229,6 +231,75 @@ TEST(Queries, VerticesInDiscMatchBruteForce) {
     }
     EXPECT_TRUE(tin.vertices_in_disc({100.0, 100.0}, 1.0).empty());
     EXPECT_EQ(tin.vertices_in_disc({6.0, 4.0}, 0.0).size(), 1u);  // exactly the corner
+}
+
+// vertices_in_polygon must find exactly the vertices PolygonInclusion::contains() accepts: the
+// brute-force oracle is that test over every live vertex. Polygons: a λ, a 200-edge subdivided
+// λ (banded), a comb with teeth narrower than the triangles (necks with no vertex in them,
+// which a walk over faces with a corner inside would not cross), polygons partly outside the
+// domain and one around it.
+TEST(Queries, VerticesInPolygonMatchContainsEverywhere) {
+    const Rect d = Rect::from_size(6.0, 4.0);
+    Tin tin = Tin::random_points(d, 800, 19, knolls);
+    const VertexId a = tin.insert_point({2.0, 2.0}, 1.0);
+    const VertexId b = tin.insert_point({4.0, 2.5}, 1.0);
+    tin.insert_constraint(a, b, 1);  // constrained edges must not stop the walk
+    const std::vector<Vec2> lambda = {{0.0, 0.0}, {0.15, 0.0}, {0.5, 0.4},  {0.85, 0.0},
+                                      {1.0, 0.0}, {0.3, 1.0},  {0.15, 1.0}, {0.42, 0.55}};
+    auto placed = [](const std::vector<Vec2>& poly, Vec2 at, double scale) {
+        std::vector<Vec2> out;
+        for (Vec2 p : poly)
+            out.push_back(at + p * scale);
+        return out;
+    };
+    auto subdivided = [](const std::vector<Vec2>& poly, int parts) {
+        std::vector<Vec2> out;
+        for (std::size_t i = 0; i < poly.size(); ++i)
+            for (int k = 0; k < parts; ++k)
+                out.push_back(poly[i] + (poly[(i + 1) % poly.size()] - poly[i]) *
+                                            (static_cast<double>(k) / parts));
+        return out;
+    };
+    // Teeth 0.02 wide, 1.6 tall: far narrower than the ~0.17-spaced vertices.
+    std::vector<Vec2> comb = {{0.5, 0.5}, {5.5, 0.5}};
+    for (int t = 9; t >= 0; --t) {
+        const double x = 0.5 + 0.5 * t;
+        comb.insert(comb.end(), {{x + 0.5, 0.6}, {x + 0.5, 3.5}, {x + 0.48, 3.5}, {x + 0.48, 0.6}});
+    }
+    comb.back() = {0.5, 3.5};
+    comb.erase(comb.end() - 2);
+    ASSERT_TRUE(is_simple_polygon(comb));
+    std::vector<std::vector<Vec2>> polygons = {
+        placed(lambda, {2.0, 1.0}, 2.0),
+        subdivided(placed(lambda, {1.0, 0.5}, 3.0), 25),
+        comb,
+        placed(lambda, {4.5, 3.0}, 3.0),                       // partly outside the domain
+        {{-1.0, -1.0}, {7.0, -1.0}, {7.0, 5.0}, {-1.0, 5.0}},  // around the domain
+        {{-1.0, 1.0}, {7.0, 1.0}, {7.0, 1.3}, {-1.0, 1.3}},    // a band across it
+    };
+    std::mt19937_64 rng = test::test_rng(19);
+    std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+    for (int k = 0; k < 8; ++k) {  // the λ turned about its centre
+        std::vector<Vec2> turned;
+        const double t = angle(rng);
+        for (Vec2 p : placed(lambda, {-0.5, -0.5}, 1.0))
+            turned.push_back(Vec2{3.0, 2.0} + rotate(p, t) * 2.5);
+        polygons.push_back(turned);
+    }
+    LocateHint hint;
+    for (std::size_t k = 0; k < polygons.size(); ++k) {
+        const PolygonInclusion region(polygons[k], polygons[k][0]);
+        const auto got_list = tin.vertices_in_polygon(region, k % 2 ? &hint : nullptr);
+        const std::set<VertexId> got(got_list.begin(), got_list.end());
+        EXPECT_EQ(got.size(), got_list.size()) << "duplicates in polygon " << k;
+        std::size_t inside = 0;
+        for (VertexId v : test::live_ids(tin)) {
+            const bool expected = region.contains(tin.position(v));
+            inside += expected ? 1 : 0;
+            EXPECT_EQ(got.count(v) == 1, expected) << "polygon " << k << ", vertex " << v.value;
+        }
+        EXPECT_GT(inside, 0u) << "polygon " << k << " covers no vertex: the case proves nothing";
+    }
 }
 
 /// Distance from c to the closed triangle.
