@@ -8,7 +8,7 @@ namespace sandtin {
 
 namespace {
 
-// Below this many edges the whole-polygon test is as fast as the band look-up.
+// Below this many edges a test of the whole polygon costs about what a band look-up does.
 constexpr std::size_t kBandedMinimum = 8;
 
 }  // namespace
@@ -88,7 +88,8 @@ bool PolygonInclusion::border_meets_triangle(Vec2 a, Vec2 b, Vec2 c) const {
     t.expand(b);
     t.expand(c);
     if (box_.empty() || !t.intersects(box_)) return false;
-    // Such an edge's height range meets the triangle's.
+    // An edge that touches the triangle has a height range meeting the triangle's, so the
+    // bands over the triangle's heights list every candidate.
     const std::size_t n = polygon_.size();
     const auto touches = [&](std::size_t i) {
         const Vec2 p = polygon_[i];

@@ -374,7 +374,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // at I to the rim at O and nothing else (re-working a trail would otherwise pile old rims
     // up in the walls, where no planarity test can ever remove them). Elsewhere a digging
     // tool brings them down to that ramp, so they cannot poke up through the new wall.
-    // One walk over the tool's disc serves the band, the slivers and the footprint's
+    // One walk over the faces under O serves the band, the slivers and the footprint's
     // re-simplification below: after this point the stamp only removes vertices.
     std::vector<VertexId> footprint;
     {
