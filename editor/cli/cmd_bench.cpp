@@ -18,12 +18,16 @@ int run_bench(const std::vector<std::string>& raw) {
         return run_bench_haptics(std::vector<std::string>(raw.begin() + 1, raw.end()));
     if (!raw.empty() && raw.front() == "gpu")
         return run_bench_gpu(std::vector<std::string>(raw.begin() + 1, raw.end()));
-    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}});
+    const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--tool", 1}});
     args.require_positionals(
-        1, "sandtin bench (tin | groove | import | history) [--quick] [--json]");
+        1, "sandtin bench (tin | groove [--tool NAME] | import | history) [--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
     const std::string which = args.positionals()[0];
+    if (args.has("--tool")) {
+        if (which != "groove") throw UsageError("--tool applies to 'bench groove' only");
+        config.tool = args.text("--tool");
+    }
     nlohmann::json result;
     if (which == "tin") {
         result = bench::bench_tin(config);

@@ -5,12 +5,15 @@
 #include <chrono>
 #include <cstdint>
 #include <ctime>
+#include <string>
 #include <vector>
 
 namespace sandtin::bench {
 
 struct BenchConfig {
     bool quick = false;  ///< small sizes, for smoke tests of the drivers themselves
+    /// groove: a tool asset (assets/tools/<name>.json, or a path) instead of the seeds' circle
+    std::string tool;
 };
 
 class Stopwatch {

@@ -4,6 +4,7 @@
 
 #include "tin/tin.hpp"
 #include "tools/stroke.hpp"
+#include "tools/tool_json.hpp"
 
 namespace sandtin::bench {
 
@@ -27,22 +28,27 @@ struct GrooveRun {
     bool valid = false;
 };
 
-/// A flat TIN of n random points on the unit square; a circular tool of radius 0.04, 12
-/// control points, its bottom at -0.1; a stroke along the diagonal from (0.5 - L/2)(1, 1) to
-/// (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the diagonal. Stamps are
-/// r/4 = 1 cm apart, so consecutive footprints overlap by 7/8 and the walls are smooth to
-/// 0.3 mm.
-GrooveRun run_groove(std::size_t n, double trace, bool validate, bool clear_before_imprint = true) {
+/// The seeds' tool: a circle of radius 0.04 with 12 control points.
+ToolSpec seeds_circle() {
+    ToolSpec spec;
+    spec.contour = ContourKind::Circle;
+    spec.radius = 0.04;
+    spec.control_points = 12;
+    return spec;
+}
+
+/// A flat TIN of n random points on the unit square; the tool (the seeds' circle unless
+/// another is asked for) with its bottom at -0.1; a stroke along the diagonal from
+/// (0.5 - L/2)(1, 1) to (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the
+/// diagonal. Stamps are 1 cm apart: for the circle r/4, so consecutive footprints overlap by
+/// 7/8 and the walls are smooth to 0.3 mm.
+GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validate,
+                     bool clear_before_imprint = true) {
     TinOptions options;
     options.track_changes = false;
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), n, 2009, {}, options);
     SculptContext context(tin.domain());
     context.settings.clear_before_imprint = clear_before_imprint;
-    ToolSpec spec;
-    spec.contour = ContourKind::Circle;
-    spec.radius = 0.04;
-    spec.control_points = 12;
-    const Tool tool = Tool::build(spec);
     StrokeSettings settings;
     settings.spacing = 0.01;
     settings.depth_mode = DepthMode::Absolute;
@@ -102,7 +108,17 @@ nlohmann::json to_json(const GrooveRun& r) {
 nlohmann::json bench_groove(const BenchConfig& config) {
     nlohmann::json j;
     j["bench"] = "groove";
-    j["tool"] = {{"radius", 0.04}, {"control_points", 12}, {"bottom", -0.1}, {"spacing", 0.01}};
+    const ToolSpec spec = config.tool.empty() ? seeds_circle() : load_tool_asset(config.tool);
+    const Tool tool = Tool::build(spec);
+    if (config.tool.empty()) {
+        j["tool"] = {{"radius", 0.04}, {"control_points", 12}, {"bottom", -0.1}, {"spacing", 0.01}};
+    } else {
+        j["tool"] = {{"asset", config.tool},
+                     {"name", spec.name},
+                     {"bounding_radius", tool.shape().bounding_radius},
+                     {"bottom", -0.1},
+                     {"spacing", 0.01}};
+    }
     const std::vector<std::size_t> sizes = config.quick
                                                ? std::vector<std::size_t>{1000, 10000}
                                                : std::vector<std::size_t>{10000, 100000, 1000000};
@@ -117,8 +133,8 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         std::vector<GrooveRun> plain;
         const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
         for (int r = 0; r < reps; ++r) {
-            runs.push_back(run_groove(n, 0.8, r == 0));
-            plain.push_back(run_groove(n, 0.8, false, false));
+            runs.push_back(run_groove(tool, n, 0.8, r == 0));
+            plain.push_back(run_groove(tool, n, 0.8, false, false));
         }
         auto by_total = [](const GrooveRun& a, const GrooveRun& b) {
             return a.total_ms < b.total_ms;
@@ -147,7 +163,7 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         const double trace = 0.1 * k;
         std::vector<GrooveRun> runs;
         for (int r = 0; r < (config.quick ? 1 : 3); ++r)
-            runs.push_back(run_groove(n, trace, false));
+            runs.push_back(run_groove(tool, n, trace, false));
         std::sort(runs.begin(), runs.end(),
                   [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
         nlohmann::json row = to_json(runs[runs.size() / 2]);

@@ -193,6 +193,14 @@ scenario_bench() {
         "$(json bench.out /constraints/constrained_edges_after)"
     expect_ok bench_json bench tin --quick --json || return
     check_eq "bench --json" "$(json bench_json.out /bench)" tin
+    # The groove with a shipped tool instead of the seeds' circle: the λ digs a valid groove.
+    expect_ok bench_lambda bench groove --quick --tool lambda --json || return
+    check_eq "bench groove tool" "$(json bench_lambda.out /tool/asset)" lambda
+    check_eq "bench groove λ valid" "$(json bench_lambda.out /by_size/1/valid)" true
+    holds "bench groove λ stamps" "a > 0 && b > 0" "$(json bench_lambda.out /by_size/1/stamps)" \
+        "$(json bench_lambda.out /by_size/1/per_stamp_median_ms)"
+    expect_error bench_bad_tool "nosuchtool" bench groove --quick --tool nosuchtool
+    expect_error bench_tool_elsewhere "--tool applies to 'bench groove' only" bench tin --tool lambda
 }
 
 scenario_demo() {
