@@ -361,7 +361,12 @@ ValidationReport Tin::check_valid() const {
     auto problem = [&](const std::string& what) {
         if (r.problems.size() < 20) r.problems.push_back(what);
     };
-    if (!m.cdt.is_valid()) problem("CGAL reports an invalid triangulation");
+    // CGAL's structural checks: face and vertex links, orientation of every face, the
+    // constraint flag equal on both sides of each edge. (Constrained_Delaunay_triangulation_2::
+    // is_valid would add an in-circle test per edge and side; the loop below makes that test
+    // once per edge and names the edge. Measured on 15 000 vertices: 6.7 ms -> 4.5 ms.)
+    const detail::Cdt::Ctr& structure = m.cdt;
+    if (!structure.is_valid()) problem("CGAL reports an invalid triangulation");
     if (m.cdt.dimension() != 2) {
         problem("triangulation is not two-dimensional");
         return r;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -222,6 +223,61 @@ TEST_F(CorruptSnapshot, FlippedTriangleOrientation) {
     s = good;
     std::swap(s.slots[outer_slot][0], s.slots[outer_slot][1]);
     expect_rejected(s, "flipped outer triangle");
+}
+
+// A flipped diagonal leaves a valid triangulation that is not Delaunay. check_valid's own
+// in-circle loop is what must catch it (CGAL's structural is_valid does not look at circles).
+TEST_F(CorruptSnapshot, FlippedDiagonalIsNotLocallyDelaunay) {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> constrained;
+    for (const ConstraintRecord& c : good.constraints) {
+        for (std::size_t k = 0; k + 1 < c.vertices.size(); ++k) {
+            constrained.insert({c.vertices[k], c.vertices[k + 1]});
+            constrained.insert({c.vertices[k + 1], c.vertices[k]});
+        }
+    }
+    const auto& pos = good.vertices.position;
+    const auto orient = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        return cross(pos[b] - pos[a], pos[c] - pos[a]);
+    };
+    // Slots s = (a, b, c) and t = (b, a, d), both counter-clockwise, sharing the unconstrained
+    // edge a-b, with d clearly outside the circle through a, b, c and the quad a d b c convex:
+    // flipping to (a, d, c), (d, b, c) then makes d clearly inside, a non-Delaunay edge c-d.
+    for (std::uint32_t s = 0; s < good.slots.size(); ++s) {
+        const auto cs = good.slots[s];
+        if (cs[0] >= kOutsideCorner || cs[1] >= kOutsideCorner || cs[2] >= kOutsideCorner) continue;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = cs[k], b = cs[(k + 1) % 3], c = cs[(k + 2) % 3];
+            if (constrained.count({a, b})) continue;
+            for (std::uint32_t t = 0; t < good.slots.size(); ++t) {
+                const auto ct = good.slots[t];
+                if (t == s || ct[0] >= kOutsideCorner || ct[1] >= kOutsideCorner ||
+                    ct[2] >= kOutsideCorner)
+                    continue;
+                for (int j = 0; j < 3; ++j) {
+                    if (ct[j] != b || ct[(j + 1) % 3] != a) continue;
+                    const std::uint32_t d = ct[(j + 2) % 3];
+                    const double scale = length_squared(pos[a] - pos[b]);
+                    if (!(orient(a, d, c) > 0.05 * scale && orient(d, b, c) > 0.05 * scale))
+                        continue;
+                    if (!(test::relative_in_circle(pos[a], pos[b], pos[c], pos[d]) < -1e-3L))
+                        continue;
+                    TinSnapshot flipped = good;
+                    flipped.slots[s] = {a, d, c};
+                    flipped.slots[t] = {d, b, c};
+                    try {
+                        (void)Tin::from_snapshot(flipped);
+                        FAIL() << "a flipped non-Delaunay diagonal was accepted";
+                    } catch (const std::runtime_error& e) {
+                        EXPECT_NE(std::string(e.what()).find("not locally Delaunay"),
+                                  std::string::npos)
+                            << e.what();
+                    }
+                    return;
+                }
+            }
+        }
+    }
+    FAIL() << "no flippable unconstrained edge found";
 }
 
 TEST_F(CorruptSnapshot, InconsistentFreeLists) {
