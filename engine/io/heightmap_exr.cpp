@@ -7,6 +7,8 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfTileDescription.h>
+#include <OpenEXR/ImfVersion.h>
 
 #include <cmath>
 #include <limits>
@@ -17,6 +19,36 @@ namespace sandtin {
 namespace {
 
 constexpr const char* kCellSizeAttribute = "sandtin:cell_size";
+
+/// Reads the header alone and checks its data window (and tile size) against the limits.
+/// OpenEXR's InputFile sizes its line and tile buffers from the header before a caller can
+/// look: a damaged data window 33 million pixels wide made it allocate 2 GB (found by
+/// fuzz_exr).
+void check_header_sizes(std::span<const std::uint8_t> bytes, const std::string& name,
+                        const RasterLimits& limits) {
+    if (bytes.size() < 8) throw std::runtime_error(name + ": too short for an OpenEXR file");
+    if (!Imf::isImfMagic(reinterpret_cast<const char*>(bytes.data())))
+        throw std::runtime_error(name + ": not an OpenEXR file (bad magic number)");
+    // The version field follows the magic number, little-endian like the whole format.
+    auto version = static_cast<int>(static_cast<std::uint32_t>(bytes[4]) |
+                                    (static_cast<std::uint32_t>(bytes[5]) << 8) |
+                                    (static_cast<std::uint32_t>(bytes[6]) << 16) |
+                                    (static_cast<std::uint32_t>(bytes[7]) << 24));
+    Imf::StdISStream stream;
+    stream.str(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    stream.seekg(8);
+    Imf::Header header;
+    header.readFrom(stream, version);
+    const Imath::Box2i window = header.dataWindow();
+    const std::int64_t w = static_cast<std::int64_t>(window.max.x) - window.min.x + 1;
+    const std::int64_t h = static_cast<std::int64_t>(window.max.y) - window.min.y + 1;
+    check_raster_size(static_cast<std::uint64_t>(std::max<std::int64_t>(w, 0)),
+                      static_cast<std::uint64_t>(std::max<std::int64_t>(h, 0)), name, limits);
+    if (header.hasTileDescription()) {
+        const Imf::TileDescription& tiles = header.tileDescription();
+        check_raster_size(tiles.xSize, tiles.ySize, name + " (tile size)", limits);
+    }
+}
 
 }  // namespace
 
@@ -50,6 +82,7 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
     if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
     HeightRaster r;
     try {
+        check_header_sizes(bytes, name, limits);
         Imf::StdISStream stream;
         stream.str(std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
         Imf::InputFile file(stream);

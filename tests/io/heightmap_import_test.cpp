@@ -3,8 +3,10 @@
 
 #include <gdal.h>
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 #include <zlib.h>
+#include <algorithm>
 
 #include <array>
 #include <cmath>
@@ -332,6 +334,28 @@ TEST_F(HeightmapFiles, LargerThanTheLimit) {
     r.heights.assign(3600, 1.0);
     expect_rejected(encode_exr_heightmap(r), {"exceeds the limit"}, small);
     EXPECT_NO_THROW((void)decode_heightmap(encode_png(gray_image(100, 50, 8)), "ok.png", small));
+}
+
+// Found by fuzz_exr: a header whose data window is 33 million pixels wide made OpenEXR's
+// InputFile allocate 2 GB for its line buffers before the size could be checked. The header
+// is now read alone first, so the size is rejected before OpenEXR allocates anything.
+TEST_F(HeightmapFiles, ExrHeaderWithAHugeDataWindowIsRejectedBeforeDecoding) {
+    HeightRaster r;
+    r.width = 4;
+    r.height = 4;
+    r.heights.assign(16, 1.0);
+    std::vector<std::uint8_t> exr = encode_exr_heightmap(r);
+    const std::string key = "dataWindow";
+    const auto at = std::search(exr.begin(), exr.end(), key.begin(), key.end());
+    ASSERT_NE(at, exr.end());
+    // Name, "box2i", the 4-byte size, then min.x min.y max.x max.y (little-endian int32).
+    const auto max_x = at + static_cast<std::ptrdiff_t>(key.size() + 1 + 6 + 4 + 8);
+    const std::uint32_t huge = 0x01ffff05u;
+    for (int b = 0; b < 4; ++b)
+        max_x[b] = static_cast<std::uint8_t>(huge >> (8 * b));
+    expect_rejected(exr, {"exceeds the limit"});
+    // Too short to hold the magic number and version.
+    expect_rejected({exr.begin(), exr.begin() + 6}, {"EXR"});
 }
 
 TEST_F(HeightmapFiles, NanAndInfHeights) {
