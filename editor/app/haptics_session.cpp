@@ -32,7 +32,6 @@ HapticsSession::HapticsSession(HapticDeviceKind kind, double rate_hz, std::uint1
     // milliseconds, and the other CPU covers them (late ticks 48 -> 16 over 540 s in `sandtin
     // bench haptics`). Neither thread is pinned: the editor does not own the CPUs.
     config.backup_thread = std::thread::hardware_concurrency() >= 2;
-    backup_thread_ = config.backup_thread;
     loop_ = std::make_unique<haptics::ForceLoop>(*device_, config);
     started_ns_ = haptics::monotonic_ns();
     loop_->start();
@@ -51,7 +50,7 @@ void HapticsSession::update(const Tin& tin, const Tool& tool, const ToolPlacemen
 HapticsLive HapticsSession::live() {
     HapticsLive l;
     l.device = device_->name();
-    l.backup_thread = backup_thread_;
+    l.backup_thread = loop_->config().backup_thread;
     if (loop_->poll(latest_)) {
         const std::int64_t dt = latest_.time_ns - rate_from_.time_ns;
         if (rate_from_.tick == 0) {

@@ -57,7 +57,6 @@ class HapticsSession {
     haptics::TickRecord rate_from_{};  ///< the tick the rate is measured from
     double rate_hz_ = 0.0;
     std::int64_t started_ns_ = 0;
-    bool backup_thread_ = false;
     LocateHint hint_;
 };
 

@@ -8,7 +8,7 @@ namespace sandtin {
 
 namespace {
 
-// Below this many edges a test of the whole polygon costs about what a band look-up does.
+// Small polygons are tested whole: with one band per two edges, a band would hold most of them.
 constexpr std::size_t kBandedMinimum = 8;
 
 }  // namespace

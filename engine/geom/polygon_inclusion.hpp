@@ -29,14 +29,9 @@ class PolygonInclusion {
         return banded_test(p);
     }
 
-    /// True when the closed triangle abc meets the region: a corner inside (as contains()
-    /// decides) or an edge of the polygon touching the triangle. The faces that meet a
+    /// True when an edge of the polygon touches the closed triangle abc. A triangle meets the
+    /// region when a corner is inside (contains()) or this holds; the faces that meet a
     /// connected polygon form a connected set, so a walk over them reaches every vertex inside.
-    bool meets_triangle(Vec2 a, Vec2 b, Vec2 c) const {
-        return contains(a) || contains(b) || contains(c) || border_meets_triangle(a, b, c);
-    }
-    /// True when an edge of the polygon touches the closed triangle abc (for walks that know
-    /// their corners' answers already).
     bool border_meets_triangle(Vec2 a, Vec2 b, Vec2 c) const;
 
     std::span<const Vec2> polygon() const { return polygon_; }

@@ -7,8 +7,7 @@
 
 namespace sandtin::gpu {
 
-Image::Image(const VulkanContext& context, const ImageSpec& spec)
-    : format_(spec.format), extent_(spec.extent) {
+Image::Image(const VulkanContext& context, const ImageSpec& spec) {
     const VkDevice device = context.device();
     const std::string what = spec.what;
     if (spec.extent.width == 0 || spec.extent.height == 0)

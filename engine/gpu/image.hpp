@@ -34,22 +34,16 @@ class Image {
             image_.reset();
             memory_ = std::move(other.memory_);
             image_ = std::move(other.image_);
-            format_ = other.format_;
-            extent_ = other.extent_;
         }
         return *this;
     }
 
     VkImage get() const { return image_.get(); }
-    VkFormat format() const { return format_; }
-    VkExtent2D extent() const { return extent_; }
     explicit operator bool() const { return static_cast<bool>(image_); }
 
   private:
     UniqueMemory memory_;  // declared first: destroyed after the image it backs
     UniqueImage image_;
-    VkFormat format_ = VK_FORMAT_UNDEFINED;
-    VkExtent2D extent_{};
 };
 
 /// A 2D view of all of `image` (level 0, layer 0) through `aspect` (colour or depth).

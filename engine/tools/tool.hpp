@@ -97,7 +97,6 @@ class ToolFrame {
     ToolFrame(const Tool& tool, const ToolPlacement& at)
         : tool_(&tool), at_(at), cos_(std::cos(at.angle)), sin_(std::sin(at.angle)) {}
 
-    const ToolPlacement& placement() const { return at_; }
     Vec2 to_world(Vec2 local) const {
         return at_.centre + Vec2{cos_ * local.x - sin_ * local.y, sin_ * local.x + cos_ * local.y};
     }

@@ -28,6 +28,9 @@ struct GrooveRun {
     bool valid = false;
 };
 
+constexpr double kBottom = -0.1;   ///< the tool's lowest point (m)
+constexpr double kSpacing = 0.01;  ///< distance between stamps along the stroke (m)
+
 /// The seeds' tool: a circle of radius 0.04 with 12 control points.
 ToolSpec seeds_circle() {
     ToolSpec spec;
@@ -50,9 +53,9 @@ GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validat
     SculptContext context(tin.domain());
     context.settings.clear_before_imprint = clear_before_imprint;
     StrokeSettings settings;
-    settings.spacing = 0.01;
+    settings.spacing = kSpacing;
     settings.depth_mode = DepthMode::Absolute;
-    settings.depth = -0.1;
+    settings.depth = kBottom;
     const double half = 0.5 * trace;
     const std::vector<Vec2> path = {{0.5 - half, 0.5 - half}, {0.5 + half, 0.5 + half}};
 
@@ -110,14 +113,15 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     j["bench"] = "groove";
     const ToolSpec spec = config.tool.empty() ? seeds_circle() : load_tool_asset(config.tool);
     const Tool tool = Tool::build(spec);
+    j["tool"] = {{"name", spec.name},
+                 {"bounding_radius", tool.shape().bounding_radius},
+                 {"bottom", kBottom},
+                 {"spacing", kSpacing}};
     if (config.tool.empty()) {
-        j["tool"] = {{"radius", 0.04}, {"control_points", 12}, {"bottom", -0.1}, {"spacing", 0.01}};
+        j["tool"]["radius"] = spec.radius;
+        j["tool"]["control_points"] = spec.control_points;
     } else {
-        j["tool"] = {{"asset", config.tool},
-                     {"name", spec.name},
-                     {"bounding_radius", tool.shape().bounding_radius},
-                     {"bottom", -0.1},
-                     {"spacing", 0.01}};
+        j["tool"]["asset"] = config.tool;
     }
     const std::vector<std::size_t> sizes = config.quick
                                                ? std::vector<std::size_t>{1000, 10000}

@@ -36,9 +36,6 @@ TEST_F(GpuTest, ClearedImageReadsBackThroughItsBarriers) {
         ctx(), {VK_FORMAT_R32_SFLOAT, extent,
                 VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "cleared"});
     ASSERT_TRUE(image);
-    EXPECT_EQ(image.format(), VK_FORMAT_R32_SFLOAT);
-    EXPECT_EQ(image.extent().width, 5u);
-    EXPECT_EQ(image.extent().height, 3u);
     const VkDeviceSize bytes = VkDeviceSize{extent.width} * extent.height * sizeof(float);
     Buffer down(ctx(), bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     ctx().submit_and_wait([&](VkCommandBuffer cb) {
@@ -84,7 +81,6 @@ TEST_F(GpuTest, DepthImageReassignedWithItsViewStaysValidationClean) {
     view = create_image_view(ctx().device(), depth.get(), VK_FORMAT_D32_SFLOAT,
                              VK_IMAGE_ASPECT_DEPTH_BIT, "depth");
     EXPECT_TRUE(view);
-    EXPECT_EQ(depth.extent().width, 32u);
     Image moved = std::move(depth);
     EXPECT_TRUE(moved);
     EXPECT_FALSE(depth);  // NOLINT(bugprone-use-after-move): moved-from is empty by contract

@@ -205,12 +205,18 @@ TEST(VolumeLedger, TracksEveryChangeOfVolume) {
     EXPECT_NEAR(tin.volume_ledger() - before, 0.25 * tin.vertices().lumped_area[v.index()], 1e-14);
 }
 
-TEST(Queries, VerticesInDiscMatchBruteForce) {
-    const Rect d = Rect::from_size(6.0, 4.0);
-    Tin tin = Tin::random_points(d, 800, 9, knolls);
+/// 800 random points over 6 x 4 m with one constraint across the middle, which the region
+/// walks must cross (constrained edges do not stop them).
+Tin walk_terrain(std::uint64_t seed) {
+    Tin tin = Tin::random_points(Rect::from_size(6.0, 4.0), 800, seed, knolls);
     const VertexId a = tin.insert_point({2.0, 2.0}, 1.0);
     const VertexId b = tin.insert_point({4.0, 2.5}, 1.0);
-    tin.insert_constraint(a, b, 1);  // constrained edges must not stop the walk
+    tin.insert_constraint(a, b, 1);
+    return tin;
+}
+
+TEST(Queries, VerticesInDiscMatchBruteForce) {
+    Tin tin = walk_terrain(9);
     std::mt19937_64 rng = test::test_rng(9);
     std::uniform_real_distribution<double> ux(-1.0, 7.0);
     std::uniform_real_distribution<double> uy(-1.0, 5.0);
@@ -239,11 +245,7 @@ TEST(Queries, VerticesInDiscMatchBruteForce) {
 // which a walk over faces with a corner inside would not cross), polygons partly outside the
 // domain and one around it.
 TEST(Queries, VerticesInPolygonMatchContainsEverywhere) {
-    const Rect d = Rect::from_size(6.0, 4.0);
-    Tin tin = Tin::random_points(d, 800, 19, knolls);
-    const VertexId a = tin.insert_point({2.0, 2.0}, 1.0);
-    const VertexId b = tin.insert_point({4.0, 2.5}, 1.0);
-    tin.insert_constraint(a, b, 1);  // constrained edges must not stop the walk
+    const Tin tin = walk_terrain(19);
     const std::vector<Vec2> lambda = {{0.0, 0.0}, {0.15, 0.0}, {0.5, 0.4},  {0.85, 0.0},
                                       {1.0, 0.0}, {0.3, 1.0},  {0.15, 1.0}, {0.42, 0.55}};
     auto placed = [](const std::vector<Vec2>& poly, Vec2 at, double scale) {
