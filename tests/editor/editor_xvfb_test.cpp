@@ -49,15 +49,21 @@ EditorRun run_editor(const std::string& name, const std::string& ops,
     std::ofstream(script) << R"({"ops": )" << ops << "}";
     const fs::path stats = kWork / (name + ".stats.json");
     const fs::path log = kWork / (name + ".log");
+    // Our own X authority file: without -f, xvfb-run keeps it in a temporary directory whose
+    // removal at exit can fail, and then xvfb-run exits with 5 instead of the editor's code
+    // (seen once on CI, on a run whose editor had exited with 1 as expected).
+    const fs::path auth = kWork / (name + ".Xauthority");
     fs::remove(stats);
-    const std::string cmd = "xvfb-run -a -s '-screen 0 1280x720x24' " SANDTIN_EDITOR_BINARY
-                            " --validation" +
+    fs::remove(auth);
+    const std::string cmd = "xvfb-run -a -f " + auth.string() +
+                            " -s '-screen 0 1280x720x24' " SANDTIN_EDITOR_BINARY " --validation" +
                             std::string(" --settings ") + (kWork / "settings.json").string() +
                             " --script " + script.string() + " --stats " + stats.string() + " " +
                             extra + " > " + log.string() + " 2>&1";
     EditorRun r;
     const int status = std::system(cmd.c_str());
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    fs::remove(auth);
     std::ifstream l(log);
     r.log.assign(std::istreambuf_iterator<char>(l), {});
     if (std::ifstream s(stats); s) r.stats = nlohmann::json::parse(s);
@@ -320,7 +326,7 @@ TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarde
     // Without an autosave, answering the prompt is a clear error.
     const EditorRun e =
         run_editor("no-autosave", R"([{"op": "recovery", "choice": "recover"}])", scene.string());
-    EXPECT_EQ(e.exit_code, 1);
+    EXPECT_EQ(e.exit_code, 1) << e.log;
     EXPECT_NE(e.log.find("no autosave"), std::string::npos) << e.log;
 }
 
@@ -464,13 +470,13 @@ TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
 
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
-    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.exit_code, 1) << r.log;
     EXPECT_NE(r.log.find("unknown op 'explode'"), std::string::npos) << r.log;
     const EditorRun p = run_editor("bad-physics", R"([{"op": "set", "physics": "tpu"}])");
-    EXPECT_EQ(p.exit_code, 1);
+    EXPECT_EQ(p.exit_code, 1) << p.log;
     EXPECT_NE(p.log.find("physics must be cpu or gpu"), std::string::npos) << p.log;
     const EditorRun s = run_editor("bad-scene", kFlat, (kWork / "missing.sandtin").string());
-    EXPECT_EQ(s.exit_code, 1);
+    EXPECT_EQ(s.exit_code, 1) << s.log;
     EXPECT_NE(s.log.find("does not exist"), std::string::npos) << s.log;
 }
 
