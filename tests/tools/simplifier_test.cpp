@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -215,6 +217,46 @@ TEST(Simplifier, PlanarityResidualIsZeroOnAPlaneAndPositiveOnABump) {
                           std::vector<double>{kSlope({0.3, 0.3}), kSlope({0.6, 0.4})});
     tin.insert_constraint(ids[0], ids[1], 1);
     EXPECT_EQ(planarity_residual(tin, ids[0]), std::numeric_limits<double>::infinity());
+}
+
+/// Max vertical distance of v and its ring from their least-squares plane, by a singular value
+/// decomposition of the unscaled design matrix: an independent fit.
+double residual_by_svd(const Tin& tin, VertexId v) {
+    std::vector<VertexId> ring;
+    tin.neighbours(v, ring);
+    ring.push_back(v);
+    const Eigen::Index n = static_cast<Eigen::Index>(ring.size());
+    Eigen::MatrixXd a(n, 3);
+    Eigen::VectorXd b(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const VertexId w = ring[static_cast<std::size_t>(i)];
+        const Vec2 d = tin.position(w) - tin.position(v);
+        a.row(i) << d.x, d.y, 1.0;
+        b(i) = tin.height(w) - tin.height(v);
+    }
+    const Eigen::VectorXd coef = a.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(b);
+    return ((a * coef) - b).cwiseAbs().maxCoeff();
+}
+
+TEST(Simplifier, PlanarityResidualMatchesAnIndependentFitOnCurvedSand) {
+    const auto dune = [](Vec2 p) { return 0.02 * std::sin(9.0 * p.x) * std::cos(7.0 * p.y); };
+    // Ordinary stars, which the normal equations fit, and stars squeezed 10^7 times flatter
+    // than they are long (a grid of 0.1 x 10^-8 cells), whose pivot ratio sends them to QR.
+    const Tin random = Tin::random_points(kUnit, 3000, 41, dune);
+    const Tin squeezed = Tin::regular_grid(Rect::from_size(1.0, 1e-7), 10, 10, [](Vec2 p) {
+        return 0.02 * std::sin(9.0 * p.x) + 1e12 * p.y * p.y;
+    });
+    for (const Tin* tin : {&random, &squeezed}) {
+        std::size_t compared = 0;
+        for (VertexId v : live_ids(*tin)) {
+            if (tin->is_boundary(v)) continue;
+            const double expected = residual_by_svd(*tin, v);
+            EXPECT_NEAR(planarity_residual(*tin, v), expected, 1e-9 * expected + 1e-15)
+                << "vertex " << v.index();
+            ++compared;
+        }
+        EXPECT_GT(compared, 60u);
+    }
 }
 
 TEST(Simplifier, NeverRemovesBorderOrConstrainedVertices) {
