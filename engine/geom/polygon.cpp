@@ -106,14 +106,11 @@ NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon) {
     double best2 = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
         const Vec2 a = polygon[i];
-        const Vec2 ab = polygon[(i + 1) % n] - a;
-        const double len2 = length_squared(ab);
-        const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-        const double d2 = length_squared(p - (a + ab * t));
-        if (d2 < best2) {
-            best2 = d2;
+        const SegmentProjection s = project_on_segment(p, a, polygon[(i + 1) % n] - a);
+        if (s.distance_squared < best2) {
+            best2 = s.distance_squared;
             best.index = i;
-            best.t = t;
+            best.t = s.t;
         }
     }
     best.distance = std::sqrt(best2);

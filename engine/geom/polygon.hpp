@@ -70,4 +70,16 @@ struct NearestEdge {
 };
 NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon);
 
+/// The closest point of the segment from a to a + ab to p: parameter t in [0, 1] and squared
+/// distance (m²). nearest_edge and NearEdgeIndex share it, so their answers are the same bits.
+struct SegmentProjection {
+    double t = 0.0;
+    double distance_squared = 0.0;
+};
+inline SegmentProjection project_on_segment(Vec2 p, Vec2 a, Vec2 ab) {
+    const double len2 = length_squared(ab);
+    const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return {t, length_squared(p - (a + ab * t))};
+}
+
 }  // namespace sandtin

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geom/near_edge_index.hpp"
 #include "geom/polygon.hpp"
+#include "geom/polygon_inclusion.hpp"
 #include "tools/slivers.hpp"
 
 namespace sandtin {
@@ -72,10 +74,15 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         reach = std::max(reach, distance(p, centre));
     std::vector<std::pair<VertexId, double>> ks;
     const VertexArrays& va = tin.vertices();
+    // A dense terrain has thousands of vertices under and around the tool, and its rim
+    // hundreds of edges: both tests are indexed (same answers as point_in_polygon and
+    // nearest_edge).
+    const PolygonInclusion under_tool(outer, centre);
+    const NearEdgeIndex rim(outer, width);
     for (VertexId v : tin.vertices_in_disc(centre, reach + width, hint)) {
         const Vec2 p = va.position[v.value];
-        if (point_in_polygon(p, outer)) continue;
-        const NearestEdge edge = nearest_edge(p, outer);
+        if (under_tool.contains(p)) continue;
+        const NearestEdge edge = rim.nearest_within_reach(p);
         const double best = edge.distance;
         const double w =
             (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
