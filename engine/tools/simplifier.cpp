@@ -41,12 +41,11 @@ double residual_by_qr(std::span<const Vec2> d, std::span<const double> dz) {
 }  // namespace
 
 double planarity_residual(const Tin& tin, VertexId v) {
-    if (tin.is_boundary(v) || tin.is_on_constraint(v))
-        return std::numeric_limits<double>::infinity();
     static thread_local std::vector<VertexId> ring;
     static thread_local std::vector<Vec2> d;
     static thread_local std::vector<double> dz;
-    tin.neighbours(v, ring);
+    const Tin::VertexStar star = tin.star(v, ring);  // one walk for all three questions
+    if (star.boundary || star.constrained) return std::numeric_limits<double>::infinity();
     const VertexArrays& va = tin.vertices();
     const Vec2 origin = va.position[v.value];
     const double z0 = va.height[v.value];
