@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "geom/near_edge_index.hpp"
 #include "geom/polygon.hpp"
+#include "geom/polygon_inclusion.hpp"
 
 namespace sandtin {
 
@@ -183,19 +185,18 @@ std::vector<Vec2> interior_lattice(std::span<const Vec2> polygon, double spacing
     std::vector<Vec2> out;
     if (!(spacing > 0.0) || polygon.size() < 3) return out;
     const Rect box = bounding_box(polygon);
+    // A mesh or heightfield profile puts thousands of lattice points inside a contour of
+    // hundreds of edges: both tests are indexed.
+    const PolygonInclusion inside(polygon, box.centre());
+    const NearEdgeIndex border(polygon, 0.5 * spacing);
     const double row = spacing * std::sqrt(3.0) / 2.0;
     int r = 0;
     for (double y = box.min.y + 0.5 * row; y < box.max.y; y += row, ++r) {
         const double shift = (r % 2 == 0) ? 0.0 : 0.5 * spacing;
         for (double x = box.min.x + 0.5 * spacing + shift; x < box.max.x; x += spacing) {
             const Vec2 p{x, y};
-            if (!point_in_polygon(p, polygon)) continue;
-            bool clear = true;
-            for (std::size_t i = 0; i < polygon.size() && clear; ++i) {
-                clear = distance_to_segment(p, polygon[i], polygon[(i + 1) % polygon.size()]) >=
-                        0.5 * spacing;
-            }
-            if (clear) out.push_back(p);
+            if (inside.contains(p) && !(border.nearest_within_reach(p).distance < 0.5 * spacing))
+                out.push_back(p);
         }
     }
     return out;
