@@ -324,10 +324,14 @@ class EditFinisher {
             ++local.vertices_created;
         }
         double affected_area = 0.0;
+        const double snap2 = m.snap_distance * m.snap_distance;
+        near_snapped_.clear();
         for (std::uint32_t id : affected_.ids()) {
             if (!va.alive[id]) continue;
             m.note_topology(id);
-            const double a_new = m.recompute_lumped_area(id);
+            bool near_snapped = false;
+            const double a_new = lumped_area_and_snap_test(id, snap2, near_snapped);
+            if (near_snapped) near_snapped_.push_back(id);
             const double a_old = va.lumped_area[id];
             if (a_new != a_old) {
                 dv.add((a_new - a_old) * va.height[id]);
@@ -370,7 +374,6 @@ class EditFinisher {
         // shift carries over to such neighbours. Under VolumePolicy::Conserve the pair meets at
         // its area-weighted mean height instead, so levelling moves no volume: the physics moves
         // the two vertices independently, and a copy would leak what it moved between them.
-        const double snap2 = m.snap_distance * m.snap_distance;
         auto level_slivers = [&](std::uint32_t id, bool take_neighbour) {
             auto vc = m.cdt.incident_vertices(m.handle(id));
             const auto done = vc;
@@ -405,9 +408,10 @@ class EditFinisher {
             if (va.alive[id]) level_slivers(id, true);
         }
         if (policy == VolumePolicy::Conserve && local.volume_change != 0.0) {
-            for (std::uint32_t id : affected_.ids()) {
-                if (va.alive[id]) level_slivers(id, false);
-            }
+            // Only vertices with a neighbour within the snap distance have a sliver to level
+            // (found while their areas were summed, in the same order as affected_).
+            for (std::uint32_t id : near_snapped_)
+                level_slivers(id, false);
         }
         m.volume_ledger.add(net_change);
         affected_.clear();
@@ -446,12 +450,39 @@ class EditFinisher {
         m.va.height[id] = n > 0 ? sum / n : 0.0;
     }
 
+    /// recompute_lumped_area, and in the same walk around the vertex whether a neighbour lies
+    /// within the snap distance (squared, m²): one walk instead of two for each vertex an
+    /// edit re-triangulates.
+    double lumped_area_and_snap_test(std::uint32_t id, double snap2, bool& near_snapped) const {
+        const Tin::Impl& m = impl_;
+        const Vh v = m.handle(id);
+        const Vec2 p = m.va.position[id];
+        auto fc = m.cdt.incident_faces(v);
+        const auto done = fc;
+        double area = 0.0;
+        do {
+            if (m.cdt.is_infinite(fc)) continue;
+            const Vec2 a = m.va.position[fc->vertex(0)->id];
+            const Vec2 b = m.va.position[fc->vertex(1)->id];
+            const Vec2 c = m.va.position[fc->vertex(2)->id];
+            area += triangle_area(a, b, c);
+            // Every finite neighbour is a corner of a finite face around v.
+            for (const Vec2 q : {a, b, c}) {
+                const double d2 = length_squared(q - p);
+                if (d2 <= snap2 && d2 > 0.0) near_snapped = true;
+            }
+        } while (++fc != done);
+        return area / 3.0;
+    }
+
     Tin::Impl& impl_;
     std::size_t prepared_born_ = 0;  ///< born_vertices[0, prepared_born_) are initialised
     static thread_local DirtySet affected_;
+    static thread_local std::vector<std::uint32_t> near_snapped_;
 };
 
 thread_local DirtySet EditFinisher::affected_;
+thread_local std::vector<std::uint32_t> EditFinisher::near_snapped_;
 
 Fh jump_start_face(const Tin::Impl& m, Vec2 p) {
     // Mücke et al.'s jump-and-walk: start from the closest of ~n^(1/3) sampled vertices.
