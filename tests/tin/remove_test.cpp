@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -131,6 +132,52 @@ TEST(RemoveVertex, ConservePolicyKeepsVolume) {
         EXPECT_EQ(tin.vertex_count(), 804u - 600u);
         expect_sound(tin);
     }
+}
+
+// Two vertices closer than the snap distance (left where nearly coincident rims crossed) must
+// keep one height, or the sliver between them is a vertical wall. A removal's compensation
+// shifts the removed vertex's ring; a ring vertex with such a twin outside the ring meets it at
+// their area-weighted mean, which moves no volume.
+TEST(RemoveVertex, ConserveShiftKeepsTwinsWithinTheSnapDistanceLevel) {
+    const Rect domain = Rect::from_size(4.0, 4.0);
+    const Vec2 centre{2.0, 2.0};
+    const Vec2 ring_point{2.3, 2.0};
+    // Beyond ring_point as seen from the centre, so not a neighbour of the centre vertex.
+    const Vec2 twin{2.3 + 0.25 * default_snap_distance(domain), 2.0};
+    std::vector<Vec2> positions = {centre, ring_point, twin};
+    for (int k = 1; k < 6; ++k) {
+        const double a = k * std::numbers::pi / 3.0;
+        positions.push_back(centre + Vec2{0.3 * std::cos(a), 0.3 * std::sin(a)});
+    }
+    for (int k = 0; k < 12; ++k) {
+        const double a = (k + 0.5) * std::numbers::pi / 6.0;
+        positions.push_back(centre + Vec2{1.2 * std::cos(a), 1.2 * std::sin(a)});
+    }
+    std::vector<double> heights(positions.size(), 0.5);
+    heights[0] = 1.5;  // a peak: removing it loses volume, which the ring makes up
+    Tin tin = Tin::from_points(domain, positions, heights);
+    const auto id_at = [&](Vec2 p) {
+        for (VertexId v : test::live_ids(tin)) {
+            if (tin.position(v) == p) return v;
+        }
+        ADD_FAILURE() << "no vertex at (" << p.x << ", " << p.y << ")";
+        return VertexId{};
+    };
+    const VertexId peak = id_at(centre), a = id_at(ring_point), b = id_at(twin);
+    ASSERT_TRUE(a.valid() && b.valid());
+    std::vector<VertexId> ring;
+    tin.neighbours(peak, ring);
+    ASSERT_NE(std::find(ring.begin(), ring.end(), a), ring.end());
+    ASSERT_EQ(std::find(ring.begin(), ring.end(), b), ring.end());
+
+    const double v0 = tin.volume();
+    EditReport report;
+    ASSERT_TRUE(tin.remove_vertex(peak, VolumePolicy::Conserve, &report));
+    ASSERT_NE(report.volume_change, 0.0);
+    EXPECT_GT(tin.height(a), 0.5);  // the ring was raised
+    EXPECT_EQ(tin.height(a), tin.height(b));
+    EXPECT_LE(std::abs(tin.volume() - v0), 1e-12 * v0);
+    expect_sound(tin);
 }
 
 TEST(RemoveVertex, ReportPolicyReportsMeasuredChangeAndKeepsHeights) {
