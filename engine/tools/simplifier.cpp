@@ -1,6 +1,7 @@
 #include "tools/simplifier.hpp"
 
 #include "tools/slivers.hpp"
+#include "util/visit_marks.hpp"
 
 #include <Eigen/Dense>
 
@@ -130,11 +131,17 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
     // The neighbourhoods the removals re-triangulate: a compensation shift there can part
     // vertices a rounding error apart (crossings of nearly coincident old rims), which are
     // levelled again at the end without moving volume.
+    // Each ring vertex is kept once (neighbouring removals share most of their rings), so
+    // the sort below costs the distinct vertices.
     std::vector<VertexId> rings, ring_of_one;
+    static thread_local VisitMarks in_rings;
+    in_rings.clear();
     auto remember_ring = [&](VertexId v) {
         if (settings.volume_policy != VolumePolicy::Conserve) return;
         tin.neighbours(v, ring_of_one);
-        rings.insert(rings.end(), ring_of_one.begin(), ring_of_one.end());
+        for (VertexId w : ring_of_one) {
+            if (in_rings.insert(w.value)) rings.push_back(w);
+        }
     };
     auto remove_one = [&](VertexId v) {
         EditReport edit;
@@ -193,7 +200,6 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
     }
     if (!rings.empty()) {
         std::sort(rings.begin(), rings.end());
-        rings.erase(std::unique(rings.begin(), rings.end()), rings.end());
         level_slivers_conserving(tin, rings);
     }
     return report;
