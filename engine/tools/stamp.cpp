@@ -11,6 +11,7 @@
 #include "tools/extrusion.hpp"
 #include "tools/imprint_activity.hpp"
 #include "tools/slivers.hpp"
+#include "tools/straying_samples.hpp"
 
 namespace sandtin {
 
@@ -354,12 +355,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
 
     // 4. Inner contour at the profile's heights.
     enforce(inner, inner_h, inner_active);
-    if (!lattice.empty()) {
-        std::vector<double> lattice_h(lattice.size());
-        for (std::size_t i = 0; i < lattice.size(); ++i)
-            lattice_h[i] = imprint(lattice[i], lattice_terrain[i]);
-        tin.insert_points(lattice, lattice_h, hint, &edit);
-    }
 
     // 5. Every vertex inside I follows the profile.
     std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
@@ -368,6 +363,17 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         if (!in_inner.contains(p)) continue;
         const double h = imprint(p, va.height[v.value]);
         if (h != va.height[v.value]) tin.set_height(v, h);
+    }
+    // A curved profile's lattice adds vertices where the surface now strays from the imprint
+    // by more than half the simplification tolerance (the simplifier may later take up to the
+    // tolerance itself), coarse to fine (straying_samples.hpp).
+    if (!lattice.empty()) {
+        std::vector<double> lattice_h(lattice.size());
+        for (std::size_t i = 0; i < lattice.size(); ++i)
+            lattice_h[i] = imprint(lattice[i], lattice_terrain[i]);
+        const std::vector<VertexId> added = insert_straying_samples(
+            tin, lattice, lattice_h, 0.5 * context.settings.simplify.tolerance, hint, &edit);
+        region.insert(region.end(), added.begin(), added.end());
     }
     // Vertices left in the thin band between I and O by earlier edits: where both contours
     // are constrained next to them they are removed, so the wall is the ramp from the profile

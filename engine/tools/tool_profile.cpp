@@ -20,7 +20,7 @@ ToolProfile ToolProfile::half_sphere(double radius) {
     ToolProfile p;
     p.kind_ = Kind::HalfSphere;
     p.radius_ = radius;
-    p.sample_spacing_ = radius / 4.0;
+    p.sample_spacing_ = radius / 16.0;
     return p;
 }
 

@@ -292,6 +292,41 @@ void stamp_asset(const std::string& name) {
     EXPECT_GT(below, 10u) << "the tool should have pressed into the sand";
 }
 
+// After one stamp of a smooth curved tool, the surface inside I (away from I's outline, where
+// the profile drops to the rim) follows the imprint, min(sand, underside), within twice the
+// simplification tolerance d_m: lattice points go in where the surface strays by more than
+// d_m / 2, and the simplifier may take up to d_m. Sampled between the vertices too, which is
+// what an artist sees. (The rake is left out: its tines are steps, which a lattice of any
+// spacing only brackets.)
+TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
+    for (const char* name : {"foot", "ball"}) {
+        SCOPED_TRACE(name);
+        const Tool tool = Tool::build(load_tool_asset(name));
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, test::rolling_sand);
+        SculptContext context(tin.domain());
+        const Tin before = Tin::from_snapshot(tin.snapshot());
+        ToolPlacement at{{0.5, 0.5}, 0.6, 0.0};
+        at.bottom = *tin.height_at(at.centre) - 0.01;
+        ASSERT_TRUE(stamp(tin, tool, at, context, Vec2{1.0, 0.0}).applied);
+        const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
+        const double d_m = context.settings.simplify.tolerance;
+        LocateHint hint_before, hint_after;
+        std::size_t checked = 0;
+        double worst = 0.0;
+        for (Vec2 p : test::random_points_in(Rect{{0.3, 0.3}, {0.7, 0.7}}, 60000, 5)) {
+            if (!test::inside_by(p, inner, 0.004)) continue;
+            const double under = tool.underside(at, p);
+            if (!std::isfinite(under)) continue;
+            const double want = std::min(*before.height_at(p, &hint_before), under);
+            worst = std::max(worst, std::abs(*tin.height_at(p, &hint_after) - want));
+            ++checked;
+        }
+        EXPECT_GT(checked, 1000u);
+        EXPECT_LE(worst, 2.0 * d_m);
+        EXPECT_TRUE(mesh_is_sound(tin));
+    }
+}
+
 TEST(ToolProfile, ShippedFootAndRakeBuildAndStamp) {
     stamp_asset("foot");
     stamp_asset("rake");
