@@ -15,8 +15,7 @@ constexpr double kMaxCellsPerSide = 256.0;
 
 }  // namespace
 
-NearEdgeIndex::NearEdgeIndex(std::span<const Vec2> polygon, double reach)
-    : polygon_(polygon), reach_(reach) {
+NearEdgeIndex::NearEdgeIndex(std::span<const Vec2> polygon, double reach) : polygon_(polygon) {
     const std::size_t n = polygon.size();
     Rect box = bounding_box(polygon);
     if (n == 0 || !(reach > 0.0) || !std::isfinite(reach) || box.empty() ||

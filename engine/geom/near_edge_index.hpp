@@ -23,11 +23,8 @@ class NearEdgeIndex {
     /// whose distance is at least the reach (+infinity when no edge comes near p's cell).
     NearestEdge nearest_within_reach(Vec2 p) const;
 
-    double reach() const { return reach_; }
-
   private:
     std::span<const Vec2> polygon_;
-    double reach_ = 0.0;
     Rect grid_;  ///< the cells' extent: the polygon's box grown by the reach
     double cells_per_metre_ = 0.0;
     std::uint32_t columns_ = 0;
