@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "geom/plane_fit.hpp"
 #include "geom/polygon.hpp"
 #include "geom/polygon_inclusion.hpp"
 #include "tin/detail/cgal_tin.hpp"
@@ -1526,46 +1527,6 @@ bool Tin::remove_border_vertex(VertexId v, VolumePolicy policy, EditReport* repo
     finisher.finish(policy, {}, report);
     return true;
 }
-
-namespace {
-
-/// Least-squares plane z = a x + b y + c through points (relative to `origin` for conditioning);
-/// returns the largest vertical residual, or +infinity when the fit is degenerate.
-double plane_fit_residual(const std::vector<Vec2>& xy, const std::vector<double>& z, Vec2 origin) {
-    double sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, n = 0, sxz = 0, syz = 0, sz = 0;
-    for (std::size_t i = 0; i < xy.size(); ++i) {
-        const Vec2 p = xy[i] - origin;
-        sxx += p.x * p.x;
-        sxy += p.x * p.y;
-        syy += p.y * p.y;
-        sx += p.x;
-        sy += p.y;
-        n += 1.0;
-        sxz += p.x * z[i];
-        syz += p.y * z[i];
-        sz += z[i];
-    }
-    // Solve [sxx sxy sx; sxy syy sy; sx sy n] (a b c) = (sxz syz sz) by Cramer's rule.
-    const double det =
-        sxx * (syy * n - sy * sy) - sxy * (sxy * n - sy * sx) + sx * (sxy * sy - syy * sx);
-    const double scale = (sxx + syy + n) * (sxx + syy + n) * (sxx + syy + n);
-    if (!(std::abs(det) > 1e-14 * scale)) return std::numeric_limits<double>::infinity();
-    const double a =
-        (sxz * (syy * n - sy * sy) - sxy * (syz * n - sy * sz) + sx * (syz * sy - syy * sz)) / det;
-    const double b =
-        (sxx * (syz * n - sz * sy) - sxz * (sxy * n - sy * sx) + sx * (sxy * sz - syz * sx)) / det;
-    const double c =
-        (sxx * (syy * sz - syz * sy) - sxy * (sxy * sz - syz * sx) + sxz * (sxy * sy - syy * sx)) /
-        det;
-    double worst = 0.0;
-    for (std::size_t i = 0; i < xy.size(); ++i) {
-        const Vec2 p = xy[i] - origin;
-        worst = std::max(worst, std::abs(a * p.x + b * p.y + c - z[i]));
-    }
-    return worst;
-}
-
-}  // namespace
 
 bool Tin::remove_patch(std::span<const VertexId> vertices, VolumePolicy policy,
                        EditReport* report) {

@@ -1,14 +1,12 @@
 #include "tools/simplifier.hpp"
 
+#include "geom/plane_fit.hpp"
 #include "tools/slivers.hpp"
 #include "util/visit_marks.hpp"
-
-#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <span>
 
 namespace sandtin {
 
@@ -23,28 +21,8 @@ void SimplifyReport::accumulate(const SimplifyReport& o) {
     max_volume_change = std::max(max_volume_change, o.max_volume_change);
 }
 
-namespace {
-
-/// The least-squares plane through the origin row and `n - 1` scaled neighbours by column-
-/// pivoting QR: slower, but exact enough for any star shape.
-double residual_by_qr(std::span<const Vec2> d, std::span<const double> dz) {
-    const Eigen::Index n = static_cast<Eigen::Index>(d.size());
-    Eigen::MatrixX3d a(n, 3);
-    Eigen::VectorXd b(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        a.row(i) << d[static_cast<std::size_t>(i)].x, d[static_cast<std::size_t>(i)].y, 1.0;
-        b(i) = dz[static_cast<std::size_t>(i)];
-    }
-    const Eigen::Vector3d coef = a.colPivHouseholderQr().solve(b);
-    return ((a * coef) - b).cwiseAbs().maxCoeff();
-}
-
-}  // namespace
-
 double planarity_residual(const Tin& tin, VertexId v) {
     static thread_local std::vector<VertexId> ring;
-    static thread_local std::vector<Vec2> d;
-    static thread_local std::vector<double> dz;
     const Tin::VertexStar star = tin.star(v, ring);  // one walk for all three questions
     if (star.boundary || star.constrained) return std::numeric_limits<double>::infinity();
     const VertexArrays& va = tin.vertices();
@@ -55,41 +33,15 @@ double planarity_residual(const Tin& tin, VertexId v) {
     for (VertexId w : ring)
         spread = std::max(spread, std::abs(va.height[w.value] - z0));
     if (spread == 0.0) return 0.0;
-    // Scale x, y to unit size so the fit is well conditioned for any terrain scale.
-    double scale2 = 0.0;
-    for (VertexId w : ring)
-        scale2 = std::max(scale2, length_squared(va.position[w.value] - origin));
-    if (!(scale2 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double inv_scale = 1.0 / std::sqrt(scale2);
-    // Row 0 is the vertex itself, at the origin.
-    d.assign(1, Vec2{});
+    static thread_local std::vector<Vec2> xy;
+    static thread_local std::vector<double> dz;
+    xy.assign(1, origin);
     dz.assign(1, 0.0);
     for (VertexId w : ring) {
-        d.push_back((va.position[w.value] - origin) * inv_scale);
+        xy.push_back(va.position[w.value]);
         dz.push_back(va.height[w.value] - z0);
     }
-    // The 3x3 normal equations of z = a x + b y + c. A star surrounds its vertex, so the
-    // scaled x and y columns are independent and of unit size, and the system is well
-    // conditioned; a star squeezed nearly onto a line (pivot ratio below 1e-8, where the
-    // squared condition number would cost digits) goes to QR instead.
-    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < d.size(); ++i) {
-        const Eigen::Vector3d row(d[i].x, d[i].y, 1.0);
-        m.selfadjointView<Eigen::Lower>().rankUpdate(row);
-        rhs += row * dz[i];
-    }
-    const Eigen::LDLT<Eigen::Matrix3d, Eigen::Lower> ldlt(m);
-    const Eigen::Vector3d pivots = ldlt.vectorD().cwiseAbs();
-    if (ldlt.info() != Eigen::Success || !(pivots.minCoeff() > 1e-8 * pivots.maxCoeff()))
-        return residual_by_qr(d, dz);
-    const Eigen::Vector3d coef = ldlt.solve(rhs);
-    double residual = 0.0;
-    for (std::size_t i = 0; i < d.size(); ++i) {
-        residual =
-            std::max(residual, std::abs(coef(0) * d[i].x + coef(1) * d[i].y + coef(2) - dz[i]));
-    }
-    return residual;
+    return plane_fit_residual(xy, dz, origin);
 }
 
 void Simplifier::enqueue(VertexId v) {
