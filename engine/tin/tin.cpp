@@ -326,12 +326,16 @@ class EditFinisher {
         }
         double affected_area = 0.0;
         const double snap2 = m.snap_distance * m.snap_distance;
+        // Only a compensation shift (VolumePolicy::Conserve) levels the re-triangulated
+        // vertices' slivers below, so only then are their near neighbours looked for.
+        const bool find_snapped = policy == VolumePolicy::Conserve;
         near_snapped_.clear();
         for (std::uint32_t id : affected_.ids()) {
             if (!va.alive[id]) continue;
             m.note_topology(id);
             bool near_snapped = false;
-            const double a_new = lumped_area_and_snap_test(id, snap2, near_snapped);
+            const double a_new = find_snapped ? lumped_area_and_snap_test(id, snap2, near_snapped)
+                                              : m.recompute_lumped_area(id);
             if (near_snapped) near_snapped_.push_back(id);
             const double a_old = va.lumped_area[id];
             if (a_new != a_old) {
