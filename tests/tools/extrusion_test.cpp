@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geom/polygon.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
 #include "tin/tin.hpp"
@@ -241,6 +242,50 @@ TEST(Extrusion, DepositRidgeAddsExactlyTheVolumeOutsideTheContour) {
     EXPECT_EQ(deposit_ridge(tin, outer, cut, std::nullopt, 0.04, 0.0).deposited, 0.0);
     EXPECT_EQ(deposit_ridge(tin, outer, cut, std::nullopt, 0.0, 1e-5).deposited, 0.0);
     EXPECT_EQ(tin.volume(), v1);
+}
+
+// The ridge raises every vertex outside O within the ridge width of the rim, and no other:
+// the set is checked against a brute-force scan of all vertices (point_in_polygon and
+// nearest_edge), for a circle and a λ far from the border, a rim within the width of the
+// border, and a rim leaving the domain.
+TEST(Extrusion, RidgeRaisesExactlyTheVerticesWithinTheWidthOutsideTheRim) {
+    const std::vector<Vec2> lambda = {{0.045, -0.05},  {0.025, -0.05},  {0.0, 0.002},
+                                      {-0.026, -0.05}, {-0.046, -0.05}, {-0.01, 0.015},
+                                      {-0.028, 0.05},  {-0.008, 0.05}};
+    struct Case {
+        const char* name;
+        std::vector<Vec2> outer;
+    };
+    std::vector<Case> cases;
+    auto placed = [](std::vector<Vec2> shape, Vec2 at) {  // counter-clockwise, moved to `at`
+        for (Vec2& p : shape)
+            p = p + at;
+        if (signed_area(shape) < 0.0) std::reverse(shape.begin(), shape.end());
+        return shape;
+    };
+    cases.push_back({"circle", placed(circle_contour(0.05, 48), {0.5, 0.5})});
+    cases.push_back({"lambda", placed(lambda, {0.4, 0.6})});
+    cases.push_back({"near the border", placed(circle_contour(0.05, 48), {0.5, 0.07})});
+    cases.push_back({"across the border", placed(circle_contour(0.05, 48), {0.5, 0.03})});
+    const double width = 0.04;
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        Tin tin = test::smooth_terrain(kUnit, 40000, 5, test::rolling_sand);
+        const std::vector<double> cut(c.outer.size(), 0.01);
+        std::vector<VertexId> touched;
+        const RidgeReport r =
+            deposit_ridge(tin, c.outer, cut, std::nullopt, width, 1e-5, nullptr, &touched);
+        EXPECT_GT(r.deposited, 0.0);
+        std::vector<VertexId> expected;
+        for (VertexId v : live_ids(tin)) {
+            const Vec2 p = tin.position(v);
+            if (!point_in_polygon(p, c.outer) && nearest_edge(p, c.outer).distance < width)
+                expected.push_back(v);
+        }
+        std::sort(touched.begin(), touched.end());
+        EXPECT_GT(expected.size(), 500u);
+        EXPECT_EQ(touched, expected);
+    }
 }
 
 }  // namespace
