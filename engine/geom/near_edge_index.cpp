@@ -68,28 +68,16 @@ NearEdgeIndex::NearEdgeIndex(std::span<const Vec2> polygon, double reach) : poly
 
 NearestEdge NearEdgeIndex::nearest_within_reach(Vec2 p) const {
     if (cell_start_.empty()) return nearest_edge(p, polygon_);
-    NearestEdge best;
-    best.distance = std::numeric_limits<double>::infinity();
-    if (!grid_.contains(p)) return best;  // farther than the reach from every edge (or NaN)
+    NearestEdgeSearch search(p, polygon_);
+    if (!grid_.contains(p)) return search.result();  // beyond the reach of every edge (or NaN)
     const auto column = static_cast<std::uint32_t>(
         std::min((p.x - grid_.min.x) * cells_per_metre_, static_cast<double>(columns_ - 1)));
     const auto row = static_cast<std::uint32_t>(
         std::min((p.y - grid_.min.y) * cells_per_metre_, static_cast<double>(rows_ - 1)));
     const std::size_t c = static_cast<std::size_t>(row) * columns_ + column;
-    const std::size_t n = polygon_.size();
-    double best2 = std::numeric_limits<double>::infinity();
-    for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        const std::uint32_t i = cell_edge_[k];
-        const Vec2 a = polygon_[i];
-        const SegmentProjection s = project_on_segment(p, a, polygon_[(i + 1) % n] - a);
-        if (s.distance_squared < best2) {
-            best2 = s.distance_squared;
-            best.index = i;
-            best.t = s.t;
-        }
-    }
-    best.distance = std::sqrt(best2);
-    return best;
+    for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
+        search.offer(cell_edge_[k]);
+    return search.result();
 }
 
 }  // namespace sandtin

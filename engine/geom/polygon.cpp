@@ -101,20 +101,10 @@ double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
 }
 
 NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon) {
-    const std::size_t n = polygon.size();
-    NearestEdge best;
-    double best2 = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec2 a = polygon[i];
-        const SegmentProjection s = project_on_segment(p, a, polygon[(i + 1) % n] - a);
-        if (s.distance_squared < best2) {
-            best2 = s.distance_squared;
-            best.index = i;
-            best.t = s.t;
-        }
-    }
-    best.distance = std::sqrt(best2);
-    return best;
+    NearestEdgeSearch search(p, polygon);
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+        search.offer(i);
+    return search.result();
 }
 
 double polygon_perimeter(std::span<const Vec2> polygon) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 
 #include "geom/rect.hpp"
@@ -70,16 +71,37 @@ struct NearestEdge {
 };
 NearestEdge nearest_edge(Vec2 p, std::span<const Vec2> polygon);
 
-/// The closest point of the segment from a to a + ab to p: parameter t in [0, 1] and squared
-/// distance (m²). nearest_edge and NearEdgeIndex share it, so their answers are the same bits.
-struct SegmentProjection {
-    double t = 0.0;
-    double distance_squared = 0.0;
+/// The search inside nearest_edge, one offered edge at a time: NearEdgeIndex offers only the
+/// edges of a grid cell, nearest_edge all of them, and both keep the first of equally near
+/// edges, so their answers are the same bits.
+class NearestEdgeSearch {
+  public:
+    NearestEdgeSearch(Vec2 p, std::span<const Vec2> polygon) : p_(p), polygon_(polygon) {}
+    /// Considers edge i, from vertex i to vertex i + 1 (wrapping).
+    void offer(std::size_t i) {
+        const Vec2 a = polygon_[i];
+        const Vec2 ab = polygon_[(i + 1) % polygon_.size()] - a;
+        const double len2 = length_squared(ab);
+        const double t = len2 > 0.0 ? std::clamp(dot(p_ - a, ab) / len2, 0.0, 1.0) : 0.0;
+        const double d2 = length_squared(p_ - (a + ab * t));
+        if (d2 < best2_) {
+            best2_ = d2;
+            best_.index = i;
+            best_.t = t;
+        }
+    }
+    /// The nearest edge offered; distance +infinity when none was.
+    NearestEdge result() const {
+        NearestEdge r = best_;
+        r.distance = std::sqrt(best2_);
+        return r;
+    }
+
+  private:
+    Vec2 p_;
+    std::span<const Vec2> polygon_;
+    NearestEdge best_;
+    double best2_ = std::numeric_limits<double>::infinity();
 };
-inline SegmentProjection project_on_segment(Vec2 p, Vec2 a, Vec2 ab) {
-    const double len2 = length_squared(ab);
-    const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return {t, length_squared(p - (a + ab * t))};
-}
 
 }  // namespace sandtin
