@@ -95,15 +95,24 @@ SlotRecord Tin::Impl::read_face(const detail::Face& f) const {
     return r;
 }
 
-double Tin::Impl::recompute_lumped_area(std::uint32_t id) const {
+double Tin::Impl::recompute_lumped_area(std::uint32_t id, double snap2, bool* near_snapped) const {
     const Vh v = handle(id);
+    const Vec2 p = va.position[id];
     auto fc = cdt.incident_faces(v);
     const auto done = fc;
     double area = 0.0;
     do {
-        if (!cdt.is_infinite(fc)) {
-            area += triangle_area(va.position[fc->vertex(0)->id], va.position[fc->vertex(1)->id],
-                                  va.position[fc->vertex(2)->id]);
+        if (cdt.is_infinite(fc)) continue;
+        const Vec2 a = va.position[fc->vertex(0)->id];
+        const Vec2 b = va.position[fc->vertex(1)->id];
+        const Vec2 c = va.position[fc->vertex(2)->id];
+        area += triangle_area(a, b, c);
+        if (near_snapped != nullptr) {
+            // Every finite neighbour is a corner of a finite face around v.
+            for (const Vec2 q : {a, b, c}) {
+                const double d2 = length_squared(q - p);
+                if (d2 <= snap2 && d2 > 0.0) *near_snapped = true;
+            }
         }
     } while (++fc != done);
     return area / 3.0;
@@ -334,8 +343,8 @@ class EditFinisher {
             if (!va.alive[id]) continue;
             m.note_topology(id);
             bool near_snapped = false;
-            const double a_new = find_snapped ? lumped_area_and_snap_test(id, snap2, near_snapped)
-                                              : m.recompute_lumped_area(id);
+            const double a_new =
+                m.recompute_lumped_area(id, snap2, find_snapped ? &near_snapped : nullptr);
             if (near_snapped) near_snapped_.push_back(id);
             const double a_old = va.lumped_area[id];
             if (a_new != a_old) {
@@ -453,31 +462,6 @@ class EditFinisher {
             }
         } while (++vc != done);
         m.va.height[id] = n > 0 ? sum / n : 0.0;
-    }
-
-    /// recompute_lumped_area, and in the same walk around the vertex whether a neighbour lies
-    /// within the snap distance (squared, m²): one walk instead of two for each vertex an
-    /// edit re-triangulates.
-    double lumped_area_and_snap_test(std::uint32_t id, double snap2, bool& near_snapped) const {
-        const Tin::Impl& m = impl_;
-        const Vh v = m.handle(id);
-        const Vec2 p = m.va.position[id];
-        auto fc = m.cdt.incident_faces(v);
-        const auto done = fc;
-        double area = 0.0;
-        do {
-            if (m.cdt.is_infinite(fc)) continue;
-            const Vec2 a = m.va.position[fc->vertex(0)->id];
-            const Vec2 b = m.va.position[fc->vertex(1)->id];
-            const Vec2 c = m.va.position[fc->vertex(2)->id];
-            area += triangle_area(a, b, c);
-            // Every finite neighbour is a corner of a finite face around v.
-            for (const Vec2 q : {a, b, c}) {
-                const double d2 = length_squared(q - p);
-                if (d2 <= snap2 && d2 > 0.0) near_snapped = true;
-            }
-        } while (++fc != done);
-        return area / 3.0;
     }
 
     Tin::Impl& impl_;

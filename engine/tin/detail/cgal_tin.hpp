@@ -369,7 +369,11 @@ struct Tin::Impl {
     }
     std::uint32_t corner_id(Vh v) const { return cdt.is_infinite(v) ? kOutsideCorner : v->id; }
     detail::SlotRecord read_face(const detail::Face& f) const;
-    double recompute_lumped_area(std::uint32_t id) const;
+    /// A third of the areas of the finite faces around vertex id (m²). With `near_snapped`,
+    /// the same walk also sets it when a neighbour lies within sqrt(snap2) metres (and leaves
+    /// it alone otherwise).
+    double recompute_lumped_area(std::uint32_t id, double snap2 = 0.0,
+                                 bool* near_snapped = nullptr) const;
     void ensure_vertex_capacity();
     void ensure_slot_capacity();
     /// After a build without events: gives every face a slot, every vertex its lumped area,
