@@ -16,31 +16,10 @@
 #include "geom/near_edge_index.hpp"
 #include "geom/polygon.hpp"
 #include "geom/vec2.hpp"
+#include "support/tool_oracles.hpp"
 
 namespace sandtin {
 namespace {
-
-std::vector<Vec2> circle(Vec2 centre, double radius, int n) {
-    std::vector<Vec2> p;
-    for (int k = 0; k < n; ++k) {
-        const double a = 2.0 * std::numbers::pi * k / n;
-        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
-    }
-    return p;
-}
-
-/// A λ, each edge subdivided into `per_edge` pieces (the rim of a stamp is subdivided so).
-std::vector<Vec2> lambda(int per_edge) {
-    const std::vector<Vec2> corners = {{0.0, 0.0}, {0.15, 0.0}, {0.5, 0.4},  {0.85, 0.0},
-                                       {1.0, 0.0}, {0.3, 1.0},  {0.15, 1.0}, {0.42, 0.55}};
-    std::vector<Vec2> p;
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-        const Vec2 a = corners[i], b = corners[(i + 1) % corners.size()];
-        for (int k = 0; k < per_edge; ++k)
-            p.push_back(a + (b - a) * (static_cast<double>(k) / per_edge));
-    }
-    return p;
-}
 
 struct Tally {
     std::size_t near = 0;  ///< points with an edge nearer than the reach
@@ -101,7 +80,8 @@ std::vector<Vec2> around_the_reach(const std::vector<Vec2>& poly, double reach, 
 
 TEST(NearEdgeIndex, GivesNearestEdgesAnswersWithinTheReach) {
     const std::vector<std::vector<Vec2>> polygons = {
-        circle({0.5, 0.5}, 0.05, 24), circle({0.5, 0.5}, 0.05, 400), lambda(1), lambda(40)};
+        test::regular_polygon({0.5, 0.5}, 0.05, 24), test::regular_polygon({0.5, 0.5}, 0.05, 400),
+        test::densify(test::unit_lambda(), 1), test::densify(test::unit_lambda(), 40)};
     for (const auto& poly : polygons) {
         const Rect box = bounding_box(poly);
         const double side = std::max(box.width(), box.height());
@@ -129,7 +109,7 @@ TEST(NearEdgeIndex, GivesNearestEdgesAnswersWithinTheReach) {
 
 TEST(NearEdgeIndex, DegenerateInput) {
     // Repeated vertices make zero-length edges; nearest_edge handles them and so must the index.
-    std::vector<Vec2> poly = circle({0.0, 0.0}, 1.0, 12);
+    std::vector<Vec2> poly = test::regular_polygon({0.0, 0.0}, 1.0, 12);
     poly.insert(poly.begin() + 3, poly[3]);
     poly.insert(poly.begin() + 7, poly[7]);
     Tally tally;

@@ -4,32 +4,18 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
-
 #include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "geom/plane_fit.hpp"
+#include "support/plane_oracle.hpp"
 
 namespace sandtin {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double residual_by_svd(const std::vector<Vec2>& xy, const std::vector<double>& z) {
-    const auto n = static_cast<Eigen::Index>(xy.size());
-    Eigen::MatrixXd a(n, 3);
-    Eigen::VectorXd b(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const Vec2 p = xy[static_cast<std::size_t>(i)] - xy.front();
-        a.row(i) << p.x, p.y, 1.0;
-        b(i) = z[static_cast<std::size_t>(i)];
-    }
-    const Eigen::VectorXd coef = a.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(b);
-    return ((a * coef) - b).cwiseAbs().maxCoeff();
-}
 
 TEST(PlaneFit, ExactPlanesMissByNothingAtAnyScaleAndOffset) {
     std::mt19937_64 rng(3);
@@ -71,7 +57,7 @@ TEST(PlaneFit, MatchesAnIndependentFitIncludingSqueezedSets) {
                 xy.push_back(p);
                 z.push_back(0.05 * std::sin(3.0 * p.x) + 0.02 * p.y / aspect + 0.001 * u(rng));
             }
-            const double expected = residual_by_svd(xy, z);
+            const double expected = test::plane_residual_by_svd(xy, z);
             EXPECT_NEAR(plane_fit_residual(xy, z, xy.front()), expected, 1e-9 * expected)
                 << "aspect " << aspect << " trial " << trial;
         }

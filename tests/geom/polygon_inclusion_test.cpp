@@ -23,19 +23,7 @@
 namespace sandtin {
 namespace {
 
-std::vector<Vec2> circle(Vec2 centre, double radius, int n) {
-    std::vector<Vec2> p;
-    for (int k = 0; k < n; ++k) {
-        const double a = 2.0 * std::numbers::pi * k / n;
-        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
-    }
-    return p;
-}
-
-/// A λ: a long stroke from bottom right to top left, a short leg from bottom left joining it,
-/// a notch between the legs. Counter-clockwise, concave at the notch and the joint.
-const std::vector<Vec2> kLambda = {{0.0, 0.0}, {0.15, 0.0}, {0.5, 0.4},  {0.85, 0.0},
-                                   {1.0, 0.0}, {0.3, 1.0},  {0.15, 1.0}, {0.42, 0.55}};
+const std::vector<Vec2> kLambda = test::unit_lambda();
 
 struct Counts {
     std::size_t checked = 0;
@@ -123,13 +111,13 @@ Counts check_everywhere(const std::vector<Vec2>& poly, Vec2 centre, std::uint64_
 
 TEST(PolygonInclusion, CirclePolygonCentredInside) {
     const Vec2 c{0.5, 0.5};
-    const auto poly = circle(c, 0.1, 64);
+    const auto poly = test::regular_polygon(c, 0.1, 64);
     const Counts n = check_everywhere(poly, c, 11);
     EXPECT_GT(n.inside, 5000u);
     EXPECT_GT(n.outside, 50000u);
     // Off-centre inside, and a polygon far from the origin (rounding scales with coordinates).
     check_everywhere(poly, {0.57, 0.46}, 12);
-    const auto far = circle({1200.0, -800.0}, 0.25, 48);
+    const auto far = test::regular_polygon({1200.0, -800.0}, 0.25, 48);
     check_everywhere(far, {1200.1, -800.05}, 13);
 }
 
@@ -151,14 +139,14 @@ TEST(PolygonInclusion, CentreOutside) {
     EXPECT_GT(n.inside, 5000u);
     // Far away from the polygon: nearly everything is decided by the two radii.
     check_everywhere(kLambda, {3.0, -2.0}, 32);
-    check_everywhere(circle({0.5, 0.5}, 0.1, 64), {0.5, 0.75}, 33);
+    check_everywhere(test::regular_polygon({0.5, 0.5}, 0.1, 64), {0.5, 0.75}, 33);
 }
 
 TEST(PolygonInclusion, CentreOnTheBorder) {
     // On a vertex and on an edge: the clear disc is empty, so every answer is the full test's.
     check_everywhere(kLambda, kLambda[2], 41);
     check_everywhere(kLambda, (kLambda[4] + kLambda[5]) * 0.5, 42);
-    const auto poly = circle({0.5, 0.5}, 0.1, 64);
+    const auto poly = test::regular_polygon({0.5, 0.5}, 0.1, 64);
     check_everywhere(poly, poly[7], 43);
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <span>
@@ -124,6 +125,24 @@ inline double border_distance(std::span<const Vec2> p, std::span<const Vec2> q) 
     for (Vec2 v : q)
         best = std::min(best, distance_to_border(v, p));
     return best;
+}
+
+/// A regular n-gon inscribed in the circle of `radius` about `centre`, counter-clockwise.
+inline std::vector<Vec2> regular_polygon(Vec2 centre, double radius, int n) {
+    std::vector<Vec2> p;
+    for (int k = 0; k < n; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / n;
+        p.push_back({centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)});
+    }
+    return p;
+}
+
+/// A λ in the unit square: a long stroke from bottom right to top left, a short leg from
+/// bottom left joining it, a notch between the legs. Counter-clockwise, concave at the notch
+/// and the joint.
+inline std::vector<Vec2> unit_lambda() {
+    return {{0.0, 0.0}, {0.15, 0.0}, {0.5, 0.4},  {0.85, 0.0},
+            {1.0, 0.0}, {0.3, 1.0},  {0.15, 1.0}, {0.42, 0.55}};
 }
 
 /// `per_edge` points on each edge of a closed polygon (its vertices included).

@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -15,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/plane_oracle.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
 #include "tin/tin.hpp"
@@ -219,23 +218,18 @@ TEST(Simplifier, PlanarityResidualIsZeroOnAPlaneAndPositiveOnABump) {
     EXPECT_EQ(planarity_residual(tin, ids[0]), std::numeric_limits<double>::infinity());
 }
 
-/// Max vertical distance of v and its ring from their least-squares plane, by a singular value
-/// decomposition of the unscaled design matrix: an independent fit.
+/// Max vertical distance of v and its ring from their least-squares plane, by the independent
+/// SVD fit.
 double residual_by_svd(const Tin& tin, VertexId v) {
     std::vector<VertexId> ring;
     tin.neighbours(v, ring);
-    ring.push_back(v);
-    const Eigen::Index n = static_cast<Eigen::Index>(ring.size());
-    Eigen::MatrixXd a(n, 3);
-    Eigen::VectorXd b(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        const VertexId w = ring[static_cast<std::size_t>(i)];
-        const Vec2 d = tin.position(w) - tin.position(v);
-        a.row(i) << d.x, d.y, 1.0;
-        b(i) = tin.height(w) - tin.height(v);
+    std::vector<Vec2> xy = {tin.position(v)};
+    std::vector<double> z = {tin.height(v)};
+    for (VertexId w : ring) {
+        xy.push_back(tin.position(w));
+        z.push_back(tin.height(w));
     }
-    const Eigen::VectorXd coef = a.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(b);
-    return ((a * coef) - b).cwiseAbs().maxCoeff();
+    return test::plane_residual_by_svd(xy, z);
 }
 
 TEST(Simplifier, PlanarityResidualMatchesAnIndependentFitOnCurvedSand) {
