@@ -6,13 +6,13 @@
 // every structural property is verified before CGAL sees the data.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
-#include <unordered_set>
 
 #include "tin/detail/cgal_tin.hpp"
+#include "tin/detail/half_edge_twins.hpp"
 #include "util/compensated_sum.hpp"
 
 namespace sandtin {
@@ -46,10 +46,6 @@ std::vector<std::uint32_t> handout_order(const IdAllocator& a) {
     const auto& pending = a.pending_list();
     out.insert(out.end(), pending.rbegin(), pending.rend());
     return out;
-}
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-    return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
 double triangle_area(Vec2 a, Vec2 b, Vec2 c) {
@@ -138,7 +134,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
     check_free_list(s.vertex_free_list, vertex_capacity, vertex_used, "vertex");
 
     const std::size_t slot_count = s.slots.size();
-    if (slot_count >= (1u << 31)) corrupt("too many triangle slots");
+    // Three half-edges per slot must be numbered in 32 bits (detail::pair_half_edges).
+    if (slot_count >= (1u << 30)) corrupt("too many triangle slots");
     std::vector<std::uint8_t> slot_used(slot_count, 0);
     for (std::size_t t = 0; t < slot_count; ++t) {
         const auto& c = s.slots[t];
@@ -190,11 +187,10 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
     auto vertex_handle = [&](std::uint32_t c) {
         return c == kOutsideCorner ? infinite : m.handle(c);
     };
-    std::unordered_map<std::uint64_t, std::pair<Fh, int>> half_edges;
-    half_edges.reserve(slot_count * 3);
     std::vector<Fh> faces;
+    std::vector<std::array<std::uint32_t, 3>> corners;  // the vertex at infinity numbered n
     faces.reserve(slot_count);
-    auto key_of = [](std::uint32_t c) { return c == kOutsideCorner ? 0xFFFFFFFEu : c; };
+    corners.reserve(slot_count);
     for (std::uint32_t t = 0; t < slot_count; ++t) {
         if (!slot_used[t]) continue;
         const auto& c = s.slots[t];
@@ -202,30 +198,26 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         f->slot = t;
         m.events.face_of_slot[t] = &*f;
         faces.push_back(f);
-        for (int i = 0; i < 3; ++i) {
-            // Half-edge opposite corner i, oriented counter-clockwise in this face.
-            const std::uint32_t a = key_of(c[static_cast<std::size_t>(CdtPlus::ccw(i))]);
-            const std::uint32_t b = key_of(c[static_cast<std::size_t>(CdtPlus::cw(i))]);
-            if (!half_edges.emplace(edge_key(a, b), std::make_pair(f, i)).second) {
-                corrupt("two triangles share the same oriented edge");
-            }
-            f->vertex(i)->set_face(f);
+        std::array<std::uint32_t, 3> numbered{};
+        for (std::size_t i = 0; i < 3; ++i) {
+            numbered[i] = c[i] == kOutsideCorner ? vertex_capacity : c[i];
+            f->vertex(static_cast<int>(i))->set_face(f);
         }
+        corners.push_back(numbered);
     }
-    for (const Fh f : faces) {
-        for (int i = 0; i < 3; ++i) {
-            const std::uint32_t a =
-                key_of(f->vertex(CdtPlus::ccw(i)) == infinite ? kOutsideCorner
-                                                              : f->vertex(CdtPlus::ccw(i))->id);
-            const std::uint32_t b =
-                key_of(f->vertex(CdtPlus::cw(i)) == infinite ? kOutsideCorner
-                                                             : f->vertex(CdtPlus::cw(i))->id);
-            const auto twin = half_edges.find(edge_key(b, a));
-            if (twin == half_edges.end())
-                corrupt("the triangles do not close up (an edge has no twin)");
-            f->set_neighbor(i, twin->second.first);
-        }
+    std::vector<std::uint32_t> twin;
+    switch (detail::pair_half_edges(corners, vertex_capacity + 1, twin)) {
+        case detail::TwinProblem::RepeatedHalfEdge:
+            corrupt("two triangles share the same oriented edge");
+        case detail::TwinProblem::MissingTwin:
+            corrupt("the triangles do not close up (an edge has no twin)");
+        case detail::TwinProblem::CornerOutOfRange:  // the corners were checked above
+            corrupt("a triangle names an unknown vertex");
+        case detail::TwinProblem::None:
+            break;
     }
+    for (std::size_t k = 0; k < twin.size(); ++k)
+        faces[k / 3]->set_neighbor(static_cast<int>(k % 3), faces[twin[k] / 3]);
     if (faces.empty()) corrupt("no triangles");
     // Every vertex's star must be one cycle of faces (a manifold), else CGAL's circulators
     // would loop or skip.

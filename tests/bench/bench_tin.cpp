@@ -3,9 +3,11 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 #include "raw_cgal.hpp"
 #include "tin/tin.hpp"
+#include "tin/tin_snapshot.hpp"
 
 namespace sandtin::bench {
 
@@ -203,6 +205,40 @@ nlohmann::json bench_constraints(const BenchConfig& config) {
             {"cgal_vertices_after", cgal.vertex_count()}};
 }
 
+/// Rebuilding a terrain from its snapshot (what loading a session does after parsing the
+/// file), split into the rebuild and the full validity check that ends it.
+nlohmann::json bench_restore(const BenchConfig& config) {
+    nlohmann::json rows = nlohmann::json::array();
+    const std::vector<std::size_t> sizes =
+        config.quick ? std::vector<std::size_t>{10000} : std::vector<std::size_t>{100000, 1000000};
+    for (std::size_t n : sizes) {
+        TinOptions options;
+        options.track_changes = false;
+        const Tin original = Tin::random_points(
+            Rect::from_size(1, 1), n, 11, [](Vec2 p) { return 0.1 * p.x * p.y; }, options);
+        CpuStopwatch snap_watch;
+        const TinSnapshot snapshot = original.snapshot();
+        const double snapshot_ms = snap_watch.ms();
+        std::vector<double> restore, validate;
+        std::size_t vertices = 0;
+        for (int rep = 0; rep < 3; ++rep) {
+            CpuStopwatch w;
+            const Tin restored = Tin::from_snapshot(snapshot, options);
+            restore.push_back(w.ms());
+            CpuStopwatch v;
+            if (!restored.check_valid().ok()) throw std::runtime_error("bench restore: invalid");
+            validate.push_back(v.ms());
+            vertices = restored.vertex_count();
+        }
+        rows.push_back({{"points", n},
+                        {"vertices", vertices},
+                        {"snapshot_cpu_ms", snapshot_ms},
+                        {"restore_cpu_ms_median", median(restore)},
+                        {"check_valid_cpu_ms_median", median(validate)}});
+    }
+    return rows;
+}
+
 }  // namespace
 
 nlohmann::json bench_tin(const BenchConfig& config) {
@@ -213,6 +249,7 @@ nlohmann::json bench_tin(const BenchConfig& config) {
     j["locate"] = bench_locate(config);
     j["remove"] = bench_remove(config);
     j["constraints"] = bench_constraints(config);
+    j["restore"] = bench_restore(config);
     return j;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// `sandtin bench tin`: the TIN core against raw CGAL.
+// `sandtin bench tin`: the TIN core against raw CGAL, and restoring a terrain from its snapshot.
 
 #include <nlohmann/json.hpp>
 
