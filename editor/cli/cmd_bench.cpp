@@ -20,7 +20,9 @@ int run_bench(const std::vector<std::string>& raw) {
         return run_bench_gpu(std::vector<std::string>(raw.begin() + 1, raw.end()));
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--tool", 1}});
     args.require_positionals(
-        1, "sandtin bench (tin | groove [--tool NAME] | import | history) [--quick] [--json]");
+        1,
+        "sandtin bench (tin | groove [--tool NAME] | import | history | erosion | gpu | haptics) "
+        "[--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
     const std::string which = args.positionals()[0];
@@ -39,7 +41,7 @@ int run_bench(const std::vector<std::string>& raw) {
         result = bench::bench_history(config);
     } else {
         throw UsageError("unknown benchmark '" + which +
-                         "' (available: tin, groove, import, history)");
+                         "' (available: tin, groove, import, history, erosion, gpu, haptics)");
     }
     std::cout << result.dump(2) << "\n";
     return 0;

@@ -20,7 +20,8 @@ commands:
   run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--physics cpu|gpu] [--json]
   import  heightmap to TIN:   sandtin import FILE --max-error E [--max-points N] -o scene.sandtin
   export  mesh or map:        sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr)
-  bench   benchmarks (JSON):  sandtin bench (tin | groove | import | erosion | gpu) [--quick]
+  bench   benchmarks (JSON):  sandtin bench (tin | groove | import | history | erosion | gpu | haptics)
+                              [--quick] [--json]; every benchmark and its options: README.md
   haptics live editing with a haptic device driven over UDP by a driver process:
                               sandtin haptics serve -o out.sandtin [--port P] [--record R]
   stress  random operations, invariants checked after each:
