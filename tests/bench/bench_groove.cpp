@@ -1,7 +1,10 @@
 #include "bench_groove.hpp"
 
 #include <cmath>
+#include <functional>
+#include <memory>
 
+#include "physics/sand_physics.hpp"
 #include "tin/tin.hpp"
 #include "tools/stroke.hpp"
 #include "tools/tool_json.hpp"
@@ -20,6 +23,11 @@ struct GrooveRun {
     /// at 10^6 points hundreds per stamp, the part of a stamp's work that grows with density.
     double removed_per_stamp_median = 0.0;
     double cleared_per_stamp_median = 0.0;
+    /// With erosion between stamps (kErosionIterations after each, then the simplification of
+    /// what it moved, as a script's stroke with "erode": true does); 0 without.
+    double erosion_ms = 0.0;
+    double erosion_per_stamp_median_ms = 0.0;
+    std::size_t erosion_vertex_updates = 0;
     std::size_t stamps = 0;
     std::size_t vertices_before = 0;
     std::size_t vertices_after = 0;
@@ -30,6 +38,8 @@ struct GrooveRun {
 
 constexpr double kBottom = -0.1;   ///< the tool's lowest point (m)
 constexpr double kSpacing = 0.01;  ///< distance between stamps along the stroke (m)
+/// Relaxation iterations after each stamp when the groove erodes (a script stroke's default).
+constexpr int kErosionIterations = 4;
 
 /// The seeds' tool: a circle of radius 0.04 with 12 control points.
 ToolSpec seeds_circle() {
@@ -45,13 +55,18 @@ ToolSpec seeds_circle() {
 /// (0.5 - L/2)(1, 1) to (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the
 /// diagonal. Stamps are 1 cm apart: for the circle r/4, so consecutive footprints overlap by
 /// 7/8 and the walls are smooth to 0.3 mm.
+/// With `erode`, dry sand relaxes (the default sequential schedule) for kErosionIterations
+/// after every stamp, and what it moved is simplified; its time is kept apart from the
+/// stamp's enforcement and simplification.
 GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validate,
-                     bool clear_before_imprint = true) {
+                     bool clear_before_imprint = true, bool erode = false) {
     TinOptions options;
     options.track_changes = false;
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), n, 2009, {}, options);
     SculptContext context(tin.domain());
     context.settings.clear_before_imprint = clear_before_imprint;
+    std::unique_ptr<SandPhysics> physics;
+    if (erode) physics = std::make_unique<SandPhysics>(tin, MaterialTable::presets());
     StrokeSettings settings;
     settings.spacing = kSpacing;
     settings.depth_mode = DepthMode::Absolute;
@@ -62,9 +77,26 @@ GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validat
     GrooveRun run;
     run.vertices_before = tin.vertex_count();
     std::vector<StampReport> stamps;
+    std::vector<double> erosion;
+    std::vector<VertexId> moved;
+    std::function<void(const StampReport&)> after_stamp;
+    if (physics) {
+        after_stamp = [&](const StampReport&) {
+            Stopwatch e;
+            moved.clear();
+            run.erosion_vertex_updates += physics->step(kErosionIterations, &moved).vertex_updates;
+            context.simplifier.enqueue(moved);
+            context.simplifier.run(tin, context.settings.simplify);
+            erosion.push_back(e.ms());
+        };
+    }
     Stopwatch w;
-    const StampReport total = apply_stroke(tin, tool, path, settings, context, &stamps);
+    const StampReport total =
+        apply_stroke(tin, tool, path, settings, context, &stamps, after_stamp);
     run.total_ms = w.ms();
+    for (double ms : erosion)
+        run.erosion_ms += ms;
+    run.erosion_per_stamp_median_ms = median(erosion);
     run.enforce_ms = total.enforce_ms;
     run.simplify_ms = total.simplify_ms;
     std::vector<double> per;
@@ -94,7 +126,6 @@ nlohmann::json to_json(const GrooveRun& r) {
             {"total_ms", r.total_ms},
             {"enforce_ms", r.enforce_ms},
             {"simplify_ms", r.simplify_ms},
-            {"erosion_ms", nullptr},
             {"per_stamp_median_ms", r.per_stamp_median_ms},
             {"per_stamp_p90_ms", r.per_stamp_p90_ms},
             {"removed_per_stamp_median", r.removed_per_stamp_median},
@@ -103,6 +134,20 @@ nlohmann::json to_json(const GrooveRun& r) {
             {"vertices_after", r.vertices_after},
             {"triangles_touched", r.triangles_touched},
             {"constrained_edges_after", r.constrained_edges_after},
+            {"valid", r.valid}};
+}
+
+/// A groove with erosion: the stamps' own times, the relaxation's apart.
+nlohmann::json erosion_json(const GrooveRun& r) {
+    return {{"erosion_iterations_per_stamp", kErosionIterations},
+            {"erosion_ms", r.erosion_ms},
+            {"erosion_per_stamp_median_ms", r.erosion_per_stamp_median_ms},
+            {"erosion_vertex_updates", r.erosion_vertex_updates},
+            {"enforce_ms", r.enforce_ms},
+            {"simplify_ms", r.simplify_ms},
+            {"per_stamp_median_ms", r.per_stamp_median_ms},
+            {"total_ms", r.total_ms},
+            {"vertices_after", r.vertices_after},
             {"valid", r.valid}};
 }
 
@@ -153,6 +198,10 @@ nlohmann::json bench_groove(const BenchConfig& config) {
             {"total_ms", plain_mid.total_ms},
             {"vertices_after", plain_mid.vertices_after},
             {"per_stamp_ratio", mid.per_stamp_median_ms / plain_mid.per_stamp_median_ms}};
+        // Once more with erosion after every stamp (one run: the relaxation's share is what
+        // it adds, not a target).
+        const GrooveRun eroded = run_groove(tool, n, 0.8, true, true, true);
+        row["with_erosion"] = erosion_json(eroded);
         row["points"] = n;
         row["repetitions"] = reps;
         row["valid"] = runs.front().valid && runs.back().valid;
@@ -171,6 +220,7 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         std::sort(runs.begin(), runs.end(),
                   [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
         nlohmann::json row = to_json(runs[runs.size() / 2]);
+        row["with_erosion"] = erosion_json(run_groove(tool, n, trace, false, true, true));
         row["trace"] = trace;
         row["points"] = n;
         by_trace.push_back(row);

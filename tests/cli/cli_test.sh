@@ -199,6 +199,16 @@ scenario_bench() {
     check_eq "bench groove λ valid" "$(json bench_lambda.out /by_size/1/valid)" true
     holds "bench groove λ stamps" "a > 0 && b > 0" "$(json bench_lambda.out /by_size/1/stamps)" \
         "$(json bench_lambda.out /by_size/1/per_stamp_median_ms)"
+    # The same groove eroding after every stamp: its walls stand steeper than the angle of
+    # repose, so the relaxation must move sand, and the terrain must stay valid.
+    check_eq "bench groove λ eroded valid" "$(json bench_lambda.out /by_size/1/with_erosion/valid)" true
+    holds "bench groove λ erosion" "a > 0 && b > 0" \
+        "$(json bench_lambda.out /by_size/1/with_erosion/erosion_vertex_updates)" \
+        "$(json bench_lambda.out /by_size/1/with_erosion/erosion_ms)"
+    # Restoring from a snapshot rebuilds every vertex (the four corners come on top).
+    holds "bench tin restore" "a == 10000 && b == 10004 && c > 0" \
+        "$(json bench_json.out /restore/0/points)" "$(json bench_json.out /restore/0/vertices)" \
+        "$(json bench_json.out /restore/0/restore_cpu_ms_median)"
     expect_error bench_bad_tool "nosuchtool" bench groove --quick --tool nosuchtool
     expect_error bench_tool_elsewhere "--tool applies to 'bench groove' only" bench tin --tool lambda
 }
