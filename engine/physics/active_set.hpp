@@ -55,11 +55,18 @@ class ActiveSet {
         }
         list_.resize(out);
     }
-    /// Drops an id (the vertex died).
-    void remove(std::uint32_t v) {
-        if (!contains(v)) return;
-        bits_[v >> 6] &= ~(std::uint64_t{1} << (v & 63u));
-        std::erase(list_, v);
+    /// Drops ids (their vertices died), keeping the order of the rest; ids that are not
+    /// members are ignored. One pass over the list for the whole batch: a stamp removes
+    /// hundreds of vertices from a groove that is still settling, and erasing them one by one
+    /// was O(removed x active) (at 10^6 points a third of each relaxation step).
+    void remove(std::span<const std::uint32_t> vs) {
+        bool any = false;
+        for (std::uint32_t v : vs) {
+            if (!contains(v)) continue;
+            bits_[v >> 6] &= ~(std::uint64_t{1} << (v & 63u));
+            any = true;
+        }
+        if (any) std::erase_if(list_, [this](std::uint32_t v) { return !contains(v); });
     }
     /// Renames every member v to new_id[v] (ids must be in range and distinct), keeping the
     /// list order and the quiet counts: the relaxation continues exactly as before in the new

@@ -180,10 +180,11 @@ void SandPhysics::sync() {
     }
     apply_topology(changes.topology);
     const bool copies = !numbering_.identity();
+    std::vector<std::uint32_t> died;  // local ids, leaving the active set in one batch
     auto refresh = [&](VertexId v) {
         const std::uint32_t l = numbering_.local(v.value);
         if (!va.alive[v.value]) {
-            if (l != VertexNumbering::kNone) active_.remove(l);
+            if (l != VertexNumbering::kNone) died.push_back(l);
             return;
         }
         height_[l] = va.height[v.value];
@@ -207,6 +208,7 @@ void SandPhysics::sync() {
         refresh(v);
     for (VertexId v : changes.topology)
         refresh(v);
+    active_.remove(died);
     if (copies &&
         numbering_.appended() >= std::max<std::size_t>(kRenumberMinimum, numbering_.size() / 4))
         renumber();
