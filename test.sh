@@ -3,7 +3,8 @@
 #   1. Release build, every ctest (GPU on lavapipe, the editor under Xvfb, 5 x 10 000-operation
 #      stress sessions);
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer over the engine rooms' tests;
-#   3. ThreadSanitizer over the threaded parts (haptics loop, multithreaded Jacobi);
+#   3. ThreadSanitizer over the threaded parts (haptics loop, multithreaded Jacobi, the
+#      autosave writer);
 #   4. libFuzzer (clang) on the session loader, every importer, the script parser and the
 #      haptic packet decoder, SANDTIN_FUZZ_SECONDS (default 20) each.
 # Arguments are passed to the first ctest (e.g. ./test.sh -L tin). SANDTIN_TEST_PASSES picks
@@ -49,12 +50,13 @@ if has_pass tsan; then
   section "ThreadSanitizer"
   cmake -S . -B build-tsan -G Ninja "${checking_flags[@]}" -DSANDTIN_TSAN=ON
   cmake --build build-tsan -j"$jobs" --target sandtin_haptics_core_tests sandtin_physics_tests \
-    sandtin_stress_tests
+    sandtin_stress_tests sandtin_io_tests
   export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
   build-tsan/tests/physics/sandtin_physics_tests \
     --gtest_filter='Jacobi.*:JacobiSchedule.*:Randomisation.*'
   build-tsan/tests/stress/sandtin_stress_tests --gtest_filter='Determinism.*'
+  build-tsan/tests/sandtin_io_tests --gtest_filter='Autosave.Writer*'
   unset TSAN_OPTIONS
 fi
 

@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <thread>
 
 #include "io/autosave.hpp"
+#include "io/autosave_writer.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
 
@@ -139,6 +142,106 @@ TEST_F(Autosave, ExplicitSaveRetiresTheAutosave) {
                  std::runtime_error);
     EXPECT_TRUE(fs::exists(autosave_path(scene_)));
     test::expect_snapshots_equal(load_session(scene_).terrain, s.terrain, 1.0);
+}
+
+/// A write hook that holds the first write it sees until released, so a test knows what the
+/// worker is doing while it submits more.
+class HeldWrite {
+  public:
+    WriteInterruption hook() {
+        return [this](std::size_t) {
+            started_ = true;
+            while (!released_)
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            return true;
+        };
+    }
+    void wait_until_started() const {
+        while (!started_)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    void release() { released_ = true; }
+
+  private:
+    std::atomic<bool> started_{false};
+    std::atomic<bool> released_{false};
+};
+
+TEST_F(Autosave, WriterWritesOnItsOwnThread) {
+    const Session s = session_with(30, 1.25);
+    AutosaveWriter writer;
+    writer.submit(scene_, s);
+    writer.flush();
+    EXPECT_EQ(writer.written(), 1u);
+    EXPECT_FALSE(writer.take_error().has_value());
+    EXPECT_FALSE(fs::exists(scene_)) << "an autosave never writes the scene itself";
+    EXPECT_EQ(read_file(autosave_path(scene_)), encode_session(s));
+}
+
+TEST_F(Autosave, WriterKeepsOnlyTheNewestQueuedAutosave) {
+    const Session first = session_with(30, 1.0), second = session_with(40, 2.0),
+                  third = session_with(50, 3.0);
+    HeldWrite held;  // outlives the writer, whose worker calls its hook
+    AutosaveWriter writer;
+    writer.submit(scene_, first, held.hook());
+    held.wait_until_started();
+    writer.submit(scene_, second);  // queued while the first is being written ...
+    writer.submit(scene_, third);   // ... and replaced before it starts
+    held.release();
+    writer.flush();
+    EXPECT_EQ(writer.written(), 2u);
+    EXPECT_EQ(read_file(autosave_path(scene_)), encode_session(third));
+}
+
+TEST_F(Autosave, WriterCancelWaitsForTheWriteInProgressAndDropsTheQueue) {
+    const Session first = session_with(30, 1.0), second = session_with(40, 2.0);
+    HeldWrite held;  // outlives the writer, whose worker calls its hook
+    AutosaveWriter writer;
+    writer.submit(scene_, first, held.hook());
+    held.wait_until_started();
+    writer.submit(scene_, second);
+    std::thread releaser([&held] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        held.release();
+    });
+    writer.cancel();  // returns only once the first write is done
+    releaser.join();
+    EXPECT_EQ(writer.written(), 1u);
+    EXPECT_EQ(read_file(autosave_path(scene_)), encode_session(first));
+    // What the caller does next (an explicit save retiring the autosave) is not undone.
+    save_session_clearing_autosave(scene_, second);
+    writer.flush();
+    EXPECT_FALSE(fs::exists(autosave_path(scene_)));
+    EXPECT_EQ(writer.written(), 1u);
+}
+
+TEST_F(Autosave, WriterKeepsFailuresForTheCallerAndCarriesOn) {
+    const fs::path unwritable = dir_ / "no-such-folder" / "beach.sandtin";
+    AutosaveWriter writer;
+    writer.submit(unwritable, session_with(20, 1.0));
+    writer.flush();
+    const std::optional<std::string> error = writer.take_error();
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find("no-such-folder"), std::string::npos) << *error;
+    EXPECT_FALSE(writer.take_error().has_value()) << "each failure is reported once";
+    EXPECT_EQ(writer.written(), 0u);
+    writer.submit(scene_, session_with(20, 1.0));
+    writer.flush();
+    EXPECT_EQ(writer.written(), 1u);
+    EXPECT_TRUE(fs::exists(autosave_path(scene_)));
+}
+
+TEST_F(Autosave, WriterFinishesTheQueueWhenDestroyed) {
+    const Session first = session_with(30, 1.0), second = session_with(40, 2.0);
+    {
+        HeldWrite held;
+        AutosaveWriter writer;
+        writer.submit(scene_, first, held.hook());
+        held.wait_until_started();
+        writer.submit(scene_, second);
+        held.release();
+    }  // quitting: the queued autosave is written before the writer goes
+    EXPECT_EQ(read_file(autosave_path(scene_)), encode_session(second));
 }
 
 TEST(AutosaveSchedule, DueOnlyAfterAnEditAndTheInterval) {

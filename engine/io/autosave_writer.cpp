@@ -1,0 +1,75 @@
+#include "io/autosave_writer.hpp"
+
+#include <exception>
+#include <utility>
+
+namespace sandtin {
+
+AutosaveWriter::AutosaveWriter() : worker_([this] { run(); }) {}
+
+AutosaveWriter::~AutosaveWriter() {
+    {
+        const std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    work_.notify_all();
+    worker_.join();
+}
+
+void AutosaveWriter::submit(std::filesystem::path scene, Session session,
+                            WriteInterruption interruption) {
+    {
+        const std::lock_guard lock(mutex_);
+        queued_ = Job{std::move(scene), std::move(session), std::move(interruption)};
+    }
+    work_.notify_all();
+}
+
+void AutosaveWriter::cancel() {
+    std::unique_lock lock(mutex_);
+    queued_.reset();
+    idle_.wait(lock, [this] { return !writing_; });
+}
+
+void AutosaveWriter::flush() {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this] { return !writing_ && !queued_; });
+}
+
+std::optional<std::string> AutosaveWriter::take_error() {
+    const std::lock_guard lock(mutex_);
+    return std::exchange(error_, std::nullopt);
+}
+
+std::size_t AutosaveWriter::written() const {
+    const std::lock_guard lock(mutex_);
+    return written_;
+}
+
+void AutosaveWriter::run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        work_.wait(lock, [this] { return stop_ || queued_.has_value(); });
+        if (!queued_) return;  // stopping, and nothing left to write
+        Job job = std::move(*queued_);
+        queued_.reset();
+        writing_ = true;
+        lock.unlock();
+        std::optional<std::string> failure;
+        try {
+            write_autosave(job.scene, job.session, job.interruption);
+        } catch (const std::exception& e) {
+            failure = e.what();
+        }
+        lock.lock();
+        writing_ = false;
+        if (failure) {
+            error_ = std::move(failure);
+        } else {
+            ++written_;
+        }
+        idle_.notify_all();
+    }
+}
+
+}  // namespace sandtin
