@@ -35,6 +35,7 @@
 #include "gpu/vulkan_context.hpp"
 #include "history/history.hpp"
 #include "io/autosave.hpp"
+#include "io/autosave_writer.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
@@ -133,6 +134,8 @@ class App {
     void frame_terrain();
     /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
+        // A new document starts clean (a recovered one is already on disk as the autosave).
+        autosave_schedule_.saved(Clock::now());
         normal_map_.reset();  // it refers to the old mirror
         own_mirror_.reset();
         fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
@@ -146,6 +149,17 @@ class App {
         active_flipped_.clear();
         physics_kick_ = true;
     }
+    /// The document changed: it needs saving, and an autosave once the interval has passed.
+    void mark_edited() {
+        doc_.dirty = true;
+        autosave_schedule_.edited(Clock::now());
+    }
+    /// Autosaves a document with unsaved edits a minute after the first of them (on the
+    /// writer's thread: the frame only takes the snapshot), and shows a failed write.
+    void autosave_if_due();
+    /// Before the document is replaced (New, Open, Import): unsaved edits of a scene with a
+    /// file go to its autosave, which is offered for recovery when the scene is opened again.
+    void keep_unsaved_edits();
     void report(const std::string& message) {
         status_ = message;
         if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
@@ -197,6 +211,10 @@ class App {
     bool mesh_stale_ = true;
     int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)
     std::optional<std::filesystem::path> recovery_for_;
+    AutosaveSchedule autosave_schedule_{std::chrono::seconds(60)};
+    AutosaveWriter autosave_writer_;   ///< finishes a queued autosave when the editor closes
+    bool autosave_in_script_ = false;  ///< a script's "autosave" op turns autosaving on
+    bool autosaves() const { return !options_.scripted() || autosave_in_script_; }
 
     // Haptics panel.
     std::unique_ptr<HapticsSession> haptics_;

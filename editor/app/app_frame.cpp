@@ -81,12 +81,28 @@ void App::update_simulation() {
     times_.push(times_.physics, ms_since(t0));
     times_.push(times_.tool, tool_ms_);
     tool_ms_ = 0.0;
-    // Autosave a dirty document every minute.
-    if (doc_.dirty && !doc_.path.empty() && !options_.scripted() &&
-        Clock::now() - doc_.last_autosave > std::chrono::seconds(60)) {
-        write_autosave(doc_.path, doc_.session());
-        doc_.last_autosave = Clock::now();
+    autosave_if_due();
+}
+
+void App::keep_unsaved_edits() {
+    if (doc_.dirty && !doc_.path.empty() && autosaves()) {
+        autosave_writer_.submit(doc_.path, doc_.session());
+        report("unsaved edits of " + doc_.path.string() + " kept in its autosave");
     }
+    autosave_writer_.flush();
+    if (const std::optional<std::string> error = autosave_writer_.take_error())
+        report("autosave failed: " + *error);
+}
+
+void App::autosave_if_due() {
+    const auto now = Clock::now();
+    if (const std::optional<std::string> error = autosave_writer_.take_error()) {
+        report("autosave failed, will retry: " + *error);
+        autosave_schedule_.edited(now);  // due again one interval from now
+    }
+    if (doc_.path.empty() || !autosaves() || !autosave_schedule_.due(now)) return;
+    autosave_writer_.submit(doc_.path, doc_.session());
+    autosave_schedule_.saved(now);
 }
 
 void App::update_haptics() {

@@ -31,6 +31,7 @@ void App::panel_file() {
     tip("Path used by Open, Save As and Ctrl+S when the scene has no file yet");
     if (ImGui::Button("New")) {
         end_action();
+        keep_unsaved_edits();
         doc_.adopt(default_sandbox(), 1, {});
         document_replaced();
         frame_terrain();
@@ -70,6 +71,7 @@ void App::panel_file() {
         try {
             end_action();
             ImportResult r = import_heightmap(import_buf_, ImportOptions{});
+            keep_unsaved_edits();
             doc_.adopt(std::move(r.tin), 1, {});
             document_replaced();
             frame_terrain();
@@ -197,7 +199,7 @@ void App::edit_material(int index, const Material& m) {
     const MaterialTable before = doc_.materials;
     apply_materials(MaterialTable(std::move(all)));
     undo_log_.push_materials(before, doc_.materials);
-    doc_.dirty = true;
+    mark_edited();
 }
 
 void App::panel_erosion() {
@@ -338,11 +340,12 @@ void App::panel_stats() {
 
 void App::answer_recovery(bool recover) {
     if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
+    autosave_writer_.cancel();  // nothing may rewrite the autosave being recovered or discarded
     if (recover) {
         const Session s = recover_autosave(*recovery_for_);
         doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
                    materials_of(s));
-        doc_.dirty = true;
+        mark_edited();
         document_replaced();
         report("recovered the autosave of " + recovery_for_->string());
     } else {

@@ -16,6 +16,7 @@ namespace sandtin::editor {
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
+//         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
 //            "colour": [r, g, b]}  (the Materials panel's edit: one undo level) ] }
@@ -163,6 +164,12 @@ void App::run_script_op(const nlohmann::json& op) {
         saved_settings_ = settings_;
     } else if (kind == "save") {
         save(op.at("path").get<std::string>());
+    } else if (kind == "autosave") {
+        // A script that asks for an autosave gets autosaving as an interactive session has it
+        // (otherwise scripted runs leave no autosave files behind).
+        autosave_in_script_ = true;
+        end_action();
+        keep_unsaved_edits();
     } else {
         throw std::runtime_error("script: unknown op '" + kind + "'");
     }

@@ -164,14 +164,18 @@ void App::frame_terrain() {
 
 void App::save(const std::filesystem::path& p) {
     end_action();
+    // An autosave still being written would otherwise land after the save retired it.
+    autosave_writer_.cancel();
     save_session_clearing_autosave(p, doc_.session());
     doc_.path = p;
     doc_.dirty = false;
+    autosave_schedule_.saved(Clock::now());
     report("saved " + p.string());
 }
 
 void App::open(const std::filesystem::path& p) {
     end_action();
+    keep_unsaved_edits();
     const Session s = load_session(p);
     doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, p, materials_of(s));
     document_replaced();
@@ -203,14 +207,14 @@ void App::end_action() {
     }
     if (!pending_label_.empty()) {
         if (doc_.history->record(pending_label_)) {
-            doc_.dirty = true;
+            mark_edited();
             undo_log_.push_terrain(pending_label_);
         }
         pending_label_.clear();
     }
     if (erosion_pending_) {
         if (doc_.history->record("erosion")) {
-            doc_.dirty = true;
+            mark_edited();
             undo_log_.push_terrain("erosion");
         }
         erosion_pending_ = false;
@@ -236,7 +240,7 @@ void App::undo() {
     if (!entry->terrain) {
         apply_materials(entry->before);
         report("undo " + entry->label);
-        doc_.dirty = true;
+        mark_edited();
         return;
     }
     const HistoryStep step = doc_.history->undo();
@@ -264,7 +268,7 @@ void App::undo() {
     }
     report(message);
     physics_kick_ = true;
-    doc_.dirty = true;
+    mark_edited();
 }
 
 void App::redo() {
@@ -277,13 +281,13 @@ void App::redo() {
     if (!entry->terrain) {
         apply_materials(entry->after);
         report("redo " + entry->label);
-        doc_.dirty = true;
+        mark_edited();
         return;
     }
     const HistoryStep step = doc_.history->redo();
     report(step.done ? "redo " + step.label : "nothing to redo");
     physics_kick_ = true;
-    doc_.dirty = true;
+    mark_edited();
 }
 
 // ---- Main loop ------------------------------------------------------------------------------
@@ -383,6 +387,7 @@ int App::run() {
             }
         }
         end_action();
+        keep_unsaved_edits();  // closing with unsaved edits: they wait in the autosave
     }
 
     const std::uint64_t validation = context_->validation_message_count();

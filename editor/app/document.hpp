@@ -23,7 +23,6 @@ struct Document {
     std::unique_ptr<History> history;
     MaterialTable materials = MaterialTable::presets();
     bool dirty = false;
-    std::chrono::steady_clock::time_point last_autosave = std::chrono::steady_clock::now();
 
     /// A new terrain with its material table (presets for a new or imported terrain).
     void adopt(Tin t, Generation next_generation, const std::filesystem::path& p,

@@ -23,6 +23,7 @@
 #include "physics/sand_physics.hpp"
 #include "scene_materials.hpp"
 #include "tin/tin.hpp"
+#include "util/atomic_file.hpp"
 
 namespace sandtin {
 namespace {
@@ -328,6 +329,29 @@ TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarde
         run_editor("no-autosave", R"([{"op": "recovery", "choice": "recover"}])", scene.string());
     EXPECT_EQ(e.exit_code, 1) << e.log;
     EXPECT_NE(e.log.find("no autosave"), std::string::npos) << e.log;
+}
+
+TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
+    const fs::path scene = kWork / "unsaved.sandtin";
+    ASSERT_EQ(run_editor("unsaved-base", kFlat, "--save-after " + scene.string()).exit_code, 0);
+    const std::vector<std::uint8_t> scene_bytes = read_file(scene);
+    ASSERT_FALSE(find_autosave(scene).has_value());
+    // Untouched: nothing unsaved, nothing to autosave.
+    ASSERT_EQ(run_editor("unsaved-idle", R"([{"op": "autosave"}])", scene.string()).exit_code, 0);
+    EXPECT_FALSE(find_autosave(scene).has_value());
+
+    const std::string stroke_then_autosave =
+        std::string(kStroke).substr(0, std::string(kStroke).size() - 1) +
+        R"(, {"op": "autosave"}])";
+    const EditorRun r = run_editor("unsaved", stroke_then_autosave, scene.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(read_file(scene), scene_bytes) << "an autosave never touches the scene";
+    const std::optional<AutosaveInfo> info = find_autosave(scene);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_TRUE(info->offer_recovery()) << info->problem;
+    // The stroke and the pour are in it: the terrain differs from the scene's.
+    EXPECT_NE(recover_autosave(scene).terrain.vertices.height,
+              load_session(scene).terrain.vertices.height);
 }
 
 TEST_F(EditorXvfb, ResizingTheWindowRebuildsTheSwapchainCleanly) {
