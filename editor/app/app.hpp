@@ -160,6 +160,10 @@ class App {
     /// Before the document is replaced (New, Open, Import): unsaved edits of a scene with a
     /// file go to its autosave, which is offered for recovery when the scene is opened again.
     void keep_unsaved_edits();
+    /// The interactive main loop: until the window closes.
+    void interactive_loop();
+    /// Writes the settings file after a change; a failure is reported, not thrown.
+    void save_settings_reporting();
     void report(const std::string& message) {
         status_ = message;
         if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)

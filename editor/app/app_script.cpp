@@ -159,9 +159,7 @@ void App::run_script_op(const nlohmann::json& op) {
         }
         edit_material(index, m);
     } else if (kind == "save_settings") {
-        // What the interactive loop does after a panel change.
-        save_settings(settings_path_, settings_);
-        saved_settings_ = settings_;
+        save_settings_reporting();  // what the interactive loop does after a panel change
     } else if (kind == "save") {
         save(op.at("path").get<std::string>());
     } else if (kind == "autosave") {

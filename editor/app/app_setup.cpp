@@ -292,6 +292,39 @@ void App::redo() {
 
 // ---- Main loop ------------------------------------------------------------------------------
 
+void App::save_settings_reporting() {
+    // Tried once per change: a settings file that cannot be written (a read-only home) must
+    // not stop the editor, nor make every frame try again.
+    saved_settings_ = settings_;
+    try {
+        save_settings(settings_path_, settings_);
+    } catch (const std::exception& e) {
+        report(std::string("cannot save the editor settings: ") + e.what());
+    }
+}
+
+void App::interactive_loop() {
+    while (!glfwWindowShouldClose(window_)) {
+        LoopState state;
+        glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
+        state.redraw_pending = redraw_frames_ > 0;
+        state.dragging = left_down_;
+        state.prompt_open = recovery_for_.has_value();
+        state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
+        // Idle or minimised: block until an event arrives; no frame, no submission.
+        if (wants_continuous_frames(state))
+            glfwPollEvents();
+        else
+            glfwWaitEvents();
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window_, &w, &h);
+        if (!can_draw(w, h)) continue;  // minimised: nothing to draw
+        frame(false);
+        if (redraw_frames_ > 0) --redraw_frames_;
+        if (!(settings_ == saved_settings_)) save_settings_reporting();
+    }
+}
+
 int App::run() {
     settings_path_ = options_.settings.empty() ? default_settings_path() : options_.settings;
     std::string problem;
@@ -363,28 +396,18 @@ int App::run() {
             idle_gpu_work = gpu_work() - work_before;
         }
     } else {
-        while (!glfwWindowShouldClose(window_)) {
-            LoopState state;
-            glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
-            state.redraw_pending = redraw_frames_ > 0;
-            state.dragging = left_down_;
-            state.prompt_open = recovery_for_.has_value();
-            state.eroding =
-                settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
-            // Idle or minimised: block until an event arrives; no frame, no submission.
-            if (wants_continuous_frames(state))
-                glfwPollEvents();
-            else
-                glfwWaitEvents();
-            int w = 0, h = 0;
-            glfwGetFramebufferSize(window_, &w, &h);
-            if (!can_draw(w, h)) continue;  // minimised: nothing to draw
-            frame(false);
-            if (redraw_frames_ > 0) --redraw_frames_;
-            if (!(settings_ == saved_settings_)) {
-                save_settings(settings_path_, settings_);
-                saved_settings_ = settings_;
+        try {
+            interactive_loop();
+        } catch (const std::exception&) {
+            // Whatever went wrong, the edits are not lost with the editor: they go to the
+            // autosave first (offered for recovery next time), then the error is reported.
+            try {
+                keep_unsaved_edits();
+            } catch (const std::exception& autosave) {
+                std::fprintf(stderr, "sandtin-editor: emergency autosave failed: %s\n",
+                             autosave.what());
             }
+            throw;
         }
         end_action();
         keep_unsaved_edits();  // closing with unsaved edits: they wait in the autosave
@@ -450,8 +473,7 @@ int App::run() {
             std::fprintf(stderr, "validation: %s\n", m.c_str());
         exit_code = 3;
     }
-    if (!options_.scripted() && !(settings_ == saved_settings_))
-        save_settings(settings_path_, settings_);
+    if (!options_.scripted() && !(settings_ == saved_settings_)) save_settings_reporting();
     shutdown();
     return exit_code;
 }

@@ -354,6 +354,21 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
               load_session(scene).terrain.vertices.height);
 }
 
+TEST_F(EditorXvfb, AnUnwritableSettingsFileIsReportedAndTheSessionGoesOn) {
+    // The settings file's folder is a regular file: writing the settings must fail.
+    const fs::path blocker = kWork / "not-a-folder";
+    std::ofstream(blocker) << "x";
+    const fs::path saved = kWork / "after-settings.sandtin";
+    fs::remove(saved);
+    const std::string ops = R"([{"op": "set", "erosion": false}, {"op": "save_settings"},
+        {"op": "save", "path": ")" +
+                            saved.string() + R"("}])";
+    const EditorRun r =
+        run_editor("unwritable-settings", ops, "--settings " + (blocker / "s.json").string());
+    EXPECT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_TRUE(fs::exists(saved)) << "the script went on after the failed settings write";
+}
+
 TEST_F(EditorXvfb, ResizingTheWindowRebuildsTheSwapchainCleanly) {
     const fs::path shot = kWork / "resized.png";
     const EditorRun r = run_editor("resize",
