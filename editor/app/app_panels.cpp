@@ -341,16 +341,23 @@ void App::panel_stats() {
 void App::answer_recovery(bool recover) {
     if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
     autosave_writer_.cancel();  // nothing may rewrite the autosave being recovered or discarded
-    if (recover) {
-        const Session s = recover_autosave(*recovery_for_);
-        doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
-                   materials_of(s));
-        mark_edited();
-        document_replaced();
-        report("recovered the autosave of " + recovery_for_->string());
-    } else {
-        discard_autosave(*recovery_for_);
-        report("discarded the autosave of " + recovery_for_->string());
+    // The autosave was checked when the scene opened, but it can still fail now (its terrain
+    // may not rebuild, the folder may have become read-only): the scene stays as it is.
+    try {
+        if (recover) {
+            const Session s = recover_autosave(*recovery_for_);
+            doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
+                       materials_of(s));
+            mark_edited();
+            document_replaced();
+            report("recovered the autosave of " + recovery_for_->string());
+        } else {
+            discard_autosave(*recovery_for_);
+            report("discarded the autosave of " + recovery_for_->string());
+        }
+    } catch (const std::exception& e) {
+        report(std::string(recover ? "cannot recover the autosave: " : "cannot discard it: ") +
+               e.what());
     }
     recovery_for_.reset();
 }

@@ -23,6 +23,7 @@
 #include "physics/sand_physics.hpp"
 #include "scene_materials.hpp"
 #include "tin/tin.hpp"
+#include "tin/tin_snapshot.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin {
@@ -351,6 +352,30 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
     EXPECT_TRUE(info->offer_recovery()) << info->problem;
     // The stroke and the pour are in it: the terrain differs from the scene's.
     EXPECT_NE(recover_autosave(scene).terrain.vertices.height,
+              load_session(scene).terrain.vertices.height);
+}
+
+TEST_F(EditorXvfb, AnAutosaveThatCannotBeRebuiltLeavesTheSceneOpen) {
+    const fs::path scene = kWork / "bad-autosave.sandtin";
+    ASSERT_EQ(run_editor("bad-autosave-base", kFlat, "--save-after " + scene.string()).exit_code,
+              0);
+    // The file loads (so recovery is offered) but its triangles do not tile the domain: one
+    // finite triangle turned clockwise.
+    Session damaged = load_session(scene);
+    for (auto& corners : damaged.terrain.slots) {
+        if (corners[0] < kOutsideCorner && corners[1] < kOutsideCorner &&
+            corners[2] < kOutsideCorner) {
+            std::swap(corners[0], corners[1]);
+            break;
+        }
+    }
+    write_autosave(scene, damaged);
+    ASSERT_TRUE(find_autosave(scene)->offer_recovery());
+    const fs::path kept = kWork / "bad-autosave-kept.sandtin";
+    const EditorRun r = run_editor("bad-autosave", R"([{"op": "recovery", "choice": "recover"}])",
+                                   scene.string() + " --save-after " + kept.string());
+    EXPECT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(load_session(kept).terrain.vertices.height,
               load_session(scene).terrain.vertices.height);
 }
 
