@@ -17,7 +17,10 @@ int run_info(const std::vector<std::string>& raw) {
     TinOptions options;
     options.track_changes = false;
     const Tin tin = Tin::from_snapshot(session.terrain, options);
-    const nlohmann::json j = describe_terrain(tin);
+    // Valid: from_snapshot ends with check_valid() and refuses the file on any problem (a
+    // second check cost a quarter of `info` on a 10^6-vertex scene).
+    nlohmann::json j = describe_terrain(tin, false);
+    j["valid"] = true;
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";
     } else {
@@ -27,9 +30,9 @@ int run_info(const std::vector<std::string>& raw) {
                   << "  constrained edges " << j["constrained_edges"] << "\n"
                   << "  volume            " << j["volume"] << " m^3 above z = 0\n"
                   << "  bbox              " << j["bbox"].dump() << "\n"
-                  << "  valid             " << (j["valid"].get<bool>() ? "yes" : "NO") << "\n";
+                  << "  valid             yes\n";
     }
-    return j["valid"].get<bool>() ? 0 : 1;
+    return 0;
 }
 
 }  // namespace sandtin::cli
