@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <deque>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -111,6 +112,18 @@ class App {
     void recovery_prompt();
     /// The recovery prompt's answer (its buttons, or the script's "recovery" op).
     void answer_recovery(bool recover);
+    /// Replaces the document (New, Open, Import) through `action`; when that would drop the
+    /// unsaved edits of an untitled scene (no file, so no autosave to keep them), the user is
+    /// asked first. A scene with a file keeps its edits in the autosave (keep_unsaved_edits).
+    void replace_document(const std::string& what, std::function<void()> action);
+    void discard_prompt();
+    /// The discard prompt's answer (its buttons, or the script's "discard" op).
+    void answer_discard(bool discard);
+    void new_document();
+    /// Opens the scene named in the Scene field; a failure is reported.
+    void open_reporting();
+    /// Imports the heightmap named in the Heightmap field; a failure is reported.
+    void import_document();
 
     // Input, shared by GLFW callbacks and the script.
     void mouse_button(int button, bool down, double x, double y);
@@ -133,9 +146,15 @@ class App {
     void open(const std::filesystem::path& p);
     void frame_terrain();
     /// After doc_ holds a new terrain: per-terrain state restarts.
+    /// Waits until the GPU no longer uses anything: before objects a submitted frame or
+    /// solver step may still read (the normal map, the mirrors) are destroyed.
+    void wait_gpu_idle() const {
+        if (context_) vkDeviceWaitIdle(context_->device());
+    }
     void document_replaced() {
         // A new document starts clean (a recovered one is already on disk as the autosave).
         autosave_schedule_.saved(Clock::now());
+        wait_gpu_idle();      // the last frame may still sample the normal map
         normal_map_.reset();  // it refers to the old mirror
         own_mirror_.reset();
         fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
@@ -215,6 +234,8 @@ class App {
     bool mesh_stale_ = true;
     int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)
     std::optional<std::filesystem::path> recovery_for_;
+    std::function<void()> pending_replacement_;  ///< waits for the discard prompt
+    std::string pending_replacement_label_;
     AutosaveSchedule autosave_schedule_{std::chrono::seconds(60)};
     AutosaveWriter autosave_writer_;   ///< finishes a queued autosave when the editor closes
     bool autosave_in_script_ = false;  ///< a script's "autosave" op turns autosaving on

@@ -11,6 +11,7 @@ namespace sandtin::editor {
 void App::attach_physics(bool switched) {
     const ErosionBackend want = settings_.erosion_gpu ? ErosionBackend::Gpu : ErosionBackend::Cpu;
     if (doc_.physics && doc_.physics->backend() == want) return;
+    wait_gpu_idle();  // the solver being replaced, and the normal map, may still be in use
     doc_.physics.reset();
     normal_map_.reset();  // may refer to the old solver's mirror
     if (want == ErosionBackend::Gpu && context_) {

@@ -124,6 +124,10 @@ void App::key(int k, bool ctrl) {
         } catch (const std::exception& e) {
             report(std::string("save failed: ") + e.what());
         }
+    } else if (ctrl && k == GLFW_KEY_N) {
+        replace_document("New", [this] { new_document(); });
+    } else if (ctrl && k == GLFW_KEY_O) {
+        replace_document("Open", [this] { open_reporting(); });
     } else if (k >= GLFW_KEY_0 && k <= GLFW_KEY_9) {
         end_action();
         settings_.tool = k == GLFW_KEY_0 ? 9 : k - GLFW_KEY_1;

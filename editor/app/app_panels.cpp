@@ -24,28 +24,17 @@ void App::draw_panels() {
     panel_stats();
     ImGui::End();
     recovery_prompt();
+    discard_prompt();
 }
 
 void App::panel_file() {
     ImGui::InputText("Scene", path_buf_, sizeof(path_buf_));
     tip("Path used by Open, Save As and Ctrl+S when the scene has no file yet");
-    if (ImGui::Button("New")) {
-        end_action();
-        keep_unsaved_edits();
-        doc_.adopt(default_sandbox(), 1, {});
-        document_replaced();
-        frame_terrain();
-    }
-    tip("Start a new 1 m x 1 m sandbox with dunes");
+    if (ImGui::Button("New")) replace_document("New", [this] { new_document(); });
+    tip("Start a new 1 m x 1 m sandbox with dunes (Ctrl+N)");
     ImGui::SameLine();
-    if (ImGui::Button("Open")) {
-        try {
-            open(path_buf_);
-        } catch (const std::exception& e) {
-            report(std::string("open failed: ") + e.what());
-        }
-    }
-    tip("Open the .sandtin session named above");
+    if (ImGui::Button("Open")) replace_document("Open", [this] { open_reporting(); });
+    tip("Open the .sandtin session named above (Ctrl+O)");
     ImGui::SameLine();
     if (ImGui::Button("Save")) {
         try {
@@ -67,19 +56,7 @@ void App::panel_file() {
     ImGui::InputText("Heightmap", import_buf_, sizeof(import_buf_));
     tip("PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid to import");
     ImGui::SameLine();
-    if (ImGui::Button("Import")) {
-        try {
-            end_action();
-            ImportResult r = import_heightmap(import_buf_, ImportOptions{});
-            keep_unsaved_edits();
-            doc_.adopt(std::move(r.tin), 1, {});
-            document_replaced();
-            frame_terrain();
-            report("imported " + std::string(import_buf_));
-        } catch (const std::exception& e) {
-            report(std::string("import failed: ") + e.what());
-        }
-    }
+    if (ImGui::Button("Import")) replace_document("Import", [this] { import_document(); });
     tip("Import the heightmap as an error-bounded TIN (replaces the scene)");
     ImGui::InputText("Export to", export_buf_, sizeof(export_buf_));
     tip("Mesh (.obj .ply .stl .gltf .glb) or heightmap (.png .exr); the extension picks the "
@@ -360,6 +337,77 @@ void App::answer_recovery(bool recover) {
                e.what());
     }
     recovery_for_.reset();
+}
+
+void App::new_document() {
+    keep_unsaved_edits();
+    doc_.adopt(default_sandbox(), 1, {});
+    document_replaced();
+    frame_terrain();
+    report("new sandbox");
+}
+
+void App::open_reporting() {
+    try {
+        open(path_buf_);
+    } catch (const std::exception& e) {
+        report(std::string("open failed: ") + e.what());
+    }
+}
+
+void App::import_document() {
+    try {
+        ImportResult r = import_heightmap(import_buf_, ImportOptions{});
+        keep_unsaved_edits();
+        doc_.adopt(std::move(r.tin), 1, {});
+        document_replaced();
+        frame_terrain();
+        report("imported " + std::string(import_buf_));
+    } catch (const std::exception& e) {
+        report(std::string("import failed: ") + e.what());
+    }
+}
+
+void App::replace_document(const std::string& what, std::function<void()> action) {
+    end_action();
+    if (doc_.dirty && doc_.path.empty()) {
+        pending_replacement_ = std::move(action);
+        pending_replacement_label_ = what;
+        return;
+    }
+    action();
+}
+
+void App::answer_discard(bool discard) {
+    if (!pending_replacement_) throw std::runtime_error("no unsaved edits wait to be discarded");
+    std::function<void()> action = std::move(pending_replacement_);
+    pending_replacement_ = nullptr;
+    if (discard) {
+        action();
+    } else {
+        report("kept the unsaved scene: save it with Save As");
+    }
+}
+
+void App::discard_prompt() {
+    if (!pending_replacement_) return;
+    ImGui::OpenPopup("Discard unsaved edits?");
+    if (ImGui::BeginPopupModal("Discard unsaved edits?", nullptr,
+                               ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("The untitled scene has unsaved edits, and no file to autosave them to.");
+        if (ImGui::Button(("Discard and " + pending_replacement_label_).c_str())) {
+            ImGui::CloseCurrentPopup();
+            answer_discard(true);
+        }
+        tip("The edits are lost");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) {
+            ImGui::CloseCurrentPopup();
+            answer_discard(false);
+        }
+        tip("Keep the scene; Save As writes it to the path in the Scene field");
+        ImGui::EndPopup();
+    }
 }
 
 void App::recovery_prompt() {

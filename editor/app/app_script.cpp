@@ -14,6 +14,8 @@ namespace sandtin::editor {
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
+//         | {"op": "discard", "choice": "discard"|"cancel"}  (answers the prompt before New,
+//            Open or Import drops an untitled scene's unsaved edits)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
@@ -120,6 +122,11 @@ void App::run_script_op(const nlohmann::json& op) {
         if (choice != "recover" && choice != "discard")
             throw std::runtime_error("script: recovery choice must be recover or discard");
         answer_recovery(choice == "recover");
+    } else if (kind == "discard") {
+        const std::string choice = op.at("choice").get<std::string>();
+        if (choice != "discard" && choice != "cancel")
+            throw std::runtime_error("script: discard choice must be discard or cancel");
+        answer_discard(choice == "discard");
     } else if (kind == "haptics") {
         // Connects the simulated pen (as the panel's Connect button does) or disconnects.
         if (op.value("connect", true)) {

@@ -309,7 +309,7 @@ void App::interactive_loop() {
         glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
         state.redraw_pending = redraw_frames_ > 0;
         state.dragging = left_down_;
-        state.prompt_open = recovery_for_.has_value();
+        state.prompt_open = recovery_for_.has_value() || pending_replacement_ != nullptr;
         state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
         // Idle or minimised: block until an event arrives; no frame, no submission.
         if (wants_continuous_frames(state))

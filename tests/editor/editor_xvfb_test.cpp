@@ -355,6 +355,38 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
               load_session(scene).terrain.vertices.height);
 }
 
+TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
+    const fs::path fresh = kWork / "untitled-fresh.sandtin";
+    ASSERT_EQ(run_editor("untitled-fresh", kFlat, "--save-after " + fresh.string()).exit_code, 0);
+    const std::string stroke(kStroke);
+    const std::string stroke_then_new =
+        stroke.substr(0, stroke.size() - 1) + R"(, {"op": "key", "key": "n", "ctrl": true}, )";
+
+    // Cancel: the stroke and the pour stay.
+    const fs::path kept = kWork / "untitled-kept.sandtin";
+    const EditorRun c =
+        run_editor("untitled-cancel", stroke_then_new + R"({"op": "discard", "choice": "cancel"}])",
+                   "--save-after " + kept.string());
+    ASSERT_EQ(c.exit_code, 0) << c.log;
+    EXPECT_NE(load_session(kept).terrain.vertices.height,
+              load_session(fresh).terrain.vertices.height);
+
+    // Discard: a new sandbox, as the editor starts with.
+    const fs::path replaced = kWork / "untitled-new.sandtin";
+    const EditorRun d = run_editor("untitled-discard",
+                                   stroke_then_new + R"({"op": "discard", "choice": "discard"}])",
+                                   "--save-after " + replaced.string());
+    ASSERT_EQ(d.exit_code, 0) << d.log;
+    EXPECT_EQ(load_session(replaced).terrain.vertices.height,
+              load_session(fresh).terrain.vertices.height);
+
+    // Nothing unsaved: Ctrl+N asks nothing, so there is nothing to answer.
+    const EditorRun n = run_editor("untitled-nothing", R"([{"op": "key", "key": "n", "ctrl": true},
+            {"op": "discard", "choice": "discard"}])");
+    EXPECT_EQ(n.exit_code, 1) << n.log;
+    EXPECT_NE(n.log.find("no unsaved edits"), std::string::npos) << n.log;
+}
+
 TEST_F(EditorXvfb, AnAutosaveThatCannotBeRebuiltLeavesTheSceneOpen) {
     const fs::path scene = kWork / "bad-autosave.sandtin";
     ASSERT_EQ(run_editor("bad-autosave-base", kFlat, "--save-after " + scene.string()).exit_code,
