@@ -119,6 +119,10 @@ class App {
     void discard_prompt();
     /// The discard prompt's answer (its buttons, or the script's "discard" op).
     void answer_discard(bool discard);
+    /// The window was asked to close and may: an untitled scene with unsaved edits asks
+    /// first (the discard prompt), and the window stays open meanwhile.
+    bool close_confirmed();
+    bool quit_confirmed_ = false;
     void new_document();
     /// Opens the scene named in the Scene field; a failure is reported.
     void open_reporting();

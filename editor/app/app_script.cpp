@@ -15,7 +15,8 @@ namespace sandtin::editor {
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
 //         | {"op": "discard", "choice": "discard"|"cancel"}  (answers the prompt before New,
-//            Open or Import drops an untitled scene's unsaved edits)
+//            Open, Import or closing drops an untitled scene's unsaved edits)
+//         | {"op": "close"}  (the window's close button)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
@@ -122,6 +123,8 @@ void App::run_script_op(const nlohmann::json& op) {
         if (choice != "recover" && choice != "discard")
             throw std::runtime_error("script: recovery choice must be recover or discard");
         answer_recovery(choice == "recover");
+    } else if (kind == "close") {
+        glfwSetWindowShouldClose(window_, GLFW_TRUE);  // as the window's close button does
     } else if (kind == "discard") {
         const std::string choice = op.at("choice").get<std::string>();
         if (choice != "discard" && choice != "cancel")

@@ -292,6 +292,19 @@ void App::redo() {
 
 // ---- Main loop ------------------------------------------------------------------------------
 
+bool App::close_confirmed() {
+    if (!glfwWindowShouldClose(window_)) return false;
+    if (quit_confirmed_ || !doc_.dirty || !doc_.path.empty()) return true;
+    // Closing would drop an untitled scene's edits: stay open and ask (discard_prompt).
+    glfwSetWindowShouldClose(window_, GLFW_FALSE);
+    replace_document("Quit", [this] {
+        quit_confirmed_ = true;
+        glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    });
+    redraw_frames_ = 3;
+    return false;
+}
+
 void App::save_settings_reporting() {
     // Tried once per change: a settings file that cannot be written (a read-only home) must
     // not stop the editor, nor make every frame try again.
@@ -304,7 +317,7 @@ void App::save_settings_reporting() {
 }
 
 void App::interactive_loop() {
-    while (!glfwWindowShouldClose(window_)) {
+    while (!close_confirmed()) {
         LoopState state;
         glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
         state.redraw_pending = redraw_frames_ > 0;
@@ -358,7 +371,7 @@ int App::run() {
     if (options_.scripted()) {
         const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
         // Scripted: every op runs between frames through the real input handlers.
-        while (!glfwWindowShouldClose(window_)) {
+        while (!close_confirmed()) {
             glfwPollEvents();
             if (script_wait_ > 0) {
                 --script_wait_;

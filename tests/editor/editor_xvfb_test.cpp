@@ -387,6 +387,39 @@ TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
     EXPECT_NE(n.log.find("no unsaved edits"), std::string::npos) << n.log;
 }
 
+TEST_F(EditorXvfb, ClosingAsksBeforeDroppingAnUntitledScenesEdits) {
+    const std::string stroke(kStroke);
+    const std::string stroke_then_close =
+        stroke.substr(0, stroke.size() - 1) + R"(, {"op": "close"}, )";
+    auto save_op = [](const fs::path& p) {
+        return R"({"op": "save", "path": ")" + p.string() + R"("}])";
+    };
+    // Cancel: the editor stays open, and the script's next op still runs.
+    const fs::path after_cancel = kWork / "close-cancel.sandtin";
+    fs::remove(after_cancel);
+    const EditorRun c = run_editor(
+        "close-cancel",
+        stroke_then_close + R"({"op": "discard", "choice": "cancel"}, )" + save_op(after_cancel));
+    ASSERT_EQ(c.exit_code, 0) << c.log;
+    EXPECT_TRUE(fs::exists(after_cancel));
+
+    // Discard: the editor closes before the next op.
+    const fs::path after_discard = kWork / "close-discard.sandtin";
+    fs::remove(after_discard);
+    const EditorRun d = run_editor(
+        "close-discard",
+        stroke_then_close + R"({"op": "discard", "choice": "discard"}, )" + save_op(after_discard));
+    ASSERT_EQ(d.exit_code, 0) << d.log;
+    EXPECT_FALSE(fs::exists(after_discard));
+
+    // Nothing unsaved: closing closes at once.
+    const fs::path after_clean = kWork / "close-clean.sandtin";
+    fs::remove(after_clean);
+    const EditorRun n = run_editor("close-clean", R"([{"op": "close"}, )" + save_op(after_clean));
+    ASSERT_EQ(n.exit_code, 0) << n.log;
+    EXPECT_FALSE(fs::exists(after_clean));
+}
+
 TEST_F(EditorXvfb, AnAutosaveThatCannotBeRebuiltLeavesTheSceneOpen) {
     const fs::path scene = kWork / "bad-autosave.sandtin";
     ASSERT_EQ(run_editor("bad-autosave-base", kFlat, "--save-after " + scene.string()).exit_code,
