@@ -114,6 +114,9 @@ void App::scroll(double dy) {
 
 void App::key(int k, bool ctrl) {
     redraw_frames_ = 3;
+    // While a prompt waits for its answer, shortcuts must not change the document under it
+    // (Ctrl+O could open another scene with the recovery prompt still about the first).
+    if (recovery_for_ || pending_replacement_) return;
     if (ctrl && k == GLFW_KEY_Z)
         undo();
     else if (ctrl && k == GLFW_KEY_Y)

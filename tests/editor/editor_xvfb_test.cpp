@@ -362,12 +362,19 @@ TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
     const std::string stroke_then_new =
         stroke.substr(0, stroke.size() - 1) + R"(, {"op": "key", "key": "n", "ctrl": true}, )";
 
-    // Cancel: the stroke and the pour stay.
+    // Cancel: the stroke and the pour stay, untouched by the Ctrl+Z pressed while the prompt
+    // waited (shortcuts wait for the answer too).
+    const fs::path stroked = kWork / "untitled-stroked.sandtin";
+    ASSERT_EQ(run_editor("untitled-stroked", kStroke, "--save-after " + stroked.string()).exit_code,
+              0);
     const fs::path kept = kWork / "untitled-kept.sandtin";
     const EditorRun c =
-        run_editor("untitled-cancel", stroke_then_new + R"({"op": "discard", "choice": "cancel"}])",
+        run_editor("untitled-cancel", stroke_then_new + R"({"op": "key", "key": "z", "ctrl": true},
+                                       {"op": "discard", "choice": "cancel"}])",
                    "--save-after " + kept.string());
     ASSERT_EQ(c.exit_code, 0) << c.log;
+    EXPECT_EQ(load_session(kept).terrain.vertices.height,
+              load_session(stroked).terrain.vertices.height);
     EXPECT_NE(load_session(kept).terrain.vertices.height,
               load_session(fresh).terrain.vertices.height);
 
