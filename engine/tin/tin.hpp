@@ -383,6 +383,9 @@ class Tin {
 
   private:
     explicit Tin(std::unique_ptr<Impl> impl);
+    /// check_valid(); `recompute_lumped_areas` false skips comparing each vertex's lumped area
+    /// with a fresh recomputation (for from_snapshot, which has just computed them).
+    ValidationReport validate(bool recompute_lumped_areas) const;
     std::unique_ptr<Impl> impl_;
 };
 
