@@ -111,6 +111,11 @@ const char* kStroke = R"([{"op": "set", "erosion": false},
     {"op": "tool", "name": "Pour"}, {"op": "click", "at": [0.62, 0.3]},
     {"op": "move", "at": [0.62, 0.3]}, {"op": "wait", "frames": 2}])";
 
+/// The script `ops` (a JSON array) followed by the ops in `more` (comma-separated objects).
+std::string then(const std::string& ops, const std::string& more) {
+    return ops.substr(0, ops.rfind(']')) + ", " + more + "]";
+}
+
 class EditorXvfb : public ::testing::Test {
   protected:
     void SetUp() override {
@@ -341,10 +346,8 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
     ASSERT_EQ(run_editor("unsaved-idle", R"([{"op": "autosave"}])", scene.string()).exit_code, 0);
     EXPECT_FALSE(find_autosave(scene).has_value());
 
-    const std::string stroke_then_autosave =
-        std::string(kStroke).substr(0, std::string(kStroke).size() - 1) +
-        R"(, {"op": "autosave"}])";
-    const EditorRun r = run_editor("unsaved", stroke_then_autosave, scene.string());
+    const EditorRun r =
+        run_editor("unsaved", then(kStroke, R"({"op": "autosave"})"), scene.string());
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_EQ(read_file(scene), scene_bytes) << "an autosave never touches the scene";
     const std::optional<AutosaveInfo> info = find_autosave(scene);
@@ -358,9 +361,7 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
 TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
     const fs::path fresh = kWork / "untitled-fresh.sandtin";
     ASSERT_EQ(run_editor("untitled-fresh", kFlat, "--save-after " + fresh.string()).exit_code, 0);
-    const std::string stroke(kStroke);
-    const std::string stroke_then_new =
-        stroke.substr(0, stroke.size() - 1) + R"(, {"op": "key", "key": "n", "ctrl": true}, )";
+    const std::string press_new = R"({"op": "key", "key": "n", "ctrl": true}, )";
 
     // Cancel: the stroke and the pour stay, untouched by the Ctrl+Z pressed while the prompt
     // waited (shortcuts wait for the answer too).
@@ -368,10 +369,10 @@ TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
     ASSERT_EQ(run_editor("untitled-stroked", kStroke, "--save-after " + stroked.string()).exit_code,
               0);
     const fs::path kept = kWork / "untitled-kept.sandtin";
-    const EditorRun c =
-        run_editor("untitled-cancel", stroke_then_new + R"({"op": "key", "key": "z", "ctrl": true},
-                                       {"op": "discard", "choice": "cancel"}])",
-                   "--save-after " + kept.string());
+    const EditorRun c = run_editor(
+        "untitled-cancel", then(kStroke, press_new + R"({"op": "key", "key": "z", "ctrl": true},
+                                       {"op": "discard", "choice": "cancel"})"),
+        "--save-after " + kept.string());
     ASSERT_EQ(c.exit_code, 0) << c.log;
     EXPECT_EQ(load_session(kept).terrain.vertices.height,
               load_session(stroked).terrain.vertices.height);
@@ -380,9 +381,9 @@ TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
 
     // Discard: a new sandbox, as the editor starts with.
     const fs::path replaced = kWork / "untitled-new.sandtin";
-    const EditorRun d = run_editor("untitled-discard",
-                                   stroke_then_new + R"({"op": "discard", "choice": "discard"}])",
-                                   "--save-after " + replaced.string());
+    const EditorRun d = run_editor(
+        "untitled-discard", then(kStroke, press_new + R"({"op": "discard", "choice": "discard"})"),
+        "--save-after " + replaced.string());
     ASSERT_EQ(d.exit_code, 0) << d.log;
     EXPECT_EQ(load_session(replaced).terrain.vertices.height,
               load_session(fresh).terrain.vertices.height);
@@ -395,36 +396,24 @@ TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
 }
 
 TEST_F(EditorXvfb, ClosingAsksBeforeDroppingAnUntitledScenesEdits) {
-    const std::string stroke(kStroke);
-    const std::string stroke_then_close =
-        stroke.substr(0, stroke.size() - 1) + R"(, {"op": "close"}, )";
-    auto save_op = [](const fs::path& p) {
-        return R"({"op": "save", "path": ")" + p.string() + R"("}])";
+    // Whether the editor is still open after `ops`: their script ends with a save.
+    auto stays_open = [](const std::string& name, const std::string& ops) {
+        const fs::path probe = kWork / (name + ".sandtin");
+        fs::remove(probe);
+        const EditorRun r =
+            run_editor(name, then(ops, R"({"op": "save", "path": ")" + probe.string() + R"("})"));
+        EXPECT_EQ(r.exit_code, 0) << r.log;
+        return fs::exists(probe);
     };
+    const std::string close = R"({"op": "close"}, )";
     // Cancel: the editor stays open, and the script's next op still runs.
-    const fs::path after_cancel = kWork / "close-cancel.sandtin";
-    fs::remove(after_cancel);
-    const EditorRun c = run_editor(
-        "close-cancel",
-        stroke_then_close + R"({"op": "discard", "choice": "cancel"}, )" + save_op(after_cancel));
-    ASSERT_EQ(c.exit_code, 0) << c.log;
-    EXPECT_TRUE(fs::exists(after_cancel));
-
+    EXPECT_TRUE(stays_open("close-cancel",
+                           then(kStroke, close + R"({"op": "discard", "choice": "cancel"})")));
     // Discard: the editor closes before the next op.
-    const fs::path after_discard = kWork / "close-discard.sandtin";
-    fs::remove(after_discard);
-    const EditorRun d = run_editor(
-        "close-discard",
-        stroke_then_close + R"({"op": "discard", "choice": "discard"}, )" + save_op(after_discard));
-    ASSERT_EQ(d.exit_code, 0) << d.log;
-    EXPECT_FALSE(fs::exists(after_discard));
-
+    EXPECT_FALSE(stays_open("close-discard",
+                            then(kStroke, close + R"({"op": "discard", "choice": "discard"})")));
     // Nothing unsaved: closing closes at once.
-    const fs::path after_clean = kWork / "close-clean.sandtin";
-    fs::remove(after_clean);
-    const EditorRun n = run_editor("close-clean", R"([{"op": "close"}, )" + save_op(after_clean));
-    ASSERT_EQ(n.exit_code, 0) << n.log;
-    EXPECT_FALSE(fs::exists(after_clean));
+    EXPECT_FALSE(stays_open("close-clean", R"([{"op": "close"}])"));
 }
 
 TEST_F(EditorXvfb, AnAutosaveThatCannotBeRebuiltLeavesTheSceneOpen) {
