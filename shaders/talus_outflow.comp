@@ -6,6 +6,9 @@
 #include "talus_common.glsl"
 
 const float kFloatEpsilon = 1.1920929e-7;
+// talus_kernel.hpp kDegenerateAreaRatio: an edge into a vertex with less lumped area than
+// this fraction of the sender's carries nothing.
+const float kDegenerateAreaRatio = 1e-6;
 
 void mark_receiver(uint v) {
     // Plain read first: most neighbours are already marked, and a stamp, once set, stays for
@@ -74,6 +77,8 @@ void main() {
                 request_split(t);
                 continue;
             }
+            // A degenerate receiver takes nothing (kDegenerateAreaRatio, talus_kernel.hpp).
+            if (area[t] < kDegenerateAreaRatio * area[i]) continue;
             // Flowing sand settles a margin below the angle it started at (== e when m = 0).
             float excess = e + pc.settle_margin * slope;
             sum += excess;
@@ -102,7 +107,7 @@ void main() {
                 uint t = target[k];
                 float e = (hi - height[t]) - slope;
                 if (e > pc.rest_tolerance * slope && e > noise_floor && !(r > pc.r_limit) &&
-                    !(longest[t] > pc.r_limit)) {
+                    !(longest[t] > pc.r_limit) && !(area[t] < kDegenerateAreaRatio * area[i])) {
                     v = ((e + pc.settle_margin * slope) / (inv_ai + 1.0 / area[t])) * scale;
                 }
             }

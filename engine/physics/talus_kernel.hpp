@@ -25,11 +25,26 @@
 // after a dig into a slope 3 % under repose, a creep of tens of vertices trading 1e-11 m³ for
 // 32 000 (sequential) and 42 000 (Jacobi) iterations; m = 0.03 rests in 3 000 and 4 300.
 // Neither the trigger nor the bound "no edge steeper than (1 + tol) tan(alpha)" changes.
+//
+// Degenerate receivers: an edge into a vertex whose lumped area is below kDegenerateAreaRatio
+// of the sender's carries nothing. Levelling it moves q* = e / (1/A_i + 1/A_j) ~ e A_j, so the
+// sender drops by at most 1e-6 of the excess per iteration: the transfer never completes, it
+// only creeps. Such vertices are the corners of triangles with no area in the plane (a
+// vertical sliver, e.g. where nearly collinear constraints of successive stamps cross: a box
+// or the λ stroked along a straight side); they hold no sand, and pass on at once whatever
+// they get. Measured on the λ groove at 10^4 points: 428 such vertices, and 1 456 vertices
+// trading 1.1e-12 m³ per iteration through them, unchanged after 10^5 iterations, so the
+// terrain never came to rest. Edges out of them, and between them, flow as usual, so they
+// drain and rest too.
 
 #include <algorithm>
 #include <cstdint>
 
 namespace sandtin {
+
+/// An edge into a vertex with less than this fraction of the sender's lumped area carries
+/// nothing (see above). Real neighbours differ in area by a factor of tens at most.
+inline constexpr double kDegenerateAreaRatio = 1e-6;
 
 struct TalusParameters {
     double damping = 0.5;          ///< fraction of the largest excess removed per step (seeds: 1/2)
@@ -88,8 +103,9 @@ inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint3
                 continue;
             }
         }
-        const double excess = e + p.settle_margin * slope;  // == e when m = 0
-        q[k] = excess;                                      // for now; scaled to volume below
+        if (area[target[k]] < kDegenerateAreaRatio * area[i]) continue;  // degenerate receiver
+        const double excess = e + p.settle_margin * slope;               // == e when m = 0
+        q[k] = excess;  // for now; scaled to volume below
         sum += excess;
         largest = std::max(largest, excess);
     }

@@ -46,6 +46,9 @@ inline double reference_talus_outflow(std::uint32_t i, std::uint32_t begin, std:
             needs_split(target[k]);
             continue;
         }
+        // A receiver with under a millionth of the sender's lumped area (a vertical sliver)
+        // takes nothing.
+        if (area[target[k]] < 1e-6 * area[i]) continue;
         const double excess = e + p.settle_margin * slope;  // == e when m = 0
         q[k] = excess;                                      // for now; scaled to volume below
         sum += excess;

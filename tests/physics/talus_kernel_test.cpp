@@ -34,7 +34,9 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
         std::vector<double> longest(kVertices);
         for (std::uint32_t v = 0; v < kVertices; ++v) {
             height[v] = u(rng) < 0.1 ? 0.3 : 0.3 * u(rng) - 0.1;  // some exact ties
-            area[v] = u(rng) < 0.1 ? 1e-6 : 1e-4 * (0.1 + u(rng));
+            // Some small vertices, and some degenerate ones (vertical slivers).
+            const double kind = u(rng);
+            area[v] = kind < 0.1 ? 1e-6 : kind < 0.15 ? 1e-13 : 1e-4 * (0.1 + u(rng));
             bedrock[v] = u(rng) < 0.3 ? height[v] - 0.01 * u(rng) : -1.0;
             longest[v] = 0.02 * u(rng);
         }
@@ -73,6 +75,39 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
 }
 
 /// Settings out of range are refused by the solver with a message naming the setting.
+// An edge into a vertex with under a millionth of the sender's lumped area carries nothing (a
+// vertical sliver passes on at once whatever it gets, so the slope above it would creep
+// forever); one with a hundred-thousandth of it flows, and the sliver itself sends as usual.
+TEST(TalusKernel, DegenerateReceiversTakeNothing) {
+    // Vertex 0 stands 1 m above three neighbours 0.1 m away, all far steeper than repose.
+    const std::vector<std::uint32_t> target = {1, 2, 3};
+    const std::vector<double> length = {0.1, 0.1, 0.1};
+    const std::vector<double> longest = {0.1, 0.1, 0.1, 0.1};
+    const std::vector<double> height = {1.0, 0.0, 0.0, 0.0};
+    const std::vector<double> bedrock(4, -10.0);
+    const TalusParameters p;
+    const double tan_alpha = 0.6;
+    auto outflow = [&](const std::vector<double>& area, std::vector<double>& q) {
+        q.assign(3, -1.0);
+        return talus_outflow(0, 0, 3, target.data(), length.data(), longest.data(), height.data(),
+                             area.data(), bedrock.data(), tan_alpha, p, 1.0, q.data(),
+                             [](std::uint32_t) {});
+    };
+    std::vector<double> q;
+    // Receiver 1 at 1e-7 of the sender's area: nothing; receiver 2 at 1e-5: flows.
+    const double sent = outflow({0.1, 1e-8, 1e-6, 0.1}, q);
+    EXPECT_EQ(q[0], 0.0);
+    EXPECT_GT(q[1], 0.0);
+    EXPECT_GT(q[2], 0.0);
+    EXPECT_EQ(sent, q[1] + q[2]);
+    // The sliver as the sender: every receiver is far larger, so it sends to all three.
+    std::vector<double> sliver_area = {1e-8, 0.1, 0.1, 0.1};
+    EXPECT_GT(outflow(sliver_area, q), 0.0);
+    EXPECT_GT(q[0], 0.0);
+    EXPECT_GT(q[1], 0.0);
+    EXPECT_GT(q[2], 0.0);
+}
+
 TEST(TalusSettings, OutOfRangeIsAClearError) {
     const Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 4, 4);
     AdjacencyGraph graph;
