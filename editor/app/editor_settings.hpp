@@ -2,6 +2,8 @@
 // Values the artist sets in the panels, persisted as JSON between sessions
 // ($XDG_CONFIG_HOME/sandtin/editor.json, else ~/.config/sandtin/editor.json, or --settings).
 
+#include "physics/talus_kernel.hpp"
+
 #include <filesystem>
 #include <string>
 
@@ -26,7 +28,7 @@ struct EditorSettings {
     /// Flowing sand rests this fraction below its angle of repose (TalusParameters::
     /// settle_margin): a dig then comes to rest in thousands of iterations, not tens of
     /// thousands, so the terrain goes idle.
-    double settle_margin = 0.03;
+    double settle_margin = TalusParameters{}.settle_margin;
     bool overlay_wireframe = false;
     bool overlay_active = false;
     bool overlay_thickness = false;

@@ -182,6 +182,11 @@ bool parse_physics_fields(JsonFields& f, TalusSettings& t) {
         t.parameters.damping = f.in_range("damping", 0.5, 0.01, 1.0);
         any = true;
     }
+    if (f.has("settle_margin")) {
+        t.parameters.settle_margin =
+            f.in_range("settle_margin", t.parameters.settle_margin, 0.0, 0.2);
+        any = true;
+    }
     if (f.has("rest_tolerance")) {
         t.parameters.rest_tolerance = f.in_range("rest_tolerance", 1e-4, 0.0, 1.0);
         any = true;
@@ -328,8 +333,8 @@ Script parse_script(std::string_view text, const std::string& name,
                     text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
         throw JsonInputError(name + ":" + std::to_string(line) + ": not valid JSON: " + e.what());
     } catch (const nlohmann::json::exception& e) {
-        // Valid syntax the parser still cannot hold, e.g. a number beyond double's range (1e660000):
-        // nlohmann throws out_of_range, not parse_error (found by fuzzing).
+        // Valid syntax the parser still cannot hold, e.g. a number beyond double's range
+        // (1e660000): nlohmann throws out_of_range, not parse_error (found by fuzzing).
         throw JsonInputError(name + ": not valid JSON: " + e.what());
     }
     LineCountingIterator::Cursor cursor;

@@ -16,7 +16,7 @@
 // bedrock, A_i (h_i - b_i). Edges longer than the relocation radius carry nothing; they are
 // reported so the caller can split them (seed 000 §7.2, "prevention of long edges").
 //
-// Settling margin m (default 0): an edge starts to flow when e > tol r tan(alpha), as before,
+// Settling margin m (default 0.03): an edge starts to flow when e > tol r tan(alpha), as before,
 // but a flowing edge is levelled towards (1 - m) r tan(alpha), not r tan(alpha). Sand that
 // moves comes to rest a little below the angle it can stand at (the dynamic angle of repose
 // is 1-3 degrees below the angle of maximum stability; Jaeger, Nagel & Behringer, Rev. Mod.
@@ -51,8 +51,9 @@ struct TalusParameters {
     double rest_tolerance = 1e-4;  ///< an edge is at rest when e <= tol * r tan(alpha)
     double relocation_radius = 0.0;  ///< r_S in metres; 0 = no limit
     /// m in [0, 1): flowing edges level towards (1 - m) r tan(alpha) (see above); 0 = the
-    /// seeds' rule. The compute shader does the same.
-    double settle_margin = 0.0;
+    /// seeds' rule. The compute shader does the same. The default is the editor's and the
+    /// scripts' alike, so a script reproduces what the artist saw.
+    double settle_margin = 0.03;
 };
 
 /// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.
