@@ -205,6 +205,16 @@ scenario_bench() {
     holds "bench groove λ erosion" "a > 0 && b > 0" \
         "$(json bench_lambda.out /by_size/1/with_erosion/erosion_vertex_updates)" \
         "$(json bench_lambda.out /by_size/1/with_erosion/erosion_ms)"
+    # Eroded to rest after the stroke: it rests, stays valid, and the settle margin (the
+    # default) rests in fewer iterations than the seeds' rule, whose slopes creep.
+    check_eq "bench groove λ to rest" "$(json bench_lambda.out /by_size/1/to_rest/at_rest)" true
+    check_eq "bench groove λ to rest valid" "$(json bench_lambda.out /by_size/1/to_rest/valid)" true
+    check_eq "bench groove λ seeds' rule at rest" \
+        "$(json bench_lambda.out /by_size/1/to_rest/seeds_rule/at_rest)" true
+    holds "bench groove λ to rest iterations" "a > 0 && a < b" \
+        "$(json bench_lambda.out /by_size/1/to_rest/iterations)" \
+        "$(json bench_lambda.out /by_size/1/to_rest/seeds_rule/iterations)"
+    holds "bench groove λ target" "a == 100" "$(json bench_lambda.out /by_size/1/to_rest/target_ms)"
     # Restoring from a snapshot rebuilds every vertex (the four corners come on top).
     holds "bench tin restore" "a == 10000 && b == 10004 && c > 0" \
         "$(json bench_json.out /restore/0/points)" "$(json bench_json.out /restore/0/vertices)" \
