@@ -121,7 +121,8 @@ struct ReleaseFilter {
     /// Only the parts inside this closed polygon: a constraint that crosses its border is first
     /// split at its vertices there (pieces are classified by their midpoints), and only the
     /// inside pieces are released, so what lies outside keeps its constraint. Crossings
-    /// without a vertex keep the whole piece; constrain the border first.
+    /// without a vertex keep the whole piece; constrain the border first. A piece along the
+    /// border (its midpoint within the snap distance of it) counts as inside.
     std::span<const Vec2> inside_polygon;
     /// Only constraints whose edges are all locally Delaunay already: releasing them
     /// re-triangulates nothing, so the surface cannot change anywhere.
