@@ -30,12 +30,12 @@
 // of the sender's carries nothing. Levelling it moves q* = e / (1/A_i + 1/A_j) ~ e A_j, so the
 // sender drops by at most 1e-6 of the excess per iteration: the transfer never completes, it
 // only creeps. Such vertices are the corners of triangles with no area in the plane (a
-// vertical sliver, e.g. where nearly collinear constraints of successive stamps cross: a box
-// or the λ stroked along a straight side); they hold no sand, and pass on at once whatever
-// they get. Measured on the λ groove at 10^4 points: 428 such vertices, and 1 456 vertices
-// trading 1.1e-12 m³ per iteration through them, unchanged after 10^5 iterations, so the
-// terrain never came to rest. Edges out of them, and between them, flow as usual, so they
-// drain and rest too.
+// vertical sliver between constraints a hair apart); they hold no sand, and pass on at once
+// whatever they get. The stamp used to leave them where a box or the λ is stroked along a
+// straight side (428 after the λ groove at 10^4 points, with 1 456 vertices trading 1.1e-12 m³
+// per iteration through them, unchanged after 10^5 iterations: the terrain never rested). It
+// no longer does (Tin::release_constraints), but any terrain may hold some, so the rule
+// stays. Edges out of them, and between them, flow as usual, so they drain and rest too.
 
 #include <algorithm>
 #include <cstdint>
