@@ -149,12 +149,12 @@ class App {
     void save(const std::filesystem::path& p);
     void open(const std::filesystem::path& p);
     void frame_terrain();
-    /// After doc_ holds a new terrain: per-terrain state restarts.
     /// Waits until the GPU no longer uses anything: before objects a submitted frame or
     /// solver step may still read (the normal map, the mirrors) are destroyed.
     void wait_gpu_idle() const {
         if (context_) vkDeviceWaitIdle(context_->device());
     }
+    /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
         // A new document starts clean (a recovered one is already on disk as the autosave).
         autosave_schedule_.saved(Clock::now());

@@ -38,7 +38,7 @@ void App::update_simulation() {
         doc_.physics->settings().parameters.relocation_radius = settings_.relocation_radius;
         // Clamped: a hand-edited settings file must not stop the physics.
         doc_.physics->settings().parameters.settle_margin =
-            std::clamp(settings_.settle_margin, 0.0, 0.2);
+            std::clamp(settings_.settle_margin, 0.0, kMaxSettleMargin);
         // Up to the chosen iterations, but within a time budget so the editor stays responsive
         // while a large region slides.
         std::vector<VertexId> changed;

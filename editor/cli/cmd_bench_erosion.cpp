@@ -88,13 +88,8 @@ Row median_of(int repeats, const std::function<Row()>& run) {
     return rows[rows.size() / 2];
 }
 
-/// The TIN's relaxation under the seeds' rule (no settle margin), as the grid baseline runs:
-/// the comparison is between the two discretisations of one rule.
-TalusSettings seeds_rule() {
-    TalusSettings settings;
-    settings.parameters.settle_margin = 0.0;
-    return settings;
-}
+// The TIN relaxes under seeds_rule(), as the grid baseline does: the comparison is between
+// the two discretisations of one rule.
 
 Row tin_cone(double rs) {
     Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0), 0.0, TinOptions{false});

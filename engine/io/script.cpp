@@ -184,7 +184,7 @@ bool parse_physics_fields(JsonFields& f, TalusSettings& t) {
     }
     if (f.has("settle_margin")) {
         t.parameters.settle_margin =
-            f.in_range("settle_margin", t.parameters.settle_margin, 0.0, 0.2);
+            f.in_range("settle_margin", t.parameters.settle_margin, 0.0, kMaxSettleMargin);
         any = true;
     }
     if (f.has("rest_tolerance")) {

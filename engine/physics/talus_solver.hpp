@@ -36,6 +36,14 @@ struct TalusSettings {
     int threads = 1;           ///< Jacobi worker threads
 };
 
+/// The defaults with the seeds' rule: no settle margin (TalusParameters::settle_margin), as
+/// the grid baseline runs and the seeds' experiments did.
+inline TalusSettings seeds_rule() {
+    TalusSettings settings;
+    settings.parameters.settle_margin = 0.0;
+    return settings;
+}
+
 /// The per-vertex arrays a relaxation reads and writes, indexed by vertex id.
 struct TalusArrays {
     double* height = nullptr;           ///< m, updated in place

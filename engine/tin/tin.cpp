@@ -1961,18 +1961,6 @@ std::size_t release_doomed(Tin::Impl& m, std::span<const std::uint32_t> doomed, 
     return doomed.size();
 }
 
-/// Whether p lies within `snap` of the closed polygon's border. A piece of an older constraint
-/// along the border (the side of a box stroked along it lies on the line of the stamp before)
-/// counts as inside: kept, it would run a hair beside the new border's constraint, and
-/// between two constraints that close only triangles without area fit.
-bool on_border(Vec2 p, std::span<const Vec2> polygon, double snap) {
-    for (std::size_t k = 0; k < polygon.size(); ++k) {
-        if (distance_to_segment(p, polygon[k], polygon[(k + 1) % polygon.size()]) <= snap)
-            return true;
-    }
-    return false;
-}
-
 }  // namespace
 
 std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy policy,
@@ -2032,8 +2020,11 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
         bool any_out = false;
         for (std::size_t k = 0; k + 1 < vs.size(); ++k) {
             const Vec2 mid = (m.va.position[vs[k]->id] + m.va.position[vs[k + 1]->id]) * 0.5;
+            // A piece along the border counts as inside (a box stroked along a side puts its
+            // rim on the line of the rim before): kept, it would run a hair beside the new
+            // border's constraint, and between the two only triangles without area would fit.
             inside[k] = point_in_polygon(mid, filter.inside_polygon) ||
-                                on_border(mid, filter.inside_polygon, m.snap_distance)
+                                nearest_edge(mid, filter.inside_polygon).distance <= m.snap_distance
                             ? 1
                             : 0;
             (inside[k] ? any_in : any_out) = true;

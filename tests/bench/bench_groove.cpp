@@ -188,9 +188,8 @@ nlohmann::json to_rest_json(const Tool& tool, std::size_t n, int reps) {
     std::sort(runs.begin(), runs.end(),
               [&](const GrooveRun& a, const GrooveRun& b) { return whole(a) < whole(b); });
     const GrooveRun& mid = runs[runs.size() / 2];
-    TalusSettings seeds;
-    seeds.parameters.settle_margin = 0.0;
-    const GrooveRun seeds_run = run_groove(tool, n, 0.8, false, true, Erosion::ToRestAfter, seeds);
+    const GrooveRun seeds_run =
+        run_groove(tool, n, 0.8, false, true, Erosion::ToRestAfter, seeds_rule());
     nlohmann::json j = {{"stroke_ms", mid.total_ms},
                         {"rest_ms", mid.rest_ms},
                         {"total_ms", whole(mid)},

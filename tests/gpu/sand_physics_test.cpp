@@ -31,11 +31,10 @@ void dig(Tin& tin) {
 }
 
 TEST_F(GpuTest, GpuPhysicsMatchesCpuPhysicsAfterAStampAndWritesBackIntoTheTin) {
-    TalusSettings settings;
-    settings.schedule = Schedule::Jacobi;
     // The seeds' rule: float and double agree everywhere (a margin's step at the trigger is
     // tests/gpu/relaxation_test's SettleMarginMatchesCpuJacobi).
-    settings.parameters.settle_margin = 0.0;
+    TalusSettings settings = seeds_rule();
+    settings.schedule = Schedule::Jacobi;
 
     Tin cpu_tin = scene();
     SandPhysics cpu(cpu_tin, MaterialTable::presets(), settings);

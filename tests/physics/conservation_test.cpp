@@ -74,11 +74,10 @@ struct DriftResult {
 };
 
 DriftResult run_drift(Scene& s, Schedule schedule, int iterations, int phase_length) {
-    TalusSettings settings;
-    settings.schedule = schedule;
     // The seeds' rule: without a settle margin the sand keeps trickling, so the drift is
     // measured over iterations that really move it.
-    settings.parameters.settle_margin = 0.0;
+    TalusSettings settings = seeds_rule();
+    settings.schedule = schedule;
     TalusSolver solver(settings);
     ActiveSet active;
     std::mt19937_64 rng(99);
@@ -160,10 +159,9 @@ PatchDrift run_patch_drift(Schedule schedule, int iterations) {
         if (std::abs(p.x - 158.0) < 20.0 && std::abs(p.y - 158.0) < 20.0) region.push_back(v);
     }
     EXPECT_EQ(patch.size(), 361u);
-    TalusSettings settings;
+    TalusSettings settings = seeds_rule();  // keeps the patch moving
     settings.schedule = schedule;
     settings.threads = 2;
-    settings.parameters.settle_margin = 0.0;  // the seeds' rule: keeps the patch moving
     TalusSolver solver(settings);
     ActiveSet active;
     std::mt19937_64 rng(7);

@@ -12,9 +12,10 @@
 
 namespace sandtin::test {
 
-/// Largest |h_i - h_j| / (r_ij tan(alpha)) over the TIN's edges (1 = exactly at repose).
-/// Edges where both ends sit on bedrock-limited sand are skipped when `skip_bedrock` is set.
-inline double steepest_edge_ratio(const Tin& tin, double tan_alpha) {
+/// Largest (h(v) - h(w)) / (r_vw tan(alpha)) over the TIN's edges v-w that `skip(v, w)`
+/// does not exclude (1 = exactly at repose), with the heights h(id) given (a GPU's, say).
+template <class Height, class Skip>
+double steepest_edge_ratio(const Tin& tin, double tan_alpha, Height h, Skip skip) {
     const VertexArrays& va = tin.vertices();
     std::vector<VertexId> ring;
     double worst = 0.0;
@@ -22,11 +23,20 @@ inline double steepest_edge_ratio(const Tin& tin, double tan_alpha) {
         if (!va.alive[v]) continue;
         tin.neighbours(VertexId{v}, ring);
         for (VertexId w : ring) {
+            if (skip(v, w.value)) continue;
             const double r = distance(va.position[v], va.position[w.value]);
-            worst = std::max(worst, (va.height[v] - va.height[w.value]) / (r * tan_alpha));
+            worst = std::max(worst, (h(v) - h(w.value)) / (r * tan_alpha));
         }
     }
     return worst;
+}
+
+/// The same over every edge, with the TIN's heights.
+inline double steepest_edge_ratio(const Tin& tin, double tan_alpha) {
+    const VertexArrays& va = tin.vertices();
+    return steepest_edge_ratio(
+        tin, tan_alpha, [&](std::uint32_t v) { return va.height[v]; },
+        [](std::uint32_t, std::uint32_t) { return false; });
 }
 
 struct PileShape {

@@ -211,13 +211,12 @@ void compare_solver(int threads, double randomness, double relocation_radius) {
         const std::uint32_t t = num.tin_id(l);
         hl[l] = h[t], al[l] = va.lumped_area[t], bl[l] = b[t], tl[l] = tan[t];
     }
-    TalusSettings settings;
+    TalusSettings settings = seeds_rule();  // more of the scene moves
     settings.schedule = Schedule::Jacobi;
     settings.threads = threads;
     settings.randomness = randomness;
     settings.seed = 9;
     settings.parameters.relocation_radius = relocation_radius;
-    settings.parameters.settle_margin = 0.0;  // the seeds' rule: more of the scene moves
     TalusSolver by_id(settings), by_strip(settings);
     const TalusArrays arrays{h.data(), va.lumped_area.data(), b.data(), tan.data(), n};
     const TalusArrays local_arrays{hl.data(), al.data(), bl.data(),

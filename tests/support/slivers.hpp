@@ -1,18 +1,48 @@
 #pragma once
-// A terrain with vertical slivers, for the relaxation's degenerate-receiver rule
-// (kDegenerateAreaRatio, engine/physics/talus_kernel.hpp): three constrained chains a hair
+// Vertical slivers: vertices with next to no area in the plane, which the relaxation's
+// degenerate-receiver rule (kDegenerateAreaRatio, engine/physics/talus_kernel.hpp) lets take
+// nothing; how to find them, and a terrain that has them.
+//
+// The terrain: three constrained chains a hair
 // (1e-11 m) apart along y = 0.5, what overlapping rims of successive stamps once left behind.
 // Every triangle around a vertex of the middle chain lies between two constraints that close,
 // so it has no area in the plane. A plateau 0.1 m high stands on the far side, the floor at 0
 // on the near side, and in between the chains a vertical cliff whose only way down leads
 // through the middle chain (at 0.05 m).
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "physics/talus_kernel.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin::test {
+
+/// Whether one end of the edge v-w has under kDegenerateAreaRatio of the other's lumped area.
+inline bool joins_sliver(const VertexArrays& va, std::uint32_t v, std::uint32_t w) {
+    const double av = va.lumped_area[v], aw = va.lumped_area[w];
+    return av < kDegenerateAreaRatio * aw || aw < kDegenerateAreaRatio * av;
+}
+
+/// Live vertices with under kDegenerateAreaRatio of some neighbour's lumped area.
+inline std::size_t sliver_vertices(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    std::vector<VertexId> ring;
+    std::size_t n = 0;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        tin.neighbours(VertexId{v}, ring);
+        n += std::any_of(ring.begin(), ring.end(),
+                         [&](VertexId w) {
+                             return va.lumped_area[v] <
+                                    kDegenerateAreaRatio * va.lumped_area[w.value];
+                         })
+                 ? 1
+                 : 0;
+    }
+    return n;
+}
 
 struct SliverScene {
     Tin tin;
