@@ -63,6 +63,13 @@ struct IterationStats {
     double volume_moved = 0.0;  ///< m³ that left their vertices
 };
 
+/// Slots of the rows the Jacobi schedule processed in an iteration, and how many of them carried
+/// sand: what picks the kernel's passes (RowPasses) for the next iteration.
+struct RowCensus {
+    std::size_t slots = 0;
+    std::size_t flowing = 0;
+};
+
 class TalusSolver {
   public:
     explicit TalusSolver(TalusSettings settings);
@@ -79,6 +86,10 @@ class TalusSolver {
     IterationStats iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
                            ActiveSet& active, std::vector<std::uint32_t>* split_around = nullptr);
 
+    /// The kernel's passes the next Jacobi iteration will take (chosen from how much of the last
+    /// one flowed; the results are the same either way).
+    RowPasses jacobi_row_passes() const { return row_passes_; }
+
     /// Ids whose height changed in the last iteration.
     const std::vector<std::uint32_t>& changed() const { return changed_list_; }
 
@@ -93,6 +104,7 @@ class TalusSolver {
         std::size_t wake_lo = 0, wake_hi = 0;        ///< word range marked in `wake`
         std::uint32_t first = 0, last = 0;           ///< smallest and largest id in phase 1
         double moved = 0.0;
+        RowCensus census;                    ///< phase 1
         std::vector<std::uint32_t> splits;   ///< phase 1, in list order
         std::vector<std::uint32_t> changed;  ///< phase 2, in id order
         std::vector<std::uint32_t> kept;     ///< phase 3: the next active list, in id order
@@ -110,6 +122,7 @@ class TalusSolver {
                               std::vector<std::uint32_t>* split_around);
     IterationStats jacobi(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                           std::vector<std::uint32_t>* split_around);
+    template <RowPasses kPasses>
     void jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_age(std::size_t begin, std::size_t end, ThreadScratch& s);
@@ -132,6 +145,8 @@ class TalusSolver {
     std::vector<std::uint8_t> changed_;  ///< per vertex (sequential schedule)
     std::vector<std::uint32_t> changed_list_;
     // Jacobi schedule.
+    /// The kernel's passes (RowPasses) for the next iteration, from this one's RowCensus.
+    RowPasses row_passes_ = RowPasses::Branching;
     std::vector<std::uint32_t> source_;  ///< per vertex: == tag_ when it was a source this time
     std::uint32_t tag_ = 0;
     std::vector<ThreadScratch> scratch_;

@@ -1,8 +1,9 @@
 // The production talus kernel (engine/physics/talus_kernel.hpp, specialised at compile time
-// for the relocation radius) against the plain one written from the definition
-// (reference_talus_kernel.hpp): the same volumes bit for bit, the same total and the same
-// split requests in the same order, on random rows of 1 to 40 slots, with and without a
-// relocation radius, bedrock, jitter and a settle margin.
+// for the relocation radius, in both its branching and its branch-free passes) against the
+// plain one written from the definition (reference_talus_kernel.hpp): the same volumes bit for
+// bit, the same total and the same split requests in the same order, on random rows of 1 to
+// 40 slots (odd and even, for the two-lane passes), with and without a relocation radius,
+// bedrock, jitter and a settle margin.
 
 #include <gtest/gtest.h>
 
@@ -64,6 +65,16 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
         ASSERT_EQ(std::memcmp(q.data(), q_ref.data(), degree * sizeof(double)), 0)
             << "trial " << trial;
         ASSERT_EQ(splits, splits_ref) << "trial " << trial;
+        std::vector<double> q_free(degree, -3.0);
+        std::vector<std::uint32_t> splits_free;
+        const double sent_free = talus_outflow<RowPasses::BranchFree>(
+            0, 0, degree, target.data(), length.data(), longest.data(), height.data(), area.data(),
+            bedrock.data(), tan_alpha, p, jitter, q_free.data(),
+            [&](std::uint32_t v) { splits_free.push_back(v); });
+        ASSERT_EQ(std::memcmp(&sent_free, &sent_ref, sizeof(double)), 0) << "trial " << trial;
+        ASSERT_EQ(std::memcmp(q_free.data(), q_ref.data(), degree * sizeof(double)), 0)
+            << "trial " << trial;
+        ASSERT_EQ(splits_free, splits_ref) << "trial " << trial;
         flowing_rows += sent > 0.0 ? 1 : 0;
         split_rows += splits.empty() ? 0 : 1;
         long_rows += degree > 32 && sent > 0.0 ? 1 : 0;
@@ -78,7 +89,8 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
 // An edge into a vertex with under a millionth of the sender's lumped area carries nothing (a
 // vertical sliver passes on at once whatever it gets, so the slope above it would creep
 // forever); one with a hundred-thousandth of it flows, and the sliver itself sends as usual.
-TEST(TalusKernel, DegenerateReceiversTakeNothing) {
+template <RowPasses kPasses>
+void expect_degenerate_receivers_take_nothing() {
     // Vertex 0 stands 1 m above three neighbours 0.1 m away, all far steeper than repose.
     const std::vector<std::uint32_t> target = {1, 2, 3};
     const std::vector<double> length = {0.1, 0.1, 0.1};
@@ -89,9 +101,9 @@ TEST(TalusKernel, DegenerateReceiversTakeNothing) {
     const double tan_alpha = 0.6;
     auto outflow = [&](const std::vector<double>& area, std::vector<double>& q) {
         q.assign(3, -1.0);
-        return talus_outflow(0, 0, 3, target.data(), length.data(), longest.data(), height.data(),
-                             area.data(), bedrock.data(), tan_alpha, p, 1.0, q.data(),
-                             [](std::uint32_t) {});
+        return talus_outflow<kPasses>(0, 0, 3, target.data(), length.data(), longest.data(),
+                                      height.data(), area.data(), bedrock.data(), tan_alpha, p, 1.0,
+                                      q.data(), [](std::uint32_t) {});
     };
     std::vector<double> q;
     // Receiver 1 at 1e-7 of the sender's area: nothing; receiver 2 at 1e-5: flows.
@@ -106,6 +118,20 @@ TEST(TalusKernel, DegenerateReceiversTakeNothing) {
     EXPECT_GT(q[0], 0.0);
     EXPECT_GT(q[1], 0.0);
     EXPECT_GT(q[2], 0.0);
+    // Every steep edge into a degenerate receiver: nothing leaves, and every slot says so.
+    EXPECT_EQ(outflow({0.1, 1e-8, 1e-8, 1e-9}, q), 0.0);
+    EXPECT_EQ(q, std::vector<double>(3, 0.0));
+}
+
+TEST(TalusKernel, DegenerateReceiversTakeNothing) {
+    {
+        SCOPED_TRACE("branching passes");
+        expect_degenerate_receivers_take_nothing<RowPasses::Branching>();
+    }
+    {
+        SCOPED_TRACE("branch-free passes");
+        expect_degenerate_receivers_take_nothing<RowPasses::BranchFree>();
+    }
 }
 
 TEST(TalusSettings, OutOfRangeIsAClearError) {
