@@ -60,21 +60,6 @@ struct TalusParameters {
     double settle_margin = 0.03;
 };
 
-/// Two doubles in one SSE2 register (GCC and Clang vector extensions), and a lane mask.
-using Pair = double __attribute__((vector_size(16)));
-using PairMask = std::int64_t __attribute__((vector_size(16)));
-
-/// Each lane of `value` where `keep` is set, else +0.0.
-inline Pair keep_lanes(PairMask keep, Pair value) {
-    return std::bit_cast<Pair>(std::bit_cast<PairMask>(value) & keep);
-}
-
-/// `value` when `keep`, else +0.0, without a branch.
-inline double select_or_zero(bool keep, double value) {
-    const std::uint64_t mask = std::uint64_t{0} - static_cast<std::uint64_t>(keep);
-    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & mask);
-}
-
 /// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.
 inline double signed_unit_hash(std::uint64_t seed, std::uint64_t vertex, std::uint64_t iteration) {
     std::uint64_t z = seed ^ (vertex * 0x9E3779B97F4A7C15ull) ^ (iteration * 0xD1B54A32D192ED03ull);
@@ -94,11 +79,27 @@ enum class RowPasses {
     /// an edge flows is a coin toss and mispredicted branches cost more than the arithmetic.
     /// The Jacobi schedule picks these when enough of its slots flowed in the iteration before
     /// (TalusSolver: 10⁶ active vertices relax a quarter faster). Without a relocation radius
-    /// only; with one, the rows branch.
+    /// only; with one, the rows branch. (Listing the flowing slots instead, so that the later
+    /// passes visit only those, measured slower on both kinds of terrain.)
     BranchFree,
 };
 
 namespace detail {
+
+/// Two doubles in one SSE2 register (GCC and Clang vector extensions), and a lane mask.
+using DoublePair = double __attribute__((vector_size(16)));
+using LaneMask = std::int64_t __attribute__((vector_size(16)));
+
+/// Each lane of `value` where `keep` is set, else +0.0.
+inline DoublePair keep_lanes(LaneMask keep, DoublePair value) {
+    return std::bit_cast<DoublePair>(std::bit_cast<LaneMask>(value) & keep);
+}
+
+/// `value` when `keep`, else +0.0, without a branch.
+inline double select_or_zero(bool keep, double value) {
+    const std::uint64_t mask = std::uint64_t{0} - static_cast<std::uint64_t>(keep);
+    return std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & mask);
+}
 
 struct ExcessSums {
     double sum = 0.0;      ///< of the excesses written (only its sign is used)
@@ -115,23 +116,23 @@ inline ExcessSums flowing_excess(std::uint32_t i, std::uint32_t begin, std::uint
                                  const TalusParameters& p, double noise_floor, double* q) {
     const double hi = height[i];
     const double degenerate = kDegenerateAreaRatio * area[i];
-    const Pair hi2 = {hi, hi}, tan2 = {tan_alpha, tan_alpha};
-    const Pair tol2 = {p.rest_tolerance, p.rest_tolerance};
-    const Pair margin2 = {p.settle_margin, p.settle_margin};
-    const Pair floor2 = {noise_floor, noise_floor}, degenerate2 = {degenerate, degenerate};
-    Pair sum2 = {0.0, 0.0}, largest2 = {0.0, 0.0};
+    const DoublePair hi2 = {hi, hi}, tan2 = {tan_alpha, tan_alpha};
+    const DoublePair tol2 = {p.rest_tolerance, p.rest_tolerance};
+    const DoublePair margin2 = {p.settle_margin, p.settle_margin};
+    const DoublePair floor2 = {noise_floor, noise_floor}, degenerate2 = {degenerate, degenerate};
+    DoublePair sum2 = {0.0, 0.0}, largest2 = {0.0, 0.0};
     std::uint32_t k = begin;
     for (; k + 1 < end; k += 2) {
-        const Pair slope = Pair{length[k], length[k + 1]} * tan2;
+        const DoublePair slope = DoublePair{length[k], length[k + 1]} * tan2;
         const std::uint32_t t0 = target[k], t1 = target[k + 1];
-        const Pair e = (hi2 - Pair{height[t0], height[t1]}) - slope;
-        const PairMask flows =
-            (e > tol2 * slope) & (e > floor2) & ~(Pair{area[t0], area[t1]} < degenerate2);
-        const Pair excess = keep_lanes(flows, e + margin2 * slope);
+        const DoublePair e = (hi2 - DoublePair{height[t0], height[t1]}) - slope;
+        const LaneMask flows =
+            (e > tol2 * slope) & (e > floor2) & ~(DoublePair{area[t0], area[t1]} < degenerate2);
+        const DoublePair excess = keep_lanes(flows, e + margin2 * slope);
         q[k] = excess[0];
         q[k + 1] = excess[1];
         sum2 += excess;
-        const PairMask bigger = largest2 > excess;  // a lane-wise max
+        const LaneMask bigger = largest2 > excess;  // a lane-wise max
         largest2 = keep_lanes(bigger, largest2) + keep_lanes(~bigger, excess);
     }
     ExcessSums out{sum2[0] + sum2[1], std::max(largest2[0], largest2[1])};
@@ -155,13 +156,13 @@ inline ExcessSums flowing_excess(std::uint32_t i, std::uint32_t begin, std::uint
 inline double levelling_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
                                 const std::uint32_t* target, const double* area, double* q) {
     const double inv_ai = 1.0 / area[i];
-    const Pair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0}, zeros = {0.0, 0.0};
+    const DoublePair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0}, zeros = {0.0, 0.0};
     double levelling = 0.0;
     std::uint32_t k = begin;
     for (; k + 1 < end; k += 2) {
-        const Pair excess = {q[k], q[k + 1]};
-        const Pair to = {area[target[k]], area[target[k + 1]]};
-        const Pair volume = keep_lanes(excess > zeros, excess / (inv_ai2 + ones / to));
+        const DoublePair excess = {q[k], q[k + 1]};
+        const DoublePair to = {area[target[k]], area[target[k + 1]]};
+        const DoublePair volume = keep_lanes(excess > zeros, excess / (inv_ai2 + ones / to));
         q[k] = volume[0];
         q[k + 1] = volume[1];
         levelling += volume[0];
