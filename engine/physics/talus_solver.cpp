@@ -16,24 +16,12 @@ constexpr std::size_t kThreadedMinimum = 2048;
 /// Percentage of the processed slots that must carry sand for the next iteration to take the
 /// branch-free passes (passes_after).
 constexpr std::size_t kBranchFreePercent = 35;
-/// The Jacobi kernel's passes for the next iteration, from the share of the rows' slots that
-/// carried sand in this one. Where it is large, whether an edge flows is a coin toss and the
-/// kernel's branches mispredict: the branch-free passes win (10⁶ active vertices: 43 % of the
-/// slots flow, 13.7 -> 17.4 M updates/s). Where it is small, as on a terrain coming to rest,
-/// the branches predict well and skip the work of the edges at rest: the branching passes win
-/// (the groove eroded to rest: 5 % of the slots on average, at most 40 %; 81 against 100 ms
-/// with the branch-free passes throughout). Both give the same results bit for bit, so only
-/// the speed depends on this choice. (The sequential schedule keeps the branching passes: its
-/// Gauss-Seidel update branches on each slot anyway, and measured no faster without them.)
-RowPasses passes_after(const RowCensus& census) {
-    return census.flowing > 0 && census.flowing * 100 >= census.slots * kBranchFreePercent
-               ? RowPasses::BranchFree
-               : RowPasses::Branching;
-}
-
-inline void mark(std::uint64_t* bits, std::uint32_t v, std::size_t& lo, std::size_t& hi) {
+/// Sets v's bit when `set` (without a branch), and widens the word range [lo, hi) to v's word
+/// either way (the later phases then find that word empty).
+inline void mark(std::uint64_t* bits, std::uint32_t v, std::size_t& lo, std::size_t& hi,
+                 bool set = true) {
     const std::size_t w = v >> 6;
-    bits[w] |= std::uint64_t{1} << (v & 63u);
+    bits[w] |= static_cast<std::uint64_t>(set) << (v & 63u);
     lo = std::min(lo, w);
     hi = std::max(hi, w + 1);
 }
@@ -59,6 +47,21 @@ inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const Tal
 }
 
 }  // namespace
+
+/// The Jacobi kernel's passes for the next iteration, from the share of the rows' slots that
+/// carried sand in this one. Where it is large, whether an edge flows is a coin toss and the
+/// kernel's branches mispredict: the branch-free passes win (10⁶ active vertices: 43 % of the
+/// slots flow, 13.7 -> 17.4 M updates/s). Where it is small, as on a terrain coming to rest,
+/// the branches predict well and skip the work of the edges at rest: the branching passes win
+/// (the groove eroded to rest: 5 % of the slots on average, at most 40 %; 81 against 100 ms
+/// with the branch-free passes throughout). Both give the same results bit for bit, so only
+/// the speed depends on this choice. (The sequential schedule keeps the branching passes: its
+/// Gauss-Seidel update branches on each slot anyway, and measured no faster without them.)
+RowPasses TalusSolver::passes_after(const RowCensus& census) {
+    return census.flowing > 0 && census.flowing * 100 >= census.slots * kBranchFreePercent
+               ? RowPasses::BranchFree
+               : RowPasses::Branching;
+}
 
 TalusSolver::TalusSolver(TalusSettings settings) : settings_(settings) {
     pool_ = std::make_unique<ThreadPool>(std::max(1, settings_.threads));
@@ -327,14 +330,10 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
                 const std::uint32_t t = target[row + k];
                 if constexpr (kPasses == RowPasses::BranchFree) {
                     // No branch: a slot that does not flow writes its +0.0 into an inflow
-                    // slot that holds +0.0 already, and marks nothing (the word range may
-                    // grow by a neighbour's word, which the gather then finds empty).
-                    const std::size_t w = t >> 6;
+                    // slot that holds +0.0 already, and marks nothing.
                     const bool flows = q[k] > 0.0;
-                    receive[w] |= static_cast<std::uint64_t>(flows) << (t & 63u);
+                    mark(receive, t, lo, hi, flows);
                     census.flowing += flows ? 1u : 0u;
-                    lo = std::min(lo, w);
-                    hi = std::max(hi, w + 1);
                     inflow[reverse[row + k]] = q[k];
                 } else if (q[k] > 0.0) {
                     mark(receive, t, lo, hi);

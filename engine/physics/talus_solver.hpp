@@ -63,13 +63,6 @@ struct IterationStats {
     double volume_moved = 0.0;  ///< m³ that left their vertices
 };
 
-/// Slots of the rows the Jacobi schedule processed in an iteration, and how many of them carried
-/// sand: what picks the kernel's passes (RowPasses) for the next iteration.
-struct RowCensus {
-    std::size_t slots = 0;
-    std::size_t flowing = 0;
-};
-
 class TalusSolver {
   public:
     explicit TalusSolver(TalusSettings settings);
@@ -94,6 +87,13 @@ class TalusSolver {
     const std::vector<std::uint32_t>& changed() const { return changed_list_; }
 
   private:
+    /// Slots of the rows the Jacobi schedule processed in an iteration, and how many of them
+    /// carried sand: what picks the kernel's passes (RowPasses) for the next iteration.
+    struct RowCensus {
+        std::size_t slots = 0;
+        std::size_t flowing = 0;
+    };
+    static RowPasses passes_after(const RowCensus& census);
     /// Per-thread scratch of the Jacobi schedule, on its own cache lines. The bitmaps hold one
     /// bit per vertex id and are written only by their thread, so marking needs no atomics;
     /// the next phase ORs them word by word (64 ids at a time) in id order.
