@@ -600,6 +600,7 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     NoEventScope quiet;
     auto impl = std::make_unique<Tin::Impl>();
     impl->domain = domain;
+    impl->constraint_boxes = BoxGrid(domain);
     impl->options = options;
     impl->snap_distance = default_snap_distance(domain);
     impl->cdt.snap_distance = impl->snap_distance;
@@ -959,55 +960,12 @@ Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
     return loc.face;
 }
 
-/// Ids of candidate constraints for `box`, ascending: every constraint whose polyline meets the
-/// box is among them. Either a walk over the faces under the box (tools pay for their
-/// neighbourhood, not for every constraint in the terrain) or, when that is cheaper, a scan of
-/// the constraint table by bounding box.
+/// Ids of the constraints whose bounding boxes meet `box`, ascending: every constraint whose
+/// polyline meets the box is among them. Read from the grid of constraint bounds, so a tool
+/// pays for the constraints near its footprint, not for every constraint in the terrain.
 std::vector<std::uint32_t> constraints_meeting_box(const Tin::Impl& m, const Rect& box) {
     std::vector<std::uint32_t> ids;
-    if (!box.intersects(m.domain)) return ids;
-    // Whichever is cheaper: the walk visits about two faces per vertex under the box; the
-    // table scan one entry per live constraint (few on a fresh, dense terrain).
-    const double clipped =
-        std::max(0.0, std::min(box.max.x, m.domain.max.x) - std::max(box.min.x, m.domain.min.x)) *
-        std::max(0.0, std::min(box.max.y, m.domain.max.y) - std::max(box.min.y, m.domain.min.y));
-    const double faces_under_box = 2.0 * static_cast<double>(m.events.vertex_ids.live()) * clipped /
-                                   std::max(m.domain.width() * m.domain.height(), 1e-300);
-    if (static_cast<double>(m.constraint_ids.live()) <= faces_under_box) {
-        for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
-            if (m.constraints[id].alive && m.constraints[id].bounds.intersects(box))
-                ids.push_back(id);
-        }
-        return ids;
-    }
-    const Vec2 centre = (box.min + box.max) * 0.5;
-    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
-                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
-    const Fh f = face_at(m, start, nullptr);
-    if (f == Fh()) return ids;
-    const std::array<Fh, 1> starts = {f};
-    walk_faces(
-        m, starts,
-        [&](Fh g) {
-            Rect r;
-            for (int i = 0; i < 3; ++i)
-                r.expand(m.va.position[g->vertex(i)->id]);
-            return r.intersects(box);
-        },
-        [](Fh, int) { return true; },
-        [&](Fh g) {
-            for (int i = 0; i < 3; ++i) {
-                if (!g->is_constrained(i)) continue;
-                const Vh a = g->vertex(CdtPlus::ccw(i));
-                const Vh b = g->vertex(CdtPlus::cw(i));
-                for (auto ctx : m.cdt.contexts(a, b)) {
-                    const auto it = m.constraint_of_cgal.find(ctx.id().vl_ptr());
-                    if (it != m.constraint_of_cgal.end()) ids.push_back(it->second);
-                }
-            }
-        });
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    m.constraint_boxes.query(box, ids);
     return ids;
 }
 
@@ -1853,6 +1811,7 @@ ConstraintId constrain_one(Tin::Impl& m, std::span<const VertexId> polyline, boo
     for (VertexId v : polyline)
         bounds.expand(m.va.position[v.value]);
     m.constraints[id] = {cid, generation, true, bounds};
+    m.file_constraint(id);
     m.constraint_of_cgal[cid.vl_ptr()] = id;
     m.note_constraint(id);
     resolve_crossing_heights(m, cid);
@@ -1954,6 +1913,7 @@ std::size_t release_doomed(Tin::Impl& m, std::span<const std::uint32_t> doomed, 
         }
         m.constraint_of_cgal.erase(e.cgal_id.vl_ptr());
         m.cdt.remove_constraint(e.cgal_id);
+        m.unfile_constraint(id);
         e = {};
         m.constraint_ids.release(id);
     }
@@ -2056,8 +2016,11 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
                 first_box.expand(m.va.position[vs[j]->id]);
             for (std::size_t j = k; j < vs.size(); ++j)
                 second_box.expand(m.va.position[vs[j]->id]);
+            m.unfile_constraint(current);
             m.constraints[current].bounds = first_box;
+            m.file_constraint(current);
             m.constraints[nid] = {second, m.constraints[current].generation, true, second_box};
+            m.file_constraint(nid);
             m.constraint_of_cgal[second.vl_ptr()] = nid;
             m.note_constraint(nid);
             if (inside[run_start]) doomed.push_back(current);
@@ -2105,6 +2068,7 @@ bool Tin::release_constraint(ConstraintId id, VolumePolicy policy, EditReport* r
     detail::ConstraintEntry& e = m.constraints[id.value];
     m.constraint_of_cgal.erase(e.cgal_id.vl_ptr());
     m.cdt.remove_constraint(e.cgal_id);
+    m.unfile_constraint(id.value);
     e = {};
     m.constraint_ids.release(id.value);
     finisher.finish(policy, {}, report);

@@ -160,6 +160,7 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
     auto impl = std::make_unique<Impl>();
     Impl& m = *impl;
     m.domain = d;
+    m.constraint_boxes = BoxGrid(d);
     m.options = options;
     m.snap_distance = default_snap_distance(d);
     m.cdt.snap_distance = m.snap_distance;
@@ -315,6 +316,7 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
         for (std::uint32_t v : r.vertices)
             bounds.expand(sv.position[v]);
         m.constraints[r.id] = {cid, r.generation, true, bounds};
+        m.file_constraint(r.id);
         m.constraint_of_cgal[cid.vl_ptr()] = r.id;
         m.note_constraint(r.id);
     }
@@ -497,10 +499,12 @@ ValidationReport Tin::validate(bool recompute_lumped_areas) const {
         const auto it = m.constraint_of_cgal.find(e.cgal_id.vl_ptr());
         if (it == m.constraint_of_cgal.end() || it->second != id)
             problem("constraint registry is inconsistent");
+        if (!m.constraint_boxes.holds(id, e.bounds))
+            problem("constraint " + std::to_string(id) + " is not filed under its bounds");
     }
     if (registered != m.constraint_of_cgal.size() ||
         registered != const_cast<CdtPlus&>(m.cdt).number_of_constraints() ||
-        registered != m.constraint_ids.live()) {
+        registered != m.constraint_ids.live() || registered != m.constraint_boxes.size()) {
         problem("constraint count differs between the registry and CGAL");
     }
     return r;

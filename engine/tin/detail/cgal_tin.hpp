@@ -24,6 +24,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "geom/box_grid.hpp"
 #include "tin/change_journal.hpp"
 #include "tin/id_allocator.hpp"
 #include "tin/tin.hpp"
@@ -335,6 +336,13 @@ struct Tin::Impl {
     std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
     IdAllocator constraint_ids{false};
     std::unordered_map<const void*, std::uint32_t> constraint_of_cgal;  ///< Vertex_list* -> id
+    /// The live constraints' bounds by id, over the domain: a tool finds the constraints under
+    /// its footprint without reading every constraint in the terrain. Every live entry is filed
+    /// with its current bounds: file_constraint() after setting an entry, unfile_constraint()
+    /// before changing its bounds or clearing it.
+    BoxGrid constraint_boxes;
+    void file_constraint(std::uint32_t id) { constraint_boxes.insert(id, constraints[id].bounds); }
+    void unfile_constraint(std::uint32_t id) { constraint_boxes.erase(id, constraints[id].bounds); }
 
     /// Constraints by when they are next due for Tin::expire_constraints(): first when their
     /// generation falls below the limit, then (if they could not go) after a wait that
