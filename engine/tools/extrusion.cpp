@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geom/near_edge_index.hpp"
+#include "geom/point_grid.hpp"
 #include "geom/polygon.hpp"
 #include "geom/polygon_inclusion.hpp"
 #include "tools/slivers.hpp"
@@ -44,27 +46,7 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         weight = direction;
     }
 
-    // Stations along each control point's normal make sure a sparse terrain has vertices to
-    // carry the ridge; they are inserted on the surface, so they change nothing yet.
-    static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
-    std::vector<Vec2> points;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (!(weight[i] > 0.0)) continue;
-        for (double s : kStations) {
-            const Vec2 p = outer[i] + normal[i] * (s * width);
-            if (domain.contains(p) && !point_in_polygon(p, outer)) points.push_back(p);
-        }
-    }
-    if (points.empty()) return report;
-    const std::size_t before = tin.vertex_count();
-    tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
-    report.vertices_inserted = tin.vertex_count() - before;
-
-    // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
-    // the stations are a small share of the band's vertices, and raising them alone would
-    // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way). A
-    // vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
-    // weight interpolated along the nearest contour edge.
+    // The band's vertices: every vertex within reach of the ridge, before any is added.
     Rect box;
     for (Vec2 p : outer)
         box.expand(p);
@@ -72,14 +54,60 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     double reach = 0.0;
     for (Vec2 p : outer)
         reach = std::max(reach, distance(p, centre));
-    std::vector<std::pair<VertexId, double>> ks;
+    std::vector<VertexId> band = tin.vertices_in_disc(centre, reach + width, hint);
     const VertexArrays& va = tin.vertices();
+
+    // Stations along control points' normals make sure a sparse terrain has vertices to carry
+    // the ridge; they are inserted on the surface, so they change nothing yet. A line of them
+    // every quarter width of contour (their spacing across the band: the contour's own points
+    // can be much closer), and a station only where no vertex is within an eighth of the width
+    // already: along a stroke the previous stamps' stations are there, and a dense terrain
+    // needs none. Otherwise every stamp would add hundreds of vertices for the simplifier to
+    // take out again.
+    const double line_spacing = 0.25 * width;
+    const double clearance = 0.125 * width;
+    std::vector<Vec2> band_positions;
+    band_positions.reserve(band.size());
+    for (VertexId v : band)
+        band_positions.push_back(va.position[v.value]);
+    const PointGrid existing(band_positions, clearance);
+    static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
+    std::vector<Vec2> points;
+    double since_line = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i > 0) since_line += distance(outer[i], outer[i - 1]);
+        if (!(weight[i] > 0.0) || since_line < line_spacing) continue;
+        since_line = 0.0;
+        for (double s : kStations) {
+            const Vec2 p = outer[i] + normal[i] * (s * width);
+            if (domain.contains(p) && !point_in_polygon(p, outer) && !existing.has_near(p))
+                points.push_back(p);
+        }
+    }
+    const std::size_t before = tin.vertex_count();
+    if (!points.empty()) {
+        const std::vector<VertexId> stations =
+            tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
+        band.insert(band.end(), stations.begin(), stations.end());
+        // A station may land on an existing vertex (within the snap distance).
+        std::sort(band.begin(), band.end());
+        band.erase(std::unique(band.begin(), band.end()), band.end());
+    }
+    report.vertices_inserted = tin.vertex_count() - before;
+
+    // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
+    // the stations are a small share of the band's vertices, and raising them alone would
+    // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way). A
+    // vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
+    // weight interpolated along the nearest contour edge.
+    std::vector<std::pair<VertexId, double>> ks;
     // A dense terrain has thousands of vertices under and around the tool, and its rim
     // hundreds of edges: both tests are indexed (same answers as point_in_polygon and
     // nearest_edge).
     const PolygonInclusion under_tool(outer, centre);
     const NearEdgeIndex rim(outer, width);
-    for (VertexId v : tin.vertices_in_disc(centre, reach + width, hint)) {
+    for (VertexId v : band) {
+        if (!tin.is_alive(v)) continue;
         const Vec2 p = va.position[v.value];
         if (under_tool.contains(p)) continue;
         const NearestEdge edge = rim.nearest_within_reach(p);
