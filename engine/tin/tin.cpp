@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -833,6 +834,78 @@ std::optional<double> Tin::height_at(Vec2 p, LocateHint* hint) const {
     return loc.barycentric[0] * va.height[loc.corners[0].value] +
            loc.barycentric[1] * va.height[loc.corners[1].value] +
            loc.barycentric[2] * va.height[loc.corners[2].value];
+}
+
+namespace {
+
+/// True when p lies strictly inside finite face f (exact predicates): then f is the face any
+/// walk would locate p in.
+bool strictly_inside(const Tin::Impl& m, Fh f, const detail::Point& p) {
+    if (m.cdt.is_infinite(f)) return false;
+    const auto orientation = detail::Kernel().orientation_2_object();
+    for (int i = 0; i < 3; ++i) {
+        if (orientation(f->vertex(CdtPlus::ccw(i))->point(), f->vertex(CdtPlus::cw(i))->point(),
+                        p) != CGAL::LEFT_TURN) {
+            return false;
+        }
+    }
+    return true;
+}
+
+double interpolate(const Tin::Impl& m, const FiniteLocation& loc) {
+    return loc.weights[0] * m.va.height[loc.corners[0]] +
+           loc.weights[1] * m.va.height[loc.corners[1]] +
+           loc.weights[2] * m.va.height[loc.corners[2]];
+}
+
+}  // namespace
+
+void Tin::heights_at(std::span<const Vec2> points, std::span<double> out, LocateHint* hint,
+                     std::span<std::array<VertexId, 3>> corners) const {
+    require(points.size() == out.size(), "heights_at: one output per point");
+    require(corners.empty() || corners.size() == points.size(),
+            "heights_at: one corner triple per point, or none");
+    const auto record = [&](std::size_t k, const FiniteLocation& loc) {
+        if (corners.empty()) return;
+        for (std::size_t i = 0; i < 3; ++i)
+            corners[k][i] = VertexId{loc.corners[i]};
+    };
+    const Impl& m = *impl_;
+    Fh last;  // the finite face of the point before, if any
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const Vec2 p = points[k];
+        out[k] = std::numeric_limits<double>::quiet_NaN();
+        if (!corners.empty()) corners[k] = {};
+        if (!is_finite(p) || !m.domain.contains(p)) continue;
+        const detail::Point cp = to_point(p);
+        Fh f;
+        if (last != Fh()) {
+            if (strictly_inside(m, last, cp)) {
+                f = last;
+            } else {
+                for (int i = 0; i < 3 && f == Fh(); ++i) {
+                    if (strictly_inside(m, last->neighbor(i), cp)) f = last->neighbor(i);
+                }
+            }
+        }
+        if (f != Fh()) {
+            // The face locate() would return, with the same weights: the same height.
+            const FiniteLocation loc = finite_location(m, p, CdtPlus::FACE, f, 0);
+            out[k] = interpolate(m, loc);
+            record(k, loc);
+            last = f;
+            continue;
+        }
+        CdtPlus::Locate_type lt;
+        int li = 0;
+        const Fh g = m.cdt.locate(cp, lt, li, start_face(m, p, hint));
+        if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL) continue;
+        const FiniteLocation loc = finite_location(m, p, lt, g, li);
+        out[k] = interpolate(m, loc);
+        record(k, loc);
+        update_hint(hint, loc);
+        last = loc.face;
+    }
 }
 
 void Tin::neighbours(VertexId v, std::vector<VertexId>& out) const {

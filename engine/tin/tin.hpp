@@ -189,6 +189,15 @@ class Tin {
     Location locate(Vec2 p, LocateHint* hint = nullptr) const;
     /// Height of the piecewise-linear surface at p, or nullopt outside the domain.
     std::optional<double> height_at(Vec2 p, LocateHint* hint = nullptr) const;
+    /// height_at for each point, in order, into `out` (NaN where height_at gives nullopt), with
+    /// the same values. Made for runs of nearby points (a lattice in row order, a contour): a
+    /// point strictly inside the previous point's triangle or one of its neighbours costs a
+    /// few orientation tests instead of a walk. With `corners` (empty, or one per point), also
+    /// the corners of the triangle each height was interpolated in (invalid ids where NaN):
+    /// the height stays the same until one of them changes height or star. Throws
+    /// std::invalid_argument when the spans differ in size.
+    void heights_at(std::span<const Vec2> points, std::span<double> out, LocateHint* hint = nullptr,
+                    std::span<std::array<VertexId, 3>> corners = {}) const;
 
     /// The finite neighbours of v in counter-clockwise order (replaces the contents of out).
     void neighbours(VertexId v, std::vector<VertexId>& out) const;

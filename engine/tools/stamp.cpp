@@ -162,8 +162,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     if (!tool.profile().is_flat()) {
         const double step = std::min(spacing, tool.profile().sample_spacing());
         lattice = interior_lattice(inner, step);
-        for (Vec2 p : lattice)
-            lattice_terrain.push_back(surface_or(tin, p, hint, 0.0));
+        lattice_terrain.resize(lattice.size());
+        tin.heights_at(lattice, lattice_terrain, hint);
+        for (double& h : lattice_terrain) {
+            if (std::isnan(h)) h = 0.0;  // outside the domain, as surface_or
+        }
     }
     const bool dig = tool.spec().mode == ImprintMode::Dig;
     auto imprint = [&](Vec2 p, double terrain) {

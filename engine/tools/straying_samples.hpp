@@ -18,7 +18,9 @@ namespace sandtin {
 /// more than `tolerance` (m; plus a few ulps of the heights, which interpolation at a vertex
 /// can round away). Samples are visited in passes over every 64th, 16th, 4th and
 /// finally every one (in the order given: a lattice in row order spreads each pass over the
-/// whole region); the full pass repeats until it inserts nothing. On return the surface lies
+/// whole region); the full pass repeats until it inserts nothing, each repeat over only the
+/// samples whose triangle changed (a corner's height or star), since the others' heights
+/// cannot have moved. On return the surface lies
 /// within the tolerance of every finite target whose sample is in the domain (unless two
 /// samples share a position but not a target: the full pass runs at most 8 times). Returns the
 /// inserted vertices in insertion order; a sample exactly on a vertex sets that vertex's height.

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
@@ -191,6 +193,66 @@ TEST(HeightAt, CurvedTerrainMatchesBruteForceInterpolation) {
     for (VertexId v : test::live_ids(tin)) {
         EXPECT_NEAR(*tin.height_at(tin.position(v)), tin.height(v), 4e-15);
     }
+}
+
+TEST(HeightsAt, MatchHeightAtAndNameATriangleHoldingEachPoint) {
+    Tin tin = Tin::random_points(Rect::from_size(5.0, 5.0), 2000, 8, hills);
+    // Constraints, so the walk between neighbouring queries crosses constrained edges too.
+    std::vector<VertexId> ring;
+    for (int k = 0; k < 24; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 24;
+        ring.push_back(tin.insert_point({2.5 + 1.2 * std::cos(a), 2.5 + 1.2 * std::sin(a)}, 1.0));
+    }
+    tin.insert_constraint(ring, /*closed=*/true, 1);
+    std::vector<Vec2> points;
+    for (double y = 0.013; y < 5.0; y += 0.083) {  // a lattice in row order: the intended use
+        for (double x = 0.007; x < 5.0; x += 0.071)
+            points.push_back({x, y});
+    }
+    std::mt19937_64 rng = test::test_rng(8);
+    std::uniform_real_distribution<double> u(-0.5, 5.5);  // some outside the domain
+    for (int i = 0; i < 1000; ++i)
+        points.push_back({u(rng), u(rng)});
+    const std::size_t strictly_inside = points.size();
+    // On vertices and on edges (midpoints), where several triangles hold the point.
+    const std::vector<VertexId> live = test::live_ids(tin);
+    for (std::size_t i = 0; i < live.size(); i += 4)
+        points.push_back(tin.position(live[i]));
+    const std::vector<Tri> tris = tin.triangles();
+    for (std::size_t i = 0; i < tris.size(); i += 8)
+        points.push_back((tin.position(tris[i][0]) + tin.position(tris[i][1])) * 0.5);
+    points.push_back({kNaN, 1.0});
+    points.push_back({5.0, 5.0});  // a corner of the domain
+    std::vector<double> heights(points.size());
+    std::vector<std::array<VertexId, 3>> corners(points.size());
+    LocateHint hint;
+    tin.heights_at(points, heights, &hint, corners);
+    std::size_t outside = 0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const std::optional<double> want = tin.height_at(points[k]);
+        if (!want) {
+            EXPECT_TRUE(std::isnan(heights[k])) << k;
+            EXPECT_FALSE(corners[k][0].valid()) << k;
+            ++outside;
+            continue;
+        }
+        // Inside a triangle the located triangle is unique: bit for bit. On an edge or a
+        // vertex another triangle holding the point may be used: equal up to rounding.
+        if (k < strictly_inside)
+            EXPECT_EQ(heights[k], *want) << k;
+        else
+            EXPECT_NEAR(heights[k], *want, 1e-14) << k;
+        bool holds = false;
+        for (const Tri& t : test::triangles_containing(tin, points[k]))
+            holds = holds || same_triangle(t, corners[k]);
+        EXPECT_TRUE(holds) << "point " << k << " was not interpolated in a triangle holding it";
+    }
+    EXPECT_GT(outside, 100u);
+    std::vector<double> too_few(points.size() - 1);
+    EXPECT_THROW(tin.heights_at(points, too_few), std::invalid_argument);
+    std::vector<std::array<VertexId, 3>> wrong_corners(3);
+    EXPECT_THROW(tin.heights_at(points, heights, nullptr, wrong_corners), std::invalid_argument);
+    tin.heights_at({}, {});  // nothing to do
 }
 
 /// Brute-force neighbours: the other corners of all triangles containing v.

@@ -5,9 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
@@ -73,6 +77,101 @@ TEST(StrayingSamples, EverySampleEndsWithinTheToleranceWithFewPointsOnASmoothTar
         const ValidationReport r = tin.check_valid();
         EXPECT_TRUE(r.ok()) << r.summary();
     }
+}
+
+/// The definition, written plainly: the coarse passes, then every sample in every full round
+/// (one height_at each) until a round inserts nothing. insert_straying_samples only looks again
+/// at samples whose triangle changed; it must end with the same terrain.
+std::vector<VertexId> reference_straying(Tin& tin, const std::vector<Vec2>& samples,
+                                         const std::vector<double>& targets, double tolerance,
+                                         int* full_rounds) {
+    std::vector<VertexId> inserted;
+    LocateHint hint;
+    auto pass = [&](std::size_t stride, std::size_t skip) {
+        std::vector<Vec2> points;
+        std::vector<double> heights;
+        for (std::size_t k = 0; k < samples.size(); k += stride) {
+            if (skip != 0 && k % skip == 0) continue;
+            const std::optional<double> h = tin.height_at(samples[k], &hint);
+            if (!h) continue;
+            const double slack = 8.0 * std::numeric_limits<double>::epsilon() *
+                                 std::max(std::abs(*h), std::abs(targets[k]));
+            if (!(std::abs(*h - targets[k]) <= tolerance + slack)) {
+                points.push_back(samples[k]);
+                heights.push_back(targets[k]);
+            }
+        }
+        const std::vector<VertexId> ids = tin.insert_points(points, heights, &hint);
+        inserted.insert(inserted.end(), ids.begin(), ids.end());
+        return points.size();
+    };
+    pass(64, 0);
+    pass(16, 64);
+    pass(4, 16);
+    *full_rounds = 1;
+    while (pass(1, 0) != 0 && *full_rounds < 8)
+        ++*full_rounds;
+    return inserted;
+}
+
+TEST(StrayingSamples, LookingAgainOnlyWhereTrianglesChangedGivesTheSameTerrain) {
+    // A rough target (a sharp crease and ripples) on a random TIN: insertions re-triangulate
+    // well beyond their own sample, so several full rounds insert more.
+    auto rough = [](Vec2 p) {
+        return 0.02 * std::abs(p.x - 0.47) + 0.004 * std::sin(90.0 * p.y) + dip(p);
+    };
+    const std::vector<Vec2> samples = disc_lattice(0.006);
+    std::vector<double> targets;
+    for (Vec2 p : samples)
+        targets.push_back(rough(p));
+    // Or with vertices exactly on every 7th sample, at the wrong height: there a stray sample
+    // changes that vertex's height instead of the triangles, and its neighbours' samples move.
+    std::vector<Vec2> on_samples;
+    std::vector<double> off_target;
+    for (std::size_t k = 0; k < samples.size(); k += 7) {
+        on_samples.push_back(samples[k]);
+        off_target.push_back(targets[k] + 0.003);
+    }
+    auto terrain = [&](bool vertices_on_samples) {
+        return vertices_on_samples ? Tin::from_points(kUnit, on_samples, off_target)
+                                   : Tin::random_points(kUnit, 3000, 9, dip);
+    };
+    int most_rounds = 0;
+    for (const auto& [tolerance, vertices_on_samples] :
+         {std::pair{2e-4, false}, std::pair{1e-3, false}, std::pair{2e-4, true}}) {
+        SCOPED_TRACE(std::to_string(tolerance) + (vertices_on_samples ? ", on samples" : ""));
+        Tin reference = terrain(vertices_on_samples);
+        Tin tin = terrain(vertices_on_samples);
+        int rounds = 0;
+        const std::vector<VertexId> want =
+            reference_straying(reference, samples, targets, tolerance, &rounds);
+        most_rounds = std::max(most_rounds, rounds);
+        LocateHint hint;
+        const std::vector<VertexId> got =
+            insert_straying_samples(tin, samples, targets, tolerance, &hint, nullptr);
+        EXPECT_EQ(got, want);
+        test::expect_snapshots_equal(reference.snapshot(), tin.snapshot());
+    }
+    EXPECT_GE(most_rounds, 3);  // the case this is about: later rounds that still insert
+}
+
+TEST(StrayingSamples, AVertexHeightSetBySampleSendsTheSamplesAroundItBackForAnotherLook) {
+    // Triangle A B V with A, B 1 cm above the target (0) and V 2 cm below it. Sample s1 sits
+    // where V weighs a third: the errors cancel and s1 does not stray at first. Sample s0 lies
+    // exactly on V and strays: inserting it sets V's height (the triangles stay as they are),
+    // and only then does s1 stray (by 2/3 cm). Its triangle's corners did not change their
+    // stars, only V its height; a later round must look at s1 again.
+    const std::vector<Vec2> vertices = {{0.2, 0.2}, {0.8, 0.2}, {0.5, 0.8}};
+    const std::vector<double> heights = {0.01, 0.01, -0.02};
+    const std::vector<Vec2> samples = {{0.5, 0.4}, {0.5, 0.8}};  // s1 first: the coarse pass
+    const std::vector<double> targets = {0.0, 0.0};              // sees it alone
+    Tin tin = Tin::from_points(kUnit, vertices, heights);
+    ASSERT_NEAR(*tin.height_at(samples[0]), 0.0, 1e-15);
+    LocateHint hint;
+    const std::vector<VertexId> added =
+        insert_straying_samples(tin, samples, targets, 1e-3, &hint, nullptr);
+    EXPECT_EQ(added.size(), 2u);
+    EXPECT_LE(worst_miss(tin, samples, targets), 1e-3);
 }
 
 TEST(StrayingSamples, ASurfaceThatHoldsEveryTargetIsLeftAlone) {
