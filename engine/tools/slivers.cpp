@@ -14,7 +14,8 @@ void level_clusters(Tin& tin, std::span<const VertexId> vertices, Level level) {
     std::vector<VertexId> ring;
     std::vector<VertexId> cluster;
     std::vector<VertexId> done;
-    const double snap = tin.snap_distance();
+    // Squared: every neighbour of every vertex offered is tested, and hypot is slow.
+    const double snap2 = tin.snap_distance() * tin.snap_distance();
     const VertexArrays& va = tin.vertices();
     for (VertexId start : vertices) {
         if (!tin.is_alive(start) || std::find(done.begin(), done.end(), start) != done.end())
@@ -24,7 +25,7 @@ void level_clusters(Tin& tin, std::span<const VertexId> vertices, Level level) {
             const VertexId v = cluster[head];
             tin.neighbours(v, ring);
             for (VertexId w : ring) {
-                if (distance(va.position[v.value], va.position[w.value]) > snap) continue;
+                if (length_squared(va.position[w.value] - va.position[v.value]) > snap2) continue;
                 if (std::find(cluster.begin(), cluster.end(), w) == cluster.end())
                     cluster.push_back(w);
             }
