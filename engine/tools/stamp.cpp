@@ -135,8 +135,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     };
     std::vector<Vec2> outer = drop_near_duplicates(
         clip_to_rect(to_world(tool.shape().outer), domain.min, domain.max), eps);
-    std::vector<Vec2> inner = drop_near_duplicates(
-        clip_to_rect(to_world(tool.shape().inner), domain.min, domain.max), eps);
+    const std::vector<Vec2> inner_whole = to_world(tool.shape().inner);
+    const bool inner_clipped = !std::all_of(inner_whole.begin(), inner_whole.end(),
+                                            [&](Vec2 p) { return domain.contains(p); });
+    std::vector<Vec2> inner =
+        drop_near_duplicates(clip_to_rect(inner_whole, domain.min, domain.max), eps);
     if (outer.size() < 3 || inner.size() < 3 || !(std::abs(signed_area(inner)) > eps * eps)) {
         return report;  // the tool misses the terrain
     }
@@ -157,11 +160,26 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<double> inner_terrain(inner.size());
     for (std::size_t i = 0; i < inner.size(); ++i)
         inner_terrain[i] = surface_or(tin, inner[i], hint, 0.0);
+    // A curved profile's interior samples, with the underside's height at each.
     std::vector<Vec2> lattice;
+    std::vector<double> lattice_underside;
     std::vector<double> lattice_terrain;
     if (!tool.profile().is_flat()) {
-        const double step = std::min(spacing, tool.profile().sample_spacing());
-        lattice = interior_lattice(inner, step);
+        if (inner_clipped) {
+            // Part of I lies outside the domain: a lattice of the clipped contour, so no sample
+            // hugs the domain's border.
+            const double step = std::min(spacing, tool.profile().sample_spacing());
+            lattice = interior_lattice(inner, step);
+            for (Vec2 p : lattice)
+                lattice_underside.push_back(frame.underside(p));
+        } else {
+            const Tool::InteriorSamples& samples = tool.interior_samples();
+            lattice.reserve(samples.local.size());
+            for (Vec2 p : samples.local)
+                lattice.push_back(frame.to_world(p));
+            for (double offset : samples.offset)
+                lattice_underside.push_back(at.bottom + offset);
+        }
         lattice_terrain.resize(lattice.size());
         tin.heights_at(lattice, lattice_terrain, hint);
         for (double& h : lattice_terrain) {
@@ -169,10 +187,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         }
     }
     const bool dig = tool.spec().mode == ImprintMode::Dig;
-    auto imprint = [&](Vec2 p, double terrain) {
-        const double u = frame.underside(p);
+    // The surface the stamp leaves where the underside is at height u over terrain height h.
+    auto imprint_under = [&](double u, double terrain) {
         if (!std::isfinite(u)) return terrain;  // no contact there
         return dig ? std::min(terrain, u) : u;
+    };
+    auto imprint = [&](Vec2 p, double terrain) {
+        return imprint_under(frame.underside(p), terrain);
     };
 
     // Which parts of the contours the stamp actually changes: an inner segment is active
@@ -194,7 +215,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     bool acts = activity.any_segment;
     // A curved profile also acts inside I: its interior samples decide too.
     for (std::size_t k = 0; k < lattice.size() && !acts; ++k)
-        acts = std::abs(lattice_terrain[k] - imprint(lattice[k], lattice_terrain[k])) > tol;
+        acts = std::abs(lattice_terrain[k] -
+                        imprint_under(lattice_underside[k], lattice_terrain[k])) > tol;
     if (!acts && !interior_stands_off(tin, inner, imprint, tol, lateral, at.centre,
                                       tool.shape().bounding_radius, hint)) {
         report.enforce_ms = elapsed_ms(t0);
@@ -373,7 +395,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     if (!lattice.empty()) {
         std::vector<double> lattice_h(lattice.size());
         for (std::size_t i = 0; i < lattice.size(); ++i)
-            lattice_h[i] = imprint(lattice[i], lattice_terrain[i]);
+            lattice_h[i] = imprint_under(lattice_underside[i], lattice_terrain[i]);
         const std::vector<VertexId> added = insert_straying_samples(
             tin, lattice, lattice_h, 0.5 * context.settings.simplify.tolerance, hint, &edit);
         region.insert(region.end(), added.begin(), added.end());

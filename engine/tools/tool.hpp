@@ -79,6 +79,17 @@ class Tool {
     /// Height of the tool's underside above world point p (m); +infinity where it has no contact.
     double underside(const ToolPlacement& at, Vec2 world) const;
 
+    /// Where a stamp samples a curved profile inside I: a lattice in tool coordinates (m),
+    /// interior_lattice() of the subdivided inner contour at the profile's sample spacing (at
+    /// most the rim spacing), with the profile's offset at each point (m above the lowest
+    /// point; +infinity: no contact). Empty for a flat profile. Made once when the tool is
+    /// built, so a stamp only maps it to the world.
+    struct InteriorSamples {
+        std::vector<Vec2> local;
+        std::vector<double> offset;
+    };
+    const InteriorSamples& interior_samples() const { return interior_samples_; }
+
   private:
     ToolSpec spec_;
     ToolShape shape_;
@@ -87,6 +98,7 @@ class Tool {
     double rim_spacing_ = 0.0;
     double rim_tolerance_ = 0.0;
     double extrusion_width_ = 0.0;
+    InteriorSamples interior_samples_;
 };
 
 /// A tool at one placement, with the heading's cosine and sine evaluated once: a stamp maps

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
@@ -298,14 +300,19 @@ void stamp_asset(const std::string& name) {
 // d_m / 2, and the simplifier may take up to d_m. Sampled between the vertices too, which is
 // what an artist sees. (The rake is left out: its tines are steps, which a lattice of any
 // spacing only brackets.)
+// Also with the tool partly outside the domain, where the samples come from the clipped
+// contour instead of the tool's own lattice.
 TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
-    for (const char* name : {"foot", "ball"}) {
-        SCOPED_TRACE(name);
+    for (const auto& [name, centre] :
+         {std::pair{"foot", Vec2{0.5, 0.5}}, std::pair{"ball", Vec2{0.5, 0.5}},
+          std::pair{"foot", Vec2{0.5, 0.97}}, std::pair{"ball", Vec2{0.02, 0.45}}}) {
+        SCOPED_TRACE(std::string(name) + " at " + std::to_string(centre.x) + ", " +
+                     std::to_string(centre.y));
         const Tool tool = Tool::build(load_tool_asset(name));
         Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, test::rolling_sand);
         SculptContext context(tin.domain());
         const Tin before = Tin::from_snapshot(tin.snapshot());
-        ToolPlacement at{{0.5, 0.5}, 0.6, 0.0};
+        ToolPlacement at{centre, 0.6, 0.0};
         at.bottom = *tin.height_at(at.centre) - 0.01;
         ASSERT_TRUE(stamp(tin, tool, at, context, Vec2{1.0, 0.0}).applied);
         const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
@@ -313,15 +320,21 @@ TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
         LocateHint hint_before, hint_after;
         std::size_t checked = 0;
         double worst = 0.0;
-        for (Vec2 p : test::random_points_in(Rect{{0.3, 0.3}, {0.7, 0.7}}, 60000, 5)) {
+        const Rect around{{std::max(0.0, centre.x - 0.2), std::max(0.0, centre.y - 0.2)},
+                          {std::min(1.0, centre.x + 0.2), std::min(1.0, centre.y + 0.2)}};
+        for (Vec2 p : test::random_points_in(around, 60000, 5)) {
             if (!test::inside_by(p, inner, 0.004)) continue;
+            // A margin along the domain's border too, where a clipped I runs: no interior
+            // sample lies within half a spacing of it, so right at the border the surface only
+            // interpolates between I's points there.
+            if (std::min({p.x, p.y, 1.0 - p.x, 1.0 - p.y}) < 0.002) continue;
             const double under = tool.underside(at, p);
             if (!std::isfinite(under)) continue;
             const double want = std::min(*before.height_at(p, &hint_before), under);
             worst = std::max(worst, std::abs(*tin.height_at(p, &hint_after) - want));
             ++checked;
         }
-        EXPECT_GT(checked, 1000u);
+        EXPECT_GT(checked, 500u);
         EXPECT_LE(worst, 2.0 * d_m);
         EXPECT_TRUE(mesh_is_sound(tin));
     }
