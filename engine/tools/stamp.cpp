@@ -187,7 +187,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         }
     }
     const bool dig = tool.spec().mode == ImprintMode::Dig;
-    // The surface the stamp leaves where the underside is at height u over terrain height h.
+    // The height the stamp leaves where its underside is at height u and the sand at `terrain`.
     auto imprint_under = [&](double u, double terrain) {
         if (!std::isfinite(u)) return terrain;  // no contact there
         return dig ? std::min(terrain, u) : u;
