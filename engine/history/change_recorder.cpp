@@ -23,8 +23,7 @@ struct PositionLess {
 
 }  // namespace
 
-ChangeRecorder::ChangeRecorder(Tin& tin)
-    : tin_(tin), subscription_(tin.subscribe_vertex_changes()) {
+ChangeRecorder::ChangeRecorder(Tin& tin) : tin_(tin), changes_(tin) {
     const VertexArrays& va = tin.vertices();
     records_.resize(va.size());
     alive_.assign(va.alive.begin(), va.alive.end());
@@ -35,9 +34,7 @@ ChangeRecorder::ChangeRecorder(Tin& tin)
         constraints_.emplace(info.id.value, polyline_of(tin, info));
 }
 
-ChangeRecorder::~ChangeRecorder() {
-    tin_.unsubscribe_vertex_changes(subscription_);
-}
+ChangeRecorder::~ChangeRecorder() = default;
 
 VertexRecord ChangeRecorder::current(VertexId v) const {
     const VertexArrays& va = tin_.vertices();
@@ -47,7 +44,7 @@ VertexRecord ChangeRecorder::current(VertexId v) const {
 }
 
 bool ChangeRecorder::has_vertex_changes() {
-    VertexChanges changes = tin_.take_vertex_changes(subscription_);
+    VertexChanges changes = changes_.take();
     pending_.insert(pending_.end(), changes.attributes.begin(), changes.attributes.end());
     return !pending_.empty();
 }

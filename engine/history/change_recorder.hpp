@@ -13,6 +13,7 @@
 
 #include "history/tin_delta.hpp"
 #include "tin/tin.hpp"
+#include "tin/vertex_change_feed.hpp"
 
 namespace sandtin {
 
@@ -35,7 +36,7 @@ class ChangeRecorder {
     VertexRecord current(VertexId v) const;
 
     Tin& tin_;
-    std::uint32_t subscription_;
+    VertexChangeFeed changes_;
     std::vector<VertexRecord> records_;  ///< by VertexId, as of the last take()
     std::vector<std::uint8_t> alive_;
     std::map<std::uint32_t, ConstraintPolyline> constraints_;  ///< by ConstraintId

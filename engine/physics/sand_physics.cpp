@@ -35,8 +35,8 @@ SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settin
       solver_(settings),
       order_(order != VertexOrder::Auto              ? order
              : settings.schedule == Schedule::Jacobi ? VertexOrder::Strips
-                                                     : VertexOrder::Tin) {
-    subscription_ = tin_.subscribe_vertex_changes();
+                                                     : VertexOrder::Tin),
+      changes_(tin) {
     const VertexArrays& va = tin_.vertices();
     material_seen_.assign(va.material.begin(), va.material.end());
     moisture_seen_.assign(va.moisture.begin(), va.moisture.end());
@@ -139,9 +139,7 @@ void SandPhysics::renumber() {
     ++renumberings_;
 }
 
-SandPhysics::~SandPhysics() {
-    tin_.unsubscribe_vertex_changes(subscription_);
-}
+SandPhysics::~SandPhysics() = default;
 
 void SandPhysics::set_materials(MaterialTable materials) {
     materials_ = std::move(materials);
@@ -172,7 +170,7 @@ void SandPhysics::activate_all() {
 }
 
 void SandPhysics::sync() {
-    const VertexChanges changes = tin_.take_vertex_changes(subscription_);
+    const VertexChanges changes = changes_.take();
     const VertexArrays& va = tin_.vertices();
     if (material_seen_.size() < va.size()) {
         material_seen_.resize(va.size(), 0xFFFF);
@@ -382,7 +380,7 @@ void SandPhysics::flush(std::vector<VertexId>* changed_out) {
     tin_.set_heights(write_ids_, write_values_);
     if (changed_out != nullptr)
         changed_out->insert(changed_out->end(), write_ids_.begin(), write_ids_.end());
-    const VertexChanges echo = tin_.take_vertex_changes(subscription_);
+    const VertexChanges echo = changes_.take();
     // set_heights changes attributes only; anything else would be an edit we must not drop.
     apply_topology(echo.topology);
 }

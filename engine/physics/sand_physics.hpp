@@ -22,6 +22,7 @@
 #include "physics/talus_solver.hpp"
 #include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
+#include "tin/vertex_change_feed.hpp"
 
 namespace sandtin {
 
@@ -124,7 +125,7 @@ class SandPhysics {
     std::size_t renumberings_ = 0;
     AdjacencyGraph graph_{RowSlack::None};  ///< local ids, packed rows
     ActiveSet active_;                      ///< local ids
-    std::uint32_t subscription_;
+    VertexChangeFeed changes_;
     // Per local id.
     std::vector<double> height_;
     std::vector<double> tan_alpha_;

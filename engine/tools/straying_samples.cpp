@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "tin/vertex_change_feed.hpp"
 #include "util/visit_marks.hpp"
 
 namespace sandtin {
@@ -14,20 +15,6 @@ namespace sandtin {
 namespace {
 
 constexpr int kMaxFullPasses = 8;
-
-/// A change channel open for the lifetime of one call (closed on every exit, exceptions too).
-class ChangeFeed {
-  public:
-    explicit ChangeFeed(Tin& tin) : tin_(tin), id_(tin.subscribe_vertex_changes()) {}
-    ~ChangeFeed() { tin_.unsubscribe_vertex_changes(id_); }
-    ChangeFeed(const ChangeFeed&) = delete;
-    ChangeFeed& operator=(const ChangeFeed&) = delete;
-    VertexChanges take() { return tin_.take_vertex_changes(id_); }
-
-  private:
-    Tin& tin_;
-    std::uint32_t id_;
-};
 
 }  // namespace
 
@@ -43,7 +30,7 @@ std::vector<VertexId> insert_straying_samples(Tin& tin, std::span<const Vec2> sa
     // The triangle each sample was last evaluated in, by its corners: its surface height stays
     // what it was until one of them changes height or star (reported through `feed`).
     std::vector<std::array<VertexId, 3>> evaluated_in(samples.size());
-    ChangeFeed feed(tin);
+    VertexChangeFeed feed(tin);
 
     std::vector<std::size_t> visit;
     std::vector<Vec2> at;
