@@ -1,5 +1,7 @@
 #include "geom/box_grid.hpp"
 
+#include "geom/grid_cell.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,15 +12,6 @@ namespace {
 /// A box covering more cells than this goes into the wide list: filing it cell by cell would
 /// cost more than every query reading it once. A tool's rim segment covers one to four.
 constexpr std::size_t kMaxCellsPerBox = 64;
-
-/// The cell index of coordinate `x` along one axis, clamped into [0, count); monotone in x, so
-/// two closed intervals that share a point share that point's cell. NaN maps to cell 0.
-std::uint32_t cell_index(double x, double origin, double cell_size, std::uint32_t count) {
-    const double f = (x - origin) / cell_size;
-    if (!(f > 0.0)) return 0;
-    if (!(f < static_cast<double>(count))) return count - 1;
-    return std::min(static_cast<std::uint32_t>(f), count - 1);
-}
 
 }  // namespace
 
@@ -35,16 +28,16 @@ BoxGrid::BoxGrid(const Rect& extent, std::uint32_t target_cells) {
     extent_ = extent;
     columns_ = static_cast<std::uint32_t>(columns);
     rows_ = static_cast<std::uint32_t>(rows);
-    cell_width_ = w / columns;
-    cell_height_ = h / rows;
+    columns_per_metre_ = columns / w;
+    rows_per_metre_ = rows / h;
     cells_.resize(static_cast<std::size_t>(columns_) * rows_);
 }
 
 BoxGrid::CellSpan BoxGrid::span_of(const Rect& box) const {
-    return {cell_index(box.min.x, extent_.min.x, cell_width_, columns_),
-            cell_index(box.max.x, extent_.min.x, cell_width_, columns_),
-            cell_index(box.min.y, extent_.min.y, cell_height_, rows_),
-            cell_index(box.max.y, extent_.min.y, cell_height_, rows_)};
+    return {grid_cell(box.min.x, extent_.min.x, columns_per_metre_, columns_),
+            grid_cell(box.max.x, extent_.min.x, columns_per_metre_, columns_),
+            grid_cell(box.min.y, extent_.min.y, rows_per_metre_, rows_),
+            grid_cell(box.max.y, extent_.min.y, rows_per_metre_, rows_)};
 }
 
 bool BoxGrid::is_wide(const Rect& box) const {

@@ -58,8 +58,8 @@ class BoxGrid {
     }
 
     Rect extent_;
-    double cell_width_ = 0.0;   ///< m
-    double cell_height_ = 0.0;  ///< m
+    double columns_per_metre_ = 0.0;
+    double rows_per_metre_ = 0.0;
     std::uint32_t columns_ = 0;
     std::uint32_t rows_ = 0;
     std::vector<std::vector<Entry>> cells_;  ///< row-major

@@ -1,5 +1,7 @@
 #include "geom/near_edge_index.hpp"
 
+#include "geom/grid_cell.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -30,11 +32,8 @@ NearEdgeIndex::NearEdgeIndex(std::span<const Vec2> polygon, double reach) : poly
     columns_ = static_cast<std::uint32_t>(grid_.width() * cells_per_metre_) + 1;
     rows_ = static_cast<std::uint32_t>(grid_.height() * cells_per_metre_) + 1;
     const auto cell_range = [&](double lo, double hi, std::uint32_t count, double origin) {
-        const auto clamp_cell = [&](double x) {
-            const double f = (x - origin) * cells_per_metre_;
-            return static_cast<std::uint32_t>(std::clamp(f, 0.0, static_cast<double>(count - 1)));
-        };
-        return std::pair{clamp_cell(lo), clamp_cell(hi)};
+        return std::pair{grid_cell(lo, origin, cells_per_metre_, count),
+                         grid_cell(hi, origin, cells_per_metre_, count)};
     };
     // Two passes, counting then filling, so each cell's list is contiguous and ascending.
     cell_start_.assign(static_cast<std::size_t>(columns_) * rows_ + 1, 0);
@@ -70,10 +69,8 @@ NearestEdge NearEdgeIndex::nearest_within_reach(Vec2 p) const {
     if (cell_start_.empty()) return nearest_edge(p, polygon_);
     NearestEdgeSearch search(p, polygon_);
     if (!grid_.contains(p)) return search.result();  // beyond the reach of every edge (or NaN)
-    const auto column = static_cast<std::uint32_t>(
-        std::min((p.x - grid_.min.x) * cells_per_metre_, static_cast<double>(columns_ - 1)));
-    const auto row = static_cast<std::uint32_t>(
-        std::min((p.y - grid_.min.y) * cells_per_metre_, static_cast<double>(rows_ - 1)));
+    const std::uint32_t column = grid_cell(p.x, grid_.min.x, cells_per_metre_, columns_);
+    const std::uint32_t row = grid_cell(p.y, grid_.min.y, cells_per_metre_, rows_);
     const std::size_t c = static_cast<std::size_t>(row) * columns_ + column;
     for (std::uint32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k)
         search.offer(cell_edge_[k]);

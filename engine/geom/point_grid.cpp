@@ -1,5 +1,7 @@
 #include "geom/point_grid.hpp"
 
+#include "geom/grid_cell.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,11 +22,13 @@ PointGrid::PointGrid(std::span<const Vec2> points, double radius) {
     }
     if (extent_.empty()) return;
     radius_ = radius;
-    const double side =
-        std::max(radius, std::max(extent_.width(), extent_.height()) / kMaxCellsPerSide);
+    // Cells a hair wider than the radius, so that a point nearer than the radius to p lies in
+    // p's cell or a neighbour of it whatever the rounding of the cell arithmetic.
+    const double side = std::max(radius * (1.0 + 1e-9),
+                                 std::max(extent_.width(), extent_.height()) / kMaxCellsPerSide);
     columns_ = static_cast<std::uint32_t>(extent_.width() / side) + 1;
     rows_ = static_cast<std::uint32_t>(extent_.height() / side) + 1;
-    cell_size_ = side;
+    cells_per_metre_ = 1.0 / side;
     // Counting sort by cell: each cell's points contiguous.
     std::vector<std::uint32_t> cell_of;
     cell_start_.assign(static_cast<std::size_t>(columns_) * rows_ + 1, 0);
@@ -45,26 +49,21 @@ PointGrid::PointGrid(std::span<const Vec2> points, double radius) {
     }
 }
 
-std::uint32_t PointGrid::axis_cell(double x, double origin, std::uint32_t count) const {
-    const double f = (x - origin) / cell_size_;
-    if (!(f > 0.0)) return 0;
-    if (!(f < static_cast<double>(count))) return count - 1;
-    return std::min(static_cast<std::uint32_t>(f), count - 1);
-}
-
 std::uint32_t PointGrid::cell(Vec2 p) const {
-    return axis_cell(p.y, extent_.min.y, rows_) * columns_ +
-           axis_cell(p.x, extent_.min.x, columns_);
+    return grid_cell(p.y, extent_.min.y, cells_per_metre_, rows_) * columns_ +
+           grid_cell(p.x, extent_.min.x, cells_per_metre_, columns_);
 }
 
 bool PointGrid::has_near(Vec2 p) const {
     if (columns_ == 0 || !(std::isfinite(p.x) && std::isfinite(p.y))) return false;
-    // Points nearer than the radius lie in the cells that the box p ± radius meets (cells are
-    // at least the radius wide, so at most 3 x 3 of them).
-    const std::uint32_t x0 = axis_cell(p.x - radius_, extent_.min.x, columns_);
-    const std::uint32_t x1 = axis_cell(p.x + radius_, extent_.min.x, columns_);
-    const std::uint32_t y0 = axis_cell(p.y - radius_, extent_.min.y, rows_);
-    const std::uint32_t y1 = axis_cell(p.y + radius_, extent_.min.y, rows_);
+    // Points nearer than the radius lie in p's cell or its neighbours (cells are wider than the
+    // radius; a p outside the extent maps to a border cell, next to everything within reach).
+    const std::uint32_t cx = grid_cell(p.x, extent_.min.x, cells_per_metre_, columns_);
+    const std::uint32_t cy = grid_cell(p.y, extent_.min.y, cells_per_metre_, rows_);
+    const std::uint32_t x0 = cx > 0 ? cx - 1 : 0;
+    const std::uint32_t x1 = std::min(cx + 1, columns_ - 1);
+    const std::uint32_t y0 = cy > 0 ? cy - 1 : 0;
+    const std::uint32_t y1 = std::min(cy + 1, rows_ - 1);
     const double r2 = radius_ * radius_;
     for (std::uint32_t y = y0; y <= y1; ++y) {
         const std::size_t row = static_cast<std::size_t>(y) * columns_;

@@ -22,11 +22,10 @@ class PointGrid {
     bool has_near(Vec2 p) const;
 
   private:
-    std::uint32_t axis_cell(double x, double origin, std::uint32_t count) const;
     std::uint32_t cell(Vec2 p) const;
 
-    double radius_ = 0.0;     ///< m
-    double cell_size_ = 0.0;  ///< m, at least the radius
+    double radius_ = 0.0;           ///< m
+    double cells_per_metre_ = 0.0;  ///< at most 1 / radius
     Rect extent_;
     std::uint32_t columns_ = 0;
     std::uint32_t rows_ = 0;
