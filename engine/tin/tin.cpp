@@ -806,15 +806,29 @@ std::vector<std::array<VertexId, 3>> Tin::triangles() const {
     return out;
 }
 
+namespace {
+
+/// CGAL's walk from `start` to p (in the domain), then the finite face holding it: nullopt
+/// outside the triangulation. Reports the kind of location in `lt`.
+std::optional<FiniteLocation> walk_to(const Tin::Impl& m, Vec2 p, Fh start,
+                                      CdtPlus::Locate_type& lt) {
+    int li = 0;
+    const Fh f = m.cdt.locate(to_point(p), lt, li, start);
+    if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL)
+        return std::nullopt;
+    return finite_location(m, p, lt, f, li);
+}
+
+}  // namespace
+
 Location Tin::locate(Vec2 p, LocateHint* hint) const {
     Location out;
     const Impl& m = *impl_;
     if (!is_finite(p) || !m.domain.contains(p)) return out;
     CdtPlus::Locate_type lt;
-    int li = 0;
-    const Fh f = m.cdt.locate(to_point(p), lt, li, start_face(m, p, hint));
-    if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL) return out;
-    const FiniteLocation loc = finite_location(m, p, lt, f, li);
+    const std::optional<FiniteLocation> found = walk_to(m, p, start_face(m, p, hint), lt);
+    if (!found) return out;
+    const FiniteLocation& loc = *found;
     out.kind = lt == CdtPlus::VERTEX ? Location::Kind::OnVertex
                : lt == CdtPlus::EDGE ? Location::Kind::OnEdge
                                      : Location::Kind::InTriangle;
@@ -825,15 +839,6 @@ Location Tin::locate(Vec2 p, LocateHint* hint) const {
     }
     update_hint(hint, loc);
     return out;
-}
-
-std::optional<double> Tin::height_at(Vec2 p, LocateHint* hint) const {
-    const Location loc = locate(p, hint);
-    if (!loc.inside()) return std::nullopt;
-    const VertexArrays& va = impl_->va;
-    return loc.barycentric[0] * va.height[loc.corners[0].value] +
-           loc.barycentric[1] * va.height[loc.corners[1].value] +
-           loc.barycentric[2] * va.height[loc.corners[2].value];
 }
 
 namespace {
@@ -897,15 +902,20 @@ void Tin::heights_at(std::span<const Vec2> points, std::span<double> out, Locate
             continue;
         }
         CdtPlus::Locate_type lt;
-        int li = 0;
-        const Fh g = m.cdt.locate(cp, lt, li, start_face(m, p, hint));
-        if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL) continue;
-        const FiniteLocation loc = finite_location(m, p, lt, g, li);
-        out[k] = interpolate(m, loc);
-        record(k, loc);
-        update_hint(hint, loc);
-        last = loc.face;
+        const std::optional<FiniteLocation> found = walk_to(m, p, start_face(m, p, hint), lt);
+        if (!found) continue;
+        out[k] = interpolate(m, *found);
+        record(k, *found);
+        update_hint(hint, *found);
+        last = found->face;
     }
+}
+
+std::optional<double> Tin::height_at(Vec2 p, LocateHint* hint) const {
+    double h = 0.0;
+    heights_at(std::span<const Vec2>(&p, 1), std::span<double>(&h, 1), hint);
+    if (std::isnan(h)) return std::nullopt;
+    return h;
 }
 
 void Tin::neighbours(VertexId v, std::vector<VertexId>& out) const {
@@ -1286,7 +1296,7 @@ std::vector<std::array<Vec2, 2>> Tin::constrained_segments(const Rect& box,
     std::vector<std::array<Vec2, 2>> out;
     for (const std::uint32_t id : constraints_meeting_box(m, box)) {
         const detail::ConstraintEntry& e = m.constraints[id];
-        if (!e.alive || e.generation >= older_than || !e.bounds.intersects(box)) continue;
+        if (e.generation >= older_than) continue;
         std::uint32_t previous = kNoId;
         for (const Vh v : m.cdt.vertices_in_constraint(e.cgal_id)) {
             if (previous != kNoId) out.push_back({m.va.position[previous], m.va.position[v->id]});
@@ -2004,16 +2014,13 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
     const Rect inside_box = bounding_box(filter.inside_polygon);
     // Ids alive before this call: pieces split off below get new ids (possibly recycled ones)
     // and must not be visited again.
-    // A spatial filter only needs the constraints under its polygon (found through the faces
-    // there); otherwise every live constraint is a candidate.
+    // A spatial filter only needs the constraints whose bounds meet its polygon's box (with
+    // both polygons, both must hold: the inside box picks the candidates, the touching box is
+    // tested below); otherwise every live constraint is a candidate.
     std::vector<std::uint32_t> candidates;
     if (!filter.inside_polygon.empty() || !filter.touching_polygon.empty()) {
-        Rect box = !filter.inside_polygon.empty() ? inside_box : touch_box;
-        if (!filter.inside_polygon.empty() && !filter.touching_polygon.empty()) {
-            // Both must hold: the candidates meet both boxes, so either walk finds them.
-            box = inside_box;
-        }
-        candidates = constraints_meeting_box(m, box);
+        candidates =
+            constraints_meeting_box(m, filter.inside_polygon.empty() ? touch_box : inside_box);
     } else {
         for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
             if (m.constraints[id].alive) candidates.push_back(id);
@@ -2038,7 +2045,6 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
             }
             if (!touches) continue;
         }
-        if (!filter.inside_polygon.empty() && !e.bounds.intersects(inside_box)) continue;
         if (filter.only_if_delaunay && !constraint_is_delaunay(m, e)) continue;
         if (filter.inside_polygon.empty()) {
             doomed.push_back(id);
