@@ -167,7 +167,9 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     if (!tool.profile().is_flat()) {
         if (inner_clipped) {
             // Part of I lies outside the domain: a lattice of the clipped contour, so no sample
-            // hugs the domain's border.
+            // hugs the domain's border. (The tool's own lattice with the samples near the border
+            // left out leaves a wider strip unsampled there: the ball then missed its imprint
+            // by 1.2 mm 2 mm from the border, against the 1 mm its test allows.)
             const double step = std::min(spacing, tool.profile().sample_spacing());
             lattice = interior_lattice(inner, step);
             for (Vec2 p : lattice)
