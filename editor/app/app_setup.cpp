@@ -368,62 +368,67 @@ int App::run() {
     int exit_code = 0;
     std::uint64_t idle_submissions = 0, idle_gpu_work = 0;
     int frames_after_script = 0;
-    if (options_.scripted()) {
-        const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
-        // Scripted: every op runs between frames through the real input handlers.
-        while (!close_confirmed()) {
-            glfwPollEvents();
-            if (script_wait_ > 0) {
-                --script_wait_;
-            } else if (script_pos_ < script_.size()) {
-                run_script_op(script_[script_pos_++]);
-                if (trace)
-                    std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n", script_pos_,
-                                 script_[script_pos_ - 1].dump().c_str(), doc_.tin->vertex_count());
-            } else {
-                end_action();
-                ++frames_after_script;
-            }
-            const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
-                              frames_after_script >= std::max(1, options_.frames);
-            frame(last && !options_.screenshot.empty());
-            if (last) break;
-        }
-        if (!options_.screenshot.empty()) write_png(options_.screenshot, swapchain_->screenshot());
-        if (!options_.save_after.empty()) save(options_.save_after);
-        if (options_.idle_seconds > 0.0) {
-            // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
-            const std::uint64_t before = swapchain_->submissions();
-            const std::uint64_t work_before = gpu_work();
-            const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
-            settings_.erosion_running = false;
-            redraw_frames_ = 0;
-            while (Clock::now() < until) {
-                glfwWaitEventsTimeout(std::chrono::duration<double>(until - Clock::now()).count());
-                if (redraw_frames_ > 0) {
-                    frame(false);
-                    --redraw_frames_;
+    // Whatever goes wrong in a session, scripted or interactive, its edits are not lost with the
+    // editor: they go to the autosave first (offered for recovery next time), then the error is
+    // reported. A script's edits go there only once it asked for autosaving ("autosave" op).
+    try {
+        if (options_.scripted()) {
+            const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
+            // Scripted: every op runs between frames through the real input handlers.
+            while (!close_confirmed()) {
+                glfwPollEvents();
+                if (script_wait_ > 0) {
+                    --script_wait_;
+                } else if (script_pos_ < script_.size()) {
+                    run_script_op(script_[script_pos_++]);
+                    if (trace)
+                        std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n",
+                                     script_pos_, script_[script_pos_ - 1].dump().c_str(),
+                                     doc_.tin->vertex_count());
+                } else {
+                    end_action();
+                    ++frames_after_script;
                 }
+                const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
+                                  frames_after_script >= std::max(1, options_.frames);
+                frame(last && !options_.screenshot.empty());
+                if (last) break;
             }
-            idle_submissions = swapchain_->submissions() - before;
-            idle_gpu_work = gpu_work() - work_before;
-        }
-    } else {
-        try {
+            if (!options_.screenshot.empty())
+                write_png(options_.screenshot, swapchain_->screenshot());
+            if (!options_.save_after.empty()) save(options_.save_after);
+            if (options_.idle_seconds > 0.0) {
+                // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
+                const std::uint64_t before = swapchain_->submissions();
+                const std::uint64_t work_before = gpu_work();
+                const auto until =
+                    Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
+                settings_.erosion_running = false;
+                redraw_frames_ = 0;
+                while (Clock::now() < until) {
+                    glfwWaitEventsTimeout(
+                        std::chrono::duration<double>(until - Clock::now()).count());
+                    if (redraw_frames_ > 0) {
+                        frame(false);
+                        --redraw_frames_;
+                    }
+                }
+                idle_submissions = swapchain_->submissions() - before;
+                idle_gpu_work = gpu_work() - work_before;
+            }
+        } else {
             interactive_loop();
-        } catch (const std::exception&) {
-            // Whatever went wrong, the edits are not lost with the editor: they go to the
-            // autosave first (offered for recovery next time), then the error is reported.
-            try {
-                keep_unsaved_edits();
-            } catch (const std::exception& autosave) {
-                std::fprintf(stderr, "sandtin-editor: emergency autosave failed: %s\n",
-                             autosave.what());
-            }
-            throw;
+            end_action();
+            keep_unsaved_edits();  // closing with unsaved edits: they wait in the autosave
         }
-        end_action();
-        keep_unsaved_edits();  // closing with unsaved edits: they wait in the autosave
+    } catch (const std::exception&) {
+        try {
+            keep_unsaved_edits();
+        } catch (const std::exception& autosave) {
+            std::fprintf(stderr, "sandtin-editor: emergency autosave failed: %s\n",
+                         autosave.what());
+        }
+        throw;
     }
 
     const std::uint64_t validation = context_->validation_message_count();

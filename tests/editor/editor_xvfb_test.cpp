@@ -358,6 +358,46 @@ TEST_F(EditorXvfb, UnsavedEditsGoToTheAutosaveAndLeaveTheSceneAlone) {
               load_session(scene).terrain.vertices.height);
 }
 
+TEST_F(EditorXvfb, AFailingSessionKeepsItsEditsInTheAutosave) {
+    const fs::path scene = kWork / "failing.sandtin";
+    ASSERT_EQ(run_editor("failing-base", kFlat, "--save-after " + scene.string()).exit_code, 0);
+    const std::string first = R"([{"op": "set", "erosion": false},
+        {"op": "tool", "name": "Ball"}, {"op": "set", "radius": 0.05, "depth": 0.015},
+        {"op": "drag", "path": [[0.45, 0.5], [0.75, 0.5]], "steps": 20}])";
+    const std::string second = R"({"op": "drag", "path": [[0.5, 0.35], [0.5, 0.65]], "steps": 20})";
+    // The oracle: the same two strokes in a session that ends normally, and the first alone
+    // (so the comparison below can tell whether the second stroke reached the autosave).
+    const fs::path both = kWork / "failing-both.sandtin";
+    const fs::path one = kWork / "failing-one.sandtin";
+    ASSERT_EQ(run_editor("failing-both", then(first, second),
+                         scene.string() + " --save-after " + both.string())
+                  .exit_code,
+              0);
+    ASSERT_EQ(run_editor("failing-one", first, scene.string() + " --save-after " + one.string())
+                  .exit_code,
+              0);
+    const Session expected = load_session(both);
+    ASSERT_NE(expected.terrain.vertices.height, load_session(one).terrain.vertices.height);
+
+    // The session asks for autosaving after the first stroke, makes the second, then fails on
+    // an op it cannot run: the error is reported, and the autosave written on the way out holds
+    // both strokes, while the scene file stays as it was.
+    const std::vector<std::uint8_t> scene_bytes = read_file(scene);
+    const EditorRun r = run_editor("failing",
+                                   then(then(first, R"({"op": "autosave"}, )" + second),
+                                        R"({"op": "tool", "name": "NoSuchTool"})"),
+                                   scene.string());
+    EXPECT_EQ(r.exit_code, 1) << r.log;
+    EXPECT_NE(r.log.find("unknown tool 'NoSuchTool'"), std::string::npos) << r.log;
+    EXPECT_EQ(read_file(scene), scene_bytes);
+    ASSERT_TRUE(find_autosave(scene).has_value()) << r.log;
+    const Session kept = recover_autosave(scene);
+    EXPECT_EQ(kept.terrain.vertices.alive, expected.terrain.vertices.alive);
+    EXPECT_EQ(kept.terrain.vertices.position, expected.terrain.vertices.position);
+    EXPECT_EQ(kept.terrain.vertices.height, expected.terrain.vertices.height);
+    discard_autosave(scene);
+}
+
 TEST_F(EditorXvfb, NewAsksBeforeDroppingAnUntitledScenesEdits) {
     const fs::path fresh = kWork / "untitled-fresh.sandtin";
     ASSERT_EQ(run_editor("untitled-fresh", kFlat, "--save-after " + fresh.string()).exit_code, 0);
