@@ -64,20 +64,20 @@ ToolSpec seeds_circle() {
     return spec;
 }
 
-/// A flat TIN of n random points on the unit square; the tool (the seeds' circle unless
-/// another is asked for) with its bottom at -0.1; a stroke along the diagonal from
-/// (0.5 - L/2)(1, 1) to (0.5 + L/2)(1, 1), where L is the trace length as a fraction of the
-/// diagonal. Stamps are 1 cm apart: for the circle r/4, so consecutive footprints overlap by
-/// 7/8 and the walls are smooth to 0.3 mm.
-/// With erosion, dry sand relaxes with the physics' defaults (the editor's) for
-/// kErosionIterations after every stamp, or after the stroke until it rests; what it moved is
-/// then simplified. Its time is kept apart from the stamps' enforcement and simplification.
+/// A flat TIN of n random points on a square of side `side` metres (the unit square unless
+/// asked); the tool (the seeds' circle unless another is asked for) with its bottom at -0.1; a
+/// stroke along the diagonal from (0.5 - L/2)(side, side) to (0.5 + L/2)(side, side), where L is
+/// the trace length as a fraction of the diagonal. Stamps are 1 cm apart: for the circle r/4, so
+/// consecutive footprints overlap by 7/8 and the walls are smooth to 0.3 mm. With erosion, dry sand
+/// relaxes with the physics' defaults (the editor's) for kErosionIterations after every stamp, or
+/// after the stroke until it rests; what it moved is then simplified. Its time is kept apart from
+/// the stamps' enforcement and simplification.
 GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validate,
                      bool clear_before_imprint = true, Erosion erosion = Erosion::None,
-                     TalusSettings physics_settings = {}) {
+                     TalusSettings physics_settings = {}, double side = 1.0) {
     TinOptions options;
     options.track_changes = false;
-    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), n, 2009, {}, options);
+    Tin tin = Tin::random_points(Rect::from_size(side, side), n, 2009, {}, options);
     SculptContext context(tin.domain());
     context.settings.clear_before_imprint = clear_before_imprint;
     std::unique_ptr<SandPhysics> physics;
@@ -88,8 +88,9 @@ GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validat
     settings.spacing = kSpacing;
     settings.depth_mode = DepthMode::Absolute;
     settings.depth = kBottom;
-    const double half = 0.5 * trace;
-    const std::vector<Vec2> path = {{0.5 - half, 0.5 - half}, {0.5 + half, 0.5 + half}};
+    const double low = (0.5 - 0.5 * trace) * side;
+    const double high = (0.5 + 0.5 * trace) * side;
+    const std::vector<Vec2> path = {{low, low}, {high, high}};
 
     GrooveRun run;
     run.vertices_before = tin.vertex_count();
@@ -214,6 +215,37 @@ nlohmann::json to_rest_json(const Tool& tool, std::size_t n, int reps) {
     return j;
 }
 
+/// Whether a stamp's cost follows the terrain's size or only the sand under the tool: the
+/// largest groove again with a tenth of the points on a square of a tenth of the area (the same
+/// density, so the same sand under every stamp), tool and stamp spacing unchanged. Equal
+/// per-stamp medians mean the cost grows with the density under the tool, not with the
+/// terrain's size: the growth over `by_size` is then the denser sand each stamp digs out
+/// (removed_per_stamp_median there), not a stamp reaching beyond its footprint.
+nlohmann::json locality_json(const Tool& tool, std::size_t n, double per_stamp_median_ms,
+                             int reps) {
+    const std::size_t small_n = n / 10;
+    const double side = std::sqrt(0.1);
+    std::vector<GrooveRun> runs;
+    for (int r = 0; r < reps; ++r)
+        runs.push_back(run_groove(tool, small_n, 0.8, r == 0, true, Erosion::None, {}, side));
+    const bool valid = runs.front().valid;
+    std::sort(runs.begin(), runs.end(),
+              [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
+    const GrooveRun& mid = runs[runs.size() / 2];
+    return {{"points", n},
+            {"per_stamp_median_ms", per_stamp_median_ms},
+            {"same_density",
+             {{"points", small_n},
+              {"side_m", side},
+              {"stamps", mid.stamps},
+              {"per_stamp_median_ms", mid.per_stamp_median_ms},
+              {"removed_per_stamp_median", mid.removed_per_stamp_median},
+              {"repetitions", reps},
+              {"valid", valid}}},
+            {"per_stamp_ratio",
+             mid.per_stamp_median_ms > 0.0 ? per_stamp_median_ms / mid.per_stamp_median_ms : 0.0}};
+}
+
 }  // namespace
 
 nlohmann::json bench_groove(const BenchConfig& config) {
@@ -276,6 +308,7 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     }
     j["by_size"] = by_size;
     j["per_stamp_growth"] = medians.front() > 0.0 ? medians.back() / medians.front() : 0.0;
+    j["locality"] = locality_json(tool, sizes.back(), medians.back(), config.quick ? 1 : 3);
     nlohmann::json by_trace = nlohmann::json::array();
     const std::size_t n = config.quick ? 1000 : 10000;
     for (int k = 1; k <= 8; ++k) {
