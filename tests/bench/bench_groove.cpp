@@ -215,35 +215,34 @@ nlohmann::json to_rest_json(const Tool& tool, std::size_t n, int reps) {
     return j;
 }
 
-/// Whether a stamp's cost follows the terrain's size or only the sand under the tool: the
-/// largest groove again with a tenth of the points on a square of a tenth of the area (the same
-/// density, so the same sand under every stamp), tool and stamp spacing unchanged. Equal
-/// per-stamp medians mean the cost grows with the density under the tool, not with the
-/// terrain's size: the growth over `by_size` is then the denser sand each stamp digs out
-/// (removed_per_stamp_median there), not a stamp reaching beyond its footprint.
-nlohmann::json locality_json(const Tool& tool, std::size_t n, double per_stamp_median_ms,
-                             int reps) {
-    const std::size_t small_n = n / 10;
-    const double side = std::sqrt(0.1);
+/// Whether a stamp's cost follows the terrain's size or only the sand under the tool: a groove
+/// of `n` points (on the unit square, per-stamp median `per_stamp_median_ms`) again with
+/// n * side^2 points on a square of side `side` metres, so at the same density: the same sand
+/// under every stamp, tool and stamp spacing unchanged. Equal per-stamp medians mean a stamp's
+/// cost follows the density under the tool, not the terrain's size: the growth over `by_size`
+/// is then the denser sand each stamp digs out (removed_per_stamp_median there), not a stamp
+/// reaching beyond its footprint.
+nlohmann::json same_density_json(const Tool& tool, std::size_t n, double per_stamp_median_ms,
+                                 double side, int reps) {
+    const auto points =
+        static_cast<std::size_t>(std::llround(static_cast<double>(n) * side * side));
     std::vector<GrooveRun> runs;
     for (int r = 0; r < reps; ++r)
-        runs.push_back(run_groove(tool, small_n, 0.8, r == 0, true, Erosion::None, {}, side));
+        runs.push_back(run_groove(tool, points, 0.8, r == 0, true, Erosion::None, {}, side));
     const bool valid = runs.front().valid;
     std::sort(runs.begin(), runs.end(),
               [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
     const GrooveRun& mid = runs[runs.size() / 2];
-    return {{"points", n},
-            {"per_stamp_median_ms", per_stamp_median_ms},
-            {"same_density",
-             {{"points", small_n},
-              {"side_m", side},
-              {"stamps", mid.stamps},
-              {"per_stamp_median_ms", mid.per_stamp_median_ms},
-              {"removed_per_stamp_median", mid.removed_per_stamp_median},
-              {"repetitions", reps},
-              {"valid", valid}}},
+    return {{"unit_square", {{"points", n}, {"per_stamp_median_ms", per_stamp_median_ms}}},
+            {"points", points},
+            {"side_m", side},
+            {"stamps", mid.stamps},
+            {"per_stamp_median_ms", mid.per_stamp_median_ms},
+            {"removed_per_stamp_median", mid.removed_per_stamp_median},
+            {"repetitions", reps},
+            {"valid", valid},
             {"per_stamp_ratio",
-             mid.per_stamp_median_ms > 0.0 ? per_stamp_median_ms / mid.per_stamp_median_ms : 0.0}};
+             per_stamp_median_ms > 0.0 ? mid.per_stamp_median_ms / per_stamp_median_ms : 0.0}};
 }
 
 }  // namespace
@@ -308,7 +307,13 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     }
     j["by_size"] = by_size;
     j["per_stamp_growth"] = medians.front() > 0.0 ? medians.back() / medians.front() : 0.0;
-    j["locality"] = locality_json(tool, sizes.back(), medians.back(), config.quick ? 1 : 3);
+    // Locality: the smallest groove's density on a terrain 100 times larger, and the largest
+    // groove's on one 10 times smaller.
+    const int locality_reps = config.quick ? 1 : 3;
+    j["locality"] = {{"larger_terrain",
+                      same_density_json(tool, sizes.front(), medians.front(), 10.0, locality_reps)},
+                     {"smaller_terrain", same_density_json(tool, sizes.back(), medians.back(),
+                                                           std::sqrt(0.1), locality_reps)}};
     nlohmann::json by_trace = nlohmann::json::array();
     const std::size_t n = config.quick ? 1000 : 10000;
     for (int k = 1; k <= 8; ++k) {

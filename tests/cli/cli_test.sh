@@ -205,14 +205,21 @@ scenario_bench() {
     holds "bench groove λ erosion" "a > 0 && b > 0" \
         "$(json bench_lambda.out /by_size/1/with_erosion/erosion_vertex_updates)" \
         "$(json bench_lambda.out /by_size/1/with_erosion/erosion_ms)"
-    # Locality: the same groove at the same density on a tenth of the area (side sqrt(0.1) m),
-    # valid, with a stroke of 0.8 of that diagonal, 0.358 m: 36 stamps 1 cm apart.
-    check_eq "bench groove λ same density valid" \
-        "$(json bench_lambda.out /locality/same_density/valid)" true
-    holds "bench groove λ same density" "a == 1000 && b >= 35 && b <= 37 && c > 0" \
-        "$(json bench_lambda.out /locality/same_density/points)" \
-        "$(json bench_lambda.out /locality/same_density/stamps)" \
-        "$(json bench_lambda.out /locality/per_stamp_ratio)"
+    # Locality: the 10⁴-point groove's density on a tenth of the area (side sqrt(0.1) m, a
+    # stroke of 0.8 of its diagonal, 0.358 m: 36 stamps 1 cm apart), and the 10³-point
+    # groove's on a 10 m square (10⁵ points, 11.3 m: 1 132 stamps). Both valid.
+    for size in smaller larger; do
+        check_eq "bench groove λ $size terrain valid" \
+            "$(json bench_lambda.out /locality/${size}_terrain/valid)" true
+    done
+    holds "bench groove λ smaller terrain" "a == 1000 && b >= 35 && b <= 37 && c > 0" \
+        "$(json bench_lambda.out /locality/smaller_terrain/points)" \
+        "$(json bench_lambda.out /locality/smaller_terrain/stamps)" \
+        "$(json bench_lambda.out /locality/smaller_terrain/per_stamp_ratio)"
+    holds "bench groove λ larger terrain" "a == 100000 && b >= 1130 && b <= 1134 && c > 0" \
+        "$(json bench_lambda.out /locality/larger_terrain/points)" \
+        "$(json bench_lambda.out /locality/larger_terrain/stamps)" \
+        "$(json bench_lambda.out /locality/larger_terrain/per_stamp_ratio)"
     # Eroded to rest after the stroke: it rests, stays valid, and the settle margin (the
     # default) rests in fewer iterations than the seeds' rule, whose slopes creep.
     check_eq "bench groove λ to rest" "$(json bench_lambda.out /by_size/1/to_rest/at_rest)" true
