@@ -166,12 +166,20 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<double> lattice_terrain;
     if (!tool.profile().is_flat()) {
         if (inner_clipped) {
-            // Part of I lies outside the domain: a lattice of the clipped contour, so no sample
-            // hugs the domain's border. (The tool's own lattice with the samples near the border
-            // left out leaves a wider strip unsampled there: the ball then missed its imprint
-            // by 1.2 mm 2 mm from the border, against the 1 mm its test allows.)
+            // Part of I lies outside the domain: a lattice of the clipped contour. (The tool's
+            // own lattice with the samples past the border left out leaves a wider strip
+            // unsampled there: the ball then missed its imprint by 1.2 mm 2 mm from the
+            // border, against the 1 mm its test allows.)
             const double step = std::min(spacing, tool.profile().sample_spacing());
             lattice = interior_lattice(inner, step);
+            // The lattice keeps half a spacing from every edge, the stretch along the domain's
+            // border too, where the profile does not drop to the rim as it does along the
+            // tool's outline: samples on that stretch as well, one spacing apart. (Without
+            // them the border between I's two corners there only interpolated those corners:
+            // a ball or foot pressed at the border of a terrain with no vertices along it
+            // missed its imprint by up to 13 mm on the border line.)
+            const std::vector<Vec2> along_border = samples_along_sides(inner, domain, step);
+            lattice.insert(lattice.end(), along_border.begin(), along_border.end());
             for (Vec2 p : lattice)
                 lattice_underside.push_back(frame.underside(p));
         } else {

@@ -202,6 +202,30 @@ std::vector<Vec2> interior_lattice(std::span<const Vec2> polygon, double spacing
     return out;
 }
 
+std::vector<Vec2> samples_along_sides(std::span<const Vec2> polygon, const Rect& rect,
+                                      double spacing) {
+    std::vector<Vec2> out;
+    if (!(spacing > 0.0)) return out;
+    const std::size_t n = polygon.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec2 a = polygon[k];
+        const Vec2 b = polygon[(k + 1) % n];
+        const bool on_side =
+            (a.x == rect.min.x && b.x == rect.min.x) || (a.x == rect.max.x && b.x == rect.max.x) ||
+            (a.y == rect.min.y && b.y == rect.min.y) || (a.y == rect.max.y && b.y == rect.max.y);
+        if (!on_side) continue;
+        const double pieces = std::ceil(distance(a, b) / spacing);
+        for (double i = 1.0; i < pieces; i += 1.0) {
+            Vec2 p = lerp(a, b, i / pieces);
+            // On the side exactly: lerp rounds the other coordinate only.
+            if (a.x == b.x) p.x = a.x;
+            if (a.y == b.y) p.y = a.y;
+            out.push_back(p);
+        }
+    }
+    return out;
+}
+
 std::vector<Vec2> clip_to_rect(std::span<const Vec2> polygon, Vec2 min, Vec2 max) {
     std::vector<Vec2> current(polygon.begin(), polygon.end());
     // Each clip edge: keep points with value(p) >= 0.

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "geom/rect.hpp"
 #include "geom/vec2.hpp"
 
 namespace sandtin {
@@ -48,6 +49,14 @@ std::vector<Vec2> interior_seeds(std::span<const Vec2> ccw);
 std::vector<Vec2> interior_lattice(std::span<const Vec2> polygon, double spacing);
 
 /// Clips a polygon to an axis-aligned rectangle (Sutherland-Hodgman); may return < 3 points.
+/// Points on the rectangle's sides lie exactly on them (their x or y equals the side's).
 std::vector<Vec2> clip_to_rect(std::span<const Vec2> polygon, Vec2 min, Vec2 max);
+
+/// Points along the edges of a closed polygon that lie on a side of `rect` (both ends exactly
+/// on that side, as clip_to_rect leaves them), each such edge cut into equal pieces no longer
+/// than `spacing` (m): the pieces' inner ends, exactly on the side. The polygon's own vertices
+/// are not repeated. Empty when `spacing` is not positive.
+std::vector<Vec2> samples_along_sides(std::span<const Vec2> polygon, const Rect& rect,
+                                      double spacing);
 
 }  // namespace sandtin

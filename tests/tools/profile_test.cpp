@@ -301,7 +301,12 @@ void stamp_asset(const std::string& name) {
 // what an artist sees. (The rake is left out: its tines are steps, which a lattice of any
 // spacing only brackets.)
 // Also with the tool partly outside the domain, where the samples come from the clipped
-// contour instead of the tool's own lattice.
+// contour instead of the tool's own lattice, up to the border: the terrain has vertices along
+// the border as inside (test::smooth_terrain), so the sand before the stamp is as smooth there
+// as anywhere. (Tin::random_points has only the corners on the border: its surface falls
+// steeply from the border's long edges to the interior's, and any vertex the stamp adds there
+// re-shapes that slope; CurvedStampAtTheBorderFollowsTheImprintUpToTheBorder covers such a
+// terrain, on planar sand.)
 TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
     for (const auto& [name, centre] :
          {std::pair{"foot", Vec2{0.5, 0.5}}, std::pair{"ball", Vec2{0.5, 0.5}},
@@ -309,7 +314,8 @@ TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
         SCOPED_TRACE(std::string(name) + " at " + std::to_string(centre.x) + ", " +
                      std::to_string(centre.y));
         const Tool tool = Tool::build(load_tool_asset(name));
-        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, test::rolling_sand);
+        Tin tin =
+            test::smooth_terrain(Rect::from_size(1.0, 1.0), 20000, 71, test::rolling_sand, 0.007);
         SculptContext context(tin.domain());
         const Tin before = Tin::from_snapshot(tin.snapshot());
         ToolPlacement at{centre, 0.6, 0.0};
@@ -324,10 +330,6 @@ TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
                           {std::min(1.0, centre.x + 0.2), std::min(1.0, centre.y + 0.2)}};
         for (Vec2 p : test::random_points_in(around, 60000, 5)) {
             if (!test::inside_by(p, inner, 0.004)) continue;
-            // A margin along the domain's border too, where a clipped I runs: no interior
-            // sample lies within half a spacing of it, so right at the border the surface only
-            // interpolates between I's points there.
-            if (std::min({p.x, p.y, 1.0 - p.x, 1.0 - p.y}) < 0.002) continue;
             const double under = tool.underside(at, p);
             if (!std::isfinite(under)) continue;
             const double want = std::min(*before.height_at(p, &hint_before), under);
@@ -337,6 +339,68 @@ TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
         EXPECT_GT(checked, 500u);
         EXPECT_LE(worst, 2.0 * d_m);
         EXPECT_TRUE(mesh_is_sound(tin));
+    }
+}
+
+// At the domain's border a clipped I runs straight along it, with the profile in the middle of
+// the tool there, not dropping to the rim as along the tool's outline. On tilted planar sand
+// (every triangulation of it is the same plane, so the sand before the stamp is known exactly
+// up to the border, even with no vertices along it: Tin::random_points has only the corners
+// there) the surface inside I follows the imprint within 2 d_m everywhere, on the border line
+// and in the strip beside it too. (Before the border was sampled, it only interpolated I's two
+// corners there: 5 to 14 mm off on the border line.)
+TEST(ToolProfile, CurvedStampAtTheBorderFollowsTheImprintUpToTheBorder) {
+    auto plane = [](Vec2 p) { return 0.1 + 0.05 * p.x + 0.03 * p.y; };
+    for (const auto& [name, centre] :
+         {std::pair{"foot", Vec2{0.5, 0.97}}, std::pair{"ball", Vec2{0.02, 0.45}},
+          std::pair{"foot", Vec2{0.03, 0.5}}, std::pair{"ball", Vec2{0.5, 0.985}},
+          std::pair{"ball", Vec2{0.985, 0.015}}}) {
+        SCOPED_TRACE(std::string(name) + " at " + std::to_string(centre.x) + ", " +
+                     std::to_string(centre.y));
+        const Tool tool = Tool::build(load_tool_asset(name));
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, plane);
+        SculptContext context(tin.domain());
+        ToolPlacement at{centre, 0.6, 0.0};
+        at.bottom = plane(centre) - 0.01;
+        ASSERT_TRUE(stamp(tin, tool, at, context, Vec2{1.0, 0.0}).applied);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
+        const double d_m = context.settings.simplify.tolerance;
+        LocateHint hint;
+        // The imprint where the tool reaches the sand, the untouched plane elsewhere.
+        auto error_at = [&](Vec2 p) {
+            const double under = tool.underside(at, p);
+            if (!test::inside_by(p, inner, 0.004) || !std::isfinite(under)) return -1.0;
+            return std::abs(*tin.height_at(p, &hint) - std::min(plane(p), under));
+        };
+        const Rect around{{std::max(0.0, centre.x - 0.1), std::max(0.0, centre.y - 0.1)},
+                          {std::min(1.0, centre.x + 0.1), std::min(1.0, centre.y + 0.1)}};
+        double worst = 0.0, worst_strip = 0.0, worst_on_border = 0.0;
+        std::size_t checked = 0, in_strip = 0, on_border = 0;
+        for (Vec2 p : test::random_points_in(around, 60000, 5)) {
+            const double e = error_at(p);
+            if (e < 0.0) continue;
+            const bool strip = std::min({p.x, p.y, 1.0 - p.x, 1.0 - p.y}) < 0.002;
+            (strip ? worst_strip : worst) = std::max(strip ? worst_strip : worst, e);
+            ++(strip ? in_strip : checked);
+        }
+        // The border line, every 0.05 mm along the sides within reach of the tool.
+        for (int k = 0; k <= 4000; ++k) {
+            const double x = around.min.x + (around.max.x - around.min.x) * k / 4000.0;
+            const double y = around.min.y + (around.max.y - around.min.y) * k / 4000.0;
+            for (Vec2 p : {Vec2{0.0, y}, Vec2{1.0, y}, Vec2{x, 0.0}, Vec2{x, 1.0}}) {
+                const double e = error_at(p);
+                if (e < 0.0) continue;
+                worst_on_border = std::max(worst_on_border, e);
+                ++on_border;
+            }
+        }
+        EXPECT_GT(checked, 500u);
+        EXPECT_GT(in_strip, 50u);
+        EXPECT_GT(on_border, 200u);
+        EXPECT_LE(worst, 2.0 * d_m);
+        EXPECT_LE(worst_strip, 2.0 * d_m);
+        EXPECT_LE(worst_on_border, 2.0 * d_m);
     }
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -315,6 +316,45 @@ TEST(ToolShape, ClipToRectMatchesAnalyticIntersections) {
     EXPECT_EQ(clip_to_rect(inside, lo, hi), inside);
     const std::vector<Vec2> outside = {{3, 3}, {4, 3}, {4, 4}};
     EXPECT_LT(clip_to_rect(outside, lo, hi).size(), 3u);
+}
+
+TEST(ToolShape, SamplesAlongSidesCutOnlyTheEdgesOnTheRectanglesSides) {
+    const Rect rect{{0.0, 0.0}, {2.0, 2.0}};
+    // A disc centred on the left side, clipped: one edge lies on x = 0, the rest inside.
+    std::vector<Vec2> disc;
+    for (Vec2 p : circle_contour(0.7, 64))
+        disc.push_back(p + Vec2{0.0, 1.0});
+    const std::vector<Vec2> clipped = clip_to_rect(disc, rect.min, rect.max);
+    const double spacing = 0.1;
+    const std::vector<Vec2> samples = samples_along_sides(clipped, rect, spacing);
+    // The edge on the side runs from y = 1 - 0.7 to 1 + 0.7 (the circle's top and bottom are
+    // polygon vertices): 1.4 m in ceil(1.4 / 0.1) = 14 pieces, 13 inner points 0.1 m apart.
+    ASSERT_EQ(samples.size(), 13u);
+    std::vector<double> ys;
+    for (Vec2 p : samples) {
+        EXPECT_EQ(p.x, 0.0);  // exactly on the side
+        ys.push_back(p.y);
+    }
+    std::sort(ys.begin(), ys.end());
+    for (std::size_t k = 0; k < ys.size(); ++k)
+        EXPECT_NEAR(ys[k], 0.3 + 1.4 * static_cast<double>(k + 1) / 14.0, 1e-14);
+    // None repeats a vertex of the polygon.
+    for (Vec2 p : samples)
+        EXPECT_EQ(std::count(clipped.begin(), clipped.end(), p), 0);
+
+    // A square inside touching no side, and a corner piece with two sides on the rectangle.
+    const std::vector<Vec2> inside = {{0.5, 0.5}, {1.5, 0.5}, {1.5, 1.5}, {0.5, 1.5}};
+    EXPECT_TRUE(samples_along_sides(inside, rect, spacing).empty());
+    const std::vector<Vec2> corner = {{1.5, 1.5}, {2.0, 1.5}, {2.0, 2.0}, {1.5, 2.0}};
+    const std::vector<Vec2> at_corner = samples_along_sides(corner, rect, 0.2);
+    // Two sides 0.5 long, each in ceil(0.5 / 0.2) = 3 pieces: 2 inner points each.
+    ASSERT_EQ(at_corner.size(), 4u);
+    for (Vec2 p : at_corner)
+        EXPECT_TRUE(p.x == 2.0 || p.y == 2.0);
+    // Nothing without a positive spacing.
+    EXPECT_TRUE(samples_along_sides(clipped, rect, 0.0).empty());
+    EXPECT_TRUE(
+        samples_along_sides(clipped, rect, std::numeric_limits<double>::quiet_NaN()).empty());
 }
 
 }  // namespace
