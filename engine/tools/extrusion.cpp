@@ -21,7 +21,7 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     const Rect domain = tin.domain();
 
     // Per-vertex weights: cut depth times the direction factor.
-    std::vector<double> weight(n, 0.0);
+    std::vector<double> cut_weight(n, 0.0);
     std::vector<Vec2> normal(n);
     double total_weight = 0.0;
     std::vector<double> direction(n, 1.0);
@@ -37,14 +37,17 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
             const Vec2 d = *motion / length(*motion);
             direction[i] = std::clamp((dot(nrm, d) + 0.5) / 1.5, 0.0, 1.0);
         }
-        weight[i] = std::max(0.0, cut_depth[i]) * direction[i];
-        total_weight += weight[i];
+        cut_weight[i] = std::max(0.0, cut_depth[i]) * direction[i];
+        total_weight += cut_weight[i];
     }
-    if (!(total_weight > 0.0)) {
-        // The tool displaced volume but no control point reports a cut where the ridge may go
-        // (a tool sunk below its rim, say): spread it by direction alone rather than lose it.
-        weight = direction;
-    }
+    // Weights in order of preference. The tool may displace volume where no control point
+    // reports a cut (a ball's outline stands above the sand), and the weighted part of the
+    // band may lie outside the domain (a tool in a corner, moving into it): then the
+    // direction alone, then every side alike, rather than lose the volume.
+    std::vector<std::vector<double>> preferences;
+    if (total_weight > 0.0) preferences.push_back(cut_weight);
+    preferences.push_back(direction);
+    preferences.emplace_back(n, 1.0);
 
     // The band's vertices: every vertex within reach of the ridge, before any is added.
     Rect box;
@@ -66,63 +69,68 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     // take out again.
     const double line_spacing = 0.25 * width;
     const double clearance = 0.125 * width;
-    std::vector<Vec2> band_positions;
-    band_positions.reserve(band.size());
-    for (VertexId v : band)
-        band_positions.push_back(va.position[v.value]);
-    const PointGrid existing(band_positions, clearance);
     static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
-    std::vector<Vec2> points;
-    double since_line = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i > 0) since_line += distance(outer[i], outer[i - 1]);
-        if (!(weight[i] > 0.0) || since_line < line_spacing) continue;
-        since_line = 0.0;
-        for (double s : kStations) {
-            const Vec2 p = outer[i] + normal[i] * (s * width);
-            if (domain.contains(p) && !point_in_polygon(p, outer) && !existing.has_near(p))
-                points.push_back(p);
-        }
-    }
     const std::size_t before = tin.vertex_count();
-    if (!points.empty()) {
-        const std::vector<VertexId> stations =
-            tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
-        band.insert(band.end(), stations.begin(), stations.end());
-        // A station may land on an existing vertex (within the snap distance).
-        std::sort(band.begin(), band.end());
-        band.erase(std::unique(band.begin(), band.end()), band.end());
-    }
-    report.vertices_inserted = tin.vertex_count() - before;
-
-    // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
-    // the stations are a small share of the band's vertices, and raising them alone would
-    // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way). A
-    // vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
+    // A vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
     // weight interpolated along the nearest contour edge.
     std::vector<std::pair<VertexId, double>> ks;
+    double denominator = 0.0;
     // A dense terrain has thousands of vertices under and around the tool, and its rim
     // hundreds of edges: both tests are indexed (same answers as point_in_polygon and
     // nearest_edge).
     const PolygonInclusion under_tool(outer, centre);
     const NearEdgeIndex rim(outer, width);
-    for (VertexId v : band) {
-        if (!tin.is_alive(v)) continue;
-        const Vec2 p = va.position[v.value];
-        if (under_tool.contains(p)) continue;
-        const NearestEdge edge = rim.nearest_within_reach(p);
-        const double best = edge.distance;
-        const double w =
-            (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
-        if (!(best < width) || !(w > 0.0)) continue;
-        const double t = 2.0 * best / width - 1.0;
-        const double kv = w * (1.0 - t * t);
-        if (kv > 0.0) ks.emplace_back(v, kv);
+    for (const std::vector<double>& weight : preferences) {
+        std::vector<Vec2> band_positions;
+        band_positions.reserve(band.size());
+        for (VertexId v : band)
+            band_positions.push_back(va.position[v.value]);
+        const PointGrid existing(band_positions, clearance);
+        std::vector<Vec2> points;
+        double since_line = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < n; ++i) {
+            if (i > 0) since_line += distance(outer[i], outer[i - 1]);
+            if (!(weight[i] > 0.0) || since_line < line_spacing) continue;
+            since_line = 0.0;
+            for (double s : kStations) {
+                const Vec2 p = outer[i] + normal[i] * (s * width);
+                if (domain.contains(p) && !point_in_polygon(p, outer) && !existing.has_near(p))
+                    points.push_back(p);
+            }
+        }
+        if (!points.empty()) {
+            const std::vector<VertexId> stations =
+                tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
+            band.insert(band.end(), stations.begin(), stations.end());
+            // A station may land on an existing vertex (within the snap distance).
+            std::sort(band.begin(), band.end());
+            band.erase(std::unique(band.begin(), band.end()), band.end());
+        }
+
+        // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
+        // the stations are a small share of the band's vertices, and raising them alone would
+        // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way).
+        ks.clear();
+        for (VertexId v : band) {
+            if (!tin.is_alive(v)) continue;
+            const Vec2 p = va.position[v.value];
+            if (under_tool.contains(p)) continue;
+            const NearestEdge edge = rim.nearest_within_reach(p);
+            const double best = edge.distance;
+            const double w =
+                (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
+            if (!(best < width) || !(w > 0.0)) continue;
+            const double t = 2.0 * best / width - 1.0;
+            const double kv = w * (1.0 - t * t);
+            if (kv > 0.0) ks.emplace_back(v, kv);
+        }
+        std::sort(ks.begin(), ks.end());  // deterministic order
+        denominator = 0.0;
+        for (const auto& [v, kv] : ks)
+            denominator += va.lumped_area[v.value] * kv;
+        if (denominator > 0.0) break;
     }
-    std::sort(ks.begin(), ks.end());  // deterministic order
-    double denominator = 0.0;
-    for (const auto& [v, kv] : ks)
-        denominator += va.lumped_area[v.value] * kv;
+    report.vertices_inserted = tin.vertex_count() - before;
     if (!(denominator > 0.0)) return report;
     const double ridge_height = volume / denominator;
     const double ledger0 = tin.volume_ledger();

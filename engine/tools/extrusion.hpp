@@ -25,7 +25,9 @@ struct RidgeReport {
 
 /// Deposits `volume` m³ (negative: takes it away) in a ridge of width `width` m outside the
 /// counter-clockwise polygon `outer`, weighted per outer vertex by `cut_depth` (m) and the motion
-/// direction.
+/// direction. Where that weighting leaves no part of the band inside the domain (a tool in a
+/// corner, moving into it) the direction alone weights it, and failing that every side alike:
+/// the volume is deposited whenever any of the band lies in the domain.
 RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
                           std::optional<Vec2> motion, double width, double volume,
                           LocateHint* hint = nullptr, std::vector<VertexId>* touched = nullptr);

@@ -198,17 +198,32 @@ TEST(Extrusion, StrokeConservesVolume) {
 }
 
 TEST(Extrusion, StampAtTheDomainBorderStillConserves) {
-    // Moving towards the border: most of the ridge would fall outside the domain.
-    const Tool tool = Tool::build(spec_of("circle", true));
-    Tin tin = terrain();
-    SculptContext context(tin.domain());
-    const ToolPlacement at{{0.03, 0.5}, std::numbers::pi, *tin.height_at({0.03, 0.5}) - 0.015};
-    const double v0 = tin.volume();
-    const StampReport r = stamp(tin, tool, at, context, Vec2{-1.0, 0.0});
-    ASSERT_TRUE(r.applied);
-    EXPECT_TRUE(mesh_is_sound(tin));
-    ASSERT_GT(r.displaced_volume, 0.0);
-    EXPECT_LE(std::abs(tin.volume() - v0), 0.01 * r.displaced_volume);
+    // Moving towards the border or into a corner: most of the ridge, or all of the part the cut
+    // depth and the motion favour, would fall outside the domain. Every shipped tool.
+    struct Placement {
+        Vec2 centre;
+        Vec2 motion;
+    };
+    const Placement placements[] = {
+        {{0.03, 0.5}, {-1.0, 0.0}}, {{0.99, 0.01}, {1.0, 0.0}}, {{0.01, 0.99}, {-1.0, 1.0}}};
+    for (const char* asset : {"circle", "box", "lambda", "ball", "foot", "rake"}) {
+        const Tool tool = Tool::build(spec_of(asset, true));
+        for (const Placement& p : placements) {
+            SCOPED_TRACE(std::string(asset) + " at " + std::to_string(p.centre.x) + ", " +
+                         std::to_string(p.centre.y));
+            Tin tin = terrain();
+            SculptContext context(tin.domain());
+            const ToolPlacement at{p.centre, std::atan2(p.motion.y, p.motion.x),
+                                   *tin.height_at(p.centre) - 0.015};
+            const double v0 = tin.volume();
+            const StampReport r = stamp(tin, tool, at, context, p.motion);
+            ASSERT_TRUE(r.applied);
+            EXPECT_TRUE(mesh_is_sound(tin));
+            ASSERT_GT(r.displaced_volume, 0.0);
+            EXPECT_LE(std::abs(tin.volume() - v0), 0.01 * r.displaced_volume);
+            EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 0.01 * r.displaced_volume);
+        }
+    }
 }
 
 TEST(Extrusion, DepositRidgeAddsExactlyTheVolumeOutsideTheContour) {
