@@ -348,7 +348,11 @@ TEST(ToolProfile, CurvedStampFollowsTheImprintWithinTwiceTheSimplifyTolerance) {
 // up to the border, even with no vertices along it: Tin::random_points has only the corners
 // there) the surface inside I follows the imprint within 2 d_m everywhere, on the border line
 // and in the strip beside it too. (Before the border was sampled, it only interpolated I's two
-// corners there: 5 to 14 mm off on the border line.)
+// corners there: 5 to 14 mm off on the border line.) The imprint alone, without the ball's
+// extrusion ridge: where O is not constrained (a ball's outline stands above the sand, so
+// nothing there is enforced), triangles cross O and the ridge's slope reaches a few mm inside
+// it; in a corner, where the whole volume goes into the short stretch of band left, that added
+// 0.4 mm at 4.4 mm inside I.
 TEST(ToolProfile, CurvedStampAtTheBorderFollowsTheImprintUpToTheBorder) {
     auto plane = [](Vec2 p) { return 0.1 + 0.05 * p.x + 0.03 * p.y; };
     for (const auto& [name, centre] :
@@ -357,7 +361,9 @@ TEST(ToolProfile, CurvedStampAtTheBorderFollowsTheImprintUpToTheBorder) {
           std::pair{"ball", Vec2{0.985, 0.015}}}) {
         SCOPED_TRACE(std::string(name) + " at " + std::to_string(centre.x) + ", " +
                      std::to_string(centre.y));
-        const Tool tool = Tool::build(load_tool_asset(name));
+        ToolSpec spec = load_tool_asset(name);
+        spec.extrude = false;
+        const Tool tool = Tool::build(spec);
         Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 71, plane);
         SculptContext context(tin.domain());
         ToolPlacement at{centre, 0.6, 0.0};
