@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "physics/cone.hpp"
 #include "physics/sand_physics.hpp"
@@ -112,6 +113,45 @@ TEST(AnalyticPile, DenseRandomTin) {
 TEST(AnalyticPile, DenseRandomTinJacobi) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 7);
     expect_cone(pour_and_settle(tin, 0.0, Schedule::Jacobi));
+}
+
+// Against a wall and in a corner of the domain: no sand leaves through the border, and the
+// border's straight sides act as mirrors, so the rest state is half (quarter) of the cone of
+// twice (four times) the volume: h = (k V tan²α / π)^(1/3) with k = 6 (12).
+TEST(AnalyticPile, AgainstAWallAndInACornerHalfAndQuarterCones) {
+    struct Case {
+        const char* name;
+        Vec2 at;
+        double share;     ///< of the full cone
+        double from, to;  ///< the angles the rays cover (rad)
+    };
+    const double pi = std::numbers::pi;
+    const Case cases[] = {{"wall", {0.5, 0.0}, 0.5, 0.0, pi},
+                          {"corner", {0.0, 0.0}, 0.25, 0.0, 0.5 * pi}};
+    for (const Case& c : cases) {
+        for (const Schedule schedule : {Schedule::Sequential, Schedule::Jacobi}) {
+            SCOPED_TRACE(std::string(c.name) +
+                         (schedule == Schedule::Jacobi ? ", Jacobi" : ", sequential"));
+            Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 7);
+            TalusSettings settings;
+            settings.schedule = schedule;
+            settings.parameters.relocation_radius = 0.01;
+            SandPhysics physics(tin, MaterialTable::presets(), settings);
+            const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+            const double before = tin.volume();
+            test::pour_at_point(tin, physics, c.at, kVolume);
+            const PhysicsStepReport r = physics.run_to_rest(200000);
+            EXPECT_TRUE(r.at_rest);
+            const Cone cone = Cone::from_volume(kVolume / c.share, tan_alpha);
+            const test::PileShape shape =
+                test::measure_pile(tin, c.at, 2.0 * cone.radius, 1e-3 * cone.height, c.from, c.to);
+            EXPECT_NEAR(shape.apex, cone.height, 0.03 * cone.height);
+            EXPECT_NEAR(shape.toe_radius, cone.radius, 0.03 * cone.radius);
+            EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
+            EXPECT_LT(std::abs(tin.volume() - before - kVolume) / kVolume, 1e-12);
+            EXPECT_TRUE(tin.check_valid().ok());
+        }
+    }
 }
 
 }  // namespace

@@ -47,8 +47,10 @@ struct PileShape {
 };
 
 /// The pile around `centre`: apex height, and where the surface falls to `toe_level` along
-/// rays (from the exact piecewise-linear section of the TIN).
-inline PileShape measure_pile(const Tin& tin, Vec2 centre, double reach, double toe_level) {
+/// rays (from the exact piecewise-linear section of the TIN), spread evenly over the angles
+/// [from, to] (radians; a pile against a wall or in a corner has rays only into the domain).
+inline PileShape measure_pile(const Tin& tin, Vec2 centre, double reach, double toe_level,
+                              double from = 0.0, double to = 2.0 * std::numbers::pi) {
     PileShape s;
     const VertexArrays& va = tin.vertices();
     for (std::uint32_t v = 0; v < va.size(); ++v) {
@@ -56,16 +58,24 @@ inline PileShape measure_pile(const Tin& tin, Vec2 centre, double reach, double 
     }
     double lo = 1e300, hi = 0.0, sum = 0.0;
     constexpr int kRays = 32;
+    const Rect domain = tin.domain();
     for (int k = 0; k < kRays; ++k) {
-        const double a = 2.0 * std::numbers::pi * (k + 0.5) / kRays;
-        const Vec2 end{centre.x + reach * std::cos(a), centre.y + reach * std::sin(a)};
-        const auto sec = tin.section(centre, end);
-        double r = reach;
+        const double a = from + (to - from) * (k + 0.5) / kRays;
+        const Vec2 dir{std::cos(a), std::sin(a)};
+        // Each ray ends at the domain's border if it gets there first: Tin::section clamps its
+        // ends into the domain, which would bend the ray and stretch its parameter.
+        double length = reach;
+        if (dir.x > 0.0) length = std::min(length, (domain.max.x - centre.x) / dir.x);
+        if (dir.x < 0.0) length = std::min(length, (domain.min.x - centre.x) / dir.x);
+        if (dir.y > 0.0) length = std::min(length, (domain.max.y - centre.y) / dir.y);
+        if (dir.y < 0.0) length = std::min(length, (domain.min.y - centre.y) / dir.y);
+        const auto sec = tin.section(centre, centre + dir * length);
+        double r = length;
         for (std::size_t i = 1; i < sec.size(); ++i) {
             const auto [t0, z0] = sec[i - 1];
             const auto [t1, z1] = sec[i];
             if (z0 > toe_level && z1 <= toe_level) {
-                r = reach * (t0 + (t1 - t0) * (z0 - toe_level) / (z0 - z1));
+                r = length * (t0 + (t1 - t0) * (z0 - toe_level) / (z0 - z1));
                 break;
             }
         }
