@@ -1,6 +1,7 @@
 #include "tools/extrusion.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,13 +13,86 @@
 
 namespace sandtin {
 
+namespace {
+
+/// Stations along the contour's normals make sure a sparse terrain has vertices to carry the
+/// ridge; they are inserted on the surface, so they change nothing yet. A line of them every
+/// quarter width of contour (their spacing across the band: the contour's own points can be
+/// much closer), only at contour points of positive weight, and a station only where no vertex
+/// is within an eighth of the width already: along a stroke the previous stamps' stations are
+/// there, and a dense terrain needs none. Otherwise every stamp would add hundreds of vertices
+/// for the simplifier to take out again. The stations join `band`.
+void insert_stations(Tin& tin, std::span<const Vec2> outer, std::span<const Vec2> normal,
+                     std::span<const double> weight, double width, std::vector<VertexId>& band,
+                     LocateHint* hint) {
+    const double line_spacing = 0.25 * width;
+    const double clearance = 0.125 * width;
+    static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
+    const VertexArrays& va = tin.vertices();
+    std::vector<Vec2> band_positions;
+    band_positions.reserve(band.size());
+    for (VertexId v : band)
+        band_positions.push_back(va.position[v.value]);
+    const PointGrid existing(band_positions, clearance);
+    const Rect domain = tin.domain();
+    std::vector<Vec2> points;
+    double since_line = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < outer.size(); ++i) {
+        if (i > 0) since_line += distance(outer[i], outer[i - 1]);
+        if (!(weight[i] > 0.0) || since_line < line_spacing) continue;
+        since_line = 0.0;
+        for (double s : kStations) {
+            const Vec2 p = outer[i] + normal[i] * (s * width);
+            if (domain.contains(p) && !point_in_polygon(p, outer) && !existing.has_near(p))
+                points.push_back(p);
+        }
+    }
+    if (points.empty()) return;
+    const std::vector<VertexId> stations =
+        tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
+    band.insert(band.end(), stations.begin(), stations.end());
+    // A station may land on an existing vertex (within the snap distance).
+    std::sort(band.begin(), band.end());
+    band.erase(std::unique(band.begin(), band.end()), band.end());
+}
+
+/// Each band vertex's share k_v of the ridge, in id order: at distance s outside O (within the
+/// width w), the cross-section 1 - (2s/w - 1)² times the weight interpolated along the nearest
+/// contour edge. Every vertex in the band carries the ridge, not only the stations: on a dense
+/// terrain the stations are a small share of the band's vertices, and raising them alone would
+/// hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way).
+std::vector<std::pair<VertexId, double>> ridge_shares(const Tin& tin,
+                                                      std::span<const VertexId> band,
+                                                      std::span<const double> weight,
+                                                      const PolygonInclusion& under_tool,
+                                                      const NearEdgeIndex& rim, double width) {
+    const VertexArrays& va = tin.vertices();
+    const std::size_t n = weight.size();
+    std::vector<std::pair<VertexId, double>> ks;
+    for (VertexId v : band) {
+        if (!tin.is_alive(v)) continue;
+        const Vec2 p = va.position[v.value];
+        if (under_tool.contains(p)) continue;
+        const NearestEdge edge = rim.nearest_within_reach(p);
+        const double w =
+            (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
+        if (!(edge.distance < width) || !(w > 0.0)) continue;
+        const double t = 2.0 * edge.distance / width - 1.0;
+        const double kv = w * (1.0 - t * t);
+        if (kv > 0.0) ks.emplace_back(v, kv);
+    }
+    std::sort(ks.begin(), ks.end());  // deterministic order
+    return ks;
+}
+
+}  // namespace
+
 RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
                           std::optional<Vec2> motion, double width, double volume, LocateHint* hint,
                           std::vector<VertexId>* touched) {
     RidgeReport report;
     const std::size_t n = outer.size();
     if (volume == 0.0 || !std::isfinite(volume) || n < 3 || !(width > 0.0)) return report;
-    const Rect domain = tin.domain();
 
     // Per-vertex weights: cut depth times the direction factor.
     std::vector<double> cut_weight(n, 0.0);
@@ -60,71 +134,17 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     std::vector<VertexId> band = tin.vertices_in_disc(centre, reach + width, hint);
     const VertexArrays& va = tin.vertices();
 
-    // Stations along control points' normals make sure a sparse terrain has vertices to carry
-    // the ridge; they are inserted on the surface, so they change nothing yet. A line of them
-    // every quarter width of contour (their spacing across the band: the contour's own points
-    // can be much closer), and a station only where no vertex is within an eighth of the width
-    // already: along a stroke the previous stamps' stations are there, and a dense terrain
-    // needs none. Otherwise every stamp would add hundreds of vertices for the simplifier to
-    // take out again.
-    const double line_spacing = 0.25 * width;
-    const double clearance = 0.125 * width;
-    static constexpr std::array<double, 4> kStations = {0.25, 0.5, 0.75, 1.0};
-    const std::size_t before = tin.vertex_count();
-    // A vertex at distance s outside O takes the cross-section 1 - (2s/w - 1)² times the
-    // weight interpolated along the nearest contour edge.
-    std::vector<std::pair<VertexId, double>> ks;
-    double denominator = 0.0;
     // A dense terrain has thousands of vertices under and around the tool, and its rim
     // hundreds of edges: both tests are indexed (same answers as point_in_polygon and
     // nearest_edge).
     const PolygonInclusion under_tool(outer, centre);
     const NearEdgeIndex rim(outer, width);
+    const std::size_t before = tin.vertex_count();
+    std::vector<std::pair<VertexId, double>> ks;
+    double denominator = 0.0;
     for (const std::vector<double>& weight : preferences) {
-        std::vector<Vec2> band_positions;
-        band_positions.reserve(band.size());
-        for (VertexId v : band)
-            band_positions.push_back(va.position[v.value]);
-        const PointGrid existing(band_positions, clearance);
-        std::vector<Vec2> points;
-        double since_line = std::numeric_limits<double>::infinity();
-        for (std::size_t i = 0; i < n; ++i) {
-            if (i > 0) since_line += distance(outer[i], outer[i - 1]);
-            if (!(weight[i] > 0.0) || since_line < line_spacing) continue;
-            since_line = 0.0;
-            for (double s : kStations) {
-                const Vec2 p = outer[i] + normal[i] * (s * width);
-                if (domain.contains(p) && !point_in_polygon(p, outer) && !existing.has_near(p))
-                    points.push_back(p);
-            }
-        }
-        if (!points.empty()) {
-            const std::vector<VertexId> stations =
-                tin.insert_points_on_surface(points, hint, VolumePolicy::Conserve);
-            band.insert(band.end(), stations.begin(), stations.end());
-            // A station may land on an existing vertex (within the snap distance).
-            std::sort(band.begin(), band.end());
-            band.erase(std::unique(band.begin(), band.end()), band.end());
-        }
-
-        // Every vertex in the band carries the ridge, not only the stations: on a dense terrain
-        // the stations are a small share of the band's vertices, and raising them alone would
-        // hold the volume in needles (a 5 mm-spaced terrain once grew 4 cm spikes that way).
-        ks.clear();
-        for (VertexId v : band) {
-            if (!tin.is_alive(v)) continue;
-            const Vec2 p = va.position[v.value];
-            if (under_tool.contains(p)) continue;
-            const NearestEdge edge = rim.nearest_within_reach(p);
-            const double best = edge.distance;
-            const double w =
-                (1.0 - edge.t) * weight[edge.index] + edge.t * weight[(edge.index + 1) % n];
-            if (!(best < width) || !(w > 0.0)) continue;
-            const double t = 2.0 * best / width - 1.0;
-            const double kv = w * (1.0 - t * t);
-            if (kv > 0.0) ks.emplace_back(v, kv);
-        }
-        std::sort(ks.begin(), ks.end());  // deterministic order
+        insert_stations(tin, outer, normal, weight, width, band, hint);
+        ks = ridge_shares(tin, band, weight, under_tool, rim, width);
         denominator = 0.0;
         for (const auto& [v, kv] : ks)
             denominator += va.lumped_area[v.value] * kv;
