@@ -121,7 +121,8 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     std::vector<std::vector<double>> preferences;
     if (total_weight > 0.0) preferences.push_back(cut_weight);
     preferences.push_back(direction);
-    preferences.emplace_back(n, 1.0);
+    const std::vector<double> every_side(n, 1.0);
+    if (direction != every_side) preferences.push_back(every_side);  // no motion: the same
 
     // The band's vertices: every vertex within reach of the ridge, before any is added.
     Rect box;

@@ -165,25 +165,25 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<double> lattice_underside;
     std::vector<double> lattice_terrain;
     if (!tool.profile().is_flat()) {
+        const Tool::InteriorSamples& samples = tool.interior_samples();
         if (inner_clipped) {
             // Part of I lies outside the domain: a lattice of the clipped contour. (The tool's
             // own lattice with the samples past the border left out leaves a wider strip
             // unsampled there: the ball then missed its imprint by 1.2 mm 2 mm from the
             // border, against the 1 mm its test allows.)
-            const double step = std::min(spacing, tool.profile().sample_spacing());
-            lattice = interior_lattice(inner, step);
+            lattice = interior_lattice(inner, samples.spacing);
             // The lattice keeps half a spacing from every edge, the stretch along the domain's
             // border too, where the profile does not drop to the rim as it does along the
             // tool's outline: samples on that stretch as well, one spacing apart. (Without
             // them the border between I's two corners there only interpolated those corners:
             // a ball or foot pressed at the border of a terrain with no vertices along it
-            // missed its imprint by up to 13 mm on the border line.)
-            const std::vector<Vec2> along_border = samples_along_sides(inner, domain, step);
+            // missed its imprint by up to 14 mm on the border line.)
+            const std::vector<Vec2> along_border =
+                samples_along_sides(inner, domain, samples.spacing);
             lattice.insert(lattice.end(), along_border.begin(), along_border.end());
             for (Vec2 p : lattice)
                 lattice_underside.push_back(frame.underside(p));
         } else {
-            const Tool::InteriorSamples& samples = tool.interior_samples();
             lattice.reserve(samples.local.size());
             for (Vec2 p : samples.local)
                 lattice.push_back(frame.to_world(p));

@@ -181,9 +181,9 @@ Tool Tool::build(const ToolSpec& spec) {
     }
     if (!tool.profile_.is_flat()) {
         InteriorSamples& samples = tool.interior_samples_;
-        const double step = std::min(tool.rim_spacing_, tool.profile_.sample_spacing());
-        samples.local =
-            interior_lattice(subdivide_contour(tool.shape_.inner, tool.rim_spacing_), step);
+        samples.spacing = std::min(tool.rim_spacing_, tool.profile_.sample_spacing());
+        samples.local = interior_lattice(subdivide_contour(tool.shape_.inner, tool.rim_spacing_),
+                                         samples.spacing);
         samples.offset.reserve(samples.local.size());
         for (Vec2 p : samples.local)
             samples.offset.push_back(tool.profile_.offset(p));

@@ -80,11 +80,12 @@ class Tool {
     double underside(const ToolPlacement& at, Vec2 world) const;
 
     /// Where a stamp samples a curved profile inside I: a lattice in tool coordinates (m),
-    /// interior_lattice() of the subdivided inner contour at the profile's sample spacing (at
-    /// most the rim spacing), with the profile's offset at each point (m above the lowest
-    /// point; +infinity: no contact). Empty for a flat profile. Made once when the tool is
-    /// built, so a stamp only maps it to the world.
+    /// interior_lattice() of the subdivided inner contour at `spacing` (the profile's sample
+    /// spacing, at most the rim spacing), with the profile's offset at each point (m above the
+    /// lowest point; +infinity: no contact). Empty for a flat profile. Made once when the tool
+    /// is built, so a stamp only maps it to the world.
     struct InteriorSamples {
+        double spacing = 0.0;  ///< m
         std::vector<Vec2> local;
         std::vector<double> offset;
     };
