@@ -43,6 +43,7 @@
 #include "physics/sand_physics.hpp"
 #include "picking.hpp"
 #include "swapchain.hpp"
+#include "terrain_scale.hpp"
 #include "tools/brushes.hpp"
 #include "tools/sand.hpp"
 #include "tools/stroke.hpp"
@@ -149,6 +150,9 @@ class App {
     void save(const std::filesystem::path& p);
     void open(const std::filesystem::path& p);
     void frame_terrain();
+    /// The length settings follow the new document's terrain size (terrain_scale.hpp), and the
+    /// document's sculpting context takes the panel's simplification tolerance.
+    void fit_settings_to_document();
     /// Waits until the GPU no longer uses anything: before objects a submitted frame or
     /// solver step may still read (the normal map, the mirrors) are destroyed.
     void wait_gpu_idle() const {
@@ -156,6 +160,7 @@ class App {
     }
     /// After doc_ holds a new terrain: per-terrain state restarts.
     void document_replaced() {
+        fit_settings_to_document();
         // A new document starts clean (a recovered one is already on disk as the autosave).
         autosave_schedule_.saved(Clock::now());
         wait_gpu_idle();      // the last frame may still sample the normal map

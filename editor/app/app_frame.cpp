@@ -166,6 +166,7 @@ std::vector<std::array<float, 3>> App::footprint_outline() {
     const Vec2 c = doc_.tin->domain().centre();
     const std::vector<Vec2>& inner = cursor_tool_->shape().inner;
     std::vector<std::array<float, 3>> loop;
+    const double lift = 0.0005 * settings_.scene_size;  // above the sand, so it is not hidden
     LocateHint hint;
     for (std::size_t i = 0; i < inner.size(); ++i) {
         // Subdivided so the outline follows the sand between the contour's corners.
@@ -175,7 +176,7 @@ std::vector<std::array<float, 3>> App::footprint_outline() {
             const Vec2 w = cursor_tool_->to_world(at, lerp(a, b, static_cast<double>(k) / kPieces));
             const double z = doc_.tin->height_at(w, &hint).value_or(cursor_->z);
             loop.push_back({static_cast<float>(w.x - c.x), static_cast<float>(w.y - c.y),
-                            static_cast<float>(z + 0.0005)});
+                            static_cast<float>(z + lift)});
         }
     }
     return loop;

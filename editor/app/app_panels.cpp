@@ -4,6 +4,30 @@
 
 namespace sandtin::editor {
 
+namespace {
+
+/// A slider over [lo, hi] (metres, or m³), shown in `unit`: "name (unit per)". The ImGui id is
+/// the name alone, so a change of unit is not a new widget.
+bool scaled_slider(const char* name, const char* per, double& value, double lo, double hi,
+                   DisplayUnit unit, const char* format) {
+    const std::string label =
+        std::string(name) + " (" + unit.suffix + per + ")###" + std::string(name);
+    auto shown = [&](double v) { return static_cast<float>(v / unit.metres); };
+    float v = shown(value);
+    if (!ImGui::SliderFloat(label.c_str(), &v, shown(lo), shown(hi), format)) return false;
+    value = static_cast<double>(v) * unit.metres;
+    return true;
+}
+
+/// A length slider whose range is [lo, hi] metres on the 1 m sandbox, scaled to a terrain of
+/// `size` metres (terrain_scale.hpp), in the unit that suits the scaled range.
+bool length_slider(const char* name, double& metres, double lo, double hi, double size,
+                   const char* format, const char* per = "") {
+    return scaled_slider(name, per, metres, lo * size, hi * size, length_unit(hi * size), format);
+}
+
+}  // namespace
+
 // ---- Panels ---------------------------------------------------------------------------------
 
 void App::draw_panels() {
@@ -96,17 +120,12 @@ void App::panel_tools() {
         }
         tip(kTools[i].help);
     }
-    float radius = static_cast<float>(settings_.tool_radius * 100.0);
-    if (ImGui::SliderFloat("Size (cm)", &radius, 0.5f, 15.0f, "%.1f"))
-        settings_.tool_radius = static_cast<double>(radius) / 100.0;
+    const double size = settings_.scene_size;
+    length_slider("Size", settings_.tool_radius, 0.005, 0.15, size, "%.1f");
     tip("Radius of round tools, brushes and the pour");
-    float depth = static_cast<float>(settings_.tool_depth * 1000.0);
-    if (ImGui::SliderFloat("Depth (mm)", &depth, -20.0f, 40.0f, "%.1f"))
-        settings_.tool_depth = static_cast<double>(depth) / 1000.0;
+    length_slider("Depth", settings_.tool_depth, -0.02, 0.04, size, "%.1f");
     tip("How deep a stamp tool presses below the terrain ahead of it");
-    float spacing = static_cast<float>(settings_.stroke_spacing * 1000.0);
-    if (ImGui::SliderFloat("Spacing (mm)", &spacing, 1.0f, 50.0f, "%.1f"))
-        settings_.stroke_spacing = static_cast<double>(spacing) / 1000.0;
+    length_slider("Spacing", settings_.stroke_spacing, 0.001, 0.05, size, "%.1f");
     tip("Distance between stamps along a stroke (independent of frame rate)");
     ImGui::Checkbox("Extrude", &settings_.extrude);
     tip("Push the displaced sand into a rim beside and ahead of the tool (volume conserved).");
@@ -117,13 +136,11 @@ void App::panel_tools() {
     if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
         settings_.tool_angle = static_cast<double>(angle);
     tip("Tool heading when it does not follow the path");
-    float strength = static_cast<float>(settings_.brush_strength * 1000.0);
-    if (ImGui::SliderFloat("Brush (mm/dab)", &strength, 0.5f, 20.0f, "%.1f"))
-        settings_.brush_strength = static_cast<double>(strength) / 1000.0;
+    length_slider("Brush", settings_.brush_strength, 0.0005, 0.02, size, "%.1f", "/dab");
     tip("Height a Raise brush dab adds at its centre");
-    float pour = static_cast<float>(settings_.pour_volume * 1e6);
-    if (ImGui::SliderFloat("Pour (cm3)", &pour, 1.0f, 200.0f, "%.0f"))
-        settings_.pour_volume = static_cast<double>(pour) * 1e-6;
+    const double cube = size * size * size;
+    scaled_slider("Pour", "", settings_.pour_volume, 1e-6 * cube, 2e-4 * cube,
+                  volume_unit(2e-4 * cube), "%.0f");
     tip("Sand volume poured or removed per click or mouse move");
 }
 
@@ -202,20 +219,16 @@ void App::panel_erosion() {
         settings_.erosion_gpu = solver == 1;
         attach_physics(true);
     }
-    float rs = static_cast<float>(settings_.relocation_radius * 1000.0);
-    if (ImGui::SliderFloat("r_S (mm)", &rs, 1.0f, 50.0f, "%.1f"))
-        settings_.relocation_radius = static_cast<double>(rs) / 1000.0;
+    length_slider("r_S", settings_.relocation_radius, 0.001, 0.05, settings_.scene_size, "%.1f");
     tip("Relocation radius: material never jumps farther; longer edges are split");
     float margin = static_cast<float>(settings_.settle_margin * 100.0);
     if (ImGui::SliderFloat("Settle margin (%)", &margin, 0.0f, 10.0f, "%.1f"))
         settings_.settle_margin = static_cast<double>(margin) / 100.0;
     tip("Sand that slides comes to rest this much below its angle of repose (the dynamic\n"
         "angle is 1-3 degrees lower). 0 = the seeds' rule: a dug slope creeps for much longer");
-    float tol = static_cast<float>(settings_.simplify_tolerance * 1000.0);
-    if (ImGui::SliderFloat("Simplify (mm)", &tol, 0.05f, 5.0f, "%.2f")) {
-        settings_.simplify_tolerance = static_cast<double>(tol) / 1000.0;
+    if (length_slider("Simplify", settings_.simplify_tolerance, 0.00005, 0.005,
+                      settings_.scene_size, "%.2f"))
         doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
-    }
     tip("Vertices within this distance of a common plane with their neighbours are removed");
     ImGui::Checkbox("Wireframe", &settings_.overlay_wireframe);
     tip("Show the triangulation; constrained edges (tool rims) in magenta");
@@ -295,8 +308,11 @@ void App::panel_haptics() {
 void App::panel_stats() {
     const Tin& t = *doc_.tin;
     ImGui::Text("%zu vertices, %zu triangles", t.vertex_count(), t.triangle_count());
-    ImGui::Text("%zu constrained edges, volume %.3f L", t.constrained_edge_count(),
-                t.volume() * 1000.0);
+    // Litres on the 1 m sandbox, cubic metres on a terrain a hundred times larger.
+    const double size = settings_.scene_size;
+    const DisplayUnit unit = volume_unit(1e-2 * size * size * size);
+    ImGui::Text("%zu constrained edges, volume %.3f %s", t.constrained_edge_count(),
+                t.volume() / unit.metres, unit.suffix);
     const double frame_ms = StageTimes::median(times_.frame);
     ImGui::Text("%.1f fps (%.1f ms)", frame_ms > 0.0 ? 1000.0 / frame_ms : 0.0, frame_ms);
     ImGui::Text("tool %.2f  physics %.2f  mesh %.2f", StageTimes::median(times_.tool),

@@ -162,6 +162,22 @@ void App::frame_terrain() {
     camera_.distance *= 0.8;  // the domain's corners may leave the view a little: more terrain
 }
 
+void App::fit_settings_to_document() {
+    const double size = terrain_size(doc_.tin->domain());
+    const double k = fit_settings_to_terrain(settings_, size);
+    doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
+    if (k != 1.0) {
+        cursor_tool_.reset();  // built at the old size
+        haptic_tool_.reset();
+        char text[160];
+        std::snprintf(text, sizeof(text),
+                      "tool size, depth, spacing, brush, pour, r_S and simplification scaled "
+                      "x%.3g for this %.4g m terrain",
+                      k, size);
+        report(text);
+    }
+}
+
 void App::save(const std::filesystem::path& p) {
     end_action();
     // An autosave still being written would otherwise land after the save retired it.
@@ -184,7 +200,10 @@ void App::open(const std::filesystem::path& p) {
 }
 
 Tool App::build_tool() const {
-    ToolSpec spec = load_tool_asset(kTools[settings_.tool].asset);
+    // The assets are made for the 1 m sandbox: on another terrain they keep their proportion
+    // to it, and round tools take the Size slider's radius.
+    ToolSpec spec =
+        scaled_tool_spec(load_tool_asset(kTools[settings_.tool].asset), settings_.scene_size);
     if (spec.contour == ContourKind::Circle) spec.radius = settings_.tool_radius;
     spec.extrude = settings_.extrude;
     return Tool::build(spec);
@@ -358,7 +377,6 @@ int App::run() {
     load_initial_scene();
     if (!options_.scene.empty())
         std::snprintf(path_buf_, sizeof(path_buf_), "%s", options_.scene.c_str());
-    doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
     init_window_and_gpu();
     init_imgui();
     document_replaced();  // the journal's fan-out, and the GPU solver if the settings ask

@@ -38,6 +38,7 @@ void fields(EditorSettings& s, F&& f) {
     f("overlay_slope", s.overlay_slope);
     f("contrast", s.contrast);
     f("vsync", s.vsync);
+    f("scene_size", s.scene_size);
 }
 
 }  // namespace

@@ -35,6 +35,9 @@ struct EditorSettings {
     bool overlay_slope = false;
     double contrast = 0.5;  ///< strength of the height contrast curve, [0, 1]
     bool vsync = true;
+    /// Metres: the size (larger domain side) of the terrain the lengths above are for. A
+    /// terrain of another size rescales them (terrain_scale.hpp); 1 m is the default sandbox.
+    double scene_size = 1.0;
 
     friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
 };

@@ -102,6 +102,16 @@ std::vector<Vec2> mesh_outline(const TriangleMesh& mesh, double scale) {
     return best;
 }
 
+ToolSpec scaled_tool_spec(ToolSpec spec, double factor) {
+    if (!(factor > 0.0) || !std::isfinite(factor))
+        throw std::invalid_argument("tool scale factor must be positive and finite");
+    for (double* length :
+         {&spec.radius, &spec.width, &spec.length, &spec.scale, &spec.sphere_radius, &spec.relief,
+          &spec.gap, &spec.rim_spacing, &spec.rim_tolerance, &spec.extrusion_width})
+        *length *= factor;
+    return spec;
+}
+
 Tool Tool::build(const ToolSpec& spec) {
     Tool tool;
     tool.spec_ = spec;

@@ -47,6 +47,13 @@ struct ToolSpec {
     double extrusion_width = 0.0;  ///< ridge width (m); 0 = the tool's radius
 };
 
+/// The same tool `factor` times larger: every length of the spec (contour, profile, relief,
+/// gap, rim spacing and tolerance, ridge width) times `factor`, so the tool built from it is
+/// similar to the original's, with every depth `factor` times deeper. Lengths left at 0 stay 0
+/// (they are already relative to the tool). Throws std::invalid_argument unless factor is
+/// positive and finite.
+ToolSpec scaled_tool_spec(ToolSpec spec, double factor);
+
 /// Where a stamp goes: the centre in the plane, the heading (radians, counter-clockwise from
 /// +x) and the height of the tool's lowest point (m).
 struct ToolPlacement {

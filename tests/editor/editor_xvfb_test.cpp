@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "editor_settings.hpp"
 #include "formats/png_image.hpp"
 #include "io/autosave.hpp"
 #include "io/session_file.hpp"
@@ -631,6 +632,97 @@ TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
                                        redone.string() + " --save-after " + reopened.string());
     ASSERT_EQ(again.exit_code, 0) << again.log;
     EXPECT_NEAR(table(reopened).at(0).repose_dry, 21.5 * kDeg, 1e-9);
+}
+
+// The settings are made for the 1 m sandbox; on a terrain 100 times larger the editor scales
+// every length (and the pour's volume by 100³). The oracle is similarity: the talus rule has
+// no length scale, so the same script on the same points, 100 times farther apart, must give
+// the same terrain 100 times larger. (Before the scaling, the 100 m terrain got a 4 cm groove,
+// a 20 cm³ pour, and a 1 cm r_S that refined 20 000 vertices into 204 000.)
+TEST_F(EditorXvfb, ToolsPourAndRelocationRadiusFollowTheTerrainsSize) {
+    std::vector<Vec2> unit_points;
+    std::uint64_t state = 12345;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    for (int i = 0; i < 6000; ++i)
+        unit_points.push_back({uniform(), uniform()});
+    const std::string ops = R"([{"op": "set", "erosion": true},
+        {"op": "tool", "name": "Ball"},
+        {"op": "drag", "path": [[0.4, 0.5], [0.65, 0.5]], "steps": 20},
+        {"op": "tool", "name": "Pour"}, {"op": "click", "at": [0.55, 0.35]},
+        {"op": "erode", "frames": 40}, {"op": "save_settings"}])";
+    struct Result {
+        Tin tin;
+        std::string log;
+        editor::EditorSettings settings;
+    };
+    auto run_on = [&](double size) {
+        const std::string name = "scale-" + std::to_string(static_cast<int>(size));
+        std::vector<Vec2> points;
+        for (Vec2 p : unit_points)
+            points.push_back(p * size);
+        Session session;
+        session.terrain = Tin::from_points(Rect::from_size(size, size), points,
+                                           std::vector<double>(points.size(), 0.0))
+                              .snapshot();
+        const fs::path scene = kWork / (name + ".sandtin");
+        const fs::path after = kWork / (name + "-after.sandtin");
+        const fs::path settings = kWork / (name + "-settings.json");
+        fs::create_directories(kWork);
+        save_session(scene, session);
+        fs::remove(settings);  // the defaults, made for the 1 m sandbox
+        // The trace puts the status line's reports in the log.
+        ::setenv("SANDTIN_EDITOR_TRACE", "1", 1);
+        const EditorRun r = run_editor(name, ops,
+                                       scene.string() + " --settings " + settings.string() +
+                                           " --save-after " + after.string());
+        ::unsetenv("SANDTIN_EDITOR_TRACE");
+        EXPECT_EQ(r.exit_code, 0) << r.log;
+        return Result{Tin::from_snapshot(load_session(after).terrain), r.log,
+                      editor::load_settings(settings)};
+    };
+    const Result small = run_on(1.0);
+    const Result large = run_on(100.0);
+    ASSERT_TRUE(small.tin.check_valid().ok()) << small.tin.check_valid().summary();
+    ASSERT_TRUE(large.tin.check_valid().ok()) << large.tin.check_valid().summary();
+
+    const editor::EditorSettings defaults;
+    EXPECT_EQ(small.settings.scene_size, 1.0);
+    EXPECT_EQ(small.settings.tool_radius, defaults.tool_radius);
+    EXPECT_EQ(large.settings.scene_size, 100.0);
+    EXPECT_NEAR(large.settings.tool_radius, 100.0 * defaults.tool_radius, 1e-12);
+    EXPECT_NEAR(large.settings.relocation_radius, 100.0 * defaults.relocation_radius, 1e-12);
+    EXPECT_NEAR(large.settings.pour_volume, 1e6 * defaults.pour_volume, 1e-9);
+    EXPECT_NE(large.log.find("scaled x100 for this 100 m terrain"), std::string::npos) << large.log;
+    EXPECT_EQ(small.log.find("scaled x"), std::string::npos) << small.log;
+
+    // The pour is the only volume added (the Ball's ridge conserves what it digs).
+    const double v_small = small.tin.volume(), v_large = large.tin.volume();
+    EXPECT_NEAR(v_small, defaults.pour_volume, 0.01 * defaults.pour_volume);
+    EXPECT_NEAR(v_large / v_small, 1e6, 1e6 * 0.01);
+    // The same detail: as many vertices (the simplification and r_S refinement scaled too).
+    const double n_small = static_cast<double>(small.tin.vertex_count());
+    const double n_large = static_cast<double>(large.tin.vertex_count());
+    EXPECT_NEAR(n_large / n_small, 1.0, 0.05) << n_small << " vs " << n_large;
+    // The same relief, 100 times taller and deeper.
+    auto extremes = [](const Tin& tin) {
+        double lo = 1e300, hi = -1e300;
+        const VertexArrays& va = tin.vertices();
+        for (std::size_t i = 0; i < va.size(); ++i) {
+            if (!va.alive[i]) continue;
+            lo = std::min(lo, va.height[i]);
+            hi = std::max(hi, va.height[i]);
+        }
+        return std::pair{lo, hi};
+    };
+    const auto [lo_small, hi_small] = extremes(small.tin);
+    const auto [lo_large, hi_large] = extremes(large.tin);
+    ASSERT_LT(lo_small, -0.5 * defaults.tool_depth);  // the groove is there
+    ASSERT_GT(hi_small, 0.005);                       // and the pile
+    EXPECT_NEAR(lo_large / lo_small, 100.0, 5.0);
+    EXPECT_NEAR(hi_large / hi_small, 100.0, 5.0);
 }
 
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {

@@ -416,5 +416,52 @@ TEST(ToolProfile, ShippedFootAndRakeBuildAndStamp) {
     stamp_asset("ball");
 }
 
+// Oracle: similarity. A tool scaled by k must be the same tool k times larger: contours,
+// radius, rim spacing and tolerance, ridge width, and the underside's depth at corresponding
+// points all k times the original's, for every shipped asset (each contour and profile kind).
+TEST(ToolSpecScale, AScaledToolIsSimilarToTheOriginal) {
+    constexpr double k = 37.5;
+    for (const char* name : {"circle", "ball", "box", "rake", "lambda", "foot"}) {
+        SCOPED_TRACE(name);
+        const ToolSpec spec = load_tool_asset(name);
+        const Tool a = Tool::build(spec);
+        const Tool b = Tool::build(scaled_tool_spec(spec, k));
+        const double eps = 1e-12 * k * a.radius();
+        ASSERT_EQ(a.shape().inner.size(), b.shape().inner.size());
+        ASSERT_EQ(a.shape().outer.size(), b.shape().outer.size());
+        for (std::size_t i = 0; i < a.shape().inner.size(); ++i)
+            EXPECT_LE(distance(a.shape().inner[i] * k, b.shape().inner[i]), eps);
+        for (std::size_t i = 0; i < a.shape().outer.size(); ++i)
+            EXPECT_LE(distance(a.shape().outer[i] * k, b.shape().outer[i]), eps);
+        EXPECT_NEAR(b.radius(), k * a.radius(), eps);
+        EXPECT_NEAR(b.shape().gap, k * a.shape().gap, eps);
+        EXPECT_NEAR(b.rim_spacing(), k * a.rim_spacing(), eps);
+        EXPECT_NEAR(b.rim_tolerance(), k * a.rim_tolerance(), eps);
+        EXPECT_NEAR(b.extrusion_width(), k * a.extrusion_width(), eps);
+        // The underside on a 41 x 41 grid over the tool, placed turned and raised.
+        const ToolPlacement at_a{{0.3, -0.2}, 0.7, 0.05};
+        const ToolPlacement at_b{at_a.centre * k, at_a.angle, at_a.bottom * k};
+        std::size_t contact = 0;
+        for (int i = 0; i <= 40; ++i) {
+            for (int j = 0; j <= 40; ++j) {
+                const Vec2 local{a.radius() * (i / 20.0 - 1.0), a.radius() * (j / 20.0 - 1.0)};
+                const double ua = a.underside(at_a, a.to_world(at_a, local));
+                const double ub = b.underside(at_b, b.to_world(at_b, local * k));
+                if (!std::isfinite(ua)) {
+                    EXPECT_FALSE(std::isfinite(ub)) << local.x << ", " << local.y;
+                    continue;
+                }
+                ++contact;
+                EXPECT_NEAR(ub, k * ua, 1e-9 * k) << local.x << ", " << local.y;
+            }
+        }
+        EXPECT_GT(contact, 100u);
+    }
+    EXPECT_THROW(scaled_tool_spec(ToolSpec{}, 0.0), std::invalid_argument);
+    EXPECT_THROW(scaled_tool_spec(ToolSpec{}, -2.0), std::invalid_argument);
+    EXPECT_THROW(scaled_tool_spec(ToolSpec{}, std::numeric_limits<double>::quiet_NaN()),
+                 std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace sandtin
