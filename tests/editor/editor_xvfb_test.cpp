@@ -725,6 +725,44 @@ TEST_F(EditorXvfb, ToolsPourAndRelocationRadiusFollowTheTerrainsSize) {
     EXPECT_NEAR(hi_large / hi_small, 100.0, 5.0);
 }
 
+// The panel's simplification tolerance holds for a scene opened during the session too, not
+// only for the one the editor started with: the same stroke after Ctrl+O re-opens the scene
+// must leave the same terrain as without it. (Each opened document used to get the engine's
+// default tolerance while the panel still showed the artist's.)
+TEST_F(EditorXvfb, AnOpenedSceneIsSimplifiedWithThePanelsTolerance) {
+    const fs::path scene = kWork / "reopen.sandtin";
+    ASSERT_EQ(run_editor("reopen-base", kFlat, "--save-after " + scene.string()).exit_code, 0);
+    const fs::path settings = kWork / "reopen-settings.json";
+    editor::EditorSettings coarse;
+    coarse.simplify_tolerance = 0.004;  // 8 times the default: far fewer vertices
+    editor::save_settings(settings, coarse);
+    const std::string stroke = R"({"op": "tool", "name": "Ball"},
+        {"op": "drag", "path": [[0.45, 0.5], [0.75, 0.5]], "steps": 20})";
+    auto run = [&](const std::string& name, const std::string& ops,
+                   const fs::path& with = fs::path()) {
+        const fs::path after = kWork / (name + "-after.sandtin");
+        const EditorRun r =
+            run_editor(name, ops,
+                       scene.string() + " --settings " + (with.empty() ? settings : with).string() +
+                           " --save-after " + after.string());
+        EXPECT_EQ(r.exit_code, 0) << r.log;
+        return load_session(after).terrain;
+    };
+    const TinSnapshot direct = run("reopen-direct", then(kFlat, stroke));
+    // The tolerance matters: the default one keeps more of the stroke's vertices.
+    const fs::path defaults = kWork / "reopen-defaults.json";
+    editor::save_settings(defaults, editor::EditorSettings{});
+    const TinSnapshot fine = run("reopen-fine", then(kFlat, stroke), defaults);
+    auto alive = [](const TinSnapshot& t) {
+        return std::count(t.vertices.alive.begin(), t.vertices.alive.end(), 1);
+    };
+    EXPECT_LT(alive(direct), alive(fine));
+    const TinSnapshot reopened =
+        run("reopen-again", then(kFlat, R"({"op": "key", "key": "o", "ctrl": true}, )" + stroke));
+    EXPECT_EQ(reopened.vertices.position, direct.vertices.position);
+    EXPECT_EQ(reopened.vertices.height, direct.vertices.height);
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1) << r.log;
