@@ -1343,13 +1343,24 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     }
     const FiniteLocation loc = finite_location(m, p, lt, f, li);
     // A point a rounding error away from a vertex (a rim crossing computed at a vertex, say)
-    // would make a sliver the physics and the renderer choke on: it is that vertex.
-    for (std::size_t i = 0; i < 3; ++i) {
-        if (length_squared(m.va.position[loc.corners[i]] - p) <=
-            m.snap_distance * m.snap_distance) {
+    // would make a sliver the physics and the renderer choke on: it is that vertex. The vertex
+    // may be a corner of the face, or (the point a hair inside the face's edge) the far corner
+    // of the face across that edge: a relocation-radius lattice point beside a bisected edge's
+    // midpoint was inserted 4e-10 m from it, and the two heights made a vertical step.
+    std::array<std::uint32_t, 6> near_ids{};
+    std::size_t near_count = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+        near_ids[near_count++] = loc.corners[i];
+    for (int i = 0; i < 3; ++i) {
+        const Fh g = loc.face->neighbor(i);
+        const Vh far = g->vertex(g->index(loc.face));
+        if (!m.cdt.is_infinite(far)) near_ids[near_count++] = far->id;
+    }
+    for (std::size_t i = 0; i < near_count; ++i) {
+        if (length_squared(m.va.position[near_ids[i]] - p) <= m.snap_distance * m.snap_distance) {
             // The vertex keeps its own height: the point was not quite there, and what the
             // caller computed for its spot (a rim or profile height) is not the vertex's.
-            const VertexId existing{loc.corners[i]};
+            const VertexId existing{near_ids[i]};
             if (hint != nullptr) hint->vertex = existing;
             return {existing, false};
         }
@@ -1446,8 +1457,20 @@ std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, Volume
         const Vec2 pa = m.va.position[split.a.value];
         const Vec2 pb = m.va.position[split.b.value];
         const Vec2 p = lerp(pa, pb, split.t);
-        if (length_squared(p - pa) <= m.snap_distance * m.snap_distance ||
-            length_squared(p - pb) <= m.snap_distance * m.snap_distance) {
+        // Nor next to the far corner of either triangle: a vertex there (a sliver's apex
+        // a hair off the segment) would make the new one its near-duplicate, and the edge then
+        // came back beside them, so a relocation radius bisected it again and again into a
+        // cluster of vertices 1e-9 m apart at different heights (a step the sand could never
+        // level: a groove eroded with r_S = 1 cm never came to rest).
+        const Fh across = f->neighbor(i);
+        const Vh far_corners[] = {f->vertex(i), across->vertex(across->index(f))};
+        auto too_close = [&](Vec2 q) {
+            return length_squared(p - q) <= m.snap_distance * m.snap_distance;
+        };
+        bool crowded = too_close(pa) || too_close(pb);
+        for (const Vh c : far_corners)
+            crowded = crowded || (!m.cdt.is_infinite(c) && too_close(m.va.position[c->id]));
+        if (crowded) {
             ids.push_back(VertexId{});
             continue;
         }

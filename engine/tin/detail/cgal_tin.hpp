@@ -216,8 +216,9 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
     using Base = CGAL::Constrained_triangulation_plus_2<Cdt>;
     using Base::Base;
 
-    /// Crossing points within this distance (m) of an end of the crossed constraint snap to
-    /// that end instead of becoming a new vertex a rounding error away from it.
+    /// Crossing points within this distance (m) of an end of the crossed constraint, or of the
+    /// constraint being inserted, snap to that end instead of becoming a new vertex a rounding
+    /// error away from it.
     double snap_distance = 0.0;
 
     Vertex_handle intersect(Face_handle f, int i, Vertex_handle vaa, Vertex_handle vbb) override {
@@ -246,6 +247,19 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
                     if (near(v)) {
                         // As CGAL does when its rounded crossing falls on c or d.
                         insert_subconstraint(vcc, vdd);
+                        return v;
+                    }
+                }
+                for (const Vertex_handle v : {vaa, vbb}) {
+                    if (near(v)) {
+                        // An end of a-b lies on c-d up to rounding (a point inserted a hair off a
+                        // constrained edge): c-d is split there, as CGAL does when its limit
+                        // crossing is a or b. A new vertex at the crossing would sit an ulp from
+                        // v, and the two would form a vertical step that sand cannot level.
+                        Cdt::remove_constrained_edge(f, i);
+                        hierarchy.split_constraint(vcc, vdd, v);
+                        insert_subconstraint(vcc, v);
+                        insert_subconstraint(v, vdd);
                         return v;
                     }
                 }
