@@ -154,6 +154,31 @@ TEST(ActiveSet, TerrainAtRestCostsZeroWork) {
     }
 }
 
+// An edit that lowers a vertex without touching its star (a brush, a simplification's volume
+// shift) steepens the edges from the neighbours above it, and only they can send sand down
+// them: the physics must wake them, not only the vertex that changed. Oracle: the physics' own
+// bound on every edge once at rest, and the pit partly filled, from a terrain that was at rest.
+TEST(ActiveSet, LoweringAVertexWakesTheNeighboursAboveIt) {
+    for (Schedule schedule : {Schedule::Sequential, Schedule::Jacobi}) {
+        SCOPED_TRACE(schedule == Schedule::Sequential ? "sequential" : "jacobi");
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 4000, 8);
+        TalusSettings settings;
+        settings.schedule = schedule;
+        SandPhysics physics(tin, MaterialTable::presets(), settings);
+        physics.activate_all();
+        ASSERT_TRUE(physics.run_to_rest(1000).at_rest);  // flat: at rest at once
+        const VertexId pit{tin.locate({0.5, 0.5}).corners[0]};
+        tin.set_height(pit, -0.02);
+        const double volume = tin.volume();
+        const PhysicsStepReport r = physics.run_to_rest(100000);
+        EXPECT_TRUE(r.at_rest);
+        EXPECT_GT(r.volume_moved, 0.0);
+        EXPECT_GT(tin.height(pit), -0.02);
+        EXPECT_NEAR(tin.volume(), volume, 1e-12);
+        EXPECT_LE(test::steepest_edge_ratio(tin, dry_tan()), 1.0 + 1e-3);
+    }
+}
+
 std::vector<double> run_random(double randomness, std::uint64_t seed, Schedule schedule) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 12);
     set_heights(tin, rough);
