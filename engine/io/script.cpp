@@ -452,11 +452,23 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
     // Relaxation, then the simplification of what it touched. Both conserve volume.
     auto erode = [&](int iterations, bool until_rest) {
         eroded.clear();
-        const PhysicsStepReport r = until_rest ? backend_.run_to_rest(iterations, &eroded)
-                                               : backend_.step(iterations, &eroded);
+        PhysicsStepReport r = until_rest ? backend_.run_to_rest(iterations, &eroded)
+                                         : backend_.step(iterations, &eroded);
         context.simplifier.enqueue(eroded);
-        if (context.settings.simplify_after_edit)
-            context.simplifier.run(tin, context.settings.simplify);
+        if (!context.settings.simplify_after_edit) return r;
+        const SimplifyReport simplified = context.simplifier.run(tin, context.settings.simplify);
+        if (until_rest && r.at_rest && simplified.removed > 0) {
+            // A removal re-triangulates its hole and shifts the hole's heights to keep the
+            // volume, so the edges it leaves may be up to ~2 d_m steeper over their length:
+            // on the short edges of a refined slope (r_S), several times the angle of repose
+            // (measured: 2.5 on a groove at r_S = 1 cm). "Until rest" means the terrain the
+            // step leaves is at rest, so those settle now; what that moves is queued for the
+            // next edit's simplification.
+            eroded.clear();
+            const PhysicsStepReport settle = backend_.run_to_rest(iterations, &eroded);
+            context.simplifier.enqueue(eroded);
+            r.accumulate(settle);
+        }
         return r;
     };
     const auto t0 = std::chrono::steady_clock::now();

@@ -66,10 +66,11 @@ TEST(ErodeScript, OpAndStrokeFlagRelaxToRest) {
     EXPECT_NEAR(tin.volume(), after_stroke, 1e-12);
     (void)before;
     // The runner simplifies what the erosion touched after it, and removing a vertex
-    // re-triangulates its hole, which can leave an edge a little steeper than alpha (measured:
-    // 9 %) until the next erosion step; so the bound here is looser than the physics' own.
+    // re-triangulates its hole, which can leave an edge steeper than alpha (measured: 4-9 %
+    // here, 2.5 times on a slope refined by r_S); "until rest" settles those before it
+    // returns, so the physics' own bound holds.
     const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
-    EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.15);
+    EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
     // Bad input names the problem.
     EXPECT_THROW(parse_script(R"({"operations": [{"op": "erode"}]})", "bad", "."), JsonInputError);
     EXPECT_THROW(
@@ -136,10 +137,9 @@ TEST(ErodeScript, SettleMarginDefaultsToTheEditorsAndShortensTheCreep) {
     RecordProperty("iterations_seeds_rule", seeds_iterations);
     RecordProperty("iterations_default_margin", margin_iterations);
     EXPECT_LT(2 * margin_iterations, seeds_iterations);
-    // The margin changes where flowing sand stops, not the bound on what may stand (the runner
-    // simplifies after erosion, hence the bound of the test above).
-    EXPECT_LE(steep_margin, 1.15);
-    EXPECT_LE(steep_seeds, 1.15);
+    // The margin changes where flowing sand stops, not the bound on what may stand.
+    EXPECT_LE(steep_margin, 1.0 + 1e-3);
+    EXPECT_LE(steep_seeds, 1.0 + 1e-3);
 }
 
 }  // namespace
