@@ -20,6 +20,7 @@
 #include "gpu/gpu_relaxation.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "physics/material.hpp"
+#include "physics/relocation_refinement.hpp"
 #include "physics/sand_physics.hpp"
 #include "tin/tin.hpp"
 
@@ -69,6 +70,7 @@ class GpuSandPhysics {
     ChangeSource source_;
     TinMirror mirror_;
     GpuRelaxation relax_;
+    RelocationRefiner refiner_;
     std::vector<uint32_t> pending_;
     uint64_t last_sync_bytes_ = 0;
 };

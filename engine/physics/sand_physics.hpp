@@ -19,6 +19,7 @@
 
 #include "physics/adjacency_graph.hpp"
 #include "physics/material.hpp"
+#include "physics/relocation_refinement.hpp"
 #include "physics/talus_solver.hpp"
 #include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
@@ -134,14 +135,13 @@ class SandPhysics {
     // Per TIN id.
     std::vector<std::uint16_t> material_seen_;  ///< material/moisture tan_alpha_ was computed for
     std::vector<float> moisture_seen_;
-    std::vector<std::uint8_t> split_requested_;
     // The heights the relaxation changed since the last flush, each once, by local id (so
     // reading height_ and the flags stays sequential in the strip numbering).
     std::vector<std::uint32_t> write_local_;
     std::vector<std::uint8_t> write_pending_;  ///< per local id: listed in write_local_
     std::vector<VertexId> write_ids_;          ///< flush() scratch: TIN ids
     std::vector<double> write_values_;         ///< flush() scratch
-    LocateHint hint_;
+    RelocationRefiner refiner_;
 };
 
 }  // namespace sandtin
