@@ -38,7 +38,10 @@ void main() {
         ctl[C_CHANGED] = 0u;
         set_args(C_ARGS_ACTIVE, ctl[C_ACTIVE]);
     } else if (pc.mode == 4u) {
+        // Only the touched counter: the split requests wait for take_split_requests(), which
+        // runs after the read-back and clears its own counter. (Clearing it here dropped every
+        // request of a batch that moved sand, so a pile with a relocation radius stopped
+        // refining and rested twice as tall as the cone.)
         ctl[C_TOUCHED] = 0u;
-        ctl[C_SPLIT] = 0u;
     }
 }

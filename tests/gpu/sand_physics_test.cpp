@@ -2,10 +2,13 @@
 // same edits, and the read-back into the TIN.
 
 #include <cmath>
+#include <cstdio>
+#include <vector>
 
 #include "gpu/gpu_sand_physics.hpp"
 #include "gpu_fixture.hpp"
 #include "gpu_scenes.hpp"
+#include "physics/cone.hpp"
 #include "physics/sand_physics.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool.hpp"
@@ -73,6 +76,79 @@ TEST_F(GpuTest, GpuPhysicsMatchesCpuPhysicsAfterAStampAndWritesBackIntoTheTin) {
     // Volume: conserved on the GPU to float rounding of the written-back heights.
     EXPECT_NEAR(gpu_tin.volume(), volume_before, 1e-6 * std::abs(volume_before));
     EXPECT_TRUE(gpu_tin.check_valid().ok());
+}
+
+// The relocation radius on the GPU (the editor's default r_S is 1 cm): sand poured at one point
+// of a two-triangle terrain must grow its own detail and pile up as it does on the CPU, the
+// reference (tests/physics/cone_test's TwoTriangleFlatTerrainJacobi pours the same way: 100
+// portions, 50 iterations apart). No other GPU test set r_S, and the GPU lost the split
+// requests of every batch that moved sand: the pile refined 108 vertices where the CPU refines
+// ~400, and stood twice as tall as the cone.
+struct PileOnTwoTriangles {
+    Tin tin = Tin::from_points(kUnitSquare, std::vector<Vec2>{{0.0, 0.0}, {1.0, 1.0}},
+                               std::vector<double>{0.0, 0.0});
+    VertexId apex;
+    double top = 0.0;    ///< highest vertex (m)
+    double reach = 0.0;  ///< farthest vertex holding sand from the centre (m)
+    PhysicsStepReport report;
+};
+
+template <class Physics>
+void pour_in_portions(PileOnTwoTriangles& p, Physics& physics, double volume) {
+    const double before = p.tin.volume();
+    constexpr int kPortions = 100;
+    for (int k = 0; k < kPortions; ++k) {
+        p.tin.set_height(
+            p.apex,
+            p.tin.height(p.apex) + volume / kPortions / p.tin.vertices().lumped_area[p.apex.value]);
+        p.report.accumulate(physics.step(50));
+    }
+    p.report.accumulate(physics.run_to_rest(60000));
+    const VertexArrays& va = p.tin.vertices();
+    for (uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        p.top = std::max(p.top, va.height[v]);
+        if (va.height[v] > 1e-4) p.reach = std::max(p.reach, distance(va.position[v], {0.5, 0.5}));
+    }
+    EXPECT_NEAR(p.tin.volume(), before + volume, 1e-5 * volume);
+    EXPECT_TRUE(p.tin.check_valid().ok());
+}
+
+TEST_F(GpuTest, GpuPhysicsWithARelocationRadiusPilesAsTheCpuDoes) {
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    settings.parameters.relocation_radius = 0.02;
+    constexpr double kVolume = 1e-3;
+    PileOnTwoTriangles cpu_pile, gpu_pile;
+    for (PileOnTwoTriangles* p : {&cpu_pile, &gpu_pile}) {
+        // As test::pour_at_point: the point's edges are refined to r_S before sand lands.
+        p->apex = p->tin.insert_point_on_surface({0.5, 0.5});
+        SandPhysics refiner(p->tin, MaterialTable::presets(), settings);
+        const VertexId one[] = {p->apex};
+        refiner.refine_around(one);
+    }
+    SandPhysics cpu(cpu_pile.tin, MaterialTable::presets(), settings);
+    pour_in_portions(cpu_pile, cpu, kVolume);
+    GpuSandPhysics gpu(gpu_pile.tin, ctx(), MaterialTable::presets(), settings);
+    pour_in_portions(gpu_pile, gpu, kVolume);
+    const Cone cone = Cone::from_volume(kVolume, MaterialTable::presets().at(0).talus_slope(0.0));
+    std::printf(
+        "  cpu: vertices %zu, iterations %d, apex %.5f, reach %.5f\n"
+        "  gpu: vertices %zu, iterations %d, apex %.5f, reach %.5f (cone %.5f, %.5f)\n",
+        cpu_pile.tin.vertex_count(), cpu_pile.report.iterations, cpu_pile.top, cpu_pile.reach,
+        gpu_pile.tin.vertex_count(), gpu_pile.report.iterations, gpu_pile.top, gpu_pile.reach,
+        cone.height, cone.radius);
+    EXPECT_TRUE(cpu_pile.report.at_rest);
+    EXPECT_TRUE(gpu_pile.report.at_rest);
+    EXPECT_GT(cpu_pile.tin.vertex_count(), 300u);  // the detail came from r_S refinement alone
+    EXPECT_NEAR(static_cast<double>(gpu_pile.tin.vertex_count()),
+                static_cast<double>(cpu_pile.tin.vertex_count()),
+                0.1 * static_cast<double>(cpu_pile.tin.vertex_count()));
+    EXPECT_NEAR(gpu_pile.top, cpu_pile.top, 0.03 * cpu_pile.top);
+    EXPECT_NEAR(gpu_pile.reach, cpu_pile.reach, 0.1 * cpu_pile.reach);
+    // Both near the cone (the reach is the last vertex with sand, a little beyond the toe).
+    EXPECT_NEAR(cpu_pile.top, cone.height, 0.05 * cone.height);
+    EXPECT_NEAR(gpu_pile.top, cone.height, 0.05 * cone.height);
 }
 
 TEST_F(GpuTest, GpuPhysicsAtRestRecordsNothingAndUploadsNothing) {
