@@ -1347,17 +1347,23 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     // may be a corner of the face, or (the point a hair inside the face's edge) the far corner
     // of the face across that edge: a relocation-radius lattice point beside a bisected edge's
     // midpoint was inserted 4e-10 m from it, and the two heights made a vertical step.
+    const double snap2 = m.snap_distance * m.snap_distance;
     std::array<std::uint32_t, 6> near_ids{};
     std::size_t near_count = 0;
     for (std::size_t i = 0; i < 3; ++i)
         near_ids[near_count++] = loc.corners[i];
-    for (int i = 0; i < 3; ++i) {
-        const Fh g = loc.face->neighbor(i);
+    for (std::size_t i = 0; i < 3; ++i) {
+        // Only across an edge p is within the snap distance of (corner i is opposite it).
+        const Vec2 a = m.va.position[loc.corners[(i + 1) % 3]];
+        const Vec2 b = m.va.position[loc.corners[(i + 2) % 3]];
+        const double c = cross(b - a, p - a);
+        if (c * c > snap2 * length_squared(b - a)) continue;
+        const Fh g = loc.face->neighbor(static_cast<int>(i));
         const Vh far = g->vertex(g->index(loc.face));
         if (!m.cdt.is_infinite(far)) near_ids[near_count++] = far->id;
     }
     for (std::size_t i = 0; i < near_count; ++i) {
-        if (length_squared(m.va.position[near_ids[i]] - p) <= m.snap_distance * m.snap_distance) {
+        if (length_squared(m.va.position[near_ids[i]] - p) <= snap2) {
             // The vertex keeps its own height: the point was not quite there, and what the
             // caller computed for its spot (a rim or profile height) is not the vertex's.
             const VertexId existing{near_ids[i]};
