@@ -32,7 +32,7 @@ void App::tool_at(Vec3 p) {
             ss.follow_path = settings_.follow_path;
             ss.angle = settings_.tool_angle * 3.14159265358979 / 180.0;
             if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
-                std::fprintf(stderr, "pick %.4f %.4f\n", xy.x, xy.y);
+                std::fprintf(stderr, "sandtin-editor: stroke point %.4f %.4f\n", xy.x, xy.y);
             for (const StrokeSample& s : sampler_->add_point(xy)) {
                 const ToolPlacement at =
                     placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);

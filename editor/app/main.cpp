@@ -30,7 +30,10 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage("option " + a + " needs a value");
+            // "--stats --settings s.json" would otherwise write the stats to "--settings" and
+            // open s.json as the scene.
+            if (i + 1 >= argc || std::string(argv[i + 1]).starts_with("--"))
+                usage("option " + a + " needs a value");
             return argv[++i];
         };
         try {

@@ -773,6 +773,11 @@ TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun s = run_editor("bad-scene", kFlat, (kWork / "missing.sandtin").string());
     EXPECT_EQ(s.exit_code, 1) << s.log;
     EXPECT_NE(s.log.find("does not exist"), std::string::npos) << s.log;
+    // An option whose value is missing, followed by another option: a usage error naming it,
+    // not "--frames" taken as a path and "2" as the scene.
+    const EditorRun o = run_editor("bad-option", kFlat, "--save-after --frames 2");
+    EXPECT_EQ(o.exit_code, 2) << o.log;
+    EXPECT_NE(o.log.find("option --save-after needs a value"), std::string::npos) << o.log;
 }
 
 }  // namespace
