@@ -1344,9 +1344,9 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     const FiniteLocation loc = finite_location(m, p, lt, f, li);
     // A point a rounding error away from a vertex (a rim crossing computed at a vertex, say)
     // would make a sliver the physics and the renderer choke on: it is that vertex. The vertex
-    // may be a corner of the face, or (the point a hair inside the face's edge) the far corner
-    // of the face across that edge: a relocation-radius lattice point beside a bisected edge's
-    // midpoint was inserted 4e-10 m from it, and the two heights made a vertical step.
+    // may be a corner of the face or, when the point lies a hair inside one of the face's
+    // edges, the far corner of the face across it (two vertices that close, at different
+    // heights, are a vertical step the sand physics can never level).
     const double snap2 = m.snap_distance * m.snap_distance;
     std::array<std::uint32_t, 6> near_ids{};
     std::size_t near_count = 0;
@@ -1463,11 +1463,11 @@ std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, Volume
         const Vec2 pa = m.va.position[split.a.value];
         const Vec2 pb = m.va.position[split.b.value];
         const Vec2 p = lerp(pa, pb, split.t);
-        // Nor next to the far corner of either triangle: a vertex there (a sliver's apex
-        // a hair off the segment) would make the new one its near-duplicate, and the edge then
-        // came back beside them, so a relocation radius bisected it again and again into a
-        // cluster of vertices 1e-9 m apart at different heights (a step the sand could never
-        // level: a groove eroded with r_S = 1 cm never came to rest).
+        // Nor next to the far corner of either triangle: a vertex there (a sliver's apex a hair
+        // off the segment) would make the new one its near-duplicate. The relocation radius's
+        // bisections did that again and again beside a tool's rim, each new midpoint beside the
+        // last at half the distance, down to 1e-9 m at different heights (a step the sand
+        // could never level: a groove eroded with r_S = 1 cm never came to rest).
         const Fh across = f->neighbor(i);
         const Vh far_corners[] = {f->vertex(i), across->vertex(across->index(f))};
         auto too_close = [&](Vec2 q) {
