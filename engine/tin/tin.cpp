@@ -1327,6 +1327,35 @@ std::string ValidationReport::summary() const {
 
 namespace {
 
+/// Whether splitting edge (f, i) at p leaves every triangle around it counterclockwise (exact
+/// predicate).
+bool split_keeps_orientation(const Tin::Impl& m, Fh f, int i, const detail::Point& p) {
+    const auto orientation = detail::Kernel().orientation_2_object();
+    auto side_ok = [&](Fh face, int k) {
+        const Vh c = face->vertex(k);
+        if (m.cdt.is_infinite(c)) return true;
+        const Vh u = face->vertex(CdtPlus::ccw(k));
+        const Vh w = face->vertex(CdtPlus::cw(k));
+        return orientation(c->point(), u->point(), p) == CGAL::LEFT_TURN &&
+               orientation(c->point(), p, w->point()) == CGAL::LEFT_TURN;
+    };
+    const Fh g = f->neighbor(i);
+    return side_ok(f, i) && side_ok(g, g->index(f));
+}
+
+/// After a point was inserted into an edge it lies a rounding error (or, snapped, up to the
+/// snap distance) off: an edge from it may miss the Delaunay criterion that CGAL's flips
+/// around a new vertex do not look at.
+void flip_around_split(Tin::Impl& m, Vh v) {
+    CdtPlus::List_edges incident;
+    auto ec = m.cdt.incident_edges(v);
+    const auto done = ec;
+    do {
+        if (!m.cdt.is_infinite(*ec) && !m.cdt.is_constrained(*ec)) incident.push_back(*ec);
+    } while (++ec != done);
+    m.cdt.propagating_flip(incident);
+}
+
 /// Inserts one point inside an edit (no finish): at `height`, or on the current surface when
 /// height is NaN. Returns the id and whether a new vertex was created. A point on an existing
 /// vertex returns that vertex (its height set when one is given).
@@ -1371,12 +1400,34 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
             return {existing, false};
         }
     }
+    // A point a hair off a constrained edge goes into the edge, as a point exactly on it does,
+    // splitting the constraint: beside it, it would make a sliver with the constrained edge that
+    // no Delaunay flip removes, whose long edges no later split can take apart (each split point
+    // folds the sliver over; see CdtPlus::thread_through_near_vertices for the constraints').
+    bool onto_edge = false;
+    if (lt == CdtPlus::FACE) {
+        for (int i = 0; i < 3; ++i) {
+            // Not on the domain's border: there the vertex would dent the convex hull.
+            if (!loc.face->is_constrained(i) || m.cdt.is_infinite(loc.face->neighbor(i))) continue;
+            const Vec2 a = m.va.position[loc.corners[static_cast<std::size_t>(i + 1) % 3]];
+            const Vec2 b = m.va.position[loc.corners[static_cast<std::size_t>(i + 2) % 3]];
+            const double c = cross(b - a, p - a);
+            if (c * c > snap2 * length_squared(b - a)) continue;
+            if (split_keeps_orientation(m, loc.face, i, to_point(p))) {
+                lt = CdtPlus::EDGE;
+                li = i;
+                onto_edge = true;
+            }
+            break;
+        }
+    }
     if (std::isnan(height)) {
         height = 0.0;
         for (std::size_t i = 0; i < 3; ++i)
             height += loc.weights[i] * m.va.height[loc.corners[i]];
     }
     const Vh v = m.cdt.insert(to_point(p), lt, f, li);
+    if (onto_edge) flip_around_split(m, v);
     finisher.prepare_born();
     m.va.height[v->id] = height;
     finisher.inherit(v->id, loc.corners, loc.weights);
@@ -1424,26 +1475,6 @@ std::vector<VertexId> Tin::insert_points(std::span<const Vec2> points,
     return ids;
 }
 
-namespace {
-
-/// Whether splitting edge (f, i) at p leaves every triangle around it counterclockwise (exact
-/// predicate).
-bool split_keeps_orientation(const Tin::Impl& m, Fh f, int i, const detail::Point& p) {
-    const auto orientation = detail::Kernel().orientation_2_object();
-    auto side_ok = [&](Fh face, int k) {
-        const Vh c = face->vertex(k);
-        if (m.cdt.is_infinite(c)) return true;
-        const Vh u = face->vertex(CdtPlus::ccw(k));
-        const Vh w = face->vertex(CdtPlus::cw(k));
-        return orientation(c->point(), u->point(), p) == CGAL::LEFT_TURN &&
-               orientation(c->point(), p, w->point()) == CGAL::LEFT_TURN;
-    };
-    const Fh g = f->neighbor(i);
-    return side_ok(f, i) && side_ok(g, g->index(f));
-}
-
-}  // namespace
-
 std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, VolumePolicy policy,
                                        EditReport* report) {
     Impl& m = *impl_;
@@ -1490,15 +1521,7 @@ std::vector<VertexId> Tin::split_edges(std::span<const EdgeSplit> splits, Volume
             continue;
         }
         const Vh v = m.cdt.insert(to_point(p), CdtPlus::EDGE, f, i);
-        // p may sit a rounding error off the segment, so an edge from it may miss the
-        // Delaunay criterion that CGAL's flips around a new vertex do not look at.
-        CdtPlus::List_edges incident;
-        auto ec = m.cdt.incident_edges(v);
-        const auto edone = ec;
-        do {
-            if (!m.cdt.is_infinite(*ec) && !m.cdt.is_constrained(*ec)) incident.push_back(*ec);
-        } while (++ec != edone);
-        m.cdt.propagating_flip(incident);
+        flip_around_split(m, v);
         finisher.prepare_born();
         m.va.height[v->id] =
             (1.0 - split.t) * m.va.height[split.a.value] + split.t * m.va.height[split.b.value];

@@ -71,11 +71,24 @@ TEST(NearDuplicates, APointAHairAcrossAnEdgeFromAVertexIsThatVertex) {
     EXPECT_TRUE(s.tin.check_valid().ok()) << s.tin.check_valid().summary();
 }
 
+/// Whether a and b share an edge of the TIN.
+bool joined(const Tin& tin, VertexId a, VertexId b) {
+    std::vector<VertexId> ring;
+    tin.neighbours(a, ring);
+    return std::find(ring.begin(), ring.end(), b) != ring.end();
+}
+
 TEST(NearDuplicates, AnEdgeSplitBesideAVertexAtItsMiddleIsSkipped) {
     Scene s;
-    s.tin.insert_point({0.5, 0.5 + 2e-10}, 0.2);
+    // The bottom border edge between the domain's corners, with a vertex a hair inside it at
+    // its middle: the apex of a sliver (a border edge is not constrained, so the point stays
+    // beside it).
+    const VertexId left = s.tin.insert_point_on_surface({0.0, 0.0});
+    const VertexId right = s.tin.insert_point_on_surface({1.0, 0.0});
+    s.tin.insert_point({0.5, 2e-10}, 0.2);
+    ASSERT_TRUE(joined(s.tin, left, right));
     const std::size_t before = s.tin.vertex_count();
-    const EdgeSplit split{s.c, s.d, 0.5};
+    const EdgeSplit split{left, right, 0.5};
     const std::vector<VertexId> made =
         s.tin.split_edges(std::span<const EdgeSplit>(&split, 1), VolumePolicy::Conserve);
     ASSERT_EQ(made.size(), 1u);
@@ -83,11 +96,60 @@ TEST(NearDuplicates, AnEdgeSplitBesideAVertexAtItsMiddleIsSkipped) {
     EXPECT_EQ(s.tin.vertex_count(), before);
     EXPECT_GT(closest_pair(s.tin), s.tin.snap_distance());
     // Away from that vertex the same edge still splits.
-    const EdgeSplit elsewhere{s.c, s.d, 0.25};
+    const EdgeSplit elsewhere{left, right, 0.25};
     EXPECT_TRUE(
         s.tin.split_edges(std::span<const EdgeSplit>(&elsewhere, 1), VolumePolicy::Conserve)[0]
             .valid());
     EXPECT_TRUE(s.tin.check_valid().ok()) << s.tin.check_valid().summary();
+}
+
+// A vertex a hair off a constrained edge is on it. Beside it, it would be the apex of a sliver
+// that no Delaunay flip removes, and whose long edges no split can take apart (every split point
+// folds the sliver over): under a relocation radius the sand could never reach it, and a groove
+// eroded with r_S = 1 cm came to rest with edges up to 10^9 times steeper than repose.
+
+TEST(NearDuplicates, APointAHairOffAConstrainedEdgeSplitsIt) {
+    Scene s;
+    const VertexId q = s.tin.insert_point({0.5, 0.5 + 3e-10}, 0.2);
+    EXPECT_TRUE(s.tin.is_constrained_edge(s.c, q));
+    EXPECT_TRUE(s.tin.is_constrained_edge(q, s.d));
+    EXPECT_FALSE(joined(s.tin, s.c, s.d));
+    EXPECT_EQ(s.tin.height(q), 0.2);
+    EXPECT_TRUE(s.tin.check_valid().ok()) << s.tin.check_valid().summary();
+}
+
+TEST(NearDuplicates, AConstraintPassingAHairFromAVertexGoesThroughIt) {
+    // As the groove left them: a midpoint a rounding error off the segment between two rim
+    // points, then a later stamp's rim along the same segment. Here the offsets are explicit
+    // (3e-10 and 5e-12 m, both sides), so the exact predicates see them off the line.
+    Tin tin = Tin::from_points(Rect::from_size(1.0, 1.0),
+                               std::vector<Vec2>{{0.3, 0.2}, {0.7, 0.8}, {0.4, 0.9}, {0.6, 0.1}},
+                               std::vector<double>(4, 0.0));
+    const VertexId a = tin.insert_point({0.2, 0.5}, 0.1);
+    const VertexId b = tin.insert_point({0.8, 0.5}, 0.1);
+    const VertexId m1 = tin.insert_point({0.35, 0.5 + 3e-10}, 0.3);
+    const VertexId m2 = tin.insert_point({0.575, 0.5 - 5e-12}, -0.2);
+    const VertexId off = tin.insert_point({0.5, 0.5 + 1e-4}, 0.0);  // well off: stays beside
+    const std::size_t before = tin.vertex_count();
+    const ConstraintId id = tin.insert_constraint(a, b, 1, VolumePolicy::Report);
+    EXPECT_EQ(tin.vertex_count(), before);
+    EXPECT_TRUE(tin.is_constrained_edge(a, m1));
+    EXPECT_TRUE(tin.is_constrained_edge(m1, m2));
+    EXPECT_TRUE(tin.is_constrained_edge(m2, b));
+    EXPECT_FALSE(tin.is_on_constraint(off));
+    const std::optional<ConstraintInfo> info = tin.constraint(id);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_EQ(info->vertices, (std::vector<VertexId>{a, m1, m2, b}));
+    // The vertices keep their heights (the volume is reported, not conserved, here).
+    EXPECT_EQ(tin.height(m1), 0.3);
+    EXPECT_EQ(tin.height(m2), -0.2);
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+    // Releasing the constraint and constraining the same segment again gives the same chain.
+    tin.release_constraints(ReleaseFilter{});
+    const ConstraintId again = tin.insert_constraint(a, b, 2);
+    ASSERT_TRUE(tin.constraint(again).has_value());
+    EXPECT_EQ(tin.constraint(again)->vertices, (std::vector<VertexId>{a, m1, m2, b}));
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
 }
 
 }  // namespace
