@@ -311,7 +311,8 @@ Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
             }
             handles.push_back(m.handle(v));
         }
-        const detail::CgalConstraintId cid = m.cdt.insert_polyline(handles);
+        // As saved: threading it through nearby vertices would change the triangulation.
+        const detail::CgalConstraintId cid = m.cdt.insert_polyline(handles, false);
         Rect bounds;
         for (std::uint32_t v : r.vertices)
             bounds.expand(sv.position[v]);

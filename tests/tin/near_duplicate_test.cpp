@@ -152,5 +152,24 @@ TEST(NearDuplicates, AConstraintPassingAHairFromAVertexGoesThroughIt) {
     EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
 }
 
+TEST(NearDuplicates, AConstraintAlongATinyTriangleEnds) {
+    // Three vertices 1.0e-6 to 1.3e-6 m apart (found by `sandtin stress`): each lies within
+    // the snap distance (1e-6 m) of the others' edge, and threading a constraint through the
+    // third vertex by that distance alone went round the triangle for ever.
+    Tin tin = Tin::from_points(Rect::from_size(1.0, 1.0),
+                               std::vector<Vec2>{{0.3, 0.2}, {0.1, 0.4}, {0.4, 0.05}},
+                               std::vector<double>(3, 0.0));
+    const VertexId u = tin.insert_point({0.21461055552041883, 0.15125014311809551}, 0.0);
+    const VertexId w = tin.insert_point({0.21461060592878406, 0.15124883690715382}, 0.0);
+    const VertexId c = tin.insert_point({0.21461158000384309, 0.15124926019523552}, 0.0);
+    ASSERT_EQ(tin.vertex_count(), 10u);  // the three corners, the domain's four, and u, w, c
+    const ConstraintId id = tin.insert_constraint(u, w, 1);
+    const std::optional<ConstraintInfo> info = tin.constraint(id);
+    ASSERT_TRUE(info.has_value());
+    EXPECT_EQ(info->vertices, (std::vector<VertexId>{u, w}));  // c is well off so short an edge
+    EXPECT_FALSE(tin.is_on_constraint(c));
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+}
+
 }  // namespace
 }  // namespace sandtin
