@@ -141,6 +141,9 @@ class App {
     std::optional<Vec3> pick(double x, double y) const;
     void tool_at(Vec3 point);
     void end_action();
+    /// The erosion came to rest: simplify what it moved, let the sand settle that, and make
+    /// the whole an undo level.
+    void settle_erosion();
     void undo();
     /// A new material table everywhere it is used (physics, mesh colours); not an undo level.
     void apply_materials(const MaterialTable& table);
@@ -237,6 +240,8 @@ class App {
     std::optional<Vec2> last_dab_;
     std::string pending_label_;
     bool erosion_pending_ = false;
+    /// The erosion's simplification ran; the sand settles what it steepened (settle_erosion).
+    bool resettling_ = false;
     bool physics_kick_ = true;
     std::vector<std::uint8_t> active_;
     double tool_ms_ = 0.0;

@@ -238,6 +238,7 @@ void App::end_action() {
         }
         erosion_pending_ = false;
     }
+    resettling_ = false;
 }
 
 void App::apply_materials(const MaterialTable& table) {

@@ -78,7 +78,7 @@ std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed) {
     return ids.size();
 }
 
-std::size_t GpuSandPhysics::refine() {
+std::size_t GpuSandPhysics::refine(std::vector<VertexId>* inserted) {
     const double rs = settings_.parameters.relocation_radius;
     if (!(rs > 0.0)) return 0;
     // The same refinement as SandPhysics (a lattice, bisection where none fits), so the two
@@ -86,7 +86,7 @@ std::size_t GpuSandPhysics::refine() {
     // r_S from the vertex, an older rule: a pile poured on two triangles grew 696 vertices
     // where the CPU grows 414.)
     std::vector<uint32_t> around = relax_.take_split_requests();
-    return refiner_.refine(tin_, around, rs);
+    return refiner_.refine(tin_, around, rs, inserted);
 }
 
 PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* changed) {
@@ -104,7 +104,7 @@ PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* ch
         report.vertex_updates += s.vertex_updates;
         report.changed += s.changed;
         write_back(changed);
-        report.refined += refine();
+        report.refined += refine(changed);
     }
     sync();  // refinement and write-backs are on the GPU before the next caller looks
     report.at_rest = at_rest();

@@ -63,7 +63,8 @@ class GpuSandPhysics {
     ChangeSet take_changes();
     // Writes the GPU's changed vertices into the TIN; returns how many.
     std::size_t write_back(std::vector<VertexId>* changed);
-    std::size_t refine();
+    // Refines where the relaxation asked (RelocationRefiner); appends what it inserted.
+    std::size_t refine(std::vector<VertexId>* inserted);
 
     Tin& tin_;
     TalusSettings settings_;

@@ -18,11 +18,20 @@ constexpr double kLatticeJitter = 0.25;
 
 }  // namespace
 
-std::size_t RelocationRefiner::refine(Tin& tin, std::vector<std::uint32_t>& around, double rs) {
+std::size_t RelocationRefiner::refine(Tin& tin, std::vector<std::uint32_t>& around, double rs,
+                                      std::vector<VertexId>* inserted) {
     if (around.empty()) return 0;
     const VertexArrays& va = tin.vertices();
     if (requested_.size() < va.size()) requested_.resize(va.size(), 0);
     const std::size_t before = tin.vertex_count();
+    // The ids the TIN returns: a point within the snap distance of a vertex returns that
+    // vertex (listed too: it is where the refinement was), a skipped split an invalid id.
+    auto note = [&](std::span<const VertexId> ids) {
+        if (inserted == nullptr) return;
+        for (VertexId v : ids) {
+            if (v.valid()) inserted->push_back(v);
+        }
+    };
     // New vertices come from one hexagonal lattice of spacing s over the whole domain (seed 000
     // §7.2 puts them on the circle of radius r_S around each eroding vertex instead; done for
     // every vertex that meets sand, those circles and the fans of edges they leave towards far
@@ -94,7 +103,7 @@ std::size_t RelocationRefiner::refine(Tin& tin, std::vector<std::uint32_t>& arou
             // One call per vertex: the compensation for the Delaunay flips is shared by these
             // new vertices only, all within 1.5 r_S of v (a call over many piles would move
             // volume from a tall pile onto new vertices far away at another's toe).
-            tin.insert_points_on_surface(points, &hint_, VolumePolicy::Conserve);
+            note(tin.insert_points_on_surface(points, &hint_, VolumePolicy::Conserve));
         } else if (long_edge) {
             for (std::size_t k = 0; k < ring.size(); ++k) {
                 if (distance(pv, va.position[ring[k].value]) > rs * (1.0 + 1e-9))
@@ -142,11 +151,11 @@ std::size_t RelocationRefiner::refine(Tin& tin, std::vector<std::uint32_t>& arou
         if (inside && best_d < 0.45 * len && distance(best, pa) > 0.5 * s &&
             distance(best, pb) > 0.5 * s) {
             const Vec2 one[] = {best};
-            tin.insert_points_on_surface(one, &hint_, VolumePolicy::Conserve);
+            note(tin.insert_points_on_surface(one, &hint_, VolumePolicy::Conserve));
             tin.neighbours(e.a, ends);
             if (std::find(ends.begin(), ends.end(), e.b) == ends.end()) continue;
         }
-        tin.split_edges(std::span<const EdgeSplit>(&e, 1), VolumePolicy::Conserve);
+        note(tin.split_edges(std::span<const EdgeSplit>(&e, 1), VolumePolicy::Conserve));
     }
     return tin.vertex_count() - before;
 }

@@ -18,8 +18,10 @@ class RelocationRefiner {
     /// Refines around the TIN vertices in `around` (ids; dead ones are skipped): lattice points
     /// in their fan triangles within 1.5 r_S, or, where none fits, their edges longer than
     /// `relocation_radius` (m, > 0) bisected. Heights are interpolated and the volume
-    /// conserved (VolumePolicy::Conserve). Returns the vertices inserted; empties `around`.
-    std::size_t refine(Tin& tin, std::vector<std::uint32_t>& around, double relocation_radius);
+    /// conserved (VolumePolicy::Conserve). Returns how many vertices it inserted, and appends
+    /// their ids to `inserted` when given; empties `around`.
+    std::size_t refine(Tin& tin, std::vector<std::uint32_t>& around, double relocation_radius,
+                       std::vector<VertexId>* inserted = nullptr);
 
   private:
     std::vector<std::uint8_t> requested_;  ///< per TIN id: already refined in this call

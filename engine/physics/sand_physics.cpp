@@ -215,8 +215,9 @@ void SandPhysics::sync() {
         renumber();
 }
 
-std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around) {
-    return refiner_.refine(tin_, around, solver_.settings().parameters.relocation_radius);
+std::size_t SandPhysics::refine(std::vector<std::uint32_t>& around,
+                                std::vector<VertexId>* inserted) {
+    return refiner_.refine(tin_, around, solver_.settings().parameters.relocation_radius, inserted);
 }
 
 std::size_t SandPhysics::refine_around(std::span<const VertexId> vertices) {
@@ -295,7 +296,7 @@ PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* chang
                                    split_around.end());
             }
             flush(changed_out);
-            report.refined += refine(split_around);
+            report.refined += refine(split_around, changed_out);
             sync();
         }
     }

@@ -72,7 +72,8 @@ class SandPhysics {
 
     /// Runs up to `iterations` relaxation iterations (stops early at rest). Vertices whose
     /// height changed are appended to `changed` when given (the caller queues them for
-    /// simplification, seed 003 §4 step 2d).
+    /// simplification, seed 003 §4 step 2d), and so are the vertices the relocation radius's
+    /// refinement inserted (where no sand came after, they are flat ground to simplify).
     PhysicsStepReport step(int iterations = 1, std::vector<VertexId>* changed = nullptr);
     /// Iterates until nothing is active or `max_iterations` ran.
     PhysicsStepReport run_to_rest(int max_iterations, std::vector<VertexId>* changed = nullptr);
@@ -115,8 +116,10 @@ class SandPhysics {
     void flush(std::vector<VertexId>* changed_out);
     /// Refines around the given vertices until their edges are at most r_S (seed 000 §7.2,
     /// "prevention of long edges"): points of a hexagonal lattice of spacing 0.75 r_S inside
-    /// their stars, or, where no lattice point fits, the midpoints of their long edges.
-    std::size_t refine(std::vector<std::uint32_t>& around);
+    /// their stars, or, where no lattice point fits, the midpoints of their long edges. The
+    /// vertices inserted are appended to `inserted` when given.
+    std::size_t refine(std::vector<std::uint32_t>& around,
+                       std::vector<VertexId>* inserted = nullptr);
 
     Tin& tin_;
     MaterialTable materials_;

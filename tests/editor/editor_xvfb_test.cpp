@@ -20,7 +20,9 @@
 #include "editor_settings.hpp"
 #include "formats/png_image.hpp"
 #include "io/autosave.hpp"
+#include "io/script.hpp"
 #include "io/session_file.hpp"
+#include "physics/physics_oracles.hpp"
 #include "physics/sand_physics.hpp"
 #include "scene_materials.hpp"
 #include "tin/tin.hpp"
@@ -761,6 +763,72 @@ TEST_F(EditorXvfb, AnOpenedSceneIsSimplifiedWithThePanelsTolerance) {
         run("reopen-again", then(kFlat, R"({"op": "key", "key": "o", "ctrl": true}, )" + stroke));
     EXPECT_EQ(reopened.vertices.position, direct.vertices.position);
     EXPECT_EQ(reopened.vertices.height, direct.vertices.height);
+}
+
+// Detail follows the work after the erosion too: once a pour has slid to rest, what the sand
+// moved and what r_S refined is simplified, as an edit's vertices are, and the sand settles
+// what that steepened before the erosion becomes an undo level. The oracle is the script
+// runner's `erode` with `until_rest` (engine/io/script.cpp), which does the same with the same
+// pour on the same terrain. Without the simplification the editor added 414 vertices, the
+// script 262.
+TEST_F(EditorXvfb, ErodedGroundIsSimplifiedOnceTheSandRests) {
+    std::vector<Vec2> points;
+    std::uint64_t state = 777;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) * 0x1.0p-53;
+    };
+    for (int i = 0; i < 3000; ++i)
+        points.push_back({uniform(), uniform()});
+    Session session;
+    session.terrain =
+        Tin::from_points(Rect::from_size(1.0, 1.0), points, std::vector<double>(points.size(), 0.0))
+            .snapshot();
+    const fs::path scene = kWork / "erode-simplify.sandtin";
+    const fs::path after = kWork / "erode-simplify-after.sandtin";
+    fs::create_directories(kWork);
+    save_session(scene, session);
+    const double volume = 1e-4;  // m³: a pile about 3 cm high and 11 cm across
+    const std::string ops = R"([{"op": "set", "erosion": false, "pour_volume": 0.0001},
+        {"op": "tool", "name": "Pour"}, {"op": "click", "at": [0.5, 0.5]},
+        {"op": "set", "erosion": true}, {"op": "erode", "frames": 400}])";
+    const EditorRun r =
+        run_editor("erode-simplify", ops, scene.string() + " --save-after " + after.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    const Tin edited = Tin::from_snapshot(load_session(after).terrain);
+    ASSERT_TRUE(edited.check_valid().ok()) << edited.check_valid().summary();
+    EXPECT_NEAR(edited.volume(), volume, 1e-3 * volume);
+    const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+    EXPECT_LE(test::steepest_edge_ratio(edited, tan_alpha), 1.0 + 1e-3);  // at rest, after all
+
+    // The same pour where the editor's landed (the apex), through the script runner.
+    const VertexArrays& va = edited.vertices();
+    std::uint32_t apex = 0;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v] && va.height[v] > va.height[apex]) apex = v;
+    }
+    const editor::EditorSettings defaults;
+    const Vec2 at = va.position[apex];
+    const std::string text =
+        R"({"settings": {"relocation_radius": )" + std::to_string(defaults.relocation_radius) +
+        R"(}, "operations": [{"op": "pour", "at": [)" + std::to_string(at.x) + ", " +
+        std::to_string(at.y) + R"(], "volume": 0.0001, "radius": )" +
+        std::to_string(0.5 * defaults.tool_radius) + R"(}, {"op": "erode", "until_rest": true}]})";
+    const Script script = parse_script(text, "pour", ".");
+    Tin scripted = Tin::from_snapshot(session.terrain);
+    SculptContext context(scripted.domain());
+    ScriptRunner runner(script, scripted, context);
+    for (const ScriptStep& step : script.steps)
+        runner.run(step);
+    auto added = [&](const Tin& tin) {
+        return static_cast<double>(tin.vertex_count()) - static_cast<double>(points.size());
+    };
+    RecordProperty("vertices_added_editor", static_cast<int>(added(edited)));
+    RecordProperty("vertices_added_script", static_cast<int>(added(scripted)));
+    EXPECT_NEAR(added(edited) / added(scripted), 1.0, 0.15)
+        << added(edited) << " vertices added in the editor, " << added(scripted)
+        << " by the script";
+    EXPECT_NEAR(va.height[apex], *scripted.height_at(at), 0.03 * va.height[apex]);
 }
 
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
