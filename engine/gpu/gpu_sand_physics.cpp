@@ -92,19 +92,28 @@ std::size_t GpuSandPhysics::refine(std::vector<VertexId>* inserted) {
 PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* changed) {
     PhysicsStepReport report;
     const auto t0 = std::chrono::steady_clock::now();
+    // While the relocation radius refines, shorter batches: refinement runs between batches,
+    // and for the rest of a batch the sand waits at the long edges it asked to split. Measured
+    // on the CLI dig (8 000 points, r_S = 1 cm, 150 iterations of erosion after a stamp): with
+    // 64 iterations per batch the GPU refined 210 vertices and updated 5 017 where the CPU,
+    // refining after every iteration, refines 363 and updates 73 419; with 8, 347 and 33 970
+    // (with 1, 357 and 37 326, for three times the submissions).
     constexpr int kBatch = 64;
+    constexpr int kRefiningBatch = 8;
     int left = iterations;
     while (left > 0) {
         sync();
         if (relax_.at_rest()) break;
-        const int n = std::min(left, kBatch);
+        const int n = std::min(left, refining_ ? kRefiningBatch : kBatch);
         const GpuRunStats s = relax_.run(n);
         left -= n;
         report.iterations += s.iterations;
         report.vertex_updates += s.vertex_updates;
         report.changed += s.changed;
         write_back(changed);
-        report.refined += refine(changed);
+        const std::size_t refined = refine(changed);
+        refining_ = refined > 0;
+        report.refined += refined;
     }
     sync();  // refinement and write-backs are on the GPU before the next caller looks
     report.at_rest = at_rest();

@@ -50,7 +50,7 @@ class GpuSandPhysics {
     std::size_t active_count() const { return relax_.active_count() + pending_.size(); }
 
     // As SandPhysics::step / run_to_rest. Iterations run on the GPU in batches of up to 64
-    // per submission; a batch that starts at rest records nothing.
+    // per submission (8 while r_S refines); a batch that starts at rest records nothing.
     PhysicsStepReport step(int iterations = 1, std::vector<VertexId>* changed = nullptr);
     PhysicsStepReport run_to_rest(int max_iterations, std::vector<VertexId>* changed = nullptr);
 
@@ -65,6 +65,7 @@ class GpuSandPhysics {
     std::size_t write_back(std::vector<VertexId>* changed);
     // Refines where the relaxation asked (RelocationRefiner); appends what it inserted.
     std::size_t refine(std::vector<VertexId>* inserted);
+    bool refining_ = false;  ///< the last batch refined: the next one is short (step())
 
     Tin& tin_;
     TalusSettings settings_;
