@@ -1381,12 +1381,14 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     std::size_t near_count = 0;
     for (std::size_t i = 0; i < 3; ++i)
         near_ids[near_count++] = loc.corners[i];
+    std::array<bool, 3> near_edge{};  // p within the snap distance of the edge opposite corner i
     for (std::size_t i = 0; i < 3; ++i) {
         // Only across an edge p is within the snap distance of (corner i is opposite it).
         const Vec2 a = m.va.position[loc.corners[(i + 1) % 3]];
         const Vec2 b = m.va.position[loc.corners[(i + 2) % 3]];
         const double c = cross(b - a, p - a);
         if (c * c > snap2 * length_squared(b - a)) continue;
+        near_edge[i] = true;
         const Fh g = loc.face->neighbor(static_cast<int>(i));
         const Vh far = g->vertex(g->index(loc.face));
         if (!m.cdt.is_infinite(far)) near_ids[near_count++] = far->id;
@@ -1405,20 +1407,20 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     // no Delaunay flip removes, whose long edges no later split can take apart (each split point
     // folds the sliver over; see CdtPlus::thread_through_near_vertices for the constraints').
     bool onto_edge = false;
-    if (lt == CdtPlus::FACE) {
-        for (int i = 0; i < 3; ++i) {
-            // Not on the domain's border: there the vertex would dent the convex hull.
-            if (!loc.face->is_constrained(i) || m.cdt.is_infinite(loc.face->neighbor(i))) continue;
-            const Vec2 a = m.va.position[loc.corners[static_cast<std::size_t>(i + 1) % 3]];
-            const Vec2 b = m.va.position[loc.corners[static_cast<std::size_t>(i + 2) % 3]];
-            const double c = cross(b - a, p - a);
-            if (c * c > snap2 * length_squared(b - a)) continue;
-            if (split_keeps_orientation(m, loc.face, i, to_point(p))) {
-                lt = CdtPlus::EDGE;
-                li = i;
-                onto_edge = true;
-            }
-            break;
+    for (int i = 0; i < 3 && lt == CdtPlus::FACE; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        // Not on the domain's border: there the vertex would dent the convex hull.
+        if (!near_edge[k] || !loc.face->is_constrained(i) ||
+            m.cdt.is_infinite(loc.face->neighbor(i)))
+            continue;
+        const Vec2 a = m.va.position[loc.corners[(k + 1) % 3]];
+        const Vec2 e = m.va.position[loc.corners[(k + 2) % 3]] - a;
+        const Vec2 c = p - a;
+        if (detail::on_segment_up_to_snap(e.x, e.y, c.x, c.y, snap2) &&
+            split_keeps_orientation(m, loc.face, i, to_point(p))) {
+            lt = CdtPlus::EDGE;
+            li = i;
+            onto_edge = true;
         }
     }
     if (std::isnan(height)) {

@@ -119,6 +119,34 @@ std::string then(const std::string& ops, const std::string& more) {
     return ops.substr(0, ops.rfind(']')) + ", " + more + "]";
 }
 
+/// `count` points uniform in the unit square from a fixed generator (the same on every
+/// platform, unlike the standard distributions).
+std::vector<Vec2> unit_square_points(int count, std::uint64_t seed) {
+    std::vector<Vec2> points;
+    std::uint64_t state = seed;
+    for (int i = 0; i < count; ++i) {
+        Vec2 p;
+        for (double* x : {&p.x, &p.y}) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            *x = static_cast<double>(state >> 11) * 0x1.0p-53;
+        }
+        points.push_back(p);
+    }
+    return points;
+}
+
+/// Writes a flat scene (height 0) over `points` on a size x size terrain to `path`; returns
+/// the session it wrote.
+Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec2>& points) {
+    Session session;
+    session.terrain = Tin::from_points(Rect::from_size(size, size), points,
+                                       std::vector<double>(points.size(), 0.0))
+                          .snapshot();
+    fs::create_directories(path.parent_path());
+    save_session(path, session);
+    return session;
+}
+
 class EditorXvfb : public ::testing::Test {
   protected:
     void SetUp() override {
@@ -642,14 +670,7 @@ TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
 // the same terrain 100 times larger. (Before the scaling, the 100 m terrain got a 4 cm groove,
 // a 20 cm³ pour, and a 1 cm r_S that refined 20 000 vertices into 204 000.)
 TEST_F(EditorXvfb, ToolsPourAndRelocationRadiusFollowTheTerrainsSize) {
-    std::vector<Vec2> unit_points;
-    std::uint64_t state = 12345;
-    auto uniform = [&] {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<double>(state >> 11) * 0x1.0p-53;
-    };
-    for (int i = 0; i < 6000; ++i)
-        unit_points.push_back({uniform(), uniform()});
+    const std::vector<Vec2> unit_points = unit_square_points(6000, 12345);
     const std::string ops = R"([{"op": "set", "erosion": true},
         {"op": "tool", "name": "Ball"},
         {"op": "drag", "path": [[0.4, 0.5], [0.65, 0.5]], "steps": 20},
@@ -665,15 +686,10 @@ TEST_F(EditorXvfb, ToolsPourAndRelocationRadiusFollowTheTerrainsSize) {
         std::vector<Vec2> points;
         for (Vec2 p : unit_points)
             points.push_back(p * size);
-        Session session;
-        session.terrain = Tin::from_points(Rect::from_size(size, size), points,
-                                           std::vector<double>(points.size(), 0.0))
-                              .snapshot();
         const fs::path scene = kWork / (name + ".sandtin");
         const fs::path after = kWork / (name + "-after.sandtin");
         const fs::path settings = kWork / (name + "-settings.json");
-        fs::create_directories(kWork);
-        save_session(scene, session);
+        save_flat_scene(scene, size, points);
         fs::remove(settings);  // the defaults, made for the 1 m sandbox
         // The trace puts the status line's reports in the log.
         ::setenv("SANDTIN_EDITOR_TRACE", "1", 1);
@@ -772,22 +788,10 @@ TEST_F(EditorXvfb, AnOpenedSceneIsSimplifiedWithThePanelsTolerance) {
 // pour on the same terrain. Without the simplification the editor added 414 vertices, the
 // script 262.
 TEST_F(EditorXvfb, ErodedGroundIsSimplifiedOnceTheSandRests) {
-    std::vector<Vec2> points;
-    std::uint64_t state = 777;
-    auto uniform = [&] {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        return static_cast<double>(state >> 11) * 0x1.0p-53;
-    };
-    for (int i = 0; i < 3000; ++i)
-        points.push_back({uniform(), uniform()});
-    Session session;
-    session.terrain =
-        Tin::from_points(Rect::from_size(1.0, 1.0), points, std::vector<double>(points.size(), 0.0))
-            .snapshot();
+    const std::vector<Vec2> points = unit_square_points(3000, 777);
     const fs::path scene = kWork / "erode-simplify.sandtin";
     const fs::path after = kWork / "erode-simplify-after.sandtin";
-    fs::create_directories(kWork);
-    save_session(scene, session);
+    const Session session = save_flat_scene(scene, 1.0, points);
     const double volume = 1e-4;  // m³: a pile about 3 cm high and 11 cm across
     const std::string ops = R"([{"op": "set", "erosion": false, "pour_volume": 0.0001},
         {"op": "tool", "name": "Pour"}, {"op": "click", "at": [0.5, 0.5]},

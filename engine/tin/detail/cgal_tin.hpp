@@ -16,6 +16,7 @@
 #include <CGAL/Triangulation_data_structure_2.h>
 #include <CGAL/Triangulation_vertex_base_2.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -210,6 +211,31 @@ using VertexBase = TinVertexBase<Kernel>;
 using FaceBase = TinFaceBase<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
+/// How far off a segment, relative to its length, a point within the snap distance of it may
+/// lie and still count as on it (1 mrad). The offsets met are rounding errors (4e-18 m off a
+/// 2.6 cm rim segment) and the snapping of rim points to vertices up to the snap distance away
+/// (measured on grooves eroded with r_S = 1 cm, with the snap distance as the only bound: 318
+/// threadings, offsets up to 9.4e-7 m and 3.6e-5 of the segment).
+inline constexpr double kOnSegmentOffset = 1e-3;
+
+/// Whether the point a + c lies on the segment from a to a + e up to snapping (snap2: the snap
+/// distance squared): off it by at most the snap distance and kOnSegmentOffset of its length,
+/// farther than the snap distance from both ends, and closer to each end than they are to each
+/// other. (The snap distance alone is no test for a short segment: three vertices 1.3e-6 m
+/// apart each lie within 1e-6 m of the others' edge, and threading each edge through the third
+/// vertex went round in a circle.) A segment split at such a point gives two strictly shorter
+/// ones.
+inline bool on_segment_up_to_snap(double ex, double ey, double cx, double cy, double snap2) {
+    const double len2 = ex * ex + ey * ey;
+    const double along = cx * ex + cy * ey;
+    const double off = ex * cy - ey * cx;  // the distance from the line times the length
+    const double limit2 = std::min(snap2, kOnSegmentOffset * kOnSegmentOffset * len2);
+    if (!(off * off <= limit2 * len2) || !(along > 0.0 && along < len2)) return false;
+    const double wx = cx - ex, wy = cy - ey;  // from the far end
+    const double uc2 = cx * cx + cy * cy, cw2 = wx * wx + wy * wy;
+    return uc2 > snap2 && cw2 > snap2 && uc2 < len2 && cw2 < len2;
+}
+
 /// CGAL's constraint hierarchy over the CDT, plus one operation CGAL only offers for points.
 class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
   public:
@@ -285,40 +311,17 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
     }
 
   private:
-    /// How far off an edge, relative to its length, a vertex within the snap distance of it
-    /// may lie and count as on it (1 mrad). The offsets met are rounding errors (4e-18 m off a
-    /// 2.6 cm rim segment) and the snapping of rim points to vertices up to snap_distance away
-    /// (measured on grooves eroded with r_S = 1 cm: 318 threadings, offsets up to 9.4e-7 m and
-    /// 3.6e-5 of the segment).
-    static constexpr double kThreadOffset = 1e-3;
-
-    /// The apex of the triangle (f, i) when it lies on the segment between the edge's ends up to
-    /// snapping: off it by at most snap_distance and kThreadOffset of the edge's length, farther
-    /// than snap_distance from both ends, and closer to each end than they are to each other.
-    /// (The snap distance alone is no test for a short edge: three vertices 1.3e-6 m apart each
-    /// lie within 1e-6 m of the others' edge, and threading each edge through the third vertex
-    /// went round in a circle.) Each threading thus splits an edge into two strictly shorter
-    /// ones between existing vertices, so it ends.
+    /// The apex of the triangle (f, i) when it lies on the edge opposite it up to snapping
+    /// (on_segment_up_to_snap), else a null handle.
     Vertex_handle near_apex(Face_handle f, int i) const {
         const Vertex_handle c = f->vertex(i);
         if (is_infinite(c)) return {};
         const Point& pu = f->vertex(cw(i))->point();
         const Point& pw = f->vertex(ccw(i))->point();
         const Point& pc = c->point();
-        const double ux = pu.x(), uy = pu.y();
-        const double ex = pw.x() - ux, ey = pw.y() - uy;
-        const double cx = pc.x() - ux, cy = pc.y() - uy;
-        const double len2 = ex * ex + ey * ey;
-        const double along = cx * ex + cy * ey;
-        const double off = ex * cy - ey * cx;
-        const double s2 = snap_distance * snap_distance;
-        const double limit2 = std::min(s2, kThreadOffset * kThreadOffset * len2);
-        if (!(off * off <= limit2 * len2)) return {};
-        if (!(along > 0.0 && along < len2)) return {};
-        const double wx = pc.x() - pw.x(), wy = pc.y() - pw.y();
-        const double uc2 = cx * cx + cy * cy, cw2 = wx * wx + wy * wy;
-        if (uc2 <= s2 || cw2 <= s2 || !(uc2 < len2) || !(cw2 < len2)) return {};
-        return c;
+        const bool on = on_segment_up_to_snap(pw.x() - pu.x(), pw.y() - pu.y(), pc.x() - pu.x(),
+                                              pc.y() - pu.y(), snap_distance * snap_distance);
+        return on ? c : Vertex_handle();
     }
 
     /// A constrained edge u-w with a vertex c a rounding error off it (a midpoint that an edge
