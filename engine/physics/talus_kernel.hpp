@@ -102,96 +102,78 @@ inline double select_or_zero(bool keep, double value) {
 }
 
 struct ExcessSums {
-    double sum = 0.0;      ///< of the excesses written (only its sign is used)
-    double largest = 0.0;  ///< the largest of them (m)
+    double sum = 0.0;        ///< of the excesses (only its sign is used)
+    double largest = 0.0;    ///< the largest of them (m)
+    double levelling = 0.0;  ///< of the levelling volumes, in row order (m³)
 };
 
-/// First pass of RowPasses::BranchFree: q[k] = the excess of each flowing slot, +0.0 elsewhere
-/// (changing neither the sum nor the largest). Two slots at a time in SSE2 lanes: the sum only
-/// decides whether anything flows, and the largest excess does not depend on the order, so
-/// both may be taken lane by lane.
-inline ExcessSums flowing_excess(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
-                                 const std::uint32_t* target, const double* length,
-                                 const double* height, const double* area, double tan_alpha,
-                                 const TalusParameters& p, double noise_floor, double* q) {
+/// The passes of RowPasses::BranchFree, in one: q[k] = the volume that levels each flowing
+/// slot alone, e / (1/A_i + 1/A_j), +0.0 elsewhere (changing none of the sums). Two slots at a
+/// time in SSE2 lanes: the excess sum only decides whether anything flows, and the largest
+/// excess does not depend on the order, so both may be taken lane by lane; the levelling sum
+/// is taken in row order, as the branching passes take it. Every slot pays its two divisions,
+/// flowing or not: a packed division costs what a scalar one does, and this runs where most
+/// slots flow.
+inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
+                                  const std::uint32_t* target, const double* length,
+                                  const double* height, const double* area, double tan_alpha,
+                                  const TalusParameters& p, double noise_floor, double* q) {
     const double hi = height[i];
+    const double inv_ai = 1.0 / area[i];
     const double degenerate = kDegenerateAreaRatio * area[i];
     const DoublePair hi2 = {hi, hi}, tan2 = {tan_alpha, tan_alpha};
     const DoublePair tol2 = {p.rest_tolerance, p.rest_tolerance};
     const DoublePair margin2 = {p.settle_margin, p.settle_margin};
     const DoublePair floor2 = {noise_floor, noise_floor}, degenerate2 = {degenerate, degenerate};
+    const DoublePair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0}, zeros = {0.0, 0.0};
     DoublePair sum2 = {0.0, 0.0}, largest2 = {0.0, 0.0};
+    double levelling = 0.0;
     std::uint32_t k = begin;
     for (; k + 1 < end; k += 2) {
         const DoublePair slope = DoublePair{length[k], length[k + 1]} * tan2;
         const std::uint32_t t0 = target[k], t1 = target[k + 1];
+        const DoublePair to = {area[t0], area[t1]};
         const DoublePair e = (hi2 - DoublePair{height[t0], height[t1]}) - slope;
-        const LaneMask flows =
-            (e > tol2 * slope) & (e > floor2) & ~(DoublePair{area[t0], area[t1]} < degenerate2);
+        const LaneMask flows = (e > tol2 * slope) & (e > floor2) & ~(to < degenerate2);
         const DoublePair excess = keep_lanes(flows, e + margin2 * slope);
-        q[k] = excess[0];
-        q[k + 1] = excess[1];
         sum2 += excess;
         const LaneMask bigger = largest2 > excess;  // a lane-wise max
         largest2 = keep_lanes(bigger, largest2) + keep_lanes(~bigger, excess);
-    }
-    ExcessSums out{sum2[0] + sum2[1], std::max(largest2[0], largest2[1])};
-    if (k < end) {
-        const double slope = length[k] * tan_alpha;
-        const std::uint32_t t = target[k];
-        const double e = (hi - height[t]) - slope;
-        const bool flows =
-            (e > p.rest_tolerance * slope) & (e > noise_floor) & !(area[t] < degenerate);
-        q[k] = select_or_zero(flows, e + p.settle_margin * slope);
-        out.sum += q[k];
-        out.largest = std::max(out.largest, q[k]);
-    }
-    return out;
-}
-
-/// Second pass of RowPasses::BranchFree: each flowing slot's excess becomes the volume that
-/// levels its edge alone, e / (1/A_i + 1/A_j); returns their sum in row order. Slots that do
-/// not flow keep +0.0 whatever the neighbour's area. Two slots at a time: two divisions per
-/// slot are the costliest part of the row, and a packed division costs what a scalar one does.
-inline double levelling_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
-                                const std::uint32_t* target, const double* area, double* q) {
-    const double inv_ai = 1.0 / area[i];
-    const DoublePair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0}, zeros = {0.0, 0.0};
-    double levelling = 0.0;
-    std::uint32_t k = begin;
-    for (; k + 1 < end; k += 2) {
-        const DoublePair excess = {q[k], q[k + 1]};
-        const DoublePair to = {area[target[k]], area[target[k + 1]]};
         const DoublePair volume = keep_lanes(excess > zeros, excess / (inv_ai2 + ones / to));
         q[k] = volume[0];
         q[k + 1] = volume[1];
         levelling += volume[0];
         levelling += volume[1];
     }
+    ExcessSums out{sum2[0] + sum2[1], std::max(largest2[0], largest2[1]), levelling};
     if (k < end) {
-        q[k] = select_or_zero(q[k] > 0.0, q[k] / (inv_ai + 1.0 / area[target[k]]));
-        levelling += q[k];
+        const double slope = length[k] * tan_alpha;
+        const std::uint32_t t = target[k];
+        const double e = (hi - height[t]) - slope;
+        const bool flows =
+            (e > p.rest_tolerance * slope) & (e > noise_floor) & !(area[t] < degenerate);
+        const double excess = select_or_zero(flows, e + p.settle_margin * slope);
+        out.sum += excess;
+        out.largest = std::max(out.largest, excess);
+        q[k] = select_or_zero(excess > 0.0, excess / (inv_ai + 1.0 / area[t]));
+        out.levelling += q[k];
     }
-    return levelling;
+    return out;
 }
 
 }  // namespace detail
 
-/// Computes the outflow of vertex i along its row [begin, begin + degree) of the graph. Writes
-/// q[k] (m³) for every slot of the row, and returns the total, which is exactly the sum of the
-/// q[k] written (so what leaves equals what arrives). With a relocation radius r_S, an edge
-/// longer than r_S (by more than rounding) carries nothing, and neither does an edge to a
-/// vertex that has such an edge (its gain would spread over the long triangles); the vertex
-/// to refine around is passed to `needs_split` and the edge flows once it is split.
-/// `longest` holds each vertex's longest edge (m). Without a relocation radius
-/// (kRelocation = false) the long-edge tests, and the load of each neighbour's longest edge,
-/// are compiled out. kPasses: see RowPasses.
+/// The first part of talus_outflow_row: writes q[k] (m³), the volume that would level each
+/// flowing slot of the row alone, and returns the factor s that the outflow scales them all by
+/// (damping, the cap on the vertex's drop and the sand above the bedrock; see above). Returns 0
+/// exactly when nothing leaves, and every q[k] is +0.0 then. Callers that visit the row again
+/// anyway (the Jacobi schedule's distribution) scale as they go; talus_outflow_row scales here.
 template <bool kRelocation, RowPasses kPasses, class NeedsSplit>
-inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
-                                const std::uint32_t* target, const double* length,
-                                const double* longest, const double* height, const double* area,
-                                const double* bedrock, double tan_alpha, const TalusParameters& p,
-                                double random_factor, double* q, NeedsSplit&& needs_split) {
+inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
+                              const std::uint32_t* target, const double* length,
+                              const double* longest, const double* height, const double* area,
+                              const double* bedrock, double tan_alpha, const TalusParameters& p,
+                              double random_factor, double* q, NeedsSplit&& needs_split) {
     constexpr bool kBranchFree = !kRelocation && kPasses == RowPasses::BranchFree;
     const double hi = height[i];
     const std::uint32_t end = begin + degree;
@@ -199,14 +181,12 @@ inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint3
     // two nearly coincident vertices trade the last bit forever.
     const double floor = 64.0 * 2.220446049250313e-16 * (hi < 0.0 ? -hi : hi);
     detail::ExcessSums excess;
-    double levelling = 0.0;
     if constexpr (kBranchFree) {
         (void)longest;
         (void)needs_split;
-        excess = detail::flowing_excess(i, begin, end, target, length, height, area, tan_alpha, p,
-                                        floor, q);
+        excess = detail::flowing_volumes(i, begin, end, target, length, height, area, tan_alpha, p,
+                                         floor, q);
         if (!(excess.sum > 0.0)) return 0.0;
-        levelling = detail::levelling_volumes(i, begin, end, target, area, q);
     } else {
         const double r_limit =
             p.relocation_radius > 0.0 ? p.relocation_radius * (1.0 + 1e-9) : 1e300;
@@ -237,23 +217,64 @@ inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint3
         for (std::uint32_t k = begin; k < end; ++k) {
             if (q[k] > 0.0) {
                 q[k] = q[k] / (inv_ai + 1.0 / area[target[k]]);
-                levelling += q[k];
+                excess.levelling += q[k];
             }
         }
     }
+    const double levelling = excess.levelling;
     double scale = p.damping * random_factor;
     const double cap = p.damping * excess.largest * area[i];
     if (scale * levelling > cap) scale = cap / levelling;
     const double available = area[i] * (hi - bedrock[i]);
     if (scale * levelling > available) scale = std::max(available, 0.0) / levelling;
+    if (!(scale > 0.0)) {  // no sand above the bedrock: nothing leaves
+        for (std::uint32_t k = begin; k < end; ++k)
+            q[k] = 0.0;
+        return 0.0;
+    }
+    return scale;
+}
+
+/// Computes the outflow of vertex i along its row [begin, begin + degree) of the graph. Writes
+/// q[k] (m³) for every slot of the row, and returns the total, which is exactly the sum of the
+/// q[k] written (so what leaves equals what arrives). With a relocation radius r_S, an edge
+/// longer than r_S (by more than rounding) carries nothing, and neither does an edge to a
+/// vertex that has such an edge (its gain would spread over the long triangles); the vertex
+/// to refine around is passed to `needs_split` and the edge flows once it is split.
+/// `longest` holds each vertex's longest edge (m). Without a relocation radius
+/// (kRelocation = false) the long-edge tests, and the load of each neighbour's longest edge,
+/// are compiled out. kPasses: see RowPasses.
+template <bool kRelocation, RowPasses kPasses, class NeedsSplit>
+inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
+                                const std::uint32_t* target, const double* length,
+                                const double* longest, const double* height, const double* area,
+                                const double* bedrock, double tan_alpha, const TalusParameters& p,
+                                double random_factor, double* q, NeedsSplit&& needs_split) {
+    const double scale = talus_row_scale<kRelocation, kPasses>(
+        i, begin, degree, target, length, longest, height, area, bedrock, tan_alpha, p,
+        random_factor, q, needs_split);
+    if (scale == 0.0) return 0.0;
     double sent = 0.0;
-    for (std::uint32_t k = begin; k < end; ++k) {
-        if (kBranchFree || q[k] > 0.0) {  // +0.0 * scale adds +0.0: no need to branch
-            q[k] *= scale;
-            sent += q[k];
-        }
+    for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        q[k] *= scale;  // +0.0 * scale adds +0.0: no need to branch
+        sent += q[k];
     }
     return sent;
+}
+
+/// talus_row_scale with the relocation radius chosen at run time.
+template <RowPasses kPasses = RowPasses::Branching, class NeedsSplit>
+inline double talus_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
+                          const std::uint32_t* target, const double* length, const double* longest,
+                          const double* height, const double* area, const double* bedrock,
+                          double tan_alpha, const TalusParameters& p, double random_factor,
+                          double* q, NeedsSplit&& needs_split) {
+    if (p.relocation_radius > 0.0)
+        return talus_row_scale<true, kPasses>(i, begin, degree, target, length, longest, height,
+                                              area, bedrock, tan_alpha, p, random_factor, q,
+                                              needs_split);
+    return talus_row_scale<false, kPasses>(i, begin, degree, target, length, longest, height, area,
+                                           bedrock, tan_alpha, p, random_factor, q, needs_split);
 }
 
 /// talus_outflow_row with the relocation radius chosen at run time.

@@ -316,33 +316,42 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
             s.row_q.resize(deg);
             q = s.row_q.data();
         }
-        const double sent = talus_outflow<kPasses>(
-            i, 0, deg, target + row, length + row, longest, a.height, a.area, a.bedrock,
-            a.tan_alpha[i], settings_.parameters, random_factor(a, i), q,
-            [&s](std::uint32_t v) { s.splits.push_back(v); });
-        out[i] = sent;
-        moved += sent;
-        if (sent > 0.0) {
-            mark(receive, i, lo, hi);
-            // Only neighbours that receive something are marked: one that gets 0 from every
-            // sender and sends nothing itself would gather exactly 0 and keep its height.
+        const double scale = talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
+                                                  a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                                  settings_.parameters, random_factor(a, i), q,
+                                                  [&s](std::uint32_t v) { s.splits.push_back(v); });
+        // Scaled as they are sent (what talus_outflow_row does first, in the same order, so
+        // `sent` is the same sum bit for bit): one visit of the row instead of two. Only
+        // neighbours that receive something are marked: one that gets 0 from every sender and
+        // sends nothing itself would gather exactly 0 and keep its height.
+        double sent = 0.0;
+        if (scale > 0.0) {
             for (std::uint32_t k = 0; k < deg; ++k) {
                 const std::uint32_t t = target[row + k];
                 if constexpr (kPasses == RowPasses::BranchFree) {
                     // No branch: a slot that does not flow writes its +0.0 into an inflow
                     // slot that holds +0.0 already, and marks nothing.
-                    const bool flows = q[k] > 0.0;
+                    const double volume = q[k] * scale;
+                    sent += volume;
+                    const bool flows = volume > 0.0;
                     mark(receive, t, lo, hi, flows);
                     census.flowing += flows ? 1u : 0u;
-                    inflow[reverse[row + k]] = q[k];
+                    inflow[reverse[row + k]] = volume;
                 } else if (q[k] > 0.0) {
-                    mark(receive, t, lo, hi);
-                    ++census.flowing;
-                    // Only this sender writes the slot of the edge into target (row + k).
-                    inflow[reverse[row + k]] = q[k];
+                    const double volume = q[k] * scale;
+                    sent += volume;
+                    if (volume > 0.0) {
+                        mark(receive, t, lo, hi);
+                        ++census.flowing;
+                        // Only this sender writes the slot of the edge into target (row + k).
+                        inflow[reverse[row + k]] = volume;
+                    }
                 }
             }
         }
+        out[i] = sent;
+        moved += sent;
+        if (sent > 0.0) mark(receive, i, lo, hi);
     }
     s.receive_lo = lo;
     s.receive_hi = hi;
