@@ -81,7 +81,6 @@ void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
         inflow_.resize(g.slot_count(), 0.0);
     if (out_.size() < vertices) {
         out_.resize(vertices, 0.0);
-        source_.resize(vertices, 0);
         changed_.resize(vertices, 0);
     }
     if (pool_->threads() != std::max(1, settings_.threads)) {
@@ -198,10 +197,6 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
 IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                                    std::vector<std::uint32_t>* split_around) {
     IterationStats stats;
-    if (++tag_ == 0) {  // the stamps wrapped around: forget them all
-        std::fill(source_.begin(), source_.end(), 0u);
-        tag_ = 1;
-    }
     active.ensure(static_cast<std::uint32_t>(out_.size() - 1));
     pass_ = {&g, &a, &active, 0};
     const std::vector<std::uint32_t>& list = active.list_;
@@ -291,9 +286,7 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
     double* q = s.row_q.data();
     double* inflow = inflow_.data();
     double* out = out_.data();
-    std::uint32_t* source = source_.data();
     std::uint64_t* receive = s.receive.data();
-    const std::uint32_t tag = tag_;
     std::size_t lo = s.receive_lo, hi = s.receive_hi;
     std::uint32_t first = s.first, last = s.last;
     double moved = 0.0;
@@ -304,12 +297,8 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
             prefetch_outflow(list[idx + kPrefetchDistance], g, a, prefetch_longest);
         first = std::min(first, i);
         last = std::max(last, i);
-        source[i] = tag;
         const std::uint32_t deg = i < rows ? degree[i] : 0;
-        if (deg == 0) {
-            out[i] = 0.0;
-            continue;
-        }
+        if (deg == 0) continue;
         const std::uint32_t row = offset[i];
         census.slots += deg;
         if (deg > s.row_q.size()) {  // rare: rows have a handful of slots
@@ -349,9 +338,11 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
                 }
             }
         }
-        out[i] = sent;
         moved += sent;
-        if (sent > 0.0) mark(receive, i, lo, hi);
+        if (sent > 0.0) {
+            out[i] = sent;  // the gather takes it, and leaves 0 (see out_)
+            mark(receive, i, lo, hi);
+        }
     }
     s.receive_lo = lo;
     s.receive_hi = hi;
@@ -368,9 +359,7 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
     double* inflow = inflow_.data();
-    const double* out = out_.data();
-    const std::uint32_t* source = source_.data();
-    const std::uint32_t tag = tag_;
+    double* out = out_.data();
     std::uint64_t* wake = s.wake.data();
     std::size_t lo = s.wake_lo, hi = s.wake_hi;
     for (std::size_t w = pass_.word_begin + begin; w < pass_.word_begin + end; ++w) {
@@ -387,7 +376,9 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
             const std::uint32_t deg = degree[v];
             // In row order, as the definition sums (a neighbour that sent nothing left 0.0,
             // which changes no sum): the same value bit for bit.
-            double delta = source[v] == tag ? -out[v] : 0.0;
+            // 0.0 - 0.0 is +0.0: a vertex that sent nothing starts from the same +0.0 as ever.
+            double delta = 0.0 - out[v];
+            out[v] = 0.0;
             double* in = inflow + row;
             for (std::uint32_t k = 0; k < deg; ++k) {
                 delta += in[k];

@@ -141,14 +141,15 @@ class TalusSolver {
     /// scatters each sender's outflow into its receivers' rows (through the reverse slots), so
     /// phase 2 reads its own row in order and zeroes it: all zero between iterations.
     std::vector<double> inflow_;
-    std::vector<double> out_;            ///< per vertex: total sent this iteration
+    /// Jacobi: per vertex, the total it sends this iteration (m³). Phase 1 writes each
+    /// sender's, phase 2 takes it and leaves 0: all zero between iterations, so a vertex that
+    /// sent nothing needs no mark saying so.
+    std::vector<double> out_;
     std::vector<std::uint8_t> changed_;  ///< per vertex (sequential schedule)
     std::vector<std::uint32_t> changed_list_;
     // Jacobi schedule.
     /// The kernel's passes (RowPasses) for the next iteration, from this one's RowCensus.
     RowPasses row_passes_ = RowPasses::Branching;
-    std::vector<std::uint32_t> source_;  ///< per vertex: == tag_ when it was a source this time
-    std::uint32_t tag_ = 0;
     std::vector<ThreadScratch> scratch_;
     JacobiPass pass_;
 };
