@@ -31,16 +31,22 @@ std::uint32_t local_of(const VertexNumbering* numbering, std::uint32_t t) {
 
 }  // namespace
 
-void AdjacencyGraph::refresh_longest(std::uint32_t v) {
+void AdjacencyGraph::refresh_row_summary(std::uint32_t v) {
     double m = 0.0;
-    for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k)
+    std::uint32_t lo = v, hi = v;
+    for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k) {
         m = std::max(m, length_[k]);
+        lo = std::min(lo, target_[k]);
+        hi = std::max(hi, target_[k]);
+    }
     longest_[v] = m;
+    row_words_[v] = {lo >> 6, (hi >> 6) + 1};
 }
 
 void AdjacencyGraph::ensure_vertices(std::uint32_t n) {
     if (offset_.size() >= n) return;
     longest_.resize(n, 0.0);
+    row_words_.resize(n);
     offset_.resize(n, 0);
     degree_.resize(n, 0);
     capacity_.resize(n, 0);
@@ -54,6 +60,7 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     degree_.assign(n, 0);
     capacity_.assign(n, 0);
     longest_.assign(n, 0.0);
+    row_words_.assign(n, RowWords{});
     target_.clear();
     reverse_.clear();
     length_.clear();
@@ -74,7 +81,7 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
         target_.resize(offset_[v] + capacity_[v], kNone);
         length_.resize(offset_[v] + capacity_[v], 0.0);
         slack_ += capacity_[v] - degree_[v];
-        refresh_longest(v);
+        refresh_row_summary(v);
     }
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v) {
@@ -97,7 +104,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
     if (t >= va.size() || !va.alive[t]) {
         slack_ += degree_[v];
         degree_[v] = 0;
-        longest_[v] = 0.0;
+        refresh_row_summary(v);
         return;
     }
     tin.neighbours(VertexId{t}, ring);
@@ -118,7 +125,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
         target_[offset_[v] + k] = local_of(numbering, ring[k].value);
         length_[offset_[v] + k] = distance(va.position[t], va.position[ring[k].value]);
     }
-    refresh_longest(v);
+    refresh_row_summary(v);
 }
 
 void AdjacencyGraph::fix_reverse(std::uint32_t v) {
@@ -197,6 +204,7 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
     degree_.assign(n, 0);
     capacity_.assign(n, 0);
     longest_.assign(n, 0.0);
+    row_words_.assign(n, RowWords{});
     target_.clear();
     length_.clear();
     slack_ = 0;
@@ -206,7 +214,7 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
         capacity_[v] = degree_[v];
         target_.insert(target_.end(), rows[v].begin(), rows[v].end());
         length_.insert(length_.end(), lengths[v].begin(), lengths[v].end());
-        refresh_longest(v);
+        refresh_row_summary(v);
     }
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v)
@@ -253,9 +261,14 @@ bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) c
         if (v >= degree_.size()) return false;
         tin.neighbours(VertexId{t}, ring);
         if (ring.size() != degree_[v]) return false;
+        // The row's word range covers v and every neighbour (a kernel marks any of them).
+        const auto covers = [&](std::uint32_t u) {
+            return row_words_[v].lo <= (u >> 6) && (u >> 6) < row_words_[v].hi;
+        };
+        if (!covers(v)) return false;
         for (std::uint32_t k = 0; k < degree_[v]; ++k) {
             const std::uint32_t slot = offset_[v] + k;
-            if (target_[slot] != local(ring[k].value)) return false;
+            if (target_[slot] != local(ring[k].value) || !covers(target_[slot])) return false;
             const std::uint32_t r = reverse_[slot];
             if (r == kNone || target_[r] != v || !(length_[r] == length_[slot])) return false;
             if (std::abs(length_[slot] - distance(va.position[t], va.position[ring[k].value])) >

@@ -31,6 +31,12 @@ namespace sandtin {
 /// (where the terrain is being refined, it grows again).
 enum class RowSlack : std::uint8_t { Some, None };
 
+/// The 64-vertex words of a bitmap over the vertices that a row touches, v itself and its
+/// neighbours: [lo, hi).
+struct RowWords {
+    std::uint32_t lo = 0, hi = 0;
+};
+
 class AdjacencyGraph {
   public:
     AdjacencyGraph() = default;
@@ -62,6 +68,9 @@ class AdjacencyGraph {
     const std::vector<std::uint32_t>& reverses() const { return reverse_; }
     const std::vector<double>& lengths() const { return length_; }
     const std::vector<double>& longest_edges() const { return longest_; }
+    /// Per vertex: the bitmap words its row touches. A kernel that marks v and some of its
+    /// neighbours in a bitmap widens its word range once per row with this, not once per mark.
+    const std::vector<RowWords>& row_words() const { return row_words_; }
 
     /// Rows whose slots moved or changed since the last call (GPU upload ranges).
     std::vector<std::uint32_t> take_dirty_rows();
@@ -73,7 +82,8 @@ class AdjacencyGraph {
                    std::vector<VertexId>& scratch);
     void fix_reverse(std::uint32_t v);
     void ensure_vertices(std::uint32_t n);
-    void refresh_longest(std::uint32_t v);
+    /// longest_ and row_words_ of v, from its row.
+    void refresh_row_summary(std::uint32_t v);
 
     std::vector<std::uint32_t> offset_;
     std::vector<std::uint32_t> degree_;
@@ -82,6 +92,7 @@ class AdjacencyGraph {
     std::vector<std::uint32_t> reverse_;
     std::vector<double> length_;
     std::vector<double> longest_;
+    std::vector<RowWords> row_words_;
     RowSlack slack_policy_ = RowSlack::Some;
     std::size_t slack_ = 0;
     std::vector<std::uint32_t> dirty_rows_;

@@ -16,14 +16,17 @@ constexpr std::size_t kThreadedMinimum = 2048;
 /// Percentage of the processed slots that must carry sand for the next iteration to take the
 /// branch-free passes (passes_after).
 constexpr std::size_t kBranchFreePercent = 35;
-/// Sets v's bit when `set` (without a branch), and widens the word range [lo, hi) to v's word
-/// either way (the later phases then find that word empty).
-inline void mark(std::uint64_t* bits, std::uint32_t v, std::size_t& lo, std::size_t& hi,
-                 bool set = true) {
-    const std::size_t w = v >> 6;
-    bits[w] |= static_cast<std::uint64_t>(set) << (v & 63u);
-    lo = std::min(lo, w);
-    hi = std::max(hi, w + 1);
+/// Sets v's bit when `set` (without a branch). The caller widens its word range once per row
+/// (widen_to_row), not once per bit: a row's marks are most of the phases' instructions.
+inline void mark(std::uint64_t* bits, std::uint32_t v, bool set = true) {
+    bits[v >> 6] |= static_cast<std::uint64_t>(set) << (v & 63u);
+}
+/// Widens the word range [lo, hi) to every word v's row touches (the later phases find the
+/// words no bit was set in empty).
+inline void widen_to_row(const RowWords* row_words, std::uint32_t v, std::size_t& lo,
+                         std::size_t& hi) {
+    lo = std::min<std::size_t>(lo, row_words[v].lo);
+    hi = std::max<std::size_t>(hi, row_words[v].hi);
 }
 
 // Vertices ahead of the one being processed whose neighbours' data is fetched early. A
@@ -282,6 +285,7 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         settings_.parameters.relocation_radius > 0.0 ? longest : nullptr;
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
+    const RowWords* row_words = g.row_words().data();
     const std::size_t rows = g.degrees().size();
     double* q = s.row_q.data();
     double* inflow = inflow_.data();
@@ -323,14 +327,14 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
                     const double volume = q[k] * scale;
                     sent += volume;
                     const bool flows = volume > 0.0;
-                    mark(receive, t, lo, hi, flows);
+                    mark(receive, t, flows);
                     census.flowing += flows ? 1u : 0u;
                     inflow[reverse[row + k]] = volume;
                 } else if (q[k] > 0.0) {
                     const double volume = q[k] * scale;
                     sent += volume;
                     if (volume > 0.0) {
-                        mark(receive, t, lo, hi);
+                        mark(receive, t);
                         ++census.flowing;
                         // Only this sender writes the slot of the edge into target (row + k).
                         inflow[reverse[row + k]] = volume;
@@ -341,7 +345,8 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         moved += sent;
         if (sent > 0.0) {
             out[i] = sent;  // the gather takes it, and leaves 0 (see out_)
-            mark(receive, i, lo, hi);
+            mark(receive, i);
+            widen_to_row(row_words, i, lo, hi);
         }
     }
     s.receive_lo = lo;
@@ -358,6 +363,7 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
     const std::uint32_t* target = g.targets().data();
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
+    const RowWords* row_words = g.row_words().data();
     double* inflow = inflow_.data();
     double* out = out_.data();
     std::uint64_t* wake = s.wake.data();
@@ -392,9 +398,10 @@ void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratc
             if (nh != h) {
                 a.height[v] = nh;  // in place: no other vertex reads v's height in this phase
                 s.changed.push_back(v);
-                mark(wake, v, lo, hi);
+                mark(wake, v);
+                widen_to_row(row_words, v, lo, hi);
                 for (std::uint32_t k = row; k < row + deg; ++k)
-                    mark(wake, target[k], lo, hi);
+                    mark(wake, target[k]);
             }
         }
     }
