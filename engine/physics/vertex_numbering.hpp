@@ -6,10 +6,11 @@
 // Why: at 10⁶ active vertices the Jacobi kernels are memory-bound, and the order of the ids
 // decides how many of a vertex's neighbours' data is already in cache. Measured with
 // `sandtin bench erosion --throughput` (M vertex updates per CPU-second, one thread, same
-// graph, with the kernel's branch-free passes): the TIN's bulk-build ids (CGAL's multiscale
-// spatial sort) 8.3-9.0, a Hilbert curve 12.2-13.2, strips two spacings tall in x order
-// 16.3-18.1. Strips win because a vertex's neighbours lie in its own strip or the next one, so
-// the kernels read a few nearly sequential streams that the hardware prefetchers follow.
+// graph, with the kernel's branch-free passes; medians of five runs on a 2-core VM whose other
+// tenants add about 10 % of noise): the TIN's bulk-build ids (CGAL's multiscale spatial sort)
+// 8.3, a Hilbert curve 14.5, strips two spacings tall in x order 20.2. Strips win because a
+// vertex's neighbours lie in its own strip or the next one, so the kernels read a few nearly
+// sequential streams that the hardware prefetchers follow.
 //
 // Identity numbering: local id == TIN id for every id (dead ones included), i.e. no
 // renumbering. Strip numbering: the live vertices sorted by (floor(y / (2 s)), x, id), s the
