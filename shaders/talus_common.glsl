@@ -35,8 +35,24 @@ struct VertexState {
     uint split;     // iteration stamp: in the split list
     uint quiet;     // still iterations while active
     uint in_list;   // 1 while in the active list
-    uint touched;   // 1 while in the touched list (changed since the last read-back)
+    uint touched;   // TOUCHED_* bits: in the touched list, and why (reset at read-back)
     float residual; // m³ the last height update could not represent (compensated sum)
+    float moved;    // m³ it sent since the last read-back (the volume_moved of a step)
+};
+
+// VertexState::touched: listed for the next read-back; its height or slide changed (else it
+// is listed only for the volume it sent).
+#define TOUCHED_LISTED 1u
+#define TOUCHED_SURFACE 2u
+
+// One read-back entry (gpu_relaxation.hpp TouchedVertex).
+struct PackedVertex {
+    uint id;
+    float height;
+    float slide_x;
+    float slide_y;
+    float moved;
+    uint touched;
 };
 
 layout(std430, binding = 0) buffer Control { uint ctl[]; };
@@ -56,7 +72,7 @@ layout(std430, binding = 13) buffer State { VertexState vs[]; };
 layout(std430, binding = 14) buffer Lists { uint lists[]; };
 layout(std430, binding = 15) readonly buffer Position { vec2 position[]; };
 layout(std430, binding = 16) buffer Slide { vec2 slide[]; };
-layout(std430, binding = 17) buffer Packed { uvec4 packed_out[]; };
+layout(std430, binding = 17) buffer Packed { PackedVertex packed_out[]; };
 
 layout(push_constant) uniform Push {
     uint iter;          // iteration stamp (>= 1), unique per iteration

@@ -44,16 +44,13 @@ void main() {
         height[v] = nh;
         vs[v].changed = pc.iter;
         append(R_CHANGED, C_CHANGED, v);
-        if (vs[v].touched == 0u) {  // v is this invocation's own vertex: no atomic needed
-            vs[v].touched = 1u;
-            append(R_TOUCHED, C_TOUCHED, v);
-        }
+        // v is this invocation's own vertex: no atomic needed.
+        if (vs[v].touched == 0u) append(R_TOUCHED, C_TOUCHED, v);
+        vs[v].touched = TOUCHED_LISTED | TOUCHED_SURFACE;
     }
     if (pc.slide_gain > 0.0 && (transport.x != 0.0 || transport.y != 0.0)) {
         slide[v] = fract(slide[v] + pc.slide_gain * transport / area[v]);
-        if (vs[v].touched == 0u) {  // v is this invocation's own vertex: no atomic needed
-            vs[v].touched = 1u;
-            append(R_TOUCHED, C_TOUCHED, v);
-        }
+        if (vs[v].touched == 0u) append(R_TOUCHED, C_TOUCHED, v);
+        vs[v].touched = TOUCHED_LISTED | TOUCHED_SURFACE;
     }
 }

@@ -117,6 +117,14 @@ void main() {
     }
     outflow[i] = sent;
     if (sent > 0.0) {
+        // Counted for the step's report at the next read-back, which also lists a vertex whose
+        // height came out unchanged (what it sent came back). Only this invocation writes i's
+        // state in this dispatch.
+        vs[i].moved += sent;
+        if (vs[i].touched == 0u) {
+            vs[i].touched = TOUCHED_LISTED;
+            append(R_TOUCHED, C_TOUCHED, i);
+        }
         mark_receiver(i);
         for (uint k = begin; k < begin + degree; ++k) mark_receiver(target[k]);
     }

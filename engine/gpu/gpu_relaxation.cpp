@@ -19,7 +19,9 @@ constexpr uint32_t C_ACTIVE = 0, C_CHANGED = 3, C_SPLIT = 4, C_PARITY = 5, C_TOU
 constexpr VkDeviceSize kArgsActive = 16 * 4, kArgsReceivers = 20 * 4, kArgsChanged = 24 * 4;
 constexpr uint32_t kRegions = 6;  // active A, active B, receivers, changed, split, touched
 constexpr uint32_t R_CHANGED = 3, R_SPLIT = 4, R_TOUCHED = 5;
-constexpr uint32_t kStateBytes = 32;
+constexpr uint32_t kStateBytes = 36;   // shaders/talus_common.glsl VertexState
+constexpr uint32_t kPackedBytes = 24;  // PackedVertex
+static_assert(sizeof(TouchedVertex) == kPackedBytes);
 constexpr uint32_t kBindings = 18;
 constexpr uint32_t kTimedPairs = 4096;
 
@@ -119,9 +121,9 @@ void GpuRelaxation::ensure_buffers() {
         state_ = std::move(state);
         lists_ = std::move(lists);
         out_ = Buffer(context_, VkDeviceSize{vcap} * 4, kStorage, MemoryUse::Device);
-        packed_ = Buffer(context_, VkDeviceSize{vcap} * 16, kStorage, MemoryUse::Device);
-        readback_ = Buffer(context_, VkDeviceSize{vcap} * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                           MemoryUse::Readback);
+        packed_ = Buffer(context_, VkDeviceSize{vcap} * kPackedBytes, kStorage, MemoryUse::Device);
+        readback_ = Buffer(context_, VkDeviceSize{vcap} * kPackedBytes,
+                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
         seed_upload_ = Buffer(context_, VkDeviceSize{vcap} * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                               MemoryUse::Upload);
         capacity_ = vcap;
@@ -260,7 +262,7 @@ std::vector<TouchedVertex> GpuRelaxation::read_back() {
         compute_barrier(cb);
         control_.dispatch(cb, 1, &clear);
         compute_barrier(cb);
-        VkBufferCopy c{0, 0, VkDeviceSize{n} * 16};
+        VkBufferCopy c{0, 0, VkDeviceSize{n} * kPackedBytes};
         vkCmdCopyBuffer(cb, packed_.get(), readback_.get(), 1, &c);
         VkBufferCopy cc{0, 0, kControlWords * 4};
         vkCmdCopyBuffer(cb, control_buf_.get(), control_host_.get(), 1, &cc);
@@ -268,8 +270,7 @@ std::vector<TouchedVertex> GpuRelaxation::read_back() {
     dispatches_total_ += 2;
     readback_.invalidate(context_);
     std::vector<TouchedVertex> out(n);
-    static_assert(sizeof(TouchedVertex) == 16);
-    std::memcpy(out.data(), readback_.mapped(), VkDeviceSize{n} * 16);
+    std::memcpy(out.data(), readback_.mapped(), VkDeviceSize{n} * kPackedBytes);
     return out;
 }
 

@@ -44,11 +44,20 @@ struct GpuRunStats {
     uint64_t changed = 0;         // height changes, summed over the iterations
 };
 
+// One entry of read_back() (shaders/talus_common.glsl PackedVertex).
 struct TouchedVertex {
+    static constexpr uint32_t kSurfaceChanged = 2;  // touched bit: height or slide changed
+
     uint32_t id = 0;
     float height = 0.0f;
     float slide_x = 0.0f;
     float slide_y = 0.0f;
+    float moved = 0.0f;  // m³ the vertex sent since the previous read_back
+    uint32_t touched = 0;
+
+    // False when the vertex is listed only for what it sent (its height and slide are as the
+    // previous read_back left them).
+    bool surface_changed() const { return (touched & kSurfaceChanged) != 0; }
 };
 
 class GpuRelaxation {
@@ -67,7 +76,8 @@ class GpuRelaxation {
     uint32_t active_count() const { return known_active_ + static_cast<uint32_t>(pending_.size()); }
     bool at_rest() const { return active_count() == 0; }
 
-    // Vertices whose height or slide changed since the previous read_back (their GPU values).
+    // Vertices whose height or slide changed since the previous read_back (their GPU values),
+    // and those that sent sand (with the volume): every vertex with something to report.
     std::vector<TouchedVertex> read_back();
     // Vertices the relocation radius asked to refine around since the previous call.
     std::vector<uint32_t> take_split_requests();

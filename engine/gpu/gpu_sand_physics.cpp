@@ -59,15 +59,18 @@ void GpuSandPhysics::sync() {
     pending_.clear();
 }
 
-std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed) {
+std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed, double& moved) {
     const std::vector<TouchedVertex> touched = relax_.read_back();
     std::vector<VertexId> ids;
     std::vector<double> heights;
     ids.reserve(touched.size());
     heights.reserve(touched.size());
     for (const TouchedVertex& t : touched) {
+        moved += static_cast<double>(t.moved);
         const VertexId v{t.id};
-        if (!tin_.is_alive(v)) continue;
+        // Listed only for what it sent: its height is the TIN's already (writing the float
+        // back would round the TIN's double and wake the vertex for nothing).
+        if (!t.surface_changed() || !tin_.is_alive(v)) continue;
         ids.push_back(v);
         heights.push_back(static_cast<double>(t.height));
         const Vec2f slide{t.slide_x, t.slide_y};
@@ -110,7 +113,7 @@ PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* ch
         report.iterations += s.iterations;
         report.vertex_updates += s.vertex_updates;
         report.changed += s.changed;
-        write_back(changed);
+        write_back(changed, report.volume_moved);
         const std::size_t refined = refine(changed);
         refining_ = refined > 0;
         report.refined += refined;

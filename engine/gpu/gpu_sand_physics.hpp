@@ -9,8 +9,8 @@
 // haptic snapshots always see the current terrain. Edges longer than the relocation radius are
 // split on the CPU between GPU submissions (as SandPhysics does between iterations).
 //
-// Differences from the CPU physics: volume_moved is not measured on the GPU (reported as 0);
-// the schedule is always Jacobi (TalusSettings::schedule and threads are ignored).
+// Differences from the CPU physics: the schedule is always Jacobi (TalusSettings::schedule and
+// threads are ignored), and volume_moved is summed in float per vertex between read-backs.
 
 #include <functional>
 #include <memory>
@@ -61,8 +61,9 @@ class GpuSandPhysics {
   private:
     void sync();
     ChangeSet take_changes();
-    // Writes the GPU's changed vertices into the TIN; returns how many.
-    std::size_t write_back(std::vector<VertexId>* changed);
+    /// Reads back what the GPU changed into the TIN; adds the volume the vertices sent (m³)
+    /// to `moved`. Returns how many vertices it wrote.
+    std::size_t write_back(std::vector<VertexId>* changed, double& moved);
     // Refines where the relaxation asked (RelocationRefiner); appends what it inserted.
     std::size_t refine(std::vector<VertexId>* inserted);
     bool refining_ = false;  ///< the last batch refined: the next one is short (step())

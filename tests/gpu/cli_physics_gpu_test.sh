@@ -49,6 +49,10 @@ awk -v a="$vc" -v b="$vg" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-
 uc=$(get cpu.json /steps/1/vertex_updates) && ug=$(get gpu.json /steps/1/vertex_updates)
 awk -v a="$uc" -v b="$ug" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0 && d <= 0.02 * a) }' ||
     fail "relaxation work differs: cpu $uc gpu $ug"
+# The volume the sand moved (the GPU reported 0 until it summed it per vertex).
+mc=$(get cpu.json /steps/1/volume_moved) && mg=$(get gpu.json /steps/1/volume_moved)
+awk -v a="$mc" -v b="$mg" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0 && d <= 1e-3 * a) }' ||
+    fail "volume moved differs: cpu $mc gpu $mg"
 
 # With the relocation radius (the editor's default r_S): refinement runs between the GPU's
 # batches, so the GPU must not let the sand wait long at the edges it asked to split. Over the

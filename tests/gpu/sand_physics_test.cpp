@@ -57,6 +57,11 @@ TEST_F(GpuTest, GpuPhysicsMatchesCpuPhysicsAfterAStampAndWritesBackIntoTheTin) {
     EXPECT_EQ(rc.iterations, rg.iterations);
     EXPECT_GT(rg.changed, 0u);
     EXPECT_FALSE(changed.empty());
+    // The volume the sand moved, summed in double on the CPU and in float per vertex between
+    // read-backs on the GPU (it used to be reported as 0).
+    std::printf("volume moved: cpu %.9g gpu %.9g m3\n", rc.volume_moved, rg.volume_moved);
+    EXPECT_GT(rc.volume_moved, 0.0);
+    EXPECT_NEAR(rg.volume_moved, rc.volume_moved, 1e-4 * rc.volume_moved);
 
     // The GPU wrote its heights into the TIN: compare the two TINs directly.
     double lo = 1e300, hi = -1e300, worst = 0.0, moved = 0.0;
