@@ -102,18 +102,19 @@ inline double select_or_zero(bool keep, double value) {
 }
 
 struct ExcessSums {
-    double sum = 0.0;        ///< of the excesses (only its sign is used)
-    double largest = 0.0;    ///< the largest of them (m)
+    /// The largest excess of a flowing slot (m), 0 when none flows. A flowing slot's excess is
+    /// positive (e > 0, and the margin adds m r tan(alpha) >= 0), so this alone tells whether
+    /// anything flows.
+    double largest = 0.0;
     double levelling = 0.0;  ///< of the levelling volumes, in row order (m³)
 };
 
 /// The passes of RowPasses::BranchFree, in one: q[k] = the volume that levels each flowing
-/// slot alone, e / (1/A_i + 1/A_j), +0.0 elsewhere (changing none of the sums). Two slots at a
-/// time in SSE2 lanes: the excess sum only decides whether anything flows, and the largest
-/// excess does not depend on the order, so both may be taken lane by lane; the levelling sum
-/// is taken in row order, as the branching passes take it. Every slot pays its two divisions,
-/// flowing or not: a packed division costs what a scalar one does, and this runs where most
-/// slots flow.
+/// slot alone, e / (1/A_i + 1/A_j), +0.0 elsewhere (changing no sum). Two slots at a time in
+/// SSE2 lanes: the largest excess does not depend on the order, so it may be taken lane by
+/// lane; the levelling sum is taken in row order, as the branching passes take it. Every slot
+/// pays its two divisions, flowing or not: a packed division costs what a scalar one does, and
+/// this runs where most slots flow.
 inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
                                   const std::uint32_t* target, const double* length,
                                   const double* height, const double* area, double tan_alpha,
@@ -125,8 +126,8 @@ inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uin
     const DoublePair tol2 = {p.rest_tolerance, p.rest_tolerance};
     const DoublePair margin2 = {p.settle_margin, p.settle_margin};
     const DoublePair floor2 = {noise_floor, noise_floor}, degenerate2 = {degenerate, degenerate};
-    const DoublePair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0}, zeros = {0.0, 0.0};
-    DoublePair sum2 = {0.0, 0.0}, largest2 = {0.0, 0.0};
+    const DoublePair inv_ai2 = {inv_ai, inv_ai}, ones = {1.0, 1.0};
+    DoublePair largest2 = {0.0, 0.0};
     double levelling = 0.0;
     std::uint32_t k = begin;
     for (; k + 1 < end; k += 2) {
@@ -136,16 +137,14 @@ inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uin
         const DoublePair e = (hi2 - DoublePair{height[t0], height[t1]}) - slope;
         const LaneMask flows = (e > tol2 * slope) & (e > floor2) & ~(to < degenerate2);
         const DoublePair excess = keep_lanes(flows, e + margin2 * slope);
-        sum2 += excess;
-        const LaneMask bigger = largest2 > excess;  // a lane-wise max
-        largest2 = keep_lanes(bigger, largest2) + keep_lanes(~bigger, excess);
-        const DoublePair volume = keep_lanes(excess > zeros, excess / (inv_ai2 + ones / to));
+        largest2 = largest2 > excess ? largest2 : excess;  // a lane-wise max (one MAXPD)
+        const DoublePair volume = keep_lanes(flows, excess / (inv_ai2 + ones / to));
         q[k] = volume[0];
         q[k + 1] = volume[1];
         levelling += volume[0];
         levelling += volume[1];
     }
-    ExcessSums out{sum2[0] + sum2[1], std::max(largest2[0], largest2[1]), levelling};
+    ExcessSums out{std::max(largest2[0], largest2[1]), levelling};
     if (k < end) {
         const double slope = length[k] * tan_alpha;
         const std::uint32_t t = target[k];
@@ -153,9 +152,8 @@ inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uin
         const bool flows =
             (e > p.rest_tolerance * slope) & (e > noise_floor) & !(area[t] < degenerate);
         const double excess = select_or_zero(flows, e + p.settle_margin * slope);
-        out.sum += excess;
         out.largest = std::max(out.largest, excess);
-        q[k] = select_or_zero(excess > 0.0, excess / (inv_ai + 1.0 / area[t]));
+        q[k] = select_or_zero(flows, excess / (inv_ai + 1.0 / area[t]));
         out.levelling += q[k];
     }
     return out;
@@ -186,7 +184,7 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
         (void)needs_split;
         excess = detail::flowing_volumes(i, begin, end, target, length, height, area, tan_alpha, p,
                                          floor, q);
-        if (!(excess.sum > 0.0)) return 0.0;
+        if (!(excess.largest > 0.0)) return 0.0;
     } else {
         const double r_limit =
             p.relocation_radius > 0.0 ? p.relocation_radius * (1.0 + 1e-9) : 1e300;
@@ -208,10 +206,9 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
             }
             if (area[target[k]] < kDegenerateAreaRatio * area[i]) continue;  // degenerate receiver
             q[k] = e + p.settle_margin * slope;  // the excess (== e when m = 0), for now
-            excess.sum += q[k];
             excess.largest = std::max(excess.largest, q[k]);
         }
-        if (!(excess.sum > 0.0)) return 0.0;
+        if (!(excess.largest > 0.0)) return 0.0;
         // Now turn each excess into the volume that levels its edge alone.
         const double inv_ai = 1.0 / area[i];
         for (std::uint32_t k = begin; k < end; ++k) {
