@@ -91,6 +91,9 @@ class Tool {
     /// spacing, at most the rim spacing), with the profile's offset at each point (m above the
     /// lowest point; +infinity: no contact). Empty for a flat profile. Made once when the tool
     /// is built, so a stamp only maps it to the world.
+    /// The most interior samples a curved profile may need; Tool::build rejects a larger
+    /// lattice (the shipped foot needs a few thousand).
+    static constexpr double kMaxInteriorSamples = 4e6;
     struct InteriorSamples {
         double spacing = 0.0;  ///< m
         std::vector<Vec2> local;

@@ -190,10 +190,16 @@ std::vector<Vec2> interior_lattice(std::span<const Vec2> polygon, double spacing
     const PolygonInclusion inside(polygon, box.centre());
     const NearEdgeIndex border(polygon, 0.5 * spacing);
     const double row = spacing * std::sqrt(3.0) / 2.0;
-    int r = 0;
-    for (double y = box.min.y + 0.5 * row; y < box.max.y; y += row, ++r) {
-        const double shift = (r % 2 == 0) ? 0.0 : 0.5 * spacing;
-        for (double x = box.min.x + 0.5 * spacing + shift; x < box.max.x; x += spacing) {
+    // Counted loops: x += spacing would stand still where spacing is below an ulp of x.
+    const double rows = std::ceil((box.max.y - box.min.y) / row - 0.5);
+    const double columns = std::ceil((box.max.x - box.min.x) / spacing - 0.5);
+    for (double r = 0.0; r < rows; r += 1.0) {
+        const double y = box.min.y + (0.5 + r) * row;
+        if (!(y < box.max.y)) break;
+        const double shift = std::fmod(r, 2.0) == 0.0 ? 0.0 : 0.5 * spacing;
+        for (double c = 0.0; c < columns; c += 1.0) {
+            const double x = box.min.x + 0.5 * spacing + shift + c * spacing;
+            if (!(x < box.max.x)) break;
             const Vec2 p{x, y};
             if (inside.contains(p) && !(border.nearest_within_reach(p).distance < 0.5 * spacing))
                 out.push_back(p);

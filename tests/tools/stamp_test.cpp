@@ -690,5 +690,28 @@ TEST(Stamp, BadToolSpecsAreRejected) {
     EXPECT_THROW(Tool::build(s), std::invalid_argument);
 }
 
+// A curved profile is sampled on a lattice inside I at the profile's detail. A size typed with
+// a hundred extra digits (found by the script fuzzer: a 1.1 m by 2.9e105 m rectangle under a
+// 0.2 m ball) sampled without end; it is an error that names the problem.
+TEST(Stamp, AToolFarLargerThanItsProfilesDetailIsRejected) {
+    ToolSpec s;
+    s.contour = ContourKind::Rectangle;
+    s.width = 1.1;
+    s.length = 2.9e105;
+    s.profile = ProfileKind::HalfSphere;
+    s.sphere_radius = 0.2;
+    try {
+        (void)Tool::build(s);
+        ADD_FAILURE() << "a 2.9e105 m tool with a 0.2 m ball built";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("interior samples"), std::string::npos) << e.what();
+    }
+    // The same ball under a tool of sensible size builds, with its lattice.
+    s.length = 1.5;
+    const Tool tool = Tool::build(s);
+    EXPECT_GT(tool.interior_samples().local.size(), 100u);
+    EXPECT_LE(static_cast<double>(tool.interior_samples().local.size()), Tool::kMaxInteriorSamples);
+}
+
 }  // namespace
 }  // namespace sandtin
