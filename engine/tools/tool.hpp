@@ -86,14 +86,14 @@ class Tool {
     /// Height of the tool's underside above world point p (m); +infinity where it has no contact.
     double underside(const ToolPlacement& at, Vec2 world) const;
 
+    /// The most interior samples a curved profile may need; Tool::build rejects a larger
+    /// lattice (the shipped foot needs a few thousand).
+    static constexpr double kMaxInteriorSamples = 4e6;
     /// Where a stamp samples a curved profile inside I: a lattice in tool coordinates (m),
     /// interior_lattice() of the subdivided inner contour at `spacing` (the profile's sample
     /// spacing, at most the rim spacing), with the profile's offset at each point (m above the
     /// lowest point; +infinity: no contact). Empty for a flat profile. Made once when the tool
     /// is built, so a stamp only maps it to the world.
-    /// The most interior samples a curved profile may need; Tool::build rejects a larger
-    /// lattice (the shipped foot needs a few thousand).
-    static constexpr double kMaxInteriorSamples = 4e6;
     struct InteriorSamples {
         double spacing = 0.0;  ///< m
         std::vector<Vec2> local;
