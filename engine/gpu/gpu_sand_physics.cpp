@@ -59,12 +59,13 @@ void GpuSandPhysics::sync() {
     pending_.clear();
 }
 
-std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed, double& moved) {
+double GpuSandPhysics::write_back(std::vector<VertexId>* changed) {
     const std::vector<TouchedVertex> touched = relax_.read_back();
     std::vector<VertexId> ids;
     std::vector<double> heights;
     ids.reserve(touched.size());
     heights.reserve(touched.size());
+    double moved = 0.0;
     for (const TouchedVertex& t : touched) {
         moved += static_cast<double>(t.moved);
         const VertexId v{t.id};
@@ -78,7 +79,7 @@ std::size_t GpuSandPhysics::write_back(std::vector<VertexId>* changed, double& m
     }
     tin_.set_heights(ids, heights);
     if (changed != nullptr) changed->insert(changed->end(), ids.begin(), ids.end());
-    return ids.size();
+    return moved;
 }
 
 std::size_t GpuSandPhysics::refine(std::vector<VertexId>* inserted) {
@@ -113,7 +114,7 @@ PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* ch
         report.iterations += s.iterations;
         report.vertex_updates += s.vertex_updates;
         report.changed += s.changed;
-        write_back(changed, report.volume_moved);
+        report.volume_moved += write_back(changed);
         const std::size_t refined = refine(changed);
         refining_ = refined > 0;
         report.refined += refined;

@@ -61,9 +61,9 @@ class GpuSandPhysics {
   private:
     void sync();
     ChangeSet take_changes();
-    /// Reads back what the GPU changed into the TIN; adds the volume the vertices sent (m³)
-    /// to `moved`. Returns how many vertices it wrote.
-    std::size_t write_back(std::vector<VertexId>* changed, double& moved);
+    /// Reads back what the GPU changed into the TIN (appending the vertices to `changed`) and
+    /// returns the volume the vertices sent since the last read-back (m³).
+    double write_back(std::vector<VertexId>* changed);
     // Refines where the relaxation asked (RelocationRefiner); appends what it inserted.
     std::size_t refine(std::vector<VertexId>* inserted);
     bool refining_ = false;  ///< the last batch refined: the next one is short (step())

@@ -101,7 +101,7 @@ inline double select_or_zero(bool keep, double value) {
     return std::bit_cast<double>(std::bit_cast<std::uint64_t>(value) & mask);
 }
 
-struct ExcessSums {
+struct RowExcess {
     /// The largest excess of a flowing slot (m), 0 when none flows. A flowing slot's excess is
     /// positive (e > 0, and the margin adds m r tan(alpha) >= 0), so this alone tells whether
     /// anything flows.
@@ -115,10 +115,10 @@ struct ExcessSums {
 /// lane; the levelling sum is taken in row order, as the branching passes take it. Every slot
 /// pays its two divisions, flowing or not: a packed division costs what a scalar one does, and
 /// this runs where most slots flow.
-inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
-                                  const std::uint32_t* target, const double* length,
-                                  const double* height, const double* area, double tan_alpha,
-                                  const TalusParameters& p, double noise_floor, double* q) {
+inline RowExcess flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uint32_t end,
+                                 const std::uint32_t* target, const double* length,
+                                 const double* height, const double* area, double tan_alpha,
+                                 const TalusParameters& p, double noise_floor, double* q) {
     const double hi = height[i];
     const double inv_ai = 1.0 / area[i];
     const double degenerate = kDegenerateAreaRatio * area[i];
@@ -144,7 +144,7 @@ inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uin
         levelling += volume[0];
         levelling += volume[1];
     }
-    ExcessSums out{std::max(largest2[0], largest2[1]), levelling};
+    RowExcess out{std::max(largest2[0], largest2[1]), levelling};
     if (k < end) {
         const double slope = length[k] * tan_alpha;
         const std::uint32_t t = target[k];
@@ -161,11 +161,11 @@ inline ExcessSums flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uin
 
 }  // namespace detail
 
-/// The first part of talus_outflow_row: writes q[k] (m³), the volume that would level each
+/// The first part of talus_outflow: writes q[k] (m³), the volume that would level each
 /// flowing slot of the row alone, and returns the factor s that the outflow scales them all by
 /// (damping, the cap on the vertex's drop and the sand above the bedrock; see above). Returns 0
 /// exactly when nothing leaves, and every q[k] is +0.0 then. Callers that visit the row again
-/// anyway (the Jacobi schedule's distribution) scale as they go; talus_outflow_row scales here.
+/// anyway (the Jacobi schedule's distribution) scale as they go; talus_outflow scales here.
 template <bool kRelocation, RowPasses kPasses, class NeedsSplit>
 inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
                               const std::uint32_t* target, const double* length,
@@ -178,7 +178,7 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
     // Below a few ulps of the height an "excess" is rounding noise; acting on it would make
     // two nearly coincident vertices trade the last bit forever.
     const double floor = 64.0 * 2.220446049250313e-16 * (hi < 0.0 ? -hi : hi);
-    detail::ExcessSums excess;
+    detail::RowExcess excess;
     if constexpr (kBranchFree) {
         (void)longest;
         (void)needs_split;
@@ -232,33 +232,6 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
     return scale;
 }
 
-/// Computes the outflow of vertex i along its row [begin, begin + degree) of the graph. Writes
-/// q[k] (m³) for every slot of the row, and returns the total, which is exactly the sum of the
-/// q[k] written (so what leaves equals what arrives). With a relocation radius r_S, an edge
-/// longer than r_S (by more than rounding) carries nothing, and neither does an edge to a
-/// vertex that has such an edge (its gain would spread over the long triangles); the vertex
-/// to refine around is passed to `needs_split` and the edge flows once it is split.
-/// `longest` holds each vertex's longest edge (m). Without a relocation radius
-/// (kRelocation = false) the long-edge tests, and the load of each neighbour's longest edge,
-/// are compiled out. kPasses: see RowPasses.
-template <bool kRelocation, RowPasses kPasses, class NeedsSplit>
-inline double talus_outflow_row(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
-                                const std::uint32_t* target, const double* length,
-                                const double* longest, const double* height, const double* area,
-                                const double* bedrock, double tan_alpha, const TalusParameters& p,
-                                double random_factor, double* q, NeedsSplit&& needs_split) {
-    const double scale = talus_row_scale<kRelocation, kPasses>(
-        i, begin, degree, target, length, longest, height, area, bedrock, tan_alpha, p,
-        random_factor, q, needs_split);
-    if (scale == 0.0) return 0.0;
-    double sent = 0.0;
-    for (std::uint32_t k = begin; k < begin + degree; ++k) {
-        q[k] *= scale;  // +0.0 * scale adds +0.0: no need to branch
-        sent += q[k];
-    }
-    return sent;
-}
-
 /// talus_row_scale with the relocation radius chosen at run time.
 template <RowPasses kPasses = RowPasses::Branching, class NeedsSplit>
 inline double talus_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
@@ -274,20 +247,31 @@ inline double talus_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t de
                                            bedrock, tan_alpha, p, random_factor, q, needs_split);
 }
 
-/// talus_outflow_row with the relocation radius chosen at run time.
+/// Computes the outflow of vertex i along its row [begin, begin + degree) of the graph. Writes
+/// q[k] (m³) for every slot of the row, and returns the total, which is exactly the sum of the
+/// q[k] written (so what leaves equals what arrives). With a relocation radius r_S, an edge
+/// longer than r_S (by more than rounding) carries nothing, and neither does an edge to a
+/// vertex that has such an edge (its gain would spread over the long triangles); the vertex
+/// to refine around is passed to `needs_split` and the edge flows once it is split.
+/// `longest` holds each vertex's longest edge (m). Without a relocation radius the long-edge
+/// tests, and the load of each neighbour's longest edge, are compiled out (talus_row_scale's
+/// kRelocation). kPasses: see RowPasses.
 template <RowPasses kPasses = RowPasses::Branching, class NeedsSplit>
 inline double talus_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
                             const std::uint32_t* target, const double* length,
                             const double* longest, const double* height, const double* area,
                             const double* bedrock, double tan_alpha, const TalusParameters& p,
                             double random_factor, double* q, NeedsSplit&& needs_split) {
-    if (p.relocation_radius > 0.0)
-        return talus_outflow_row<true, kPasses>(i, begin, degree, target, length, longest, height,
-                                                area, bedrock, tan_alpha, p, random_factor, q,
-                                                needs_split);
-    return talus_outflow_row<false, kPasses>(i, begin, degree, target, length, longest, height,
-                                             area, bedrock, tan_alpha, p, random_factor, q,
-                                             needs_split);
+    const double scale =
+        talus_scale<kPasses>(i, begin, degree, target, length, longest, height, area, bedrock,
+                             tan_alpha, p, random_factor, q, needs_split);
+    if (scale == 0.0) return 0.0;
+    double sent = 0.0;
+    for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        q[k] *= scale;  // +0.0 * scale adds +0.0: no need to branch
+        sent += q[k];
+    }
+    return sent;
 }
 
 }  // namespace sandtin

@@ -313,7 +313,7 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
                                                   a.height, a.area, a.bedrock, a.tan_alpha[i],
                                                   settings_.parameters, random_factor(a, i), q,
                                                   [&s](std::uint32_t v) { s.splits.push_back(v); });
-        // Scaled as they are sent (what talus_outflow_row does first, in the same order, so
+        // Scaled as they are sent (what talus_outflow does, in the same order, so
         // `sent` is the same sum bit for bit): one visit of the row instead of two. Only
         // neighbours that receive something are marked: one that gets 0 from every sender and
         // sends nothing itself would gather exactly 0 and keep its height.

@@ -195,16 +195,16 @@ Tool Tool::build(const ToolSpec& spec) {
         samples.spacing = std::min(tool.rim_spacing_, tool.profile_.sample_spacing());
         // The lattice has about one sample per (sqrt(3)/2) spacing² of I's area. A contour far
         // larger than its profile's detail (a mistyped size) would sample for hours: an error.
-        const double samples_needed = std::abs(signed_area(tool.shape_.inner)) /
-                                      (0.5 * std::sqrt(3.0) * samples.spacing * samples.spacing);
+        const double area = std::abs(signed_area(tool.shape_.inner));
+        const double samples_needed =
+            area / (0.5 * std::sqrt(3.0) * samples.spacing * samples.spacing);
         if (!(samples_needed <= kMaxInteriorSamples)) {
             char message[256];
             std::snprintf(message, sizeof message,
                           "tool: its curved profile needs about %.3g interior samples (%.3g m² "
                           "at a %.3g m spacing), more than %.0f: make the tool smaller or its "
                           "profile coarser",
-                          samples_needed, std::abs(signed_area(tool.shape_.inner)), samples.spacing,
-                          kMaxInteriorSamples);
+                          samples_needed, area, samples.spacing, kMaxInteriorSamples);
             throw std::invalid_argument(message);
         }
         samples.local = interior_lattice(subdivide_contour(tool.shape_.inner, tool.rim_spacing_),
