@@ -4,6 +4,11 @@ target_compile_options(sandtin_options INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align
   -Wunused -Woverloaded-virtual -Wdouble-promotion -Wformat=2
   -Werror)
+# No fused multiply-adds unless written: a product is rounded before it is added, as in the
+# SSE2 baseline, on every instruction set the physics dispatches to (AVX-512 has fused
+# multiply-adds, and GCC's C++ default allows fusing), so results do not depend on the CPU
+# (physics/talus_kernel_avx512.hpp).
+target_compile_options(sandtin_options INTERFACE -ffp-contract=off)
 # Clang's -Wdouble-promotion also flags float arguments passed to double parameters, which
 # GCC (the reference compiler) accepts and which are exact; keep the GCC meaning.
 if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")

@@ -32,6 +32,7 @@
 #include "physics/cone.hpp"
 #include "physics/grid_erosion.hpp"
 #include "physics/sand_physics.hpp"
+#include "physics/talus_kernel_avx512.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin::cli {
@@ -315,53 +316,83 @@ double load_average() {
     return one;
 }
 
+/// One timed run of jacobi_throughput: wall and CPU seconds of kTimed iterations.
+struct ThroughputRun {
+    double wall_s = 0.0;
+    double cpu_s = 0.0;
+    std::size_t updates = 0;
+};
+
+ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, bool avx512_rows) {
+    constexpr int kTimed = 6;
+    std::vector<double> height = scene.height;
+    std::vector<double> tan(height.size(), tan_alpha());
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    settings.threads = threads;
+    settings.avx512_rows = avx512_rows;
+    TalusSolver solver(settings);
+    const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
+                             height.size()};
+    ActiveSet active;
+    for (std::uint32_t v = 0; v < height.size(); ++v)
+        active.activate(v);
+    solver.iterate(scene.graph, arrays, active);  // warm-up: first-touch of the buffers
+    ThroughputRun run;
+    const double cpu0 = process_cpu_ms();
+    Stopwatch wall;
+    for (int it = 0; it < kTimed; ++it)
+        run.updates += solver.iterate(scene.graph, arrays, active).processed;
+    run.wall_s = wall.ms() * 1e-3;
+    run.cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
+    return run;
+}
+
 nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
     constexpr int kTimed = 6;
-    std::vector<double> rates;
-    std::vector<double> cpu_rates;
-    std::vector<double> loads;
+    const bool avx512 = avx512_rows_supported();
+    std::vector<double> rates, cpu_rates, loads;
+    std::vector<double> sse2_rates, sse2_cpu_rates;  // the SSE2 rows, alternating with AVX-512
     std::size_t processed = 0;
     for (int run = 0; run < runs; ++run) {
-        std::vector<double> height = scene.height;
-        std::vector<double> tan(height.size(), tan_alpha());
-        TalusSettings settings;
-        settings.schedule = Schedule::Jacobi;
-        settings.threads = threads;
-        TalusSolver solver(settings);
-        const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
-                                 height.size()};
-        ActiveSet active;
-        for (std::uint32_t v = 0; v < height.size(); ++v)
-            active.activate(v);
-        solver.iterate(scene.graph, arrays, active);  // warm-up: first-touch of the buffers
         loads.push_back(load_average());
-        std::size_t updates = 0;
-        const double cpu0 = process_cpu_ms();
-        Stopwatch wall;
-        for (int it = 0; it < kTimed; ++it)
-            updates += solver.iterate(scene.graph, arrays, active).processed;
-        const double s = wall.ms() * 1e-3;
-        const double cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
-        processed = updates / kTimed;
-        rates.push_back(static_cast<double>(updates) / s);
-        cpu_rates.push_back(static_cast<double>(updates) / cpu_s);
+        const ThroughputRun r = time_jacobi(scene, threads, true);
+        processed = r.updates / kTimed;
+        rates.push_back(static_cast<double>(r.updates) / r.wall_s);
+        cpu_rates.push_back(static_cast<double>(r.updates) / r.cpu_s);
+        if (avx512) {
+            const ThroughputRun sse2 = time_jacobi(scene, threads, false);
+            sse2_rates.push_back(static_cast<double>(sse2.updates) / sse2.wall_s);
+            sse2_cpu_rates.push_back(static_cast<double>(sse2.updates) / sse2.cpu_s);
+        }
     }
     const double rate = bench::median(rates);
-    return {{"vertices", scene.vertices},
-            {"numbering", scene.numbering},
-            {"threads", threads},
-            {"processed_per_iteration", processed},
-            {"vertex_updates_per_s", rate},
-            {"vertex_updates_per_s_per_core", rate / threads},
-            {"runs", rates},
-            // Updates per second of CPU time summed over the threads: the per-core rate with
-            // the time the other agents' processes took from us left out.
-            {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
-            {"runs_per_cpu_s", cpu_rates},
-            {"load_average_1min", loads},
-            {"timer", "wall time of " + std::to_string(kTimed) +
-                          " consecutive iterations after a warm-up one, median of " +
-                          std::to_string(runs) + " runs (other agents share the 2 cores)"}};
+    nlohmann::json out = {
+        {"vertices", scene.vertices},
+        {"numbering", scene.numbering},
+        {"threads", threads},
+        {"rows", avx512 ? "avx512" : "sse2"},
+        {"processed_per_iteration", processed},
+        {"vertex_updates_per_s", rate},
+        {"vertex_updates_per_s_per_core", rate / threads},
+        {"runs", rates},
+        // Updates per second of CPU time summed over the threads: the per-core rate with
+        // the time the other agents' processes took from us left out.
+        {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
+        {"runs_per_cpu_s", cpu_rates},
+        {"load_average_1min", loads},
+        {"timer", "wall time of " + std::to_string(kTimed) +
+                      " consecutive iterations after a warm-up one, median of " +
+                      std::to_string(runs) + " runs (other agents share the 2 cores)"}};
+    if (avx512) {
+        // The same runs with the SSE2 rows, each right after its AVX-512 run, so that both see
+        // the same machine: the ratio of the medians is the AVX-512 rows' gain.
+        out["sse2_rows"] = {{"vertex_updates_per_s", bench::median(sse2_rates)},
+                            {"vertex_updates_per_cpu_s", bench::median(sse2_cpu_rates)},
+                            {"runs", sse2_rates}};
+        out["avx512_over_sse2"] = rate / bench::median(sse2_rates);
+    }
+    return out;
 }
 
 nlohmann::json jacobi_throughputs(bool quick, int runs) {

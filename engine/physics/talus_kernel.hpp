@@ -75,8 +75,10 @@ enum class RowPasses {
     /// A branch per slot: cheapest where few edges flow and the branches predict well, as on
     /// a terrain coming to rest. The sequential schedule always runs these.
     Branching,
-    /// No branch per slot, two slots per SSE2 operation: for an active terrain, where whether
-    /// an edge flows is a coin toss and mispredicted branches cost more than the arithmetic.
+    /// No branch per slot, two slots per SSE2 operation (in the Jacobi schedule, a whole row of
+    /// up to eight per AVX-512 operation where the CPU has it: talus_kernel_avx512.hpp): for
+    /// an active terrain, where whether an edge flows is a coin toss and mispredicted branches
+    /// cost more than the arithmetic.
     /// The Jacobi schedule picks these when enough of its slots flowed in the iteration before
     /// (TalusSolver: 10⁶ active vertices relax a quarter faster). Without a relocation radius
     /// only; with one, the rows branch. (Listing the flowing slots instead, so that the later
@@ -159,6 +161,26 @@ inline RowExcess flowing_volumes(std::uint32_t i, std::uint32_t begin, std::uint
     return out;
 }
 
+/// The end of talus_row_scale, once a row's excess is known and flows (excess.largest > 0):
+/// the factor s for the row's levelling volumes, of vertex i with height hi (m), lumped area
+/// area_i (m²) and bedrock bedrock_i (m). Not positive when no sand lies above the bedrock.
+inline double outflow_scale(const RowExcess& excess, double hi, double area_i, double bedrock_i,
+                            const TalusParameters& p, double random_factor) {
+    const double levelling = excess.levelling;
+    double scale = p.damping * random_factor;
+    const double cap = p.damping * excess.largest * area_i;
+    if (scale * levelling > cap) scale = cap / levelling;
+    const double available = area_i * (hi - bedrock_i);
+    if (scale * levelling > available) scale = std::max(available, 0.0) / levelling;
+    return scale;
+}
+
+/// Below a few ulps of the height hi an "excess" is rounding noise; acting on it would make
+/// two nearly coincident vertices trade the last bit forever.
+inline double excess_floor(double hi) {
+    return 64.0 * 2.220446049250313e-16 * (hi < 0.0 ? -hi : hi);
+}
+
 }  // namespace detail
 
 /// The first part of talus_outflow: writes q[k] (m³), the volume that would level each
@@ -175,9 +197,7 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
     constexpr bool kBranchFree = !kRelocation && kPasses == RowPasses::BranchFree;
     const double hi = height[i];
     const std::uint32_t end = begin + degree;
-    // Below a few ulps of the height an "excess" is rounding noise; acting on it would make
-    // two nearly coincident vertices trade the last bit forever.
-    const double floor = 64.0 * 2.220446049250313e-16 * (hi < 0.0 ? -hi : hi);
+    const double floor = detail::excess_floor(hi);
     detail::RowExcess excess;
     if constexpr (kBranchFree) {
         (void)longest;
@@ -218,12 +238,7 @@ inline double talus_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_
             }
         }
     }
-    const double levelling = excess.levelling;
-    double scale = p.damping * random_factor;
-    const double cap = p.damping * excess.largest * area[i];
-    if (scale * levelling > cap) scale = cap / levelling;
-    const double available = area[i] * (hi - bedrock[i]);
-    if (scale * levelling > available) scale = std::max(available, 0.0) / levelling;
+    const double scale = detail::outflow_scale(excess, hi, area[i], bedrock[i], p, random_factor);
     if (!(scale > 0.0)) {  // no sand above the bedrock: nothing leaves
         for (std::uint32_t k = begin; k < end; ++k)
             q[k] = 0.0;

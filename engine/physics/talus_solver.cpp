@@ -1,5 +1,7 @@
 #include "physics/talus_solver.hpp"
 
+#include "physics/talus_kernel_avx512.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <memory>
@@ -47,6 +49,27 @@ inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const Tal
         __builtin_prefetch(a.area + t);
         if (longest != nullptr) __builtin_prefetch(longest + t);
     }
+}
+
+/// The branch-free sending of a row's levelling volumes q[0, degree) scaled by `scale`, in row
+/// order (what talus_outflow does, so the returned total is the same sum bit for bit): one visit
+/// of the row. No branch per slot: a slot that does not flow writes its +0.0 into an inflow slot
+/// that holds +0.0 already, and marks nothing. Only neighbours that receive something are
+/// marked: one that gets 0 from every sender and sends nothing itself would gather exactly 0
+/// and keep its height. `target` and `reverse` point at the row's slots.
+inline double send_branch_free(const double* q, std::uint32_t degree, double scale,
+                               const std::uint32_t* target, const std::uint32_t* reverse,
+                               double* inflow, std::uint64_t* receive, std::size_t& flowing) {
+    double sent = 0.0;
+    for (std::uint32_t k = 0; k < degree; ++k) {
+        const double volume = q[k] * scale;
+        sent += volume;
+        const bool flows = volume > 0.0;
+        mark(receive, target[k], flows);
+        flowing += flows ? 1u : 0u;
+        inflow[reverse[k]] = volume;  // only this sender writes the slot of the edge into target
+    }
+    return sent;
 }
 
 }  // namespace
@@ -218,7 +241,15 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
 
     // Phase 1: outflow of every active vertex along each of its edges, from the old heights;
     // senders mark themselves and the neighbours they send to as receivers.
-    if (row_passes_ == RowPasses::BranchFree) {
+    static const bool avx512 = avx512_rows_supported();
+    if (row_passes_ == RowPasses::BranchFree && avx512 && settings_.avx512_rows &&
+        settings_.parameters.relocation_radius == 0.0) {
+#if SANDTIN_HAVE_AVX512_ROWS
+        run(list.size(), threaded, [this](std::size_t b, std::size_t e, ThreadScratch& s) {
+            jacobi_outflow_avx512(b, e, s);
+        });
+#endif
+    } else if (row_passes_ == RowPasses::BranchFree) {
         run(list.size(), threaded, [this](std::size_t b, std::size_t e, ThreadScratch& s) {
             jacobi_outflow<RowPasses::BranchFree>(b, e, s);
         });
@@ -313,24 +344,17 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
                                                   a.height, a.area, a.bedrock, a.tan_alpha[i],
                                                   settings_.parameters, random_factor(a, i), q,
                                                   [&s](std::uint32_t v) { s.splits.push_back(v); });
-        // Scaled as they are sent (what talus_outflow does, in the same order, so
-        // `sent` is the same sum bit for bit): one visit of the row instead of two. Only
-        // neighbours that receive something are marked: one that gets 0 from every sender and
-        // sends nothing itself would gather exactly 0 and keep its height.
+        // Scaled as they are sent, in row order (see send_branch_free); only neighbours that
+        // receive something are marked.
         double sent = 0.0;
         if (scale > 0.0) {
-            for (std::uint32_t k = 0; k < deg; ++k) {
-                const std::uint32_t t = target[row + k];
-                if constexpr (kPasses == RowPasses::BranchFree) {
-                    // No branch: a slot that does not flow writes its +0.0 into an inflow
-                    // slot that holds +0.0 already, and marks nothing.
-                    const double volume = q[k] * scale;
-                    sent += volume;
-                    const bool flows = volume > 0.0;
-                    mark(receive, t, flows);
-                    census.flowing += flows ? 1u : 0u;
-                    inflow[reverse[row + k]] = volume;
-                } else if (q[k] > 0.0) {
+            if constexpr (kPasses == RowPasses::BranchFree) {
+                sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow, receive,
+                                        census.flowing);
+            } else {
+                for (std::uint32_t k = 0; k < deg; ++k) {
+                    if (!(q[k] > 0.0)) continue;
+                    const std::uint32_t t = target[row + k];
                     const double volume = q[k] * scale;
                     sent += volume;
                     if (volume > 0.0) {
@@ -356,6 +380,81 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
     s.moved = moved;
     s.census = census;
 }
+
+#if SANDTIN_HAVE_AVX512_ROWS
+// jacobi_outflow<RowPasses::BranchFree> with the AVX-512 rows (talus_kernel_avx512.hpp) for
+// rows of up to eight slots, and the SSE2 passes for longer ones: the same results bit for bit.
+SANDTIN_AVX512_TARGET void TalusSolver::jacobi_outflow_avx512(std::size_t begin, std::size_t end,
+                                                              ThreadScratch& s) {
+    const AdjacencyGraph& g = *pass_.graph;
+    const TalusArrays& a = *pass_.arrays;
+    const TalusParameters& p = settings_.parameters;
+    const std::uint32_t* list = pass_.active->list_.data();
+    const std::uint32_t* target = g.targets().data();
+    const std::uint32_t* reverse = g.reverses().data();
+    const double* length = g.lengths().data();
+    const double* longest = g.longest_edges().data();
+    const std::uint32_t* offset = g.offsets().data();
+    const std::uint32_t* degree = g.degrees().data();
+    const RowWords* row_words = g.row_words().data();
+    const std::size_t rows = g.degrees().size();
+    double* q = s.row_q.data();
+    double* inflow = inflow_.data();
+    double* out = out_.data();
+    std::uint64_t* receive = s.receive.data();
+    std::size_t lo = s.receive_lo, hi = s.receive_hi;
+    std::uint32_t first = s.first, last = s.last;
+    double moved = 0.0;
+    RowCensus census = s.census;
+    for (std::size_t idx = begin; idx < end; ++idx) {
+        const std::uint32_t i = list[idx];
+        if (idx + kPrefetchDistance < end)
+            prefetch_outflow(list[idx + kPrefetchDistance], g, a, nullptr);
+        first = std::min(first, i);
+        last = std::max(last, i);
+        const std::uint32_t deg = i < rows ? degree[i] : 0;
+        if (deg == 0) continue;
+        const std::uint32_t row = offset[i];
+        census.slots += deg;
+        double sent = 0.0;
+        if (deg <= detail::kAvx512RowSlots) {
+            const double hi_i = a.height[i];
+            const detail::Avx512Row volumes =
+                detail::avx512_flowing_volumes(i, deg, target + row, length + row, a.height, a.area,
+                                               a.tan_alpha[i], p, detail::excess_floor(hi_i));
+            if (!(volumes.excess.largest > 0.0)) continue;
+            const double scale = detail::outflow_scale(volumes.excess, hi_i, a.area[i],
+                                                       a.bedrock[i], p, random_factor(a, i));
+            if (scale > 0.0)
+                sent = detail::avx512_send(volumes.volume, deg, scale, target + row, reverse + row,
+                                           inflow, receive, census.flowing);
+        } else {
+            if (deg > s.row_q.size()) {  // rare: rows have a handful of slots
+                s.row_q.resize(deg);
+                q = s.row_q.data();
+            }
+            const double scale = talus_scale<RowPasses::BranchFree>(
+                i, 0, deg, target + row, length + row, longest, a.height, a.area, a.bedrock,
+                a.tan_alpha[i], p, random_factor(a, i), q, [](std::uint32_t) {});
+            if (scale > 0.0)
+                sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow, receive,
+                                        census.flowing);
+        }
+        moved += sent;
+        if (sent > 0.0) {
+            out[i] = sent;  // the gather takes it, and leaves 0 (see out_)
+            mark(receive, i);
+            widen_to_row(row_words, i, lo, hi);
+        }
+    }
+    s.receive_lo = lo;
+    s.receive_hi = hi;
+    s.first = first;
+    s.last = last;
+    s.moved = moved;
+    s.census = census;
+}
+#endif
 
 void TalusSolver::jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s) {
     const AdjacencyGraph& g = *pass_.graph;

@@ -34,6 +34,9 @@ struct TalusSettings {
     double randomness = 0.0;   ///< relative jitter of each outflow, in [0, 1); 0 = none
     std::uint64_t seed = 1;    ///< seed of the jitter (results depend on it deterministically)
     int threads = 1;           ///< Jacobi worker threads
+    /// Jacobi: the branch-free rows in AVX-512 where the CPU runs it (avx512_rows_supported()),
+    /// else in SSE2. The results are the same bit for bit; false is for comparing the two.
+    bool avx512_rows = true;
 };
 
 /// The defaults with the seeds' rule: no settle margin (TalusParameters::settle_margin), as
@@ -124,6 +127,9 @@ class TalusSolver {
                           std::vector<std::uint32_t>* split_around);
     template <RowPasses kPasses>
     void jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s);
+    /// jacobi_outflow<RowPasses::BranchFree> in AVX-512, without a relocation radius (only
+    /// called where avx512_rows_supported()).
+    void jacobi_outflow_avx512(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_age(std::size_t begin, std::size_t end, ThreadScratch& s);
     /// Runs body(begin, end, scratch) over [0, n) on the pool, or inline when n is small.

@@ -6,7 +6,8 @@
 // the changed vertices and the counts, on 1 and 2 threads, with and without bedrock, jitter
 // and a relocation radius. The reference computes outflows with the plain kernel in
 // reference_talus_kernel.hpp, so the optimised kernel is checked bit for bit as well, in both
-// its branching and its branch-free passes (the solver picks them by how much flows).
+// its branching and its branch-free passes (the solver picks them by how much flows), and the
+// latter in SSE2 and, where the CPU runs it, AVX-512.
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <random>
 
+#include "physics/talus_kernel_avx512.hpp"
 #include "physics/talus_solver.hpp"
 #include "reference_talus_kernel.hpp"
 #include "tin/tin.hpp"
@@ -97,12 +99,15 @@ struct Case {
     double randomness;
     double relocation_radius;
     bool bedrock;
+    /// The branch-free rows in AVX-512 where the CPU runs it (TalusSettings::avx512_rows).
+    bool avx512_rows = true;
 };
 
 void compare(const Case& c) {
     SCOPED_TRACE(::testing::Message()
                  << "threads " << c.threads << ", randomness " << c.randomness << ", r_S "
-                 << c.relocation_radius << ", bedrock " << c.bedrock);
+                 << c.relocation_radius << ", bedrock " << c.bedrock << ", AVX-512 rows "
+                 << (c.avx512_rows && avx512_rows_supported()));
     // 6000 vertices: above the threaded minimum at first, below it as the scene calms down,
     // so both the pooled and the inline paths run.
     const Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 6000, 5);
@@ -127,6 +132,7 @@ void compare(const Case& c) {
     settings.randomness = c.randomness;
     settings.seed = 9;
     settings.parameters.relocation_radius = c.relocation_radius;
+    settings.avx512_rows = c.avx512_rows;
     TalusSolver solver(settings);
     ReferenceJacobi reference(settings);
     const TalusArrays arrays{h.data(), va.lumped_area.data(), b.data(), tan.data(), n};
@@ -172,6 +178,7 @@ void compare(const Case& c) {
 TEST(JacobiSchedule, MatchesItsDefinitionBitForBit) {
     for (int threads : {1, 2}) {
         compare({threads, 0.0, 0.0, false});
+        compare({threads, 0.0, 0.0, false, false});  // the SSE2 rows on an AVX-512 CPU
         compare({threads, 0.4, 0.0, false});
         compare({threads, 0.4, 0.0, true});
         compare({threads, 0.0, 0.012, true});
