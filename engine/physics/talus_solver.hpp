@@ -111,7 +111,7 @@ class TalusSolver {
         std::vector<std::uint32_t> splits;   ///< phase 1, in list order
         std::vector<std::uint32_t> changed;  ///< phase 2, in id order
         std::vector<std::uint32_t> kept;     ///< phase 3: the next active list, in id order
-        std::vector<double> row_q;           ///< phase 1: the outflow of one row
+        std::vector<double> row_q;  ///< phase 1: the outflow of a row too long for the stack
     };
     /// What the Jacobi phases read, so the pool's task captures `this` only (no allocation).
     struct JacobiPass {
