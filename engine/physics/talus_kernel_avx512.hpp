@@ -22,11 +22,15 @@
 // GCC 12 warns of an uninitialised variable inside its own AVX-512 intrinsics (the
 // _mm512_undefined_pd() of their unmasked forms, GCC bug 105593); warnings inside inlined code
 // follow the state at the header's lines, so the include is where to silence it.
+#if defined(__clang__)
+#include <immintrin.h>
+#else
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
+#endif
 #define SANDTIN_AVX512_TARGET __attribute__((target("avx512f")))
 #else
 #define SANDTIN_HAVE_AVX512_ROWS 0
