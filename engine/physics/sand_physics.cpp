@@ -264,8 +264,8 @@ PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* chang
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<std::uint32_t> split_local, split_around;
     // Heights stay in height_ for the whole step: writing them into the TIN every iteration and
-    // reading them back through the change journal cost about 12 % of the step
-    // (physics-perf.md). They go into the TIN at the end and before refinement, which
+    // reading them back through the change journal cost about 12 % of the step (a 60 000-vertex
+    // dig eroded to rest, Jacobi). They go into the TIN at the end and before refinement, which
     // interpolates the TIN's heights.
     sync();
     for (int it = 0; it < iterations; ++it) {

@@ -96,7 +96,7 @@ TEST(AnalyticPile, TwoTriangleFlatTerrainGrowsItsOwnDetail) {
 
 TEST(AnalyticPile, TwoTriangleFlatTerrainJacobi) {
     // The Jacobi schedule from two triangles, on 2 threads. r_S = 2 cm keeps it to about
-    // 1e4 iterations (r_S = 1 cm rests after about 6e4; see notes/physics-perf.md).
+    // 1e4 iterations (r_S = 1 cm rests after about 6e4).
     Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0));
     const PileResult p = pour_and_settle(tin, 0.02, Schedule::Jacobi, 100, 50, 2);
     expect_cone(p);
