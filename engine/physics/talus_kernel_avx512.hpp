@@ -1,12 +1,12 @@
 #pragma once
 // The branch-free passes of the talus kernel (detail::flowing_volumes) for a row of up to eight
 // slots in one AVX-512 register: two divisions for the whole row, and masks instead of
-// branches. Same operations, in the same
-// order per slot, as the two-lane SSE2 passes, and the levelling volumes are summed in row
-// order as they are, so the results are the same bit for bit (talus_kernel_test compares them).
-// The caller checks avx512_rows_supported() once and compiles its loop for the ISA with
-// SANDTIN_AVX512_TARGET. Compiled only for x86-64 GCC and Clang; elsewhere
-// avx512_rows_supported() is false and the SSE2 passes run.
+// branches. Each slot takes the same operations, in the same order, as in the two-lane SSE2
+// passes, and the volumes are summed in row order as there, so the results are the same bit
+// for bit (talus_kernel_avx512_test compares them with the plain kernel). The caller checks
+// avx512_rows_supported() once and compiles its loop for the ISA with SANDTIN_AVX512_TARGET.
+// Compiled only for x86-64 GCC and Clang; elsewhere avx512_rows_supported() is false and the
+// SSE2 passes run.
 //
 // No multiply-add may be fused here: AVX-512 has fused multiply-adds, and GCC's default in C++
 // (-ffp-contract=fast) allows it to fuse vector expressions. The project builds with
