@@ -316,15 +316,19 @@ double load_average() {
     return one;
 }
 
+/// Iterations each throughput run times, after a warm-up one.
+constexpr int kTimed = 6;
+
 /// One timed run of jacobi_throughput: wall and CPU seconds of kTimed iterations.
 struct ThroughputRun {
     double wall_s = 0.0;
     double cpu_s = 0.0;
     std::size_t updates = 0;
+    double rate() const { return static_cast<double>(updates) / wall_s; }
+    double cpu_rate() const { return static_cast<double>(updates) / cpu_s; }
 };
 
 ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, bool avx512_rows) {
-    constexpr int kTimed = 6;
     std::vector<double> height = scene.height;
     std::vector<double> tan(height.size(), tan_alpha());
     TalusSettings settings;
@@ -349,7 +353,6 @@ ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, bool avx512
 }
 
 nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
-    constexpr int kTimed = 6;
     const bool avx512 = avx512_rows_supported();
     std::vector<double> rates, cpu_rates, loads;
     std::vector<double> sse2_rates, sse2_cpu_rates;  // the SSE2 rows, alternating with AVX-512
@@ -360,14 +363,14 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
         const bool sse2_first = avx512 && run % 2 == 1;
         auto time_sse2 = [&] {
             const ThroughputRun sse2 = time_jacobi(scene, threads, false);
-            sse2_rates.push_back(static_cast<double>(sse2.updates) / sse2.wall_s);
-            sse2_cpu_rates.push_back(static_cast<double>(sse2.updates) / sse2.cpu_s);
+            sse2_rates.push_back(sse2.rate());
+            sse2_cpu_rates.push_back(sse2.cpu_rate());
         };
         if (sse2_first) time_sse2();
         const ThroughputRun r = time_jacobi(scene, threads, true);
         processed = r.updates / kTimed;
-        rates.push_back(static_cast<double>(r.updates) / r.wall_s);
-        cpu_rates.push_back(static_cast<double>(r.updates) / r.cpu_s);
+        rates.push_back(r.rate());
+        cpu_rates.push_back(r.cpu_rate());
         if (avx512 && !sse2_first) time_sse2();
     }
     const double rate = bench::median(rates);
@@ -415,7 +418,6 @@ nlohmann::json jacobi_throughputs(bool quick, int runs) {
 /// fresh SandPhysics (not timed), takes one warm-up iteration and then times one step of
 /// `kTimed` iterations; updates per CPU-second, median of `runs`.
 nlohmann::json sand_physics_throughputs(bool quick, int runs) {
-    constexpr int kTimed = 6;
     const int n = quick ? 200 : 999;
     Tin tin = Tin::regular_grid(
         Rect::from_size(1.0, 1.0), n, n,
