@@ -149,23 +149,6 @@ SANDTIN_AVX512_TARGET inline double avx512_send(__m512d volume, std::uint32_t de
     return avx512_sum_in_order(sent);
 }
 
-/// One row of the Jacobi schedule's phase 1 (TalusSolver::jacobi_outflow), 1 <= degree <= 8,
-/// no relocation radius: the row's volumes, scaled as talus_row_scale scales them, sent by
-/// avx512_send. Returns the volume that leaves vertex i (m³).
-SANDTIN_AVX512_TARGET inline double avx512_send_row(
-    std::uint32_t i, std::uint32_t degree, const std::uint32_t* target,
-    const std::uint32_t* reverse, const double* length, const double* height, const double* area,
-    const double* bedrock, double tan_alpha, const TalusParameters& p, double random_factor,
-    double* inflow, std::uint64_t* receive, std::size_t& flowing) {
-    const double hi = height[i];
-    const Avx512Row row = avx512_flowing_volumes(i, degree, target, length, height, area, tan_alpha,
-                                                 p, excess_floor(hi));
-    if (!(row.excess.largest > 0.0)) return 0.0;
-    const double scale = outflow_scale(row.excess, hi, area[i], bedrock[i], p, random_factor);
-    if (!(scale > 0.0)) return 0.0;
-    return avx512_send(row.volume, degree, scale, target, reverse, inflow, receive, flowing);
-}
-
 /// talus_outflow for a row of 1 to 8 slots without a relocation radius, in AVX-512: writes
 /// q[0, degree) (m³) and returns their total, bit for bit as talus_outflow does. What the
 /// tests compare with the plain kernel; the Jacobi schedule sends as it scales instead

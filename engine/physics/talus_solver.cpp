@@ -320,10 +320,8 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
     return stats;
 }
 
-// Always inlined, so that jacobi_outflow_avx512 compiles it for its ISA.
-template <RowPasses kPasses, bool kAvx512>
-[[gnu::always_inline]] inline void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end,
-                                                               ThreadScratch& s) {
+template <RowPasses kPasses>
+void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s) {
     const AdjacencyGraph& g = *pass_.graph;
     const TalusArrays& a = *pass_.arrays;
     const std::uint32_t* list = pass_.active->list_.data();
@@ -331,9 +329,8 @@ template <RowPasses kPasses, bool kAvx512>
     const std::uint32_t* reverse = g.reverses().data();
     const double* length = g.lengths().data();
     const double* longest = g.longest_edges().data();
-    // Without a relocation radius (always so with kAvx512) the kernel never reads `longest`.
     const double* prefetch_longest =
-        !kAvx512 && settings_.parameters.relocation_radius > 0.0 ? longest : nullptr;
+        settings_.parameters.relocation_radius > 0.0 ? longest : nullptr;
     const std::uint32_t* offset = g.offsets().data();
     const std::uint32_t* degree = g.degrees().data();
     const RowWords* row_words = g.row_words().data();
@@ -356,39 +353,29 @@ template <RowPasses kPasses, bool kAvx512>
         if (deg == 0) continue;
         const std::uint32_t row = offset[i];
         census.slots += deg;
+        double* q = row_buffer(stack_q, s.row_q, deg);
+        const double scale = talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
+                                                  a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                                  settings_.parameters, random_factor(a, i), q,
+                                                  [&s](std::uint32_t v) { s.splits.push_back(v); });
+        // Scaled as they are sent, in row order (see send_branch_free); only neighbours that
+        // receive something are marked.
         double sent = 0.0;
-#if SANDTIN_HAVE_AVX512_ROWS
-        if (kAvx512 && deg <= detail::kAvx512RowSlots) {
-            sent =
-                detail::avx512_send_row(i, deg, target + row, reverse + row, length + row, a.height,
-                                        a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                        random_factor(a, i), inflow, receive, census.flowing);
-        } else
-#endif
-        {
-            double* q = row_buffer(stack_q, s.row_q, deg);
-            const double scale = talus_scale<kPasses>(
-                i, 0, deg, target + row, length + row, longest, a.height, a.area, a.bedrock,
-                a.tan_alpha[i], settings_.parameters, random_factor(a, i), q,
-                [&s](std::uint32_t v) { s.splits.push_back(v); });
-            // Scaled as they are sent, in row order (see send_branch_free); only neighbours
-            // that receive something are marked.
-            if (scale > 0.0) {
-                if constexpr (kPasses == RowPasses::BranchFree) {
-                    sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow,
-                                            receive, census.flowing);
-                } else {
-                    for (std::uint32_t k = 0; k < deg; ++k) {
-                        if (!(q[k] > 0.0)) continue;
-                        const std::uint32_t t = target[row + k];
-                        const double volume = q[k] * scale;
-                        sent += volume;
-                        if (volume > 0.0) {
-                            mark(receive, t);
-                            ++census.flowing;
-                            // Only this sender writes the slot of the edge into target (row + k).
-                            inflow[reverse[row + k]] = volume;
-                        }
+        if (scale > 0.0) {
+            if constexpr (kPasses == RowPasses::BranchFree) {
+                sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow, receive,
+                                        census.flowing);
+            } else {
+                for (std::uint32_t k = 0; k < deg; ++k) {
+                    if (!(q[k] > 0.0)) continue;
+                    const std::uint32_t t = target[row + k];
+                    const double volume = q[k] * scale;
+                    sent += volume;
+                    if (volume > 0.0) {
+                        mark(receive, t);
+                        ++census.flowing;
+                        // Only this sender writes the slot of the edge into target (row + k).
+                        inflow[reverse[row + k]] = volume;
                     }
                 }
             }
@@ -409,10 +396,74 @@ template <RowPasses kPasses, bool kAvx512>
 }
 
 #if SANDTIN_HAVE_AVX512_ROWS
-// The loop above compiled for AVX-512, with the AVX-512 rows (jacobi_outflow is inlined here).
+// jacobi_outflow<RowPasses::BranchFree> with the AVX-512 rows (talus_kernel_avx512.hpp) for
+// rows of up to eight slots, and the SSE2 passes for longer ones: the same results bit for bit.
 SANDTIN_AVX512_TARGET void TalusSolver::jacobi_outflow_avx512(std::size_t begin, std::size_t end,
                                                               ThreadScratch& s) {
-    jacobi_outflow<RowPasses::BranchFree, true>(begin, end, s);
+    const AdjacencyGraph& g = *pass_.graph;
+    const TalusArrays& a = *pass_.arrays;
+    const TalusParameters& p = settings_.parameters;
+    const std::uint32_t* list = pass_.active->list_.data();
+    const std::uint32_t* target = g.targets().data();
+    const std::uint32_t* reverse = g.reverses().data();
+    const double* length = g.lengths().data();
+    const double* longest = g.longest_edges().data();
+    const std::uint32_t* offset = g.offsets().data();
+    const std::uint32_t* degree = g.degrees().data();
+    const RowWords* row_words = g.row_words().data();
+    const std::size_t rows = g.degrees().size();
+    std::array<double, kStackRowSlots> stack_q;  // see kStackRowSlots
+    double* inflow = inflow_.data();
+    double* out = out_.data();
+    std::uint64_t* receive = s.receive.data();
+    std::size_t lo = s.receive_lo, hi = s.receive_hi;
+    std::uint32_t first = s.first, last = s.last;
+    double moved = 0.0;
+    RowCensus census = s.census;
+    for (std::size_t idx = begin; idx < end; ++idx) {
+        const std::uint32_t i = list[idx];
+        if (idx + kPrefetchDistance < end)
+            prefetch_outflow(list[idx + kPrefetchDistance], g, a, nullptr);
+        first = std::min(first, i);
+        last = std::max(last, i);
+        const std::uint32_t deg = i < rows ? degree[i] : 0;
+        if (deg == 0) continue;
+        const std::uint32_t row = offset[i];
+        census.slots += deg;
+        double sent = 0.0;
+        if (deg <= detail::kAvx512RowSlots) {
+            const double hi_i = a.height[i];
+            const detail::Avx512Row volumes =
+                detail::avx512_flowing_volumes(i, deg, target + row, length + row, a.height, a.area,
+                                               a.tan_alpha[i], p, detail::excess_floor(hi_i));
+            if (!(volumes.excess.largest > 0.0)) continue;
+            const double scale = detail::outflow_scale(volumes.excess, hi_i, a.area[i],
+                                                       a.bedrock[i], p, random_factor(a, i));
+            if (scale > 0.0)
+                sent = detail::avx512_send(volumes.volume, deg, scale, target + row, reverse + row,
+                                           inflow, receive, census.flowing);
+        } else {
+            double* q = row_buffer(stack_q, s.row_q, deg);
+            const double scale = talus_scale<RowPasses::BranchFree>(
+                i, 0, deg, target + row, length + row, longest, a.height, a.area, a.bedrock,
+                a.tan_alpha[i], p, random_factor(a, i), q, [](std::uint32_t) {});
+            if (scale > 0.0)
+                sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow, receive,
+                                        census.flowing);
+        }
+        moved += sent;
+        if (sent > 0.0) {
+            out[i] = sent;  // the gather takes it, and leaves 0 (see out_)
+            mark(receive, i);
+            widen_to_row(row_words, i, lo, hi);
+        }
+    }
+    s.receive_lo = lo;
+    s.receive_hi = hi;
+    s.first = first;
+    s.last = last;
+    s.moved = moved;
+    s.census = census;
 }
 #endif
 

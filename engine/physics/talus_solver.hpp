@@ -125,13 +125,10 @@ class TalusSolver {
                               std::vector<std::uint32_t>* split_around);
     IterationStats jacobi(const AdjacencyGraph& g, const TalusArrays& a, ActiveSet& active,
                           std::vector<std::uint32_t>* split_around);
-    /// Phase 1 over list entries [begin, end). kAvx512: rows of up to eight slots take the
-    /// AVX-512 rows (talus_kernel_avx512.hpp), which assume no relocation radius; only
-    /// jacobi_outflow_avx512 sets it.
-    template <RowPasses kPasses, bool kAvx512 = false>
+    template <RowPasses kPasses>
     void jacobi_outflow(std::size_t begin, std::size_t end, ThreadScratch& s);
-    /// jacobi_outflow<RowPasses::BranchFree, true> compiled for AVX-512, without a relocation
-    /// radius (only called where avx512_rows_supported()).
+    /// jacobi_outflow<RowPasses::BranchFree> in AVX-512, without a relocation radius (only
+    /// called where avx512_rows_supported()).
     void jacobi_outflow_avx512(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_gather(std::size_t begin, std::size_t end, ThreadScratch& s);
     void jacobi_age(std::size_t begin, std::size_t end, ThreadScratch& s);
