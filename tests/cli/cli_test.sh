@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of the sandtin CLI.
 # usage: cli_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get
-#   scenarios: roundtrip, bad_input, bench, demo, run_good, run_bad
+#   scenarios: roundtrip, bad_input, bench, demo, run_good, run_bad, readme_script
 # json_get (tests/cli/json_get.cpp) reads values out of the JSON the CLI prints.
 set -uo pipefail
 
@@ -9,6 +9,7 @@ SANDTIN=${1:?path to the sandtin binary}
 SCENARIO=${2:?scenario}
 WORK=${3:?work directory}
 JSON_GET=${4:?path to json_get}
+README=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)/README.md
 
 rm -rf "$WORK"
 mkdir -p "$WORK"
@@ -372,6 +373,36 @@ scenario_run_bad() {
     return 0
 }
 
+# The example script in README.md ("Scripts") runs as the README says: its foot stroke digs a
+# groove, its pour adds exactly its volume, and its save op writes next to the script. Without a
+# depth the same stroke changes nothing on flat sand, as the README says too.
+scenario_readme_script() {
+    awk '/To cut a groove, give a depth:/ { want = 1; next }
+         want && /^```json$/ { inside = 1; next }
+         inside && /^```$/ { exit }
+         inside { print }' "$README" >readme.json
+    [[ -s readme.json ]] || { fail "no example script after 'To cut a groove' in $README"; return; }
+    expect_ok readme run readme.json -o readme.sandtin --json || return
+    check_eq "README script ops" "$(json readme.out /steps/0/op /steps/1/op /steps/3/op | tr '\n' ' ')" \
+        "stroke pour save "
+    check_eq "README script valid" "$(json readme.out /terrain/valid)" true
+    # The stroke's own account of what it dug. The foot (assets/tools/foot.obj) is 0.26 m long
+    # and 0.1 m wide, so it sweeps at most 0.86 x 0.1 m along the 0.6 m path, and it digs at
+    # most 1 cm deep: below 8.6e-4 m^3. It must dig more than 0.1 mm over that box.
+    holds "the README stroke dug" "a > 8.6e-6 && a < 8.6e-4" \
+        "$(json readme.out /steps/0/displaced_volume)"
+    abs_le "$(json readme.out /steps/1/volume_change)" 0.0005 1e-12 "the README pour"
+    [[ -s groove.sandtin ]] || fail "the README script's save op wrote no groove.sandtin"
+    expect_ok readme_info info groove.sandtin --json || return
+    check_eq "saved checkpoint valid" "$(json readme_info.out /valid)" true
+
+    sed 's/, "depth": 0.01//' readme.json >nodepth.json
+    grep -q '"depth"' nodepth.json && { fail "could not take the depth out of the script"; return; }
+    expect_ok nodepth run nodepth.json -o nodepth.sandtin --json || return
+    check_eq "a stroke without depth on flat sand" "$(json nodepth.out /steps/0/displaced_volume)" 0.0
+    return 0
+}
+
 case "$SCENARIO" in
     roundtrip) scenario_roundtrip ;;
     bad_input) scenario_bad_input ;;
@@ -379,6 +410,7 @@ case "$SCENARIO" in
     demo) scenario_demo ;;
     run_good) scenario_run_good ;;
     run_bad) scenario_run_bad ;;
+    readme_script) scenario_readme_script ;;
     *)
         echo "unknown scenario $SCENARIO" >&2
         exit 2
