@@ -217,7 +217,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // Which parts of I would move sand (imprint_activity.hpp); none at all: the terrain already
     // holds this imprint (re-working a trail), and the stamp changes nothing, so it adds no
     // vertices, constraints or releases either.
-    const double tol = tool.rim_tolerance();
+    // The rim tolerance scales with the tool (1 % of its radius by default), so on its own it
+    // would let a big tool pressed in shallower than that change nothing at all (a 1.5 m tool
+    // 1 cm deep). Relief below the simplification tolerance d_m is not worth enforcing either
+    // (the simplifier would take it away): the smaller of the two decides.
+    const double tol = std::min(tool.rim_tolerance(), context.settings.simplify.tolerance);
     const double lateral = tool.shape().gap;
     const ImprintActivity activity =
         inner_contour_activity(tin, inner, imprint, tol, lateral, hint);

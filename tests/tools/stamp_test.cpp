@@ -656,6 +656,60 @@ TEST(Stamp, ToolPartlyOutsideTheDomainKeepsAValidMesh) {
     EXPECT_NEAR(tin.volume(), test::brute_force_volume(tin), 1e-12);
 }
 
+// A tool's rim tolerance is 1 % of its radius: a big tool pressed in less than that must still
+// dig (it once changed nothing, because the same tolerance decided whether the stamp acts).
+// Oracle: the floor, and the volume as area times depth, since the terrain is flat.
+TEST(Stamp, ABigToolPressedInShallowerThanItsRimToleranceStillDigs) {
+    Tin tin = Tin::random_points(kUnit, 3000, 64, [](Vec2) { return 0.1; });
+    SculptContext context(tin.domain());
+    const Tool tool = circle_tool(0.3, 48);
+    ASSERT_GT(tool.rim_tolerance(), 0.002);  // the premise: deeper than the cut below
+    ASSERT_LT(context.settings.simplify.tolerance, 0.002);
+    const ToolPlacement at{{0.5, 0.5}, 0.0, 0.1 - 0.002};
+    const double volume_before = tin.volume();
+    const StampReport r = stamp(tin, tool, at, context);
+    ASSERT_TRUE(r.applied);
+    ASSERT_TRUE(mesh_is_sound(tin));
+    // The surface inside I is the floor (its vertices there were simplified away, so it is
+    // sampled between them).
+    const std::vector<Vec2> inner = world(at, tool.shape().inner);
+    std::size_t sampled = 0;
+    LocateHint hint;
+    for (Vec2 p : test::random_points_in(kUnit, 2000, 2)) {
+        if (!inside_by(p, inner, 1e-9)) continue;
+        ++sampled;
+        const std::optional<double> h = tin.height_at(p, &hint);
+        ASSERT_TRUE(h.has_value());
+        EXPECT_NEAR(*h, at.bottom, 1e-12) << "at " << p.x << ", " << p.y;
+    }
+    EXPECT_GT(sampled, 400u);
+    // At least the floor's prism went (I's area times 2 mm), at most O's.
+    const double inner_area = static_cast<double>(test::signed_area_ld(inner));
+    const double outer_area =
+        static_cast<double>(test::signed_area_ld(world(at, tool.shape().outer)));
+    EXPECT_GT(r.displaced_volume, inner_area * 0.002 * (1.0 - 1e-9));
+    EXPECT_LT(r.displaced_volume, outer_area * 0.002);
+    EXPECT_NEAR(volume_before - tin.volume(), r.displaced_volume, 1e-12);
+}
+
+// A tool larger than the whole terrain (both contours clipped to the domain's border) lowers
+// all of it to its floor: the volume goes down by exactly the domain's area times the depth.
+TEST(Stamp, AToolCoveringTheWholeDomainLowersAllOfIt) {
+    const Rect domain = Rect::from_size(2.0, 1.0);
+    for (const double radius : {1.5, 100.0}) {
+        SCOPED_TRACE(radius);
+        Tin tin = Tin::random_points(domain, 2000, 65, [](Vec2) { return 0.1; });
+        SculptContext context(tin.domain());
+        const StampReport r = stamp(tin, circle_tool(radius, 64), {{1.0, 0.5}, 0.0, 0.09}, context);
+        ASSERT_TRUE(r.applied);
+        ASSERT_TRUE(mesh_is_sound(tin));
+        for (VertexId v : live_ids(tin))
+            EXPECT_NEAR(tin.height(v), 0.09, 1e-12);
+        EXPECT_NEAR(tin.volume(), 2.0 * 0.09, 1e-12);
+        EXPECT_NEAR(r.displaced_volume, 2.0 * 0.01, 1e-12);
+    }
+}
+
 TEST(Stamp, NonFinitePlacementThrowsAndChangesNothing) {
     Tin tin = Tin::random_points(kUnit, 300, 63, rolling_sand);
     SculptContext context(tin.domain());
