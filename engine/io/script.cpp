@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
+#include <span>
+#include <sstream>
 
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
@@ -153,12 +156,43 @@ void parse_depth(JsonFields& f, DepthMode& mode, double& value) {
     }
 }
 
+/// Most stamps or dabs one operation may place along its path: a million circle stamps take
+/// about five minutes; a spacing of 1e-7 m along a 1 m path would ask for ten million, an
+/// hour or more, and is almost certainly a typo.
+constexpr double kMaxPlacementsPerOperation = 1e6;
+
+/// Fails on the "spacing" field when a path of `length` metres would take more placements than
+/// kMaxPlacementsPerOperation, before any of them is computed.
+void check_placement_count(JsonFields& f, double length, double spacing) {
+    const double count = length / spacing;
+    if (!(count <= kMaxPlacementsPerOperation)) {
+        std::ostringstream what;
+        what << "of " << spacing << " m along a " << length << " m path asks for ";
+        if (count < 1e15) {
+            what << static_cast<long long>(count);
+        } else {
+            what << count;
+        }
+        what << " placements, more than the " << static_cast<long>(kMaxPlacementsPerOperation)
+             << " one operation allows; use a larger spacing or split the path";
+        f.fail_field("spacing", what.str());
+    }
+}
+
+double path_length(std::span<const Vec2> path) {
+    double length = 0.0;
+    for (std::size_t k = 1; k < path.size(); ++k)
+        length += distance(path[k - 1], path[k]);
+    return length;
+}
+
 /// "at": one point, or "path" (+ "curve", "spacing"): points every `spacing` metres.
 std::vector<Vec2> parse_points(JsonFields& f, double default_spacing) {
     if (f.has("at") == f.has("path")) f.fail("give exactly one of 'at' or 'path'");
     if (f.has("at")) return {f.point("at")};
     std::vector<Vec2> path = f.points("path", 1);
     const double spacing = f.positive("spacing", default_spacing);
+    check_placement_count(f, path_length(path), spacing);
     if (f.boolean("curve", false)) path = catmull_rom(path, spacing / 4.0);
     StrokeSampler sampler(spacing);
     std::vector<Vec2> out;
@@ -234,6 +268,7 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         s.tool = parse_tool(f, base_dir);
         s.path = f.points("path", 1);
         s.settings.spacing = f.positive("spacing", 0.25 * s.tool->radius());
+        check_placement_count(f, path_length(s.path), s.settings.spacing);
         if (f.boolean("curve", false)) s.path = catmull_rom(s.path, s.settings.spacing / 4.0);
         parse_depth(f, s.settings.depth_mode, s.settings.depth);
         s.settings.follow_path = f.boolean("follow_path", true);

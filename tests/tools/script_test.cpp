@@ -195,6 +195,20 @@ TEST(Script, ErrorsNameTheLineAndTheField) {
          {"terrain", "size"}},
         {"operations not an array", R"({"operations": {"op": "pour"}})", {"operations"}},
         {"operation not an object", "[\n  42\n]", {"script.json:2:", "object"}},
+        // 1.41 m / 1e-7 m = 14 million stamps, past the million one operation may place (it
+        // used to run for hours); the same for a pour's and a brush's dabs.
+        {"stroke spacing too fine",
+         "[\n  {\"op\": \"stroke\", \"tool\": {\"asset\": \"circle\"}, \"path\": [[0, 0], [1, "
+         "1]], \"spacing\": 1e-7, \"depth\": 0.01}\n]",
+         {"script.json:2:", "spacing", "14142135", "1000000"}},
+        {"pour spacing too fine",
+         "[\n" + ok +
+             "\n  {\"op\": \"pour\", \"path\": [[0, 0], [2, 0]], \"volume\": 1e-5, "
+             "\"spacing\": 1e-6}\n]",
+         {"script.json:3:", "spacing", "2000000"}},
+        {"brush spacing too fine",
+         "[\n  {\"op\": \"brush\", \"path\": [[0, 0], [0, 1], [1, 1]], \"spacing\": 1e-6}\n]",
+         {"script.json:2:", "spacing", "2000000"}},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
@@ -203,6 +217,16 @@ TEST(Script, ErrorsNameTheLineAndTheField) {
         for (const std::string& e : c.expected)
             EXPECT_NE(message.find(e), std::string::npos) << "'" << e << "' not in: " << message;
     }
+}
+
+// Just inside the limit on placements: a 1 m pour path every 2 um parses into its 500 001
+// points (both ends included).
+TEST(Script, AFinePathWithinThePlacementLimitParses) {
+    const Script script = parse(R"([{"op": "pour", "path": [[0, 0.5], [1, 0.5]], "volume": 1e-5,
+                                     "spacing": 2e-6}])");
+    ASSERT_EQ(script.steps.size(), 1u);
+    const auto& pour = std::get<PourOp>(script.steps[0].operation);
+    EXPECT_NEAR(static_cast<double>(pour.points.size()), 500001.0, 1.0);
 }
 
 TEST(Script, ExtensionsAddOperations) {
