@@ -328,13 +328,13 @@ struct ThroughputRun {
     double cpu_rate() const { return static_cast<double>(updates) / cpu_s; }
 };
 
-ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, bool avx512_rows) {
+ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel kernel) {
     std::vector<double> height = scene.height;
     std::vector<double> tan(height.size(), tan_alpha());
     TalusSettings settings;
     settings.schedule = Schedule::Jacobi;
     settings.threads = threads;
-    settings.avx512_rows = avx512_rows;
+    settings.row_kernel = kernel;
     TalusSolver solver(settings);
     const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
                              height.size()};
@@ -352,33 +352,72 @@ ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, bool avx512
     return run;
 }
 
+/// The row kernel RowKernel::Auto settles on for this scene and thread count (it measures both
+/// on its first branch-free iteration; a warm-up and one more iteration get there), and whether
+/// it measured at all.
+std::pair<RowKernel, bool> auto_row_kernel(const ThroughputScene& scene, int threads) {
+    std::vector<double> height = scene.height;
+    std::vector<double> tan(height.size(), tan_alpha());
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    settings.threads = threads;
+    TalusSolver solver(settings);
+    const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
+                             height.size()};
+    ActiveSet active;
+    for (std::uint32_t v = 0; v < height.size(); ++v)
+        active.activate(v);
+    for (int it = 0; it < 3 && !solver.row_kernel_measured(); ++it)
+        solver.iterate(scene.graph, arrays, active);
+    return {solver.row_kernel_in_use(), solver.row_kernel_measured()};
+}
+
+nlohmann::json rates_json(const std::vector<double>& rates, const std::vector<double>& cpu_rates) {
+    return {{"vertex_updates_per_s", bench::median(rates)},
+            {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
+            {"runs", rates},
+            {"runs_per_cpu_s", cpu_rates}};
+}
+
 nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
     const bool avx512 = avx512_rows_supported();
-    std::vector<double> rates, cpu_rates, loads;
-    std::vector<double> sse2_rates, sse2_cpu_rates;  // the SSE2 rows, alternating with AVX-512
+    std::vector<double> loads;
+    // Per kernel: rates per wall second and per CPU second. On an AVX-512 CPU each run times
+    // both, next to each other (which goes first alternates), so both see the same machine.
+    std::vector<double> avx512_rates, avx512_cpu_rates, sse2_rates, sse2_cpu_rates;
     std::size_t processed = 0;
     for (int run = 0; run < runs; ++run) {
         loads.push_back(load_average());
-        // On odd runs the SSE2 rows go first, so neither kind always runs second.
-        const bool sse2_first = avx512 && run % 2 == 1;
-        auto time_sse2 = [&] {
-            const ThroughputRun sse2 = time_jacobi(scene, threads, false);
-            sse2_rates.push_back(sse2.rate());
-            sse2_cpu_rates.push_back(sse2.cpu_rate());
+        auto time = [&](RowKernel kernel) {
+            const ThroughputRun r = time_jacobi(scene, threads, kernel);
+            processed = r.updates / kTimed;
+            const bool sse2 = kernel == RowKernel::Sse2;
+            (sse2 ? sse2_rates : avx512_rates).push_back(r.rate());
+            (sse2 ? sse2_cpu_rates : avx512_cpu_rates).push_back(r.cpu_rate());
         };
-        if (sse2_first) time_sse2();
-        const ThroughputRun r = time_jacobi(scene, threads, true);
-        processed = r.updates / kTimed;
-        rates.push_back(r.rate());
-        cpu_rates.push_back(r.cpu_rate());
-        if (avx512 && !sse2_first) time_sse2();
+        if (!avx512) {
+            time(RowKernel::Sse2);
+        } else if (run % 2 == 1) {
+            time(RowKernel::Sse2);
+            time(RowKernel::Avx512);
+        } else {
+            time(RowKernel::Avx512);
+            time(RowKernel::Sse2);
+        }
     }
+    // What the physics runs (RowKernel::Auto): the kernel it measured faster.
+    const auto [chosen, measured] =
+        avx512 ? auto_row_kernel(scene, threads) : std::pair{RowKernel::Sse2, false};
+    const bool chose_avx512 = chosen == RowKernel::Avx512;
+    const std::vector<double>& rates = chose_avx512 ? avx512_rates : sse2_rates;
+    const std::vector<double>& cpu_rates = chose_avx512 ? avx512_cpu_rates : sse2_cpu_rates;
     const double rate = bench::median(rates);
     nlohmann::json out = {
         {"vertices", scene.vertices},
         {"numbering", scene.numbering},
         {"threads", threads},
-        {"rows", avx512 ? "avx512" : "sse2"},
+        {"rows", chose_avx512 ? "avx512" : "sse2"},
+        {"rows_measured", measured},
         {"processed_per_iteration", processed},
         {"vertex_updates_per_s", rate},
         {"vertex_updates_per_s_per_core", rate / threads},
@@ -392,12 +431,9 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
                       " consecutive iterations after a warm-up one, median of " +
                       std::to_string(runs) + " runs (other agents share the 2 cores)"}};
     if (avx512) {
-        // The same runs with the SSE2 rows, each next to its AVX-512 run, so that both see the
-        // same machine: the ratio of the medians is the AVX-512 rows' gain.
-        out["sse2_rows"] = {{"vertex_updates_per_s", bench::median(sse2_rates)},
-                            {"vertex_updates_per_cpu_s", bench::median(sse2_cpu_rates)},
-                            {"runs", sse2_rates}};
-        out["avx512_over_sse2"] = rate / bench::median(sse2_rates);
+        out["avx512_rows"] = rates_json(avx512_rates, avx512_cpu_rates);
+        out["sse2_rows"] = rates_json(sse2_rates, sse2_cpu_rates);
+        out["avx512_over_sse2"] = bench::median(avx512_rates) / bench::median(sse2_rates);
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 
@@ -259,13 +260,33 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
     // Phase 1: outflow of every active vertex along each of its edges, from the old heights;
     // senders mark themselves and the neighbours they send to as receivers.
     static const bool avx512 = avx512_rows_supported();
-    if (row_passes_ == RowPasses::BranchFree && avx512 && settings_.avx512_rows &&
-        settings_.parameters.relocation_radius == 0.0) {
+    const bool avx512_applies = row_passes_ == RowPasses::BranchFree && avx512 &&
+                                settings_.row_kernel != RowKernel::Sse2 &&
+                                settings_.parameters.relocation_radius == 0.0;
+    std::size_t measured_rows = 0;
+    if (avx512_applies && settings_.row_kernel == RowKernel::Auto && !row_kernel_measured_ &&
+        list.size() >= kRowKernelSampleRows) {
+        measure_row_kernels(threaded);
+        measured_rows = kRowKernelSampleRows;
+    }
+    if (avx512_applies && row_kernel_in_use() == RowKernel::Avx512) {
 #if SANDTIN_HAVE_AVX512_ROWS
-        run(list.size(), threaded, [this](std::size_t b, std::size_t e, ThreadScratch& s) {
-            jacobi_outflow_avx512(b, e, s);
-        });
+        if (measured_rows == 0) {
+            run(list.size(), threaded, [this](std::size_t b, std::size_t e, ThreadScratch& s) {
+                jacobi_outflow_avx512(b, e, s);
+            });
+        } else {
+            run(list.size() - measured_rows, threaded,
+                [this, measured_rows](std::size_t b, std::size_t e, ThreadScratch& s) {
+                    jacobi_outflow_avx512(measured_rows + b, measured_rows + e, s);
+                });
+        }
 #endif
+    } else if (row_passes_ == RowPasses::BranchFree && measured_rows > 0) {
+        run(list.size() - measured_rows, threaded,
+            [this, measured_rows](std::size_t b, std::size_t e, ThreadScratch& s) {
+                jacobi_outflow<RowPasses::BranchFree>(measured_rows + b, measured_rows + e, s);
+            });
     } else if (row_passes_ == RowPasses::BranchFree) {
         run(list.size(), threaded, [this](std::size_t b, std::size_t e, ThreadScratch& s) {
             jacobi_outflow<RowPasses::BranchFree>(b, e, s);
@@ -318,6 +339,59 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
     for (const ThreadScratch& s : scratch_)
         active.list_.insert(active.list_.end(), s.kept.begin(), s.kept.end());
     return stats;
+}
+
+RowKernel TalusSolver::row_kernel_in_use() const {
+    if (!avx512_rows_supported() || settings_.row_kernel == RowKernel::Sse2) return RowKernel::Sse2;
+    if (settings_.row_kernel == RowKernel::Avx512) return RowKernel::Avx512;
+    return row_kernel_measured_ && !avx512_rows_faster_ ? RowKernel::Sse2 : RowKernel::Avx512;
+}
+
+void TalusSolver::measure_row_kernels(bool threaded) {
+    // ABBAAB: each kernel runs early and late, so a machine speeding up or slowing down over
+    // the six chunks favours neither. Time per slot, because rows differ in length.
+    constexpr std::array<bool, kRowKernelChunks> kAvx512Chunk{true, false, false,
+                                                              true, true,  false};
+    std::array<double, 3> avx512_ns{}, sse2_ns{};
+    std::size_t n_avx512 = 0, n_sse2 = 0;
+    auto slots = [this] {
+        std::size_t sum = 0;
+        for (const ThreadScratch& s : scratch_)
+            sum += s.census.slots;
+        return sum;
+    };
+    for (std::size_t c = 0; c < kRowKernelChunks; ++c) {
+        const std::size_t first = c * kRowKernelChunkRows;
+        const std::size_t slots_before = slots();
+        const auto t0 = std::chrono::steady_clock::now();
+        if (kAvx512Chunk[c]) {
+#if SANDTIN_HAVE_AVX512_ROWS
+            run(kRowKernelChunkRows, threaded,
+                [this, first](std::size_t b, std::size_t e, ThreadScratch& s) {
+                    jacobi_outflow_avx512(first + b, first + e, s);
+                });
+#endif
+        } else {
+            run(kRowKernelChunkRows, threaded,
+                [this, first](std::size_t b, std::size_t e, ThreadScratch& s) {
+                    jacobi_outflow<RowPasses::BranchFree>(first + b, first + e, s);
+                });
+        }
+        const double ns =
+            std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+        const double per_slot =
+            ns / static_cast<double>(std::max<std::size_t>(slots() - slots_before, 1));
+        if (kAvx512Chunk[c]) {
+            avx512_ns[n_avx512++] = per_slot;
+        } else {
+            sse2_ns[n_sse2++] = per_slot;
+        }
+    }
+    // Medians of three: one chunk slowed by another process does not decide.
+    std::sort(avx512_ns.begin(), avx512_ns.end());
+    std::sort(sse2_ns.begin(), sse2_ns.end());
+    avx512_rows_faster_ = avx512_ns[1] <= sse2_ns[1];
+    row_kernel_measured_ = true;
 }
 
 template <RowPasses kPasses>

@@ -23,6 +23,17 @@ namespace sandtin {
 
 enum class Schedule : std::uint8_t { Sequential, Jacobi };
 
+/// Which instruction set runs the Jacobi schedule's branch-free rows. Both give the same
+/// results bit for bit; only the speed differs, and which is faster depends on the CPU and on
+/// the graph's memory layout (measured on an AMD EPYC: AVX-512 10 % faster on TIN-id order,
+/// 5 % slower on strip order).
+enum class RowKernel : std::uint8_t {
+    /// Measured on the solver's first large iteration (TalusSolver::row_kernel_in_use()).
+    Auto,
+    Avx512,  ///< where the CPU runs it (avx512_rows_supported()), else SSE2
+    Sse2,
+};
+
 struct TalusSettings;
 /// Throws std::invalid_argument naming the first setting out of range.
 void validate_talus_settings(const TalusSettings& settings);
@@ -34,9 +45,8 @@ struct TalusSettings {
     double randomness = 0.0;   ///< relative jitter of each outflow, in [0, 1); 0 = none
     std::uint64_t seed = 1;    ///< seed of the jitter (results depend on it deterministically)
     int threads = 1;           ///< Jacobi worker threads
-    /// Jacobi: the branch-free rows in AVX-512 where the CPU runs it (avx512_rows_supported()),
-    /// else in SSE2. The results are the same bit for bit; false is for comparing the two.
-    bool avx512_rows = true;
+    /// Jacobi: the instruction set of the branch-free rows (the others are for comparing).
+    RowKernel row_kernel = RowKernel::Auto;
 };
 
 /// The defaults with the seeds' rule: no settle margin (TalusParameters::settle_margin), as
@@ -85,6 +95,20 @@ class TalusSolver {
     /// The kernel's passes the next Jacobi iteration will take (chosen from how much of the last
     /// one flowed; the results are the same either way).
     RowPasses jacobi_row_passes() const { return row_passes_; }
+
+    /// The instruction set the Jacobi schedule's branch-free rows run in now (Avx512 or Sse2;
+    /// rows with a relocation radius always take the SSE2 or branching passes). With
+    /// RowKernel::Auto it is AVX-512 where supported until the first iteration with at least
+    /// kRowKernelSampleRows active rows in branch-free passes; that iteration's first rows are
+    /// computed in alternating chunks by both kernels (each row once, so nothing is repeated),
+    /// and the one with the smaller median time per slot runs from then on.
+    RowKernel row_kernel_in_use() const;
+    /// Whether RowKernel::Auto has measured the two kernels yet.
+    bool row_kernel_measured() const { return row_kernel_measured_; }
+    /// Rows per measured chunk, and chunks (alternating AVX-512 and SSE2, ABBAAB).
+    static constexpr std::size_t kRowKernelChunkRows = 16384;
+    static constexpr std::size_t kRowKernelChunks = 6;
+    static constexpr std::size_t kRowKernelSampleRows = kRowKernelChunkRows * kRowKernelChunks;
 
     /// Ids whose height changed in the last iteration.
     const std::vector<std::uint32_t>& changed() const { return changed_list_; }
@@ -135,6 +159,9 @@ class TalusSolver {
     /// Runs body(begin, end, scratch) over [0, n) on the pool, or inline when n is small.
     template <class Body>
     void run(std::size_t n, bool threaded, Body body);
+    /// Phase 1 of the first kRowKernelSampleRows rows of the active list, a chunk at a time,
+    /// alternating the AVX-512 and SSE2 rows; records the faster (row_kernel_measured_).
+    void measure_row_kernels(bool threaded);
     /// The jitter of vertex v (an index into the arrays).
     double random_factor(const TalusArrays& a, std::uint32_t v) const;
     void ensure(const AdjacencyGraph& g, std::size_t vertices);
@@ -156,6 +183,8 @@ class TalusSolver {
     // Jacobi schedule.
     /// The kernel's passes (RowPasses) for the next iteration, from this one's RowCensus.
     RowPasses row_passes_ = RowPasses::Branching;
+    bool row_kernel_measured_ = false;
+    bool avx512_rows_faster_ = true;  ///< the measurement's verdict (once measured)
     std::vector<ThreadScratch> scratch_;
     JacobiPass pass_;
 };

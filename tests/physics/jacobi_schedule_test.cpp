@@ -99,18 +99,21 @@ struct Case {
     double randomness;
     double relocation_radius;
     bool bedrock;
-    /// The branch-free rows in AVX-512 where the CPU runs it (TalusSettings::avx512_rows).
-    bool avx512_rows = true;
+    /// The branch-free rows' instruction set (TalusSettings::row_kernel): AVX-512 where the
+    /// CPU runs it, unless asked otherwise.
+    RowKernel row_kernel = RowKernel::Avx512;
+    std::size_t vertices = 6000;
+    int iterations = 300;
 };
 
 void compare(const Case& c) {
     SCOPED_TRACE(::testing::Message()
                  << "threads " << c.threads << ", randomness " << c.randomness << ", r_S "
-                 << c.relocation_radius << ", bedrock " << c.bedrock << ", AVX-512 rows "
-                 << (c.avx512_rows && avx512_rows_supported()));
+                 << c.relocation_radius << ", bedrock " << c.bedrock << ", row kernel "
+                 << static_cast<int>(c.row_kernel) << ", vertices " << c.vertices);
     // 6000 vertices: above the threaded minimum at first, below it as the scene calms down,
     // so both the pooled and the inline paths run.
-    const Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 6000, 5);
+    const Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), c.vertices, 5);
     AdjacencyGraph graph;
     graph.rebuild(tin);
     const VertexArrays& va = tin.vertices();
@@ -132,7 +135,7 @@ void compare(const Case& c) {
     settings.randomness = c.randomness;
     settings.seed = 9;
     settings.parameters.relocation_radius = c.relocation_radius;
-    settings.avx512_rows = c.avx512_rows;
+    settings.row_kernel = c.row_kernel;
     TalusSolver solver(settings);
     ReferenceJacobi reference(settings);
     const TalusArrays arrays{h.data(), va.lumped_area.data(), b.data(), tan.data(), n};
@@ -148,7 +151,7 @@ void compare(const Case& c) {
     std::vector<std::uint32_t> changed_ref, splits, splits_ref;
     std::size_t moving = 0;
     int branch_free = 0, branching = 0;
-    for (int it = 0; it < 300 && !ref_active.empty(); ++it) {
+    for (int it = 0; it < c.iterations && !ref_active.empty(); ++it) {
         splits.clear();
         splits_ref.clear();
         (solver.jacobi_row_passes() == RowPasses::BranchFree ? branch_free : branching) += 1;
@@ -173,15 +176,31 @@ void compare(const Case& c) {
         EXPECT_GT(branch_free, 0);
     }
     EXPECT_GT(branching, 0);
+    // RowKernel::Auto measures the two kernels once enough rows run branch-free.
+    if (c.row_kernel == RowKernel::Auto && avx512_rows_supported() && c.relocation_radius == 0.0 &&
+        c.vertices >= TalusSolver::kRowKernelSampleRows) {
+        EXPECT_TRUE(solver.row_kernel_measured());
+    }
 }
 
 TEST(JacobiSchedule, MatchesItsDefinitionBitForBit) {
     for (int threads : {1, 2}) {
         compare({threads, 0.0, 0.0, false});
-        compare({threads, 0.0, 0.0, false, false});  // the SSE2 rows on an AVX-512 CPU
+        compare({threads, 0.0, 0.0, false, RowKernel::Sse2});  // on an AVX-512 CPU too
         compare({threads, 0.4, 0.0, false});
         compare({threads, 0.4, 0.0, true});
         compare({threads, 0.0, 0.012, true});
+    }
+}
+
+// RowKernel::Auto on a scene large enough to be measured: the iteration that measures computes
+// its first rows in alternating chunks by both kernels, and the rest by the faster one.
+TEST(JacobiSchedule, MatchesItsDefinitionWhileChoosingTheRowKernel) {
+    for (int threads : {1, 2}) {
+        Case c{threads, 0.0, 0.0, false, RowKernel::Auto};
+        c.vertices = 120000;
+        c.iterations = 5;
+        compare(c);
     }
 }
 
