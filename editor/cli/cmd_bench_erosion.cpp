@@ -328,25 +328,50 @@ struct ThroughputRun {
     double cpu_rate() const { return static_cast<double>(updates) / cpu_s; }
 };
 
+/// A Jacobi solver over a copy of the scene's heights, with every vertex active.
+class SceneSolver {
+  public:
+    SceneSolver(const ThroughputScene& scene, int threads, RowKernel kernel)
+        : scene_(scene),
+          height_(scene.height),
+          tan_(height_.size(), tan_alpha()),
+          solver_(settings(threads, kernel)),
+          arrays_{height_.data(), scene.area.data(), scene.bedrock.data(), tan_.data(),
+                  height_.size()} {
+        for (std::uint32_t v = 0; v < height_.size(); ++v)
+            active_.activate(v);
+    }
+    SceneSolver(const SceneSolver&) = delete;
+    SceneSolver& operator=(const SceneSolver&) = delete;
+
+    /// One iteration; the vertices it processed.
+    std::size_t iterate() { return solver_.iterate(scene_.graph, arrays_, active_).processed; }
+    const TalusSolver& solver() const { return solver_; }
+
+  private:
+    static TalusSettings settings(int threads, RowKernel kernel) {
+        TalusSettings s;
+        s.schedule = Schedule::Jacobi;
+        s.threads = threads;
+        s.row_kernel = kernel;
+        return s;
+    }
+    const ThroughputScene& scene_;
+    std::vector<double> height_;
+    std::vector<double> tan_;
+    TalusSolver solver_;
+    TalusArrays arrays_;
+    ActiveSet active_;
+};
+
 ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel kernel) {
-    std::vector<double> height = scene.height;
-    std::vector<double> tan(height.size(), tan_alpha());
-    TalusSettings settings;
-    settings.schedule = Schedule::Jacobi;
-    settings.threads = threads;
-    settings.row_kernel = kernel;
-    TalusSolver solver(settings);
-    const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
-                             height.size()};
-    ActiveSet active;
-    for (std::uint32_t v = 0; v < height.size(); ++v)
-        active.activate(v);
-    solver.iterate(scene.graph, arrays, active);  // warm-up: first-touch of the buffers
+    SceneSolver s(scene, threads, kernel);
+    s.iterate();  // warm-up: first-touch of the buffers
     ThroughputRun run;
     const double cpu0 = process_cpu_ms();
     Stopwatch wall;
     for (int it = 0; it < kTimed; ++it)
-        run.updates += solver.iterate(scene.graph, arrays, active).processed;
+        run.updates += s.iterate();
     run.wall_s = wall.ms() * 1e-3;
     run.cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
     return run;
@@ -356,20 +381,10 @@ ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel k
 /// on its first branch-free iteration; a warm-up and one more iteration get there), and whether
 /// it measured at all.
 std::pair<RowKernel, bool> auto_row_kernel(const ThroughputScene& scene, int threads) {
-    std::vector<double> height = scene.height;
-    std::vector<double> tan(height.size(), tan_alpha());
-    TalusSettings settings;
-    settings.schedule = Schedule::Jacobi;
-    settings.threads = threads;
-    TalusSolver solver(settings);
-    const TalusArrays arrays{height.data(), scene.area.data(), scene.bedrock.data(), tan.data(),
-                             height.size()};
-    ActiveSet active;
-    for (std::uint32_t v = 0; v < height.size(); ++v)
-        active.activate(v);
-    for (int it = 0; it < 3 && !solver.row_kernel_measured(); ++it)
-        solver.iterate(scene.graph, arrays, active);
-    return {solver.row_kernel_in_use(), solver.row_kernel_measured()};
+    SceneSolver s(scene, threads, RowKernel::Auto);
+    for (int it = 0; it < 3 && !s.solver().row_kernel_measured(); ++it)
+        s.iterate();
+    return {s.solver().row_kernel_in_use(), s.solver().row_kernel_measured()};
 }
 
 nlohmann::json rates_json(const std::vector<double>& rates, const std::vector<double>& cpu_rates) {
