@@ -54,6 +54,24 @@ double wavy(Vec2 p) {
     return 0.1 + 0.03 * std::sin(20.0 * p.x) * std::cos(17.0 * p.y) + 0.02 * p.y;
 }
 
+/// Samples the surface at `count` random points of `box` (seeded) and expects the floor height
+/// `bottom` at those inside `inner` (by 1e-9 m); returns how many were inside.
+std::size_t expect_floor_inside(const Tin& tin, std::span<const Vec2> inner, const Rect& box,
+                                std::size_t count, double bottom) {
+    std::size_t sampled = 0;
+    LocateHint hint;
+    for (Vec2 p : test::random_points_in(box, count, 1)) {
+        if (!inside_by(p, inner, 1e-9)) continue;
+        ++sampled;
+        const std::optional<double> h = tin.height_at(p, &hint);
+        EXPECT_TRUE(h.has_value()) << "at " << p.x << ", " << p.y;
+        if (h) {
+            EXPECT_NEAR(*h, bottom, 1e-12) << "at " << p.x << ", " << p.y;
+        }
+    }
+    return sampled;
+}
+
 // ---- 1. The floor of a flat stamp ---------------------------------------------------------
 
 TEST(Stamp, FlatDigPutsEveryVertexInsideInnerContourAtToolDepth) {
@@ -81,16 +99,8 @@ TEST(Stamp, FlatDigPutsEveryVertexInsideInnerContourAtToolDepth) {
     }
     EXPECT_GE(checked, inner.size());
     // The surface inside I is the floor.
-    std::size_t sampled = 0;
-    LocateHint hint;
-    for (Vec2 p : test::random_points_in(Rect{{0.38, 0.52}, {0.48, 0.62}}, 4000, 1)) {
-        if (!inside_by(p, inner, 1e-9)) continue;
-        ++sampled;
-        const std::optional<double> h = tin.height_at(p, &hint);
-        ASSERT_TRUE(h.has_value());
-        EXPECT_NEAR(*h, at.bottom, 1e-12) << "at " << p.x << ", " << p.y;
-    }
-    EXPECT_GT(sampled, 1000u);
+    EXPECT_GT(expect_floor_inside(tin, inner, Rect{{0.38, 0.52}, {0.48, 0.62}}, 4000, at.bottom),
+              1000u);
     // The volume it took: at least the prism between the lowest terrain and the floor, at most
     // the one from the highest (inner polygon area times the depth range).
     const double area = static_cast<double>(test::signed_area_ld(inner));
@@ -673,16 +683,7 @@ TEST(Stamp, ABigToolPressedInShallowerThanItsRimToleranceStillDigs) {
     // The surface inside I is the floor (its vertices there were simplified away, so it is
     // sampled between them).
     const std::vector<Vec2> inner = world(at, tool.shape().inner);
-    std::size_t sampled = 0;
-    LocateHint hint;
-    for (Vec2 p : test::random_points_in(kUnit, 2000, 2)) {
-        if (!inside_by(p, inner, 1e-9)) continue;
-        ++sampled;
-        const std::optional<double> h = tin.height_at(p, &hint);
-        ASSERT_TRUE(h.has_value());
-        EXPECT_NEAR(*h, at.bottom, 1e-12) << "at " << p.x << ", " << p.y;
-    }
-    EXPECT_GT(sampled, 400u);
+    EXPECT_GT(expect_floor_inside(tin, inner, kUnit, 2000, at.bottom), 400u);
     // At least the floor's prism went (I's area times 2 mm), at most O's.
     const double inner_area = static_cast<double>(test::signed_area_ld(inner));
     const double outer_area =
