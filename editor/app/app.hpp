@@ -132,6 +132,12 @@ class App {
 
     // Input, shared by GLFW callbacks and the script.
     void mouse_button(int button, bool down, double x, double y);
+    /// Every GLFW callback calls this first: the loop's timed waits tell events from timeouts,
+    /// and the haptic snapshot is no longer held (the event may edit the terrain).
+    void note_event() {
+        ++events_seen_;
+        if (haptics_) haptics_->release();
+    }
     void mouse_move(double x, double y);
     void scroll(double dy);
     void key(int key, bool ctrl);
@@ -193,6 +199,12 @@ class App {
     void keep_unsaved_edits();
     /// The interactive main loop: until the window closes.
     void interactive_loop();
+    LoopState loop_state() const;
+    /// Waits as frame_policy.hpp decides for `state`, for at most `at_most_seconds` when that
+    /// is not kWaitForEvent, and says whether to draw a frame now.
+    bool wait_for_events(const LoopState& state, double at_most_seconds);
+    std::uint64_t events_seen_ = 0;
+    Clock::time_point last_frame_at_{};
     /// Writes the settings file after a change; a failure is reported, not thrown.
     void save_settings_reporting();
     void report(const std::string& message) {

@@ -270,8 +270,11 @@ void App::update_normal_map() {
 
 bool App::frame(bool capture) {
     const auto t0 = Clock::now();
+    last_frame_at_ = t0;
+    // The simulation and the panels may edit the terrain: the haptic snapshot is not held
+    // through them, so a long edit fades the force as the loop's staleness rule intends.
+    if (haptics_) haptics_->release();
     update_simulation();
-    update_haptics();
     update_mesh();
 
     ImGui_ImplVulkan_NewFrame();
@@ -279,6 +282,11 @@ bool App::frame(bool capture) {
     ImGui::NewFrame();
     draw_panels();
     ImGui::Render();
+    // From here until the next event or frame nothing edits the terrain: the snapshot built
+    // now stays true while the frame is drawn (which on a CPU renderer can take longer than
+    // the loop's staleness limit) and while the editor waits for input.
+    update_haptics();
+    if (haptics_) haptics_->hold();
 
     const auto t1 = Clock::now();
     // A resized window: not every presentation engine reports the old swapchain out of date,

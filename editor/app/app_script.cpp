@@ -37,6 +37,8 @@ void App::set_physics(const std::string& name) {
 }
 
 void App::run_script_op(const nlohmann::json& op) {
+    // Ops drive the input handlers directly, without GLFW callbacks: release as they do.
+    if (haptics_) haptics_->release();
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
     const std::string kind = op.at("op").get<std::string>();

@@ -11,6 +11,7 @@ App* app_of(GLFWwindow* w) {
 }
 
 void on_button(GLFWwindow* w, int b, int action, int mods) {
+    app_of(w)->note_event();
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(w, &x, &y);
     (void)mods;
@@ -19,16 +20,40 @@ void on_button(GLFWwindow* w, int b, int action, int mods) {
     app_of(w)->mouse_button(b, down, x, y);
 }
 void on_cursor(GLFWwindow* w, double x, double y) {
+    app_of(w)->note_event();
     app_of(w)->mouse_move(x, y);
 }
 void on_wheel(GLFWwindow* w, double, double dy) {
+    app_of(w)->note_event();
     if (ImGui::GetIO().WantCaptureMouse) return;
     app_of(w)->scroll(dy);
 }
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
+    app_of(w)->note_event();
     if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
     if (ImGui::GetIO().WantCaptureKeyboard) return;
     app_of(w)->key(key, (mods & GLFW_MOD_CONTROL) != 0);
+}
+
+// Events that only ImGui or the window itself act on still ask for a frame (typing into a
+// field, focus, exposure, resizing): the loop's timed waits tell them from a plain timeout.
+void on_char(GLFWwindow* w, unsigned int) {
+    app_of(w)->note_event();
+}
+void on_focus(GLFWwindow* w, int) {
+    app_of(w)->note_event();
+}
+void on_cursor_enter(GLFWwindow* w, int) {
+    app_of(w)->note_event();
+}
+void on_refresh(GLFWwindow* w) {
+    app_of(w)->note_event();
+}
+void on_framebuffer_size(GLFWwindow* w, int, int) {
+    app_of(w)->note_event();
+}
+void on_iconify(GLFWwindow* w, int) {
+    app_of(w)->note_event();
 }
 
 }  // namespace
@@ -65,6 +90,13 @@ void App::init_window_and_gpu() {
     glfwSetCursorPosCallback(window_, on_cursor);
     glfwSetScrollCallback(window_, on_wheel);
     glfwSetKeyCallback(window_, on_key);
+    // Installed before ImGui's backend, which chains to the ones it replaces.
+    glfwSetCharCallback(window_, on_char);
+    glfwSetWindowFocusCallback(window_, on_focus);
+    glfwSetCursorEnterCallback(window_, on_cursor_enter);
+    glfwSetWindowRefreshCallback(window_, on_refresh);
+    glfwSetFramebufferSizeCallback(window_, on_framebuffer_size);
+    glfwSetWindowIconifyCallback(window_, on_iconify);
 
     gpu::ContextOptions o;
     std::uint32_t n = 0;
@@ -336,22 +368,43 @@ void App::save_settings_reporting() {
     }
 }
 
+LoopState App::loop_state() const {
+    LoopState state;
+    glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
+    state.redraw_pending = redraw_frames_ > 0;
+    state.dragging = left_down_;
+    state.prompt_open = recovery_for_.has_value() || pending_replacement_ != nullptr;
+    state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
+    state.haptics_connected = haptics_ != nullptr;
+    return state;
+}
+
+bool App::wait_for_events(const LoopState& state, double at_most_seconds) {
+    const std::uint64_t seen = events_seen_;
+    double wait = event_wait_seconds(state);
+    if (at_most_seconds >= 0.0)
+        wait = wait < 0.0 ? at_most_seconds : std::min(wait, at_most_seconds);
+    if (wait == 0.0) {
+        glfwPollEvents();
+    } else if (wait > 0.0) {
+        glfwWaitEventsTimeout(wait);
+    } else {
+        glfwWaitEvents();
+    }
+    // A blocking wait returns only for an event (perhaps one no callback counts).
+    const bool event_arrived = wait < 0.0 || events_seen_ != seen;
+    return draw_after_wait(state, event_arrived,
+                           std::chrono::duration<double>(Clock::now() - last_frame_at_).count());
+}
+
 void App::interactive_loop() {
     while (!close_confirmed()) {
-        LoopState state;
-        glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
-        state.redraw_pending = redraw_frames_ > 0;
-        state.dragging = left_down_;
-        state.prompt_open = recovery_for_.has_value() || pending_replacement_ != nullptr;
-        state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
-        // Idle or minimised: block until an event arrives; no frame, no submission.
-        if (wants_continuous_frames(state))
-            glfwPollEvents();
-        else
-            glfwWaitEvents();
+        // Idle or minimised: block until an event arrives; no frame, no submission (with a
+        // haptic device, a readout frame now and then: frame_policy.hpp).
+        if (!wait_for_events(loop_state(), kWaitForEvent)) continue;
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
-        if (!can_draw(w, h)) continue;  // minimised: nothing to draw
+        if (!can_draw(w, h)) continue;  // minimised since the wait began
         frame(false);
         if (redraw_frames_ > 0) --redraw_frames_;
         if (!(settings_ == saved_settings_)) save_settings_reporting();
@@ -424,13 +477,12 @@ int App::run() {
                     Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
                 settings_.erosion_running = false;
                 redraw_frames_ = 0;
+                // The interactive loop's waits and decisions, bounded by the idle time.
                 while (Clock::now() < until) {
-                    glfwWaitEventsTimeout(
-                        std::chrono::duration<double>(until - Clock::now()).count());
-                    if (redraw_frames_ > 0) {
-                        frame(false);
-                        --redraw_frames_;
-                    }
+                    const double left = std::chrono::duration<double>(until - Clock::now()).count();
+                    if (!wait_for_events(loop_state(), std::max(left, 1e-3))) continue;
+                    frame(false);
+                    if (redraw_frames_ > 0) --redraw_frames_;
                 }
                 idle_submissions = swapchain_->submissions() - before;
                 idle_gpu_work = gpu_work() - work_before;
@@ -491,6 +543,7 @@ int App::run() {
                             {"ticks", l.ticks},
                             {"force_n", l.force_n},
                             {"contact", l.contact},
+                            {"stale", l.stale},
                             {"device_lost", l.device_lost},
                             {"backup_thread", l.backup_thread}};
         }

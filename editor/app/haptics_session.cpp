@@ -33,17 +33,29 @@ HapticsSession::HapticsSession(HapticDeviceKind kind, double rate_hz, std::uint1
     // bench haptics`). Neither thread is pinned: the editor does not own the CPUs.
     config.backup_thread = std::thread::hardware_concurrency() >= 2;
     loop_ = std::make_unique<haptics::ForceLoop>(*device_, config);
+    // A quarter of the staleness limit: three missed wake-ups before the force would fade.
+    heartbeat_ = std::make_unique<haptics::SnapshotHeartbeat>(
+        *loop_, std::chrono::nanoseconds(config.renderer.stale_after_ns / 4));
     started_ns_ = haptics::monotonic_ns();
     loop_->start();
 }
 
 HapticsSession::~HapticsSession() {
+    heartbeat_.reset();  // nothing is published to the loop after this
     if (loop_) loop_->stop();
+}
+
+void HapticsSession::hold() {
+    heartbeat_->hold();
+}
+
+void HapticsSession::release() {
+    heartbeat_->release();
 }
 
 void HapticsSession::update(const Tin& tin, const Tool& tool, const ToolPlacement& at,
                             const MaterialTable& materials, Vec3 target) {
-    loop_->publish(haptics::build_snapshot(tin, tool, at, materials, &hint_));
+    heartbeat_->publish(haptics::build_snapshot(tin, tool, at, materials, &hint_));
     if (spring_ != nullptr) spring_->set_target(target);
 }
 
@@ -71,6 +83,7 @@ HapticsLive HapticsSession::live() {
     l.ticks = latest_.tick;
     l.force_n = std::sqrt(dot(latest_.force, latest_.force));
     l.contact = latest_.contact;
+    l.stale = latest_.stale;
     l.pen = latest_.device.position;
     l.device_lost = !loop_->running();
     return l;

@@ -19,6 +19,7 @@
 
 #include "editor_settings.hpp"
 #include "formats/png_image.hpp"
+#include "frame_policy.hpp"
 #include "io/autosave.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
@@ -311,12 +312,17 @@ TEST_F(EditorXvfb, UndoThroughTheKeyboardRestoresTheSavedScene) {
 TEST_F(EditorXvfb, HapticsPanelRunsTheForceLoopAgainstTheSandUnderTheCursor) {
     // The simulated pen follows the cursor with its tip the tool depth below the surface, so
     // it is in contact and pushed back up: a force in (0, max], and the loop ticks at ~1 kHz.
+    // Then the editor sits idle for a second. The loop fades the force out 100-300 ms after
+    // the newest snapshot, and a frame here takes about 170 ms (lavapipe, validation on), so
+    // the force is still there at the end only if the snapshot was held fresh while the editor
+    // drew and waited (haptics/snapshot_heartbeat.hpp).
+    const double idle_seconds = 1.0;
     const EditorRun r = run_editor("haptics",
                                    R"([{"op": "set", "erosion": false, "depth": 0.01},
                                        {"op": "move", "at": [0.6, 0.5]},
                                        {"op": "haptics", "connect": true},
                                        {"op": "wait", "frames": 40}])",
-                                   "--frames 1");
+                                   "--frames 1 --idle-seconds " + std::to_string(idle_seconds));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const auto& h = r.stats.at("haptics");
     EXPECT_GT(h.at("ticks").get<double>(), 200.0);
@@ -324,11 +330,16 @@ TEST_F(EditorXvfb, HapticsPanelRunsTheForceLoopAgainstTheSandUnderTheCursor) {
     // A loaded 2-core machine under Xvfb and lavapipe: only a loose bound on the rate here;
     // the loop's timing targets are measured by `sandtin bench haptics`.
     EXPECT_GT(h.at("rate_hz").get<double>(), 300.0);
+    EXPECT_FALSE(h.at("stale").get<bool>());
     EXPECT_GT(h.at("force_n").get<double>(), 0.05);
     EXPECT_LE(h.at("force_n").get<double>(), 10.0);
     EXPECT_TRUE(h.at("contact").get<bool>());
     // The backup tick thread runs whenever a second CPU exists to cover the first.
     EXPECT_EQ(h.at("backup_thread").get<bool>(), std::thread::hardware_concurrency() >= 2);
+    // Idle: the panel's readout is redrawn every kHapticReadoutSeconds, and nothing else is.
+    const int idle_frames = r.stats.at("idle_submissions").get<int>();
+    EXPECT_GE(idle_frames, 1);
+    EXPECT_LE(idle_frames, static_cast<int>(idle_seconds / editor::kHapticReadoutSeconds) + 1);
 }
 
 TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarded) {

@@ -1,6 +1,7 @@
 // The interactive loop's decisions (frame_policy.hpp): a minimised window never draws and
 // never spins, whatever else is going on; a visible one draws continuously exactly while
-// something is happening, and blocks on events otherwise.
+// something is happening, and blocks on events otherwise. With a haptic device connected an
+// idle window wakes now and then to redraw the live readout, and only for that.
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,49 @@ TEST(FramePolicy, MinimisedWindowNeitherDrawsNorSpins) {
         s.framebuffer_height = 720;
         EXPECT_EQ(wants_continuous_frames(s), bits != 0) << bits;
     }
+}
+
+LoopState visible() {
+    LoopState s;
+    s.framebuffer_width = 1280;
+    s.framebuffer_height = 720;
+    return s;
+}
+
+TEST(FramePolicy, IdleWithoutHapticsBlocksAndDrawsOnlyForEvents) {
+    const LoopState s = visible();
+    EXPECT_EQ(event_wait_seconds(s), kWaitForEvent);
+    EXPECT_TRUE(draw_after_wait(s, true, 0.0));
+    // Woken without an event (a bounded wait that timed out): no frame, however long ago the
+    // last one was.
+    EXPECT_FALSE(draw_after_wait(s, false, 3600.0));
+    LoopState eroding = s;
+    eroding.eroding = true;
+    EXPECT_EQ(event_wait_seconds(eroding), 0.0);
+    EXPECT_TRUE(draw_after_wait(eroding, false, 0.0));
+}
+
+TEST(FramePolicy, IdleWithHapticsRedrawsOnlyTheReadoutNowAndThen) {
+    LoopState s = visible();
+    s.haptics_connected = true;
+    EXPECT_EQ(event_wait_seconds(s), kHapticReadoutSeconds);
+    EXPECT_FALSE(draw_after_wait(s, false, 0.0));
+    EXPECT_FALSE(draw_after_wait(s, false, 0.9 * kHapticReadoutSeconds));
+    EXPECT_TRUE(draw_after_wait(s, false, kHapticReadoutSeconds));
+    EXPECT_TRUE(draw_after_wait(s, true, 0.0));  // any event still draws at once
+    s.dragging = true;
+    EXPECT_EQ(event_wait_seconds(s), 0.0);
+    EXPECT_TRUE(draw_after_wait(s, false, 0.0));
+}
+
+TEST(FramePolicy, MinimisedWithHapticsStillBlocksAndNeverDraws) {
+    LoopState s;
+    s.haptics_connected = true;
+    s.redraw_pending = true;
+    s.eroding = true;
+    EXPECT_EQ(event_wait_seconds(s), kWaitForEvent);
+    EXPECT_FALSE(draw_after_wait(s, true, 3600.0));
+    EXPECT_FALSE(draw_after_wait(s, false, 3600.0));
 }
 
 }  // namespace
