@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -20,6 +21,11 @@
 #include "tin/tin.hpp"
 
 namespace sandtin::test {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The unit square, [0, 1] x [0, 1] m: the domain of most TIN and tool tests.
+inline const Rect kUnitSquare = Rect::from_size(1.0, 1.0);
 
 using Tri = std::array<VertexId, 3>;
 
@@ -268,6 +274,22 @@ inline std::string join(const std::vector<std::string>& lines) {
     for (const std::string& l : lines)
         s += l + "\n";
     return s;
+}
+
+/// What every TIN test expects after an edit: the Tin's own and CGAL's validity checks, the
+/// independent checks of mesh_problems, and Euler's count of the triangles of a triangulated
+/// rectangle (2V - B - 2, with B vertices on its border).
+inline ::testing::AssertionResult tin_is_sound(const Tin& tin) {
+    const ValidationReport r = tin.check_valid();
+    if (!r.ok()) return ::testing::AssertionFailure() << "check_valid: " << r.summary();
+    const std::vector<std::string> problems = mesh_problems(tin);
+    if (!problems.empty()) return ::testing::AssertionFailure() << join(problems);
+    const std::size_t expected = euler_triangle_count(tin.vertex_count(), border_vertex_count(tin));
+    if (tin.triangle_count() != expected) {
+        return ::testing::AssertionFailure() << tin.triangle_count() << " triangles, where Euler's "
+                                             << "formula gives " << expected;
+    }
+    return ::testing::AssertionSuccess();
 }
 
 /// The expected content of take_changes(), from a brute-force diff of two states.

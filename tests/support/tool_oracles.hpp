@@ -264,6 +264,18 @@ inline Tin smooth_terrain(const Rect& domain, std::size_t count, std::uint64_t s
     return Tin::from_points(domain, pts, hs, options);
 }
 
+/// Bumpy sand: far from any plane at the scale of a patch (a few centimetres).
+inline double bumpy_sand(Vec2 p) {
+    return 0.2 + 0.03 * std::sin(41.0 * p.x + 0.4) * std::cos(37.0 * p.y - 0.1) +
+           0.05 * (p.x - 0.5) * (p.x - 0.5);
+}
+
+/// Wavy sand, partly below the floors the stamp tests dig to, so a dig keeps some sand below
+/// the tool.
+inline double wavy_sand(Vec2 p) {
+    return 0.1 + 0.03 * std::sin(20.0 * p.x) * std::cos(17.0 * p.y) + 0.02 * p.y;
+}
+
 /// Rolling sand: smooth, curved in both directions, well above z = 0.
 inline double rolling_sand(Vec2 p) {
     return 0.1 + 0.02 * std::sin(7.0 * p.x + 0.3) * std::cos(5.0 * p.y - 0.2) + 0.01 * p.x;

@@ -26,13 +26,6 @@ double knolls(Vec2 p) {
     return 1.0 + 0.5 * std::sin(1.9 * p.x) * std::cos(1.4 * p.y) + 0.02 * p.y;
 }
 
-void expect_sound(const Tin& tin) {
-    const ValidationReport r = tin.check_valid();
-    ASSERT_TRUE(r.ok()) << r.summary();
-    const auto problems = test::mesh_problems(tin);
-    ASSERT_TRUE(problems.empty()) << test::join(problems);
-}
-
 std::vector<Vec2> random_points(std::uint64_t seed, std::size_t n, const Rect& d) {
     std::mt19937_64 rng = test::test_rng(seed);
     std::uniform_real_distribution<double> ux(d.min.x, d.max.x);
@@ -78,7 +71,7 @@ TEST(BatchInsert, InsertPointsMatchesSequentialInsertion) {
     // A Delaunay triangulation of points in general position is unique.
     EXPECT_EQ(geometric_triangles(batch), geometric_triangles(single));
     EXPECT_EQ(batch.vertices().height, single.vertices().height);
-    expect_sound(batch);
+    EXPECT_TRUE(test::tin_is_sound(batch));
 }
 
 TEST(BatchInsert, InsertPointsRejectsBadInputWithoutChangingAnything) {
@@ -110,7 +103,7 @@ TEST(BatchInsert, InsertPointsOnSurfaceConservesVolumeAndKeepsPlanes) {
             EXPECT_EQ(curved.position(ids[i]), pts[i]);
         EXPECT_LE(std::abs(curved.volume() - v0), 1e-12 * v0) << "round " << round;
     }
-    expect_sound(curved);
+    EXPECT_TRUE(test::tin_is_sound(curved));
 
     const test::Plane plane{0.3, -0.2, 2.0};
     Tin flat = Tin::random_points(d, 100, 4, plane);
@@ -184,7 +177,7 @@ TEST(BatchConstraints, EachSegmentIsItsOwnConstraint) {
     EXPECT_EQ(tin.constraint_count(), 5u);
     std::sort(released.begin(), released.end());
     EXPECT_EQ(released, (std::vector<VertexId>{std::min(v[8], v[9]), std::max(v[8], v[9])}));
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(VolumeLedger, TracksEveryChangeOfVolume) {

@@ -29,17 +29,10 @@ namespace {
 using test::in_disc;
 using test::live_ids;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
-double bumpy(Vec2 p) {
-    return 0.2 + 0.03 * std::sin(41.0 * p.x + 0.4) * std::cos(37.0 * p.y - 0.1) +
-           0.05 * (p.x - 0.5) * (p.x - 0.5);
-}
-
 void constrain(Tin& tin, const std::vector<Vec2>& pts, bool closed, Generation generation) {
     std::vector<double> hs;
     for (Vec2 p : pts)
-        hs.push_back(bumpy(p));
+        hs.push_back(test::bumpy_sand(p));
     const std::vector<VertexId> ids = tin.insert_points(pts, hs);
     tin.insert_constraint(ids, closed, generation);
 }
@@ -127,7 +120,7 @@ BulkRemoval clear_and_check(
 TEST(ClearPatches, DenseTerrainWithConstraints) {
     for (std::uint64_t seed : {601u, 602u}) {
         SCOPED_TRACE(seed);
-        Tin tin = test::smooth_terrain(kUnit, 20000, seed, bumpy, 0.02);
+        Tin tin = test::smooth_terrain(test::kUnitSquare, 20000, seed, test::bumpy_sand, 0.02);
         constrain(tin, {{0.45, 0.45}, {0.55, 0.47}, {0.52, 0.56}}, true, 1);  // a ring
         constrain(tin, {{0.3, 0.6}, {0.42, 0.66}}, false, 2);
         constrain(tin, {{0.35, 0.7}, {0.4, 0.58}}, false, 3);  // crosses the previous one
@@ -147,7 +140,7 @@ TEST(ClearPatches, DenseTerrainWithConstraints) {
 }
 
 TEST(ClearPatches, TwoDisjointDiscsAreTwoPatches) {
-    Tin tin = Tin::random_points(kUnit, 8000, 611, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 8000, 611, test::bumpy_sand);
     std::vector<VertexId> offered = test::grow_to_disc(tin, in_disc(tin, {0.3, 0.3}, 0.07));
     const std::vector<VertexId> second = test::grow_to_disc(tin, in_disc(tin, {0.7, 0.6}, 0.09));
     ASSERT_TRUE(test::region_is_disc(tin, offered));
@@ -163,7 +156,7 @@ TEST(ClearPatches, TwoDisjointDiscsAreTwoPatches) {
 TEST(ClearPatches, DropsTheNeighboursOfAConstrainedVertexAndRemovesTheRest) {
     // A constraint crossing the rim of the offered disc: what the drop rule keeps (its vertices
     // and their neighbours) reaches the outside, so the rest is still one disc.
-    Tin tin = Tin::random_points(kUnit, 8000, 621, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 8000, 621, test::bumpy_sand);
     constrain(tin, {{0.585, 0.5}, {0.64, 0.505}}, false, 1);
     const std::vector<VertexId> offered = test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
     // As one patch it does not qualify (it holds a constraint).
@@ -197,7 +190,7 @@ TEST(ClearPatches, RemovesMostOfASetAroundAnInteriorConstraint) {
     // rest is a ring, which no single remove_patch takes: it has to go in pieces.
     for (std::uint64_t seed : {622u, 623u, 624u}) {
         SCOPED_TRACE(seed);
-        Tin tin = Tin::random_points(kUnit, 8000, seed, bumpy);
+        Tin tin = Tin::random_points(test::kUnitSquare, 8000, seed, test::bumpy_sand);
         constrain(tin, {{0.49, 0.5}, {0.515, 0.505}}, false, 1);
         const std::vector<VertexId> offered =
             test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
@@ -209,14 +202,14 @@ TEST(ClearPatches, RemovesMostOfASetAroundAnInteriorConstraint) {
 
 TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
     {  // Nobody may border anything that stays: nothing goes.
-        Tin tin = Tin::random_points(kUnit, 4000, 651, bumpy);
+        Tin tin = Tin::random_points(test::kUnitSquare, 4000, 651, test::bumpy_sand);
         const std::vector<VertexId> offered = in_disc(tin, {0.5, 0.5}, 0.1);
         const BulkRemoval out =
             clear_and_check(tin, offered, [](VertexId, VertexId) { return false; });
         EXPECT_EQ(out.removed, 0u);
     }
     {  // Survivors left of x = 0.5 may not border a removed vertex.
-        Tin tin = Tin::random_points(kUnit, 4000, 652, bumpy);
+        Tin tin = Tin::random_points(test::kUnitSquare, 4000, 652, test::bumpy_sand);
         const std::vector<VertexId> offered =
             test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
         const Tin* t = &tin;
@@ -226,8 +219,8 @@ TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
         EXPECT_LT(out.removed, offered.size());
     }
     {  // Always allowed: the same as no rule.
-        Tin a = Tin::random_points(kUnit, 4000, 653, bumpy);
-        Tin b = Tin::random_points(kUnit, 4000, 653, bumpy);
+        Tin a = Tin::random_points(test::kUnitSquare, 4000, 653, test::bumpy_sand);
+        Tin b = Tin::random_points(test::kUnitSquare, 4000, 653, test::bumpy_sand);
         const std::vector<VertexId> offered = test::grow_to_disc(a, in_disc(a, {0.5, 0.5}, 0.1));
         const BulkRemoval with =
             clear_and_check(a, offered, [](VertexId, VertexId) { return true; });
@@ -239,14 +232,14 @@ TEST(ClearPatches, MayBorderDecidesWhoStaysNextToTheSurvivors) {
 
 TEST(ClearPatches, IslandsAndAnnuliNeverBreakTheMesh) {
     // The set surrounds vertices it does not offer: whatever is removed, the checks hold.
-    Tin tin = Tin::random_points(kUnit, 8000, 631, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 8000, 631, test::bumpy_sand);
     const std::vector<VertexId> disc = test::grow_to_disc(tin, in_disc(tin, {0.5, 0.5}, 0.1));
     std::vector<VertexId> annulus;
     for (VertexId v : disc) {
         if (distance(tin.position(v), Vec2{0.5, 0.5}) > 0.03) annulus.push_back(v);
     }
     clear_and_check(tin, annulus);
-    Tin other = Tin::random_points(kUnit, 8000, 632, bumpy);
+    Tin other = Tin::random_points(test::kUnitSquare, 8000, 632, test::bumpy_sand);
     std::vector<VertexId> holed = test::grow_to_disc(other, in_disc(other, {0.5, 0.5}, 0.1));
     const auto nearest = std::min_element(holed.begin(), holed.end(), [&](VertexId a, VertexId b) {
         return distance(other.position(a), Vec2{0.5, 0.5}) <
@@ -257,7 +250,7 @@ TEST(ClearPatches, IslandsAndAnnuliNeverBreakTheMesh) {
 }
 
 TEST(ClearPatches, NothingToDo) {
-    Tin tin = Tin::random_points(kUnit, 2000, 641, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 2000, 641, test::bumpy_sand);
     EXPECT_EQ(clear_and_check(tin, {}).removed, 0u);
     // Only border vertices.
     std::vector<VertexId> border;
@@ -357,7 +350,7 @@ void constrain_segments(Tin& tin, const std::vector<std::array<Vec2, 2>>& segmen
     for (const auto& s : segments) {
         for (Vec2 p : s) {
             pts.push_back(p);
-            hs.push_back(bumpy(p));
+            hs.push_back(test::bumpy_sand(p));
         }
     }
     const std::vector<VertexId> ids = tin.insert_points(pts, hs);
@@ -384,7 +377,7 @@ TEST(ClearPatches, DropRuleMatchesTheFixedPointOfFullPasses) {
         std::uniform_real_distribution<double> u(0.3, 0.7);
         const Vec2 c{u(rng), u(rng)};
         {  // A disc with a constraint through it and one just outside.
-            Tin tin = Tin::random_points(kUnit, 5000, seed, bumpy);
+            Tin tin = Tin::random_points(test::kUnitSquare, 5000, seed, test::bumpy_sand);
             constrain_segments(tin, {{Vec2{c.x - 0.05, c.y - 0.02}, Vec2{c.x + 0.2, c.y + 0.03}},
                                      {Vec2{c.x - 0.1, c.y + 0.14}, Vec2{c.x + 0.1, c.y + 0.15}}});
             const std::vector<VertexId> offered = in_disc(tin, c, 0.13);
@@ -392,7 +385,7 @@ TEST(ClearPatches, DropRuleMatchesTheFixedPointOfFullPasses) {
                 std::max(most_passes, expect_removal_follows_the_rule(tin, offered, nullptr, true));
         }
         {  // A blob of three discs, pairs refused by a hash.
-            Tin tin = Tin::random_points(kUnit, 5000, seed + 10, bumpy);
+            Tin tin = Tin::random_points(test::kUnitSquare, 5000, seed + 10, test::bumpy_sand);
             std::vector<VertexId> offered = in_disc(tin, c, 0.08);
             for (const Vec2 d : {Vec2{0.07, 0.02}, Vec2{-0.03, 0.08}}) {
                 const std::vector<VertexId> more = in_disc(tin, c + d, 0.06);
@@ -402,7 +395,7 @@ TEST(ClearPatches, DropRuleMatchesTheFixedPointOfFullPasses) {
                                                     tin, offered, hashed_refusal(9), true));
         }
         {  // A disc that may not border survivors across a line through it.
-            Tin tin = Tin::random_points(kUnit, 5000, seed + 20, bumpy);
+            Tin tin = Tin::random_points(test::kUnitSquare, 5000, seed + 20, test::bumpy_sand);
             const Tin* t = &tin;
             const double cut = c.x + 0.3 * c.y;
             const MayBorder same_side = [t, cut](VertexId v, VertexId w) {
@@ -416,7 +409,7 @@ TEST(ClearPatches, DropRuleMatchesTheFixedPointOfFullPasses) {
         }
         {  // Holes: the disc minus small discs, one around a single vertex, plus a constraint
            // near the rim and refusals.
-            Tin tin = Tin::random_points(kUnit, 5000, seed + 30, bumpy);
+            Tin tin = Tin::random_points(test::kUnitSquare, 5000, seed + 30, test::bumpy_sand);
             constrain_segments(tin, {{Vec2{c.x + 0.11, c.y - 0.05}, Vec2{c.x + 0.13, c.y + 0.06}}});
             const std::vector<VertexId> disc = in_disc(tin, c, 0.12);
             const VertexId centre =

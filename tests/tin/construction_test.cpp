@@ -28,18 +28,6 @@ using test::brute_force_volume;
 using test::close_rel;
 using test::Plane;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-void expect_sound(const Tin& tin) {
-    const ValidationReport r = tin.check_valid();
-    EXPECT_TRUE(r.ok()) << r.summary();
-    const auto problems = test::mesh_problems(tin);
-    EXPECT_TRUE(problems.empty()) << test::join(problems);
-    EXPECT_EQ(tin.triangle_count(),
-              test::euler_triangle_count(tin.vertex_count(), test::border_vertex_count(tin)));
-}
-
 /// Expects `f` to throw std::invalid_argument with a non-empty message containing `keyword`.
 template <class F>
 void expect_invalid_argument(F&& f, const std::string& keyword) {
@@ -76,7 +64,7 @@ TEST(Construction, FlatRectangleIsTwoTrianglesAtConstantHeight) {
     EXPECT_TRUE(close_rel(tin.volume(-0.75), area * 2.0, 1e-14));
     EXPECT_EQ(tin.constrained_edge_count(), 0u);
     EXPECT_EQ(tin.constraint_count(), 0u);
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, RegularGridCountsFollowEulersFormula) {
@@ -94,7 +82,7 @@ TEST(Construction, RegularGridCountsFollowEulersFormula) {
         for (VertexId id : test::live_ids(tin))
             EXPECT_EQ(tin.height(id), 0.0);
         EXPECT_EQ(tin.volume(), 0.0);
-        expect_sound(tin);
+        EXPECT_TRUE(test::tin_is_sound(tin));
     }
 }
 
@@ -135,7 +123,7 @@ TEST(Construction, PlaneVolumeOnGridIsExactIntegral) {
     // Datum shifts the volume by datum * area.
     const double area = d.width() * d.height();
     EXPECT_TRUE(close_rel(tin.volume(2.0), plane.integral(d) - 2.0 * area, 1e-12));
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, PlaneVolumeOnRandomPointsIsExactIntegral) {
@@ -181,7 +169,7 @@ TEST(Construction, RandomPointsAreDeterministicAndUseTheHeightFunction) {
         EXPECT_EQ(a.height(v), f(a.position(v)));
         EXPECT_TRUE(d.contains(a.position(v)));
     }
-    expect_sound(a);
+    EXPECT_TRUE(test::tin_is_sound(a));
 }
 
 TEST(Construction, RandomPointsWithoutHeightFunctionAreFlatAtZero) {
@@ -222,7 +210,7 @@ TEST(Construction, FromPointsKeepsPositionsAndHeights) {
         ++matched;
     }
     EXPECT_EQ(matched, pts.size());
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, FromPointsMissingCornersTakeNearestPointHeight) {
@@ -249,13 +237,13 @@ TEST(Construction, FromPointsMissingCornersTakeNearestPointHeight) {
         }
         const auto loc = tin.locate(c);
         ASSERT_EQ(loc.kind, Location::Kind::OnVertex) << c.x << "," << c.y;
-        double h = kNaN;
+        double h = test::kNaN;
         for (std::size_t k = 0; k < 3; ++k) {
             if (tin.position(loc.corners[k]) == c) h = tin.height(loc.corners[k]);
         }
         EXPECT_EQ(h, hs[best]) << "corner " << c.x << "," << c.y;
     }
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, FromPointsSingleDuplicateKeepsTheFirstHeight) {
@@ -304,7 +292,7 @@ TEST(Construction, FromPointsDuplicatesKeepTheFirstHeight) {
         if (tin.height(v) != it->second) ++wrong;
     }
     EXPECT_EQ(wrong, 0u) << "vertices whose height is not the first given for their position";
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, FromPointsDuplicateOfACornerKeepsFirstHeight) {
@@ -328,15 +316,15 @@ TEST(Construction, FromPointsRejectsBadInput) {
     const std::vector<double> no_heights;
     expect_invalid_argument([&] { (void)Tin::from_points(d, none, no_heights); }, "no points");
 
-    const std::vector<Vec2> nan_pos = {{1.0, 1.0}, {kNaN, 2.0}};
+    const std::vector<Vec2> nan_pos = {{1.0, 1.0}, {test::kNaN, 2.0}};
     const std::vector<double> two = {0.0, 0.0};
     expect_invalid_argument([&] { (void)Tin::from_points(d, nan_pos, two); }, "not finite");
 
-    const std::vector<Vec2> inf_pos = {{1.0, 1.0}, {2.0, kInf}};
+    const std::vector<Vec2> inf_pos = {{1.0, 1.0}, {2.0, test::kInf}};
     expect_invalid_argument([&] { (void)Tin::from_points(d, inf_pos, two); }, "not finite");
 
     const std::vector<Vec2> ok_pos = {{1.0, 1.0}, {2.0, 2.0}};
-    const std::vector<double> nan_h = {0.0, kNaN};
+    const std::vector<double> nan_h = {0.0, test::kNaN};
     expect_invalid_argument([&] { (void)Tin::from_points(d, ok_pos, nan_h); }, "not finite");
 
     const std::vector<Vec2> outside = {{1.0, 1.0}, {4.0000001, 2.0}};
@@ -354,7 +342,7 @@ TEST(Construction, FromPointsRejectsBadInput) {
     EXPECT_EQ(tin.vertex_count(), 7u);
     EXPECT_EQ(test::border_vertex_count(tin), 7u);
     EXPECT_EQ(tin.triangle_count(), test::euler_triangle_count(7, 7));
-    expect_sound(tin);
+    EXPECT_TRUE(test::tin_is_sound(tin));
 }
 
 TEST(Construction, RejectsBadDomainsAndSizes) {
@@ -363,17 +351,20 @@ TEST(Construction, RejectsBadDomainsAndSizes) {
     EXPECT_THROW((void)Tin::from_points(Rect{{0.0, 0.0}, {0.0, 1.0}}, pts, hs),
                  std::invalid_argument);
     EXPECT_THROW((void)Tin::flat_rectangle(Rect{{0.0, 0.0}, {1.0, 0.0}}), std::invalid_argument);
-    EXPECT_THROW((void)Tin::flat_rectangle(Rect{{0.0, 0.0}, {kNaN, 1.0}}), std::invalid_argument);
-    EXPECT_THROW((void)Tin::flat_rectangle(Rect{{0.0, 0.0}, {kInf, 1.0}}), std::invalid_argument);
+    EXPECT_THROW((void)Tin::flat_rectangle(Rect{{0.0, 0.0}, {test::kNaN, 1.0}}),
+                 std::invalid_argument);
+    EXPECT_THROW((void)Tin::flat_rectangle(Rect{{0.0, 0.0}, {test::kInf, 1.0}}),
+                 std::invalid_argument);
     EXPECT_THROW((void)Tin::flat_rectangle(Rect{}), std::invalid_argument);
-    EXPECT_THROW((void)Tin::flat_rectangle(Rect::from_size(1.0, 1.0), kNaN), std::invalid_argument);
+    EXPECT_THROW((void)Tin::flat_rectangle(Rect::from_size(1.0, 1.0), test::kNaN),
+                 std::invalid_argument);
     EXPECT_THROW((void)Tin::regular_grid(Rect::from_size(1.0, 1.0), 0, 3), std::invalid_argument);
     EXPECT_THROW((void)Tin::regular_grid(Rect::from_size(1.0, 1.0), 3, -1), std::invalid_argument);
     EXPECT_THROW(
-        (void)Tin::regular_grid(Rect::from_size(1.0, 1.0), 2, 2, [](Vec2) { return kNaN; }),
+        (void)Tin::regular_grid(Rect::from_size(1.0, 1.0), 2, 2, [](Vec2) { return test::kNaN; }),
         std::invalid_argument);
     EXPECT_THROW(
-        (void)Tin::random_points(Rect::from_size(1.0, 1.0), 10, 1, [](Vec2) { return kInf; }),
+        (void)Tin::random_points(Rect::from_size(1.0, 1.0), 10, 1, [](Vec2) { return test::kInf; }),
         std::invalid_argument);
     EXPECT_THROW((void)Tin::random_points(Rect{}, 10, 1), std::invalid_argument);
 }

@@ -20,8 +20,6 @@ namespace {
 
 using test::Tri;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 double hills(Vec2 p) {
     return 1.0 + std::sin(p.x) * std::cos(0.8 * p.y);
 }
@@ -134,7 +132,7 @@ TEST(Locate, OutsideTheDomain) {
     const Tin tin = Tin::random_points(Rect::from_size(2.0, 2.0), 50, 2, hills);
     LocateHint hint;
     for (Vec2 p : {Vec2{-0.001, 1.0}, Vec2{2.0000001, 1.0}, Vec2{1.0, -5.0}, Vec2{1.0, 2.5},
-                   Vec2{100.0, 100.0}, Vec2{kNaN, 1.0}, Vec2{1.0, kNaN},
+                   Vec2{100.0, 100.0}, Vec2{test::kNaN, 1.0}, Vec2{1.0, test::kNaN},
                    Vec2{std::numeric_limits<double>::infinity(), 0.0}}) {
         EXPECT_EQ(tin.locate(p).kind, Location::Kind::Outside);
         EXPECT_FALSE(tin.locate(p, &hint).inside());
@@ -221,7 +219,7 @@ TEST(HeightsAt, MatchHeightAtAndNameATriangleHoldingEachPoint) {
     const std::vector<Tri> tris = tin.triangles();
     for (std::size_t i = 0; i < tris.size(); i += 8)
         points.push_back((tin.position(tris[i][0]) + tin.position(tris[i][1])) * 0.5);
-    points.push_back({kNaN, 1.0});
+    points.push_back({test::kNaN, 1.0});
     points.push_back({5.0, 5.0});  // a corner of the domain
     std::vector<double> heights(points.size());
     std::vector<std::array<VertexId, 3>> corners(points.size());

@@ -27,14 +27,7 @@ using test::live_ids;
 using test::region_is_disc;
 using test::Tri;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
 const Vec2 kCentre{0.5, 0.5};
-
-/// Bumpy sand: far from any plane at the scale of a patch.
-double bumpy(Vec2 p) {
-    return 0.2 + 0.03 * std::sin(41.0 * p.x + 0.4) * std::cos(37.0 * p.y - 0.1) +
-           0.05 * (p.x - 0.5) * (p.x - 0.5);
-}
 
 /// A random bumpy TIN and a disc-shaped set of about `radius` around the centre.
 struct Patch {
@@ -43,7 +36,7 @@ struct Patch {
 };
 
 Patch bumpy_patch(std::uint64_t seed, double radius) {
-    Tin tin = Tin::random_points(kUnit, 4000, seed, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 4000, seed, test::bumpy_sand);
     std::vector<VertexId> set = grow_to_disc(tin, in_disc(tin, kCentre, radius));
     return {std::move(tin), std::move(set)};
 }
@@ -127,11 +120,11 @@ TEST(PatchRemoval, ConserveKeepsTheVolumeAndReportsTheSameChange) {
 
 TEST(PatchRemoval, KeepsConstrainedEdgesOnItsBoundary) {
     // A constrained square around the patch: its edges bound the hole and must stay.
-    Tin tin = Tin::random_points(kUnit, 4000, 521, bumpy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 4000, 521, test::bumpy_sand);
     const std::vector<Vec2> corners = {{0.4, 0.4}, {0.6, 0.4}, {0.6, 0.6}, {0.4, 0.6}};
     std::vector<double> heights;
     for (Vec2 c : corners)
-        heights.push_back(bumpy(c));
+        heights.push_back(test::bumpy_sand(c));
     const std::vector<VertexId> ring = tin.insert_points(corners, heights);
     tin.insert_constraint(ring, true, 1);
     const auto constraints_before = tin.constraints();
@@ -157,7 +150,7 @@ TEST(PatchRemoval, KeepsConstrainedEdgesOnItsBoundary) {
 
 TEST(PatchRemoval, RefusesAndChangesNothing) {
     {  // A border vertex in the set.
-        Tin tin = test::smooth_terrain(kUnit, 3000, 531, bumpy, 0.02);
+        Tin tin = test::smooth_terrain(test::kUnitSquare, 3000, 531, test::bumpy_sand, 0.02);
         const std::vector<VertexId> set = in_disc(tin, {0.5, 0.0}, 0.1);
         ASSERT_TRUE(std::any_of(set.begin(), set.end(), [&](VertexId v) {
             return test::on_domain_border(tin.domain(), tin.position(v));
@@ -166,9 +159,9 @@ TEST(PatchRemoval, RefusesAndChangesNothing) {
     }
     {  // A constrained vertex in the set.
         Patch p = bumpy_patch(532, 0.1);
-        const std::vector<VertexId> ids =
-            p.tin.insert_points(std::vector<Vec2>{{0.48, 0.5}, {0.52, 0.51}},
-                                std::vector<double>{bumpy({0.48, 0.5}), bumpy({0.52, 0.51})});
+        const std::vector<VertexId> ids = p.tin.insert_points(
+            std::vector<Vec2>{{0.48, 0.5}, {0.52, 0.51}},
+            std::vector<double>{test::bumpy_sand({0.48, 0.5}), test::bumpy_sand({0.52, 0.51})});
         p.tin.insert_constraint(ids[0], ids[1], 1);
         const std::vector<VertexId> set = grow_to_disc(p.tin, in_disc(p.tin, kCentre, 0.1));
         ASSERT_TRUE(std::count(set.begin(), set.end(), ids[0]) == 1);
@@ -191,9 +184,9 @@ TEST(PatchRemoval, RefusesAndChangesNothing) {
     }
     {  // A short constraint inside the disc; everything around it goes except its two ends.
         Patch p = bumpy_patch(534, 0.1);
-        const std::vector<VertexId> ids =
-            p.tin.insert_points(std::vector<Vec2>{{0.49, 0.5}, {0.515, 0.505}},
-                                std::vector<double>{bumpy({0.49, 0.5}), bumpy({0.515, 0.505})});
+        const std::vector<VertexId> ids = p.tin.insert_points(
+            std::vector<Vec2>{{0.49, 0.5}, {0.515, 0.505}},
+            std::vector<double>{test::bumpy_sand({0.49, 0.5}), test::bumpy_sand({0.515, 0.505})});
         p.tin.insert_constraint(ids[0], ids[1], 1);
         ASSERT_TRUE(p.tin.is_constrained_edge(ids[0], ids[1]));
         std::vector<VertexId> set = grow_to_disc(p.tin, in_disc(p.tin, kCentre, 0.1));
@@ -209,14 +202,14 @@ TEST(PatchRemoval, RefusesAConstrainedChordAcrossAnOtherwiseRemovableDisc) {
     const double r = 0.08;
     const std::vector<Vec2> ends = {{kCentre.x - r, kCentre.y + 0.003},
                                     {kCentre.x + r, kCentre.y - 0.002}};
-    const std::vector<double> end_heights = {bumpy(ends[0]), bumpy(ends[1])};
+    const std::vector<double> end_heights = {test::bumpy_sand(ends[0]), test::bumpy_sand(ends[1])};
     // Whether a chord end is passed once by the region's boundary depends on the random points
     // around it, so the terrains are drawn until three qualify.
     int qualified = 0;
     for (std::uint64_t seed = 541; seed < 581 && qualified < 3; ++seed) {
         SCOPED_TRACE(seed);
-        Tin chorded = Tin::random_points(kUnit, 4000, seed, bumpy);
-        Tin plain = Tin::random_points(kUnit, 4000, seed, bumpy);
+        Tin chorded = Tin::random_points(test::kUnitSquare, 4000, seed, test::bumpy_sand);
+        Tin plain = Tin::random_points(test::kUnitSquare, 4000, seed, test::bumpy_sand);
         const std::vector<VertexId> ids = chorded.insert_points(ends, end_heights);
         ASSERT_EQ(plain.insert_points(ends, end_heights), ids);
         chorded.insert_constraint(ids[0], ids[1], 1);
@@ -276,7 +269,7 @@ bool same_cycle(const std::vector<VertexId>& a, const std::vector<VertexId>& b) 
 }
 
 TEST(TinStar, AgreesWithTheSeparateQueries) {
-    Tin tin = test::smooth_terrain(kUnit, 3000, 561, bumpy, 0.05);
+    Tin tin = test::smooth_terrain(test::kUnitSquare, 3000, 561, test::bumpy_sand, 0.05);
     // Constraints: a closed ring, two crossing segments (a crossing vertex), one ending on the
     // border.
     const std::vector<Vec2> pts = {{0.2, 0.2}, {0.4, 0.22}, {0.38, 0.41}, {0.21, 0.39},
@@ -284,7 +277,7 @@ TEST(TinStar, AgreesWithTheSeparateQueries) {
                                    {0.9, 0.3}, {1.0, 0.35}};
     std::vector<double> hs;
     for (Vec2 q : pts)
-        hs.push_back(bumpy(q));
+        hs.push_back(test::bumpy_sand(q));
     const std::vector<VertexId> ids = tin.insert_points(pts, hs);
     tin.insert_constraint(std::vector<VertexId>{ids[0], ids[1], ids[2], ids[3]}, true, 1);
     tin.insert_constraint(ids[4], ids[5], 2);

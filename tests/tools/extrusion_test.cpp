@@ -30,10 +30,8 @@ using test::inside_polygon;
 using test::live_ids;
 using test::mesh_is_sound;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
 Tin terrain() {
-    return test::smooth_terrain(kUnit, 20000, 201, test::rolling_sand);
+    return test::smooth_terrain(test::kUnitSquare, 20000, 201, test::rolling_sand);
 }
 
 ToolSpec spec_of(const std::string& asset, bool extrude) {
@@ -227,7 +225,7 @@ TEST(Extrusion, StampAtTheDomainBorderStillConserves) {
 }
 
 TEST(Extrusion, DepositRidgeAddsExactlyTheVolumeOutsideTheContour) {
-    Tin tin = test::smooth_terrain(kUnit, 5000, 202, test::rolling_sand);
+    Tin tin = test::smooth_terrain(test::kUnitSquare, 5000, 202, test::rolling_sand);
     std::vector<Vec2> outer;
     for (Vec2 p : circle_contour(0.05, 24))
         outer.push_back(p + Vec2{0.5, 0.5});
@@ -285,7 +283,7 @@ TEST(Extrusion, RidgeRaisesExactlyTheVerticesWithinTheWidthOutsideTheRim) {
     const double width = 0.04;
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
-        Tin tin = test::smooth_terrain(kUnit, 40000, 5, test::rolling_sand);
+        Tin tin = test::smooth_terrain(test::kUnitSquare, 40000, 5, test::rolling_sand);
         const std::vector<double> cut(c.outer.size(), 0.01);
         std::vector<VertexId> touched;
         const RidgeReport r =
@@ -321,7 +319,7 @@ TEST(Extrusion, StationsGoOnlyWhereTheBandLacksVertices) {
     const auto max_stations = static_cast<std::size_t>(4.0 * (perimeter / (0.25 * width) + 1.0));
     {
         SCOPED_TRACE("sparse terrain, then the same contour again");
-        Tin tin = Tin::random_points(kUnit, 400, 11, [](Vec2) { return 0.1; });
+        Tin tin = Tin::random_points(test::kUnitSquare, 400, 11, [](Vec2) { return 0.1; });
         double v0 = tin.volume();
         const RidgeReport first = deposit_ridge(tin, outer, cut, std::nullopt, width, 1e-5);
         EXPECT_GT(first.vertices_inserted, max_stations / 2);  // a sparse band needs them
@@ -337,7 +335,7 @@ TEST(Extrusion, StationsGoOnlyWhereTheBandLacksVertices) {
     }
     {
         SCOPED_TRACE("dense terrain");
-        Tin tin = Tin::random_points(kUnit, 40000, 12, [](Vec2) { return 0.1; });
+        Tin tin = Tin::random_points(test::kUnitSquare, 40000, 12, [](Vec2) { return 0.1; });
         const double v0 = tin.volume();
         const RidgeReport r = deposit_ridge(tin, outer, cut, std::nullopt, width, 1e-5);
         EXPECT_EQ(r.vertices_inserted, 0u);

@@ -22,8 +22,6 @@ using test::inside_polygon;
 using test::live_ids;
 using test::mesh_is_sound;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
 /// The λ of the shipped asset, four times larger, centred at (0.5, 0.5), edges of at most 1 cm.
 std::vector<Vec2> big_lambda() {
     const std::vector<Vec2> cm = {{4.5, -5.0},  {2.5, -5.0}, {0.0, 0.2},  {-2.6, -5.0},
@@ -51,7 +49,7 @@ void check_region(Tin& tin, const std::vector<Vec2>& contour) {
     ASSERT_TRUE(mesh_is_sound(tin));
     // Seeds: a few points well inside, found by the test itself.
     std::vector<Vec2> seeds;
-    for (Vec2 p : test::random_points_in(kUnit, 5000, 17)) {
+    for (Vec2 p : test::random_points_in(test::kUnitSquare, 5000, 17)) {
         if (test::inside_by(p, contour, 0.005)) seeds.push_back(p);
         if (seeds.size() == 3) break;
     }
@@ -76,12 +74,12 @@ void check_region(Tin& tin, const std::vector<Vec2>& contour) {
 }
 
 TEST(Region, VerticesInRegionOfAConstrainedNonConvexContour) {
-    Tin tin = Tin::random_points(kUnit, 5000, 501, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 5000, 501, test::rolling_sand);
     check_region(tin, big_lambda());
 }
 
 TEST(Region, VerticesInRegionOfAConstrainedCircle) {
-    Tin tin = Tin::random_points(kUnit, 3000, 502, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 502, test::rolling_sand);
     std::vector<Vec2> circle;
     for (Vec2 p : circle_contour(0.2, 64))
         circle.push_back(p + Vec2{0.45, 0.55});
@@ -111,8 +109,9 @@ double longest_edge_near(const Tin& tin, Vec2 centre, double r) {
 TEST(Refine, NoLongEdgeLeftNearThePointAndVolumeConserved) {
     for (const std::size_t points : {0u, 30u, 300u}) {
         SCOPED_TRACE(std::to_string(points) + " points");
-        Tin tin = points == 0 ? Tin::flat_rectangle(kUnit, 0.1)
-                              : Tin::random_points(kUnit, points, 511, test::rolling_sand);
+        Tin tin = points == 0
+                      ? Tin::flat_rectangle(test::kUnitSquare, 0.1)
+                      : Tin::random_points(test::kUnitSquare, points, 511, test::rolling_sand);
         const Vec2 c{0.45, 0.6};
         const double r = 0.15, max_length = 0.04;
         ASSERT_GT(longest_edge_near(tin, c, r), max_length);
@@ -136,7 +135,7 @@ TEST(Refine, NoLongEdgeLeftNearThePointAndVolumeConserved) {
 }
 
 TEST(Refine, StopsAtTheInsertionLimit) {
-    Tin tin = Tin::flat_rectangle(kUnit, 0.1);
+    Tin tin = Tin::flat_rectangle(test::kUnitSquare, 0.1);
     const std::size_t inserted = refine_long_edges(tin, {0.5, 0.5}, 0.3, 0.01, nullptr, 10);
     EXPECT_GT(inserted, 0u);
     EXPECT_LE(inserted, 10u);

@@ -23,8 +23,6 @@ namespace {
 using test::live_ids;
 using test::mesh_is_sound;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
 /// Heights of the live vertices by id.
 std::unordered_map<std::uint32_t, double> heights(const Tin& tin) {
     std::unordered_map<std::uint32_t, double> h;
@@ -48,7 +46,7 @@ VertexId nearest_vertex(const Tin& tin, Vec2 c) {
 // ---- 10. Pour and remove ---------------------------------------------------------------------
 
 TEST(Sand, PourAddsExactlyTheVolume) {
-    Tin tin = Tin::random_points(kUnit, 3000, 401, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 401, test::rolling_sand);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     const auto h0 = heights(tin);
@@ -77,7 +75,7 @@ TEST(Sand, PourAddsExactlyTheVolume) {
 }
 
 TEST(Sand, PourOnTwoTrianglesRefinesAndAddsExactlyTheVolume) {
-    Tin tin = Tin::flat_rectangle(kUnit, 0.1);
+    Tin tin = Tin::flat_rectangle(test::kUnitSquare, 0.1);
     ASSERT_EQ(tin.vertex_count(), 4u);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
@@ -112,7 +110,7 @@ TEST(Sand, PourOnTwoTrianglesRefinesAndAddsExactlyTheVolume) {
 }
 
 TEST(Sand, RemoveNeverGoesBelowBedrockAndReportsWhatItTook) {
-    Tin tin = Tin::random_points(kUnit, 3000, 402, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 402, test::rolling_sand);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     // Two millimetres of sand over the bedrock everywhere.
@@ -173,7 +171,7 @@ TEST(Brush, RaiseAndLowerFollowTheFalloffAndPeakAtTheCentre) {
     for (const BrushKind kind : {BrushKind::Raise, BrushKind::Lower}) {
         const double sign = kind == BrushKind::Raise ? 1.0 : -1.0;
         SCOPED_TRACE(sign > 0 ? "raise" : "lower");
-        Tin tin = Tin::random_points(kUnit, 5000, 411, test::rolling_sand);
+        Tin tin = Tin::random_points(test::kUnitSquare, 5000, 411, test::rolling_sand);
         SculptContext context(tin.domain());
         context.settings.simplify_after_edit = false;
         BrushSettings b;
@@ -237,7 +235,8 @@ double variance_in_disc(const Tin& tin, Vec2 c, double r) {
 }
 
 TEST(Brush, SmoothCalmsNoise) {
-    Tin tin = Tin::random_points(kUnit, 20000, 421, [](Vec2 p) { return 0.1 + 0.002 * noise(p); });
+    Tin tin = Tin::random_points(test::kUnitSquare, 20000, 421,
+                                 [](Vec2 p) { return 0.1 + 0.002 * noise(p); });
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     BrushSettings b;
@@ -257,7 +256,7 @@ TEST(Brush, SmoothCalmsNoise) {
 TEST(Brush, SmoothLeavesAPlaneUnchanged) {
     // A sloped plane is as smooth as sand gets: smoothing it must not move it.
     const test::Plane plane{0.05, -0.03, 0.1};
-    Tin tin = Tin::random_points(kUnit, 5000, 422, plane);
+    Tin tin = Tin::random_points(test::kUnitSquare, 5000, 422, plane);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     BrushSettings b;
@@ -273,7 +272,7 @@ TEST(Brush, SmoothLeavesAPlaneUnchanged) {
 }
 
 TEST(Brush, FlattenMovesHeightsTowardTheTarget) {
-    Tin tin = Tin::random_points(kUnit, 5000, 431, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 5000, 431, test::rolling_sand);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     BrushSettings b;
@@ -308,7 +307,7 @@ TEST(Brush, FlattenMovesHeightsTowardTheTarget) {
 }
 
 TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
-    Tin tin = Tin::random_points(kUnit, 5000, 441, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 5000, 441, test::rolling_sand);
     SculptContext context(tin.domain());
     BrushSettings b;
     b.kind = BrushKind::PaintMaterial;
@@ -336,7 +335,7 @@ TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
 }
 
 TEST(Brush, BadSettingsThrow) {
-    Tin tin = Tin::random_points(kUnit, 100, 451);
+    Tin tin = Tin::random_points(test::kUnitSquare, 100, 451);
     SculptContext context(tin.domain());
     BrushSettings b;
     b.radius = 0.0;

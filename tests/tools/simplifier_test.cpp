@@ -30,7 +30,6 @@ using test::live_ids;
 using test::mesh_is_sound;
 using test::on_domain_border;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
 const test::Plane kSlope{0.05, -0.03, 0.1};
 
 std::size_t count_inside(const Tin& tin, std::span<const Vec2> poly, double margin) {
@@ -124,7 +123,7 @@ TEST(Simplifier, FlatStampRemovesAtLeast90PercentOfInteriorVertices) {
     const ToolPlacement at{{0.5, 0.5}, 0.0, 0.05};
     const std::vector<Vec2> inner = test::rotate_all(tool.shape().inner, at.centre, at.angle);
     for (const bool simplify : {false, true}) {
-        Tin tin = Tin::random_points(kUnit, 20000, 301, test::rolling_sand);
+        Tin tin = Tin::random_points(test::kUnitSquare, 20000, 301, test::rolling_sand);
         SculptContext context(tin.domain());
         context.settings.simplify_after_edit = simplify;
         const std::size_t before = count_inside(tin, inner, 1e-9);
@@ -143,7 +142,7 @@ TEST(Simplifier, FlatStampRemovesAtLeast90PercentOfInteriorVertices) {
 }
 
 TEST(Simplifier, FlattenBrushThenSimplifyRemovesAtLeast90PercentOfInteriorVertices) {
-    Tin tin = Tin::random_points(kUnit, 20000, 302, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 20000, 302, test::rolling_sand);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;
     BrushSettings b;
@@ -182,7 +181,7 @@ TEST(Simplifier, FlattenBrushThenSimplifyRemovesAtLeast90PercentOfInteriorVertic
 // ---- 14. The simplifier and planar patches --------------------------------------------------
 
 TEST(Simplifier, PlanarityResidualIsZeroOnAPlaneAndPositiveOnABump) {
-    Tin tin = Tin::random_points(kUnit, 2000, 311, kSlope);
+    Tin tin = Tin::random_points(test::kUnitSquare, 2000, 311, kSlope);
     std::size_t interior = 0;
     for (VertexId v : live_ids(tin)) {
         if (tin.is_boundary(v)) {
@@ -236,7 +235,7 @@ TEST(Simplifier, PlanarityResidualMatchesAnIndependentFitOnCurvedSand) {
     const auto dune = [](Vec2 p) { return 0.02 * std::sin(9.0 * p.x) * std::cos(7.0 * p.y); };
     // Ordinary stars, which the normal equations fit, and stars squeezed 10^7 times flatter
     // than they are long (a grid of 0.1 x 10^-8 cells), whose pivot ratio sends them to QR.
-    const Tin random = Tin::random_points(kUnit, 3000, 41, dune);
+    const Tin random = Tin::random_points(test::kUnitSquare, 3000, 41, dune);
     const Tin squeezed = Tin::regular_grid(Rect::from_size(1.0, 1e-7), 10, 10, [](Vec2 p) {
         return 0.02 * std::sin(9.0 * p.x) + 1e12 * p.y * p.y;
     });
@@ -257,7 +256,7 @@ TEST(Simplifier, NeverRemovesBorderOrConstrainedVertices) {
     // Flat sand with points along the border and a constrained polyline through it: every
     // other vertex is redundant.
     Tin tin = test::smooth_terrain(
-        kUnit, 3000, 321, [](Vec2) { return 0.1; }, 0.05);
+        test::kUnitSquare, 3000, 321, [](Vec2) { return 0.1; }, 0.05);
     const std::vector<Vec2> line = {{0.2, 0.2}, {0.4, 0.35}, {0.5, 0.3}, {0.7, 0.6}, {0.6, 0.8}};
     const std::vector<VertexId> ids =
         tin.insert_points(line, std::vector<double>(line.size(), 0.1));
@@ -294,7 +293,7 @@ TEST(Simplifier, NeverRemovesBorderOrConstrainedVertices) {
 TEST(Simplifier, RemovalsStayWithinToleranceOnCurvedSand) {
     // On curved sand only vertices within d_m of their ring's plane go, so the surface moves
     // by little: check it on a grid against the analytic sand.
-    Tin tin = Tin::random_points(kUnit, 4000, 331, test::rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 4000, 331, test::rolling_sand);
     const Tin before = Tin::from_snapshot(tin.snapshot());
     Simplifier s;
     for (VertexId v : live_ids(tin))
@@ -318,7 +317,7 @@ TEST(Simplifier, RemovalsStayWithinToleranceOnCurvedSand) {
 }
 
 TEST(Simplifier, PlanarPatchOfADiscIsRemovedInOneStep) {
-    Tin tin = Tin::random_points(kUnit, 5000, 341, kSlope);
+    Tin tin = Tin::random_points(test::kUnitSquare, 5000, 341, kSlope);
     const Vec2 c{0.5, 0.5};
     const std::vector<VertexId> set = close_to_disc(tin, interior_in_disc(tin, c, 0.1));
     ASSERT_GT(set.size(), 100u);
@@ -340,7 +339,7 @@ TEST(Simplifier, PlanarPatchOfADiscIsRemovedInOneStep) {
         EXPECT_NEAR(*tin.height_at(p, &hint), kSlope(p), 1e-12);
     EXPECT_EQ(count_in_disc(tin, c, 0.1), 0u);
     // Removing a disc of vertices on curved sand within a generous tolerance works too.
-    Tin curved = Tin::random_points(kUnit, 5000, 342, test::rolling_sand);
+    Tin curved = Tin::random_points(test::kUnitSquare, 5000, 342, test::rolling_sand);
     const std::vector<VertexId> small = close_to_disc(curved, interior_in_disc(curved, c, 0.03));
     const double cv0 = curved.volume();
     ASSERT_TRUE(curved.remove_planar_patch(small, 0.01));
@@ -359,13 +358,13 @@ TEST(Simplifier, PlanarPatchRefusesAndChangesNothing) {
         EXPECT_TRUE(tin.check_valid().ok());
     };
     {  // Not planar: one vertex 1 cm off the plane.
-        Tin tin = Tin::random_points(kUnit, 5000, 351, kSlope);
+        Tin tin = Tin::random_points(test::kUnitSquare, 5000, 351, kSlope);
         const std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
         tin.set_height(set[set.size() / 2], tin.height(set[set.size() / 2]) + 0.01);
         expect_refused(tin, set, 1e-3, "non-planar");
     }
     {  // A constrained vertex in the set.
-        Tin tin = Tin::random_points(kUnit, 5000, 352, kSlope);
+        Tin tin = Tin::random_points(test::kUnitSquare, 5000, 352, kSlope);
         std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
         const std::vector<VertexId> ids =
             tin.insert_points(std::vector<Vec2>{{0.48, 0.5}, {0.52, 0.51}},
@@ -376,7 +375,7 @@ TEST(Simplifier, PlanarPatchRefusesAndChangesNothing) {
         expect_refused(tin, set, 1e-9, "constrained vertex");
     }
     {  // A ring around a vertex it does not remove (the nearest to the centre).
-        Tin tin = Tin::random_points(kUnit, 5000, 353, kSlope);
+        Tin tin = Tin::random_points(test::kUnitSquare, 5000, 353, kSlope);
         std::vector<VertexId> set = interior_in_disc(tin, c, 0.1);
         const auto nearest = std::min_element(set.begin(), set.end(), [&](VertexId a, VertexId b) {
             return distance(tin.position(a), c) < distance(tin.position(b), c);
@@ -391,7 +390,7 @@ TEST(Simplifier, PlanarPatchRefusesAndChangesNothing) {
         expect_refused(tin, annulus, 1e-9, "annulus");
     }
     {  // A border vertex in the set.
-        Tin tin = test::smooth_terrain(kUnit, 2000, 354, kSlope, 0.05);
+        Tin tin = test::smooth_terrain(test::kUnitSquare, 2000, 354, kSlope, 0.05);
         std::vector<VertexId> set;
         for (VertexId v : live_ids(tin)) {
             if (distance(tin.position(v), Vec2{0.5, 0.0}) < 0.1) set.push_back(v);
@@ -477,8 +476,8 @@ void edit_and_simplify(Tin& tin, Run&& run) {
 TEST(Simplifier, OneSimplifierForManyRunsActsAsAFreshOnePerRun) {
     TinOptions options;
     options.track_changes = false;
-    Tin kept_tin = Tin::random_points(kUnit, 6000, 370, test::rolling_sand, options);
-    Tin fresh_tin = Tin::random_points(kUnit, 6000, 370, test::rolling_sand, options);
+    Tin kept_tin = Tin::random_points(test::kUnitSquare, 6000, 370, test::rolling_sand, options);
+    Tin fresh_tin = Tin::random_points(test::kUnitSquare, 6000, 370, test::rolling_sand, options);
     std::vector<SimplifyReport> kept_reports;
     std::vector<SimplifyReport> fresh_reports;
     Simplifier kept;

@@ -23,15 +23,8 @@
 namespace sandtin {
 namespace {
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
 double flat(Vec2) {
     return 0.0;
-}
-
-/// Partly below the floors used here, so a dig keeps some sand below the tool.
-double wavy(Vec2 p) {
-    return 0.1 + 0.03 * std::sin(20.0 * p.x) * std::cos(17.0 * p.y) + 0.02 * p.y;
 }
 
 using Vertex = std::tuple<double, double, double>;
@@ -67,7 +60,7 @@ struct Outcome {
 };
 
 Outcome run(const Edit& e, bool clear) {
-    Outcome out{{}, 0.0, {}, Tin::random_points(kUnit, e.points, 77, e.terrain)};
+    Outcome out{{}, 0.0, {}, Tin::random_points(test::kUnitSquare, e.points, 77, e.terrain)};
     Tin& tin = out.tin;
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = e.simplify;
@@ -111,14 +104,14 @@ TEST(StampClearing, GivesTheSameTerrainAsThePlainPath) {
     const std::vector<Edit> edits = {
         {"groove on dense flat sand", flat, 40000, circle(0.04), {{0.2, 0.2}, {0.8, 0.8}}, -0.1,
          true, 1e-15},
-        {"lambda stamp on curved sand", wavy, 20000, lambda, {{0.5, 0.5}}, 0.09, true, 1e-15},
-        {"circle stamp, sand partly below the floor", wavy, 20000, circle(0.06), {{0.4, 0.6}},
+        {"lambda stamp on curved sand", test::wavy_sand, 20000, lambda, {{0.5, 0.5}}, 0.09, true, 1e-15},
+        {"circle stamp, sand partly below the floor", test::wavy_sand, 20000, circle(0.06), {{0.4, 0.6}},
          0.1, true, 1e-4},
-        {"stroke on curved sand, partly below the floor", wavy, 20000, circle(0.05),
+        {"stroke on curved sand, partly below the floor", test::wavy_sand, 20000, circle(0.05),
          {{0.2, 0.7}, {0.5, 0.4}, {0.8, 0.6}}, 0.1, true, -1.0},
-        {"lambda stroke on curved sand", wavy, 20000, lambda, {{0.3, 0.3}, {0.6, 0.5}}, 0.1,
+        {"lambda stroke on curved sand", test::wavy_sand, 20000, lambda, {{0.3, 0.3}, {0.6, 0.5}}, 0.1,
          true, -1.0},
-        {"stroke without simplification", wavy, 10000, circle(0.05), {{0.3, 0.3}, {0.7, 0.4}},
+        {"stroke without simplification", test::wavy_sand, 10000, circle(0.05), {{0.3, 0.3}, {0.7, 0.4}},
          0.1, false, -1.0},
     };
     // clang-format on
@@ -130,12 +123,12 @@ TEST(StampClearing, GivesTheSameTerrainAsThePlainPath) {
         // The clearing did work (else this compares the plain path with itself).
         EXPECT_GT(cleared.report.cleared.removed, 0u);
         EXPECT_EQ(plain.report.cleared.removed, 0u);
-        const double tolerance =
-            std::max(Tool::build(e.tool).rim_tolerance(), default_simplify_tolerance(kUnit));
+        const double tolerance = std::max(Tool::build(e.tool).rim_tolerance(),
+                                          default_simplify_tolerance(test::kUnitSquare));
         LocateHint h1, h2;
         double worst = 0.0;
         double sum = 0.0;
-        const std::vector<Vec2> probes = test::random_points_in(kUnit, 20000, 5);
+        const std::vector<Vec2> probes = test::random_points_in(test::kUnitSquare, 20000, 5);
         for (Vec2 p : probes) {
             const double d =
                 std::abs(*cleared.tin.height_at(p, &h1) - *plain.tin.height_at(p, &h2));

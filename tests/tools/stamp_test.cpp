@@ -36,8 +36,6 @@ using test::rolling_sand;
 using test::rotate_all;
 using test::surface_at;
 
-const Rect kUnit = Rect::from_size(1.0, 1.0);
-
 Tool circle_tool(double radius, int control_points = 12) {
     ToolSpec spec;
     spec.contour = ContourKind::Circle;
@@ -48,10 +46,6 @@ Tool circle_tool(double radius, int control_points = 12) {
 
 std::vector<Vec2> world(const ToolPlacement& at, std::span<const Vec2> local) {
     return rotate_all(local, at.centre, at.angle);
-}
-
-double wavy(Vec2 p) {
-    return 0.1 + 0.03 * std::sin(20.0 * p.x) * std::cos(17.0 * p.y) + 0.02 * p.y;
 }
 
 /// Samples the surface at `count` random points of `box` (seeded) and expects the floor height
@@ -75,7 +69,7 @@ std::size_t expect_floor_inside(const Tin& tin, std::span<const Vec2> inner, con
 // ---- 1. The floor of a flat stamp ---------------------------------------------------------
 
 TEST(Stamp, FlatDigPutsEveryVertexInsideInnerContourAtToolDepth) {
-    Tin tin = Tin::random_points(kUnit, 4000, 11, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 4000, 11, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const ToolPlacement at{{0.43, 0.57}, 0.3, 0.05};  // the terrain is >= 0.08 m everywhere
@@ -114,7 +108,7 @@ TEST(Stamp, RepeatingAStampChangesNothing) {
     // The terrain already holds the imprint: the second stamp must not add vertices,
     // constraints or volume changes (re-working a trail would otherwise grow the mesh forever).
     // And a stamp that is not a repeat, a little deeper, still acts.
-    Tin tin = Tin::random_points(kUnit, 4000, 12, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 4000, 12, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const ToolPlacement at{{0.52, 0.47}, 0.2, 0.06};
@@ -142,7 +136,7 @@ TEST(Stamp, RepeatingAStampChangesNothing) {
 }
 
 TEST(Stamp, LevelModeSetsTheFootprintExactlyEvenAboveTheTerrain) {
-    Tin tin = Tin::random_points(kUnit, 3000, 12, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 12, rolling_sand);
     SculptContext context(tin.domain());
     ToolSpec spec = load_tool_asset("circle");
     spec.mode = ImprintMode::Level;
@@ -164,7 +158,7 @@ TEST(Stamp, LevelModeSetsTheFootprintExactlyEvenAboveTheTerrain) {
 
 TEST(Stamp, DigLowersToTheToolAndNeverRaises) {
     // The floor cuts through a wavy surface: part of the footprint lies below it already.
-    Tin tin = Tin::random_points(kUnit, 10000, 13, wavy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 10000, 13, test::wavy_sand);
     SculptContext context(tin.domain());
     context.settings.simplify_after_edit = false;  // heights exactly as imprinted
     const Tool tool = circle_tool(0.06, 16);
@@ -173,7 +167,7 @@ TEST(Stamp, DigLowersToTheToolAndNeverRaises) {
     // The floor at the median of the analytic surface under the tool.
     std::vector<double> under;
     for (Vec2 p : test::random_points_in(Rect{{0.44, 0.44}, {0.56, 0.56}}, 2000, 2)) {
-        if (inside_polygon(p, inner)) under.push_back(wavy(p));
+        if (inside_polygon(p, inner)) under.push_back(test::wavy_sand(p));
     }
     std::nth_element(under.begin(), under.begin() + static_cast<std::ptrdiff_t>(under.size() / 2),
                      under.end());
@@ -322,7 +316,7 @@ void expect_unchanged_outside(const OutsideChange& c, const Tool& tool) {
 
 TEST(Stamp, SurfaceOutsideOuterContourIsUnchanged) {
     // A dense, curved terrain; several tools and headings.
-    Tin tin = test::smooth_terrain(kUnit, 20000, 21, rolling_sand);
+    Tin tin = test::smooth_terrain(test::kUnitSquare, 20000, 21, rolling_sand);
     SculptContext context(tin.domain());
     const Tool circle = Tool::build(load_tool_asset("circle"));
     ToolSpec box_spec = load_tool_asset("box");
@@ -349,7 +343,7 @@ TEST(Stamp, SurfaceOutsideOuterContourIsUnchanged) {
 TEST(Stamp, SurfaceOutsideOuterContourIsExactlyUnchangedOnAPlane) {
     // On a plane re-triangulation cannot bend the surface: outside O nothing may move at all.
     const test::Plane plane{0.05, -0.03, 0.1};
-    Tin tin = Tin::random_points(kUnit, 10000, 22, plane);
+    Tin tin = Tin::random_points(test::kUnitSquare, 10000, 22, plane);
     SculptContext context(tin.domain());
     const Tool lambda = Tool::build(load_tool_asset("lambda"));
     const ToolPlacement at{{0.55, 0.45}, 2.0, 0.0};
@@ -385,7 +379,7 @@ TEST(Stamp, SurfaceOutsideOuterContourIsExactlyUnchangedOnAPlane) {
 TEST(Stamp, OverlappingStampKeepsTheEarlierImprintOutsideItsOuterContour) {
     // Two flat stamps side by side on flat sand: the second may only change the first crater
     // inside its own O.
-    Tin tin = Tin::random_points(kUnit, 2000, 7, [](Vec2) { return 0.1; });
+    Tin tin = Tin::random_points(test::kUnitSquare, 2000, 7, [](Vec2) { return 0.1; });
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     ASSERT_TRUE(stamp(tin, tool, {{0.5, 0.5}, 0.0, 0.0}, context).applied);
@@ -427,7 +421,7 @@ RimError rim_error(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCo
 }
 
 TEST(Stamp, RimFollowsCurvedTerrainWithinTolerance) {
-    Tin tin = Tin::random_points(kUnit, 20000, 31, wavy);
+    Tin tin = Tin::random_points(test::kUnitSquare, 20000, 31, test::wavy_sand);
     SculptContext context(tin.domain());
     ToolSpec spec;
     spec.radius = 0.1;
@@ -448,7 +442,7 @@ TEST(Stamp, RimFollowsCurvedTerrainWithinTolerance) {
 }
 
 TEST(Stamp, RimFollowsTerrainAcrossAnEarlierGroove) {
-    Tin tin = Tin::random_points(kUnit, 10000, 32, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 10000, 32, rolling_sand);
     SculptContext context(tin.domain());
     // A groove 7 cm deep along y = 0.5 (absolute floor at 0.02 m).
     const Tool groove_tool = Tool::build(load_tool_asset("circle"));
@@ -545,7 +539,7 @@ TEST(Stamp, LambdaLeavesNothingAboveTheProfileAndSparesItsNotch) {
 // ---- Generations ---------------------------------------------------------------------------
 
 TEST(Stamp, ReleasesOlderConstraintsUnderTheNewFootprint) {
-    Tin tin = Tin::random_points(kUnit, 3000, 51, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 51, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const StampReport first = stamp(tin, tool, {{0.5, 0.5}, 0.0, 0.05}, context);
@@ -578,7 +572,7 @@ TEST(Stamp, ReleasesOlderConstraintsUnderTheNewFootprint) {
 }
 
 TEST(Stamp, ExpiredConstraintsAreReleasedWhereTheSurfaceAllows) {
-    Tin tin = Tin::random_points(kUnit, 2000, 52, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 2000, 52, rolling_sand);
     SculptContext context(tin.domain());
     context.settings.keep_generations = 5;
     const Tool tool = circle_tool(0.03);
@@ -625,7 +619,7 @@ TEST(Stamp, ExpiredConstraintsAreReleasedWhereTheSurfaceAllows) {
 // ---- 18. Degenerate and bad placements -----------------------------------------------------
 
 TEST(Stamp, ToolEntirelyOutsideTheDomainChangesNothing) {
-    Tin tin = Tin::random_points(kUnit, 500, 61, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 500, 61, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const test::TinState before = test::capture(tin);
@@ -638,7 +632,7 @@ TEST(Stamp, ToolEntirelyOutsideTheDomainChangesNothing) {
 }
 
 TEST(Stamp, ToolPartlyOutsideTheDomainKeepsAValidMesh) {
-    Tin tin = Tin::random_points(kUnit, 2000, 62, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 2000, 62, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const Tool lambda = Tool::build(load_tool_asset("lambda"));
@@ -651,7 +645,7 @@ TEST(Stamp, ToolPartlyOutsideTheDomainKeepsAValidMesh) {
                          std::to_string(at.centre.y));
             const StampReport r = stamp(tin, *t, at, context);
             ASSERT_TRUE(mesh_is_sound(tin));
-            EXPECT_EQ(tin.domain(), kUnit);
+            EXPECT_EQ(tin.domain(), test::kUnitSquare);
             if (!r.applied) continue;
             // What of I lies in the domain is at the floor.
             const std::vector<Vec2> inner = world(at, t->shape().inner);
@@ -670,7 +664,7 @@ TEST(Stamp, ToolPartlyOutsideTheDomainKeepsAValidMesh) {
 // dig (it once changed nothing, because the same tolerance decided whether the stamp acts).
 // Oracle: the floor, and the volume as area times depth, since the terrain is flat.
 TEST(Stamp, ABigToolPressedInShallowerThanItsRimToleranceStillDigs) {
-    Tin tin = Tin::random_points(kUnit, 3000, 64, [](Vec2) { return 0.1; });
+    Tin tin = Tin::random_points(test::kUnitSquare, 3000, 64, [](Vec2) { return 0.1; });
     SculptContext context(tin.domain());
     const Tool tool = circle_tool(0.3, 48);
     ASSERT_GT(tool.rim_tolerance(), 0.002);  // the premise: deeper than the cut below
@@ -683,7 +677,7 @@ TEST(Stamp, ABigToolPressedInShallowerThanItsRimToleranceStillDigs) {
     // The surface inside I is the floor (its vertices there were simplified away, so it is
     // sampled between them).
     const std::vector<Vec2> inner = world(at, tool.shape().inner);
-    EXPECT_GT(expect_floor_inside(tin, inner, kUnit, 2000, at.bottom), 400u);
+    EXPECT_GT(expect_floor_inside(tin, inner, test::kUnitSquare, 2000, at.bottom), 400u);
     // At least the floor's prism went (I's area times 2 mm), at most O's.
     const double inner_area = static_cast<double>(test::signed_area_ld(inner));
     const double outer_area =
@@ -712,7 +706,7 @@ TEST(Stamp, AToolCoveringTheWholeDomainLowersAllOfIt) {
 }
 
 TEST(Stamp, NonFinitePlacementThrowsAndChangesNothing) {
-    Tin tin = Tin::random_points(kUnit, 300, 63, rolling_sand);
+    Tin tin = Tin::random_points(test::kUnitSquare, 300, 63, rolling_sand);
     SculptContext context(tin.domain());
     const Tool tool = Tool::build(load_tool_asset("circle"));
     const double nan = std::numeric_limits<double>::quiet_NaN();
