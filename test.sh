@@ -52,11 +52,12 @@ if has_pass tsan; then
   cmake --build build-tsan -j"$jobs" --target sandtin_haptics_core_tests sandtin_physics_tests \
     sandtin_stress_tests sandtin_io_tests
   export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
+  # The haptics core (label tsan), then the multithreaded Jacobi, the determinism sessions
+  # and the autosave writer, each test in its own process so that both cores are busy (run
+  # one after another in a single process, they left a core idle for about a minute).
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
-  build-tsan/tests/physics/sandtin_physics_tests \
-    --gtest_filter='Jacobi.*:JacobiSchedule.*:Randomisation.*'
-  build-tsan/tests/stress/sandtin_stress_tests --gtest_filter='Determinism.*'
-  build-tsan/tests/sandtin_io_tests --gtest_filter='Autosave.Writer*'
+  ctest --test-dir build-tsan --output-on-failure -j"$jobs" \
+    -R '^(Jacobi|JacobiSchedule|Randomisation|Determinism)\.|^Autosave\.Writer'
   unset TSAN_OPTIONS
 fi
 
