@@ -18,6 +18,7 @@
 
 #include "physics/talus_kernel_avx512.hpp"
 #include "physics/talus_solver.hpp"
+#include "physics_oracles.hpp"
 #include "reference_talus_kernel.hpp"
 #include "tin/tin.hpp"
 
@@ -89,11 +90,6 @@ class ReferenceJacobi {
     std::uint64_t iteration_ = 0;
 };
 
-std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
-    std::sort(v.begin(), v.end());
-    return v;
-}
-
 struct Case {
     int threads;
     double randomness;
@@ -160,9 +156,11 @@ void compare(const Case& c) {
             reference.iterate(graph, ref_arrays, ref_active, changed_ref, splits_ref);
         ASSERT_EQ(s.processed, r.processed) << "iteration " << it;
         ASSERT_EQ(s.changed, r.changed) << "iteration " << it;
-        ASSERT_EQ(sorted(solver.changed()), sorted(changed_ref)) << "iteration " << it;
-        ASSERT_EQ(sorted(active.list()), sorted(ref_active.list())) << "iteration " << it;
-        ASSERT_EQ(sorted(splits), sorted(splits_ref)) << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(solver.changed()), test::sorted_ids(changed_ref))
+            << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(active.list()), test::sorted_ids(ref_active.list()))
+            << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(splits), test::sorted_ids(splits_ref)) << "iteration " << it;
         ASSERT_EQ(std::memcmp(h.data(), h_ref.data(), n * sizeof(double)), 0) << "iteration " << it;
         for (std::uint32_t v : active.list())
             ASSERT_TRUE(active.contains(v));

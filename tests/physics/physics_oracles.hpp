@@ -1,9 +1,11 @@
 #pragma once
 // Independent checks of sand-physics results, computed from the TIN alone (never from the
-// solver's own bookkeeping): steepest edge, the pile's apex and toe, and a point pour.
+// solver's own bookkeeping): steepest edge, the pile's apex and toe, and a point pour; and the
+// rough terrain and the id sorting that several physics tests share.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -11,6 +13,18 @@
 #include "tin/tin.hpp"
 
 namespace sandtin::test {
+
+/// A random field with slopes far above repose: bumps of 5 cm, a few centimetres across
+/// (heights in m, for x, y in metres).
+inline double rough_sand(Vec2 p) {
+    return 0.05 * (std::sin(37.0 * p.x) * std::cos(29.0 * p.y) + std::sin(91.0 * p.x + 3.0 * p.y));
+}
+
+/// The ids in increasing order, to compare lists that agree as sets.
+inline std::vector<std::uint32_t> sorted_ids(std::vector<std::uint32_t> ids) {
+    std::sort(ids.begin(), ids.end());
+    return ids;
+}
 
 /// Largest (h(v) - h(w)) / (r_vw tan(alpha)) over the TIN's edges v-w that `skip(v, w)`
 /// does not exclude (1 = exactly at repose), with the heights h(id) given (a GPU's, say).

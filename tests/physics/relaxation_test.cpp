@@ -25,11 +25,6 @@ void set_heights(Tin& tin, const std::function<double(Vec2)>& f) {
     }
 }
 
-/// A random field with slopes far above repose (bumps of 5 cm on a 2 cm mesh).
-double rough(Vec2 p) {
-    return 0.05 * (std::sin(37.0 * p.x) * std::cos(29.0 * p.y) + std::sin(91.0 * p.x + 3.0 * p.y));
-}
-
 class PlanarSlope : public ::testing::TestWithParam<Schedule> {};
 
 TEST_P(PlanarSlope, OverSteepPlaneRelaxesToRepose) {
@@ -72,7 +67,7 @@ TEST(Bedrock, NeverExposedBelowZeroThickness) {
         for (std::uint32_t v = 0; v < va.size(); ++v) {
             if (!va.alive[v]) continue;
             const Vec2 p = va.position[v];
-            const double rock = 1.5 * p.x + rough(p);
+            const double rock = 1.5 * p.x + test::rough_sand(p);
             const double sand = 0.002 * (1.0 + std::sin(50.0 * p.y));
             tin.set_height(VertexId{v}, rock + sand);
             tin.set_bedrock(VertexId{v}, rock);
@@ -103,7 +98,7 @@ std::vector<double> heights(const Tin& tin) {
 
 std::vector<double> run_jacobi(int threads, double randomness, double relocation_radius) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 11);
-    set_heights(tin, rough);
+    set_heights(tin, test::rough_sand);
     TalusSettings settings;
     settings.schedule = Schedule::Jacobi;
     settings.threads = threads;
@@ -132,7 +127,7 @@ TEST(Jacobi, OneAndTwoThreadsAreBitwiseIdentical) {
 
 TEST(ActiveSet, TerrainAtRestCostsZeroWork) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 10000, 4);
-    set_heights(tin, rough);
+    set_heights(tin, test::rough_sand);
     for (Schedule schedule : {Schedule::Sequential, Schedule::Jacobi}) {
         TalusSettings settings;
         settings.schedule = schedule;
@@ -181,7 +176,7 @@ TEST(ActiveSet, LoweringAVertexWakesTheNeighboursAboveIt) {
 
 std::vector<double> run_random(double randomness, std::uint64_t seed, Schedule schedule) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 12);
-    set_heights(tin, rough);
+    set_heights(tin, test::rough_sand);
     TalusSettings settings;
     settings.schedule = schedule;
     settings.randomness = randomness;

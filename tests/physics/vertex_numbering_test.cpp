@@ -15,19 +15,11 @@
 
 #include "physics/sand_physics.hpp"
 #include "physics/vertex_numbering.hpp"
+#include "physics_oracles.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
 namespace {
-
-double rough(Vec2 p) {
-    return 0.05 * (std::sin(37.0 * p.x) * std::cos(29.0 * p.y) + std::sin(91.0 * p.x + 3.0 * p.y));
-}
-
-std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
-    std::sort(v.begin(), v.end());
-    return v;
-}
 
 TEST(VertexNumbering, StripsNumberEveryLiveVertexOnceInStripOrder) {
     Tin tin = Tin::random_points(Rect::from_size(2.0, 1.0), 5000, 3);
@@ -202,7 +194,7 @@ void compare_solver(int threads, double randomness, double relocation_radius) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<double> h(n), b(n, -1e9), tan(n);
     for (std::size_t v = 0; v < n; ++v) {
-        h[v] = rough(va.position[v]) + 0.02 * u(rng);
+        h[v] = test::rough_sand(va.position[v]) + 0.02 * u(rng);
         b[v] = h[v] - (u(rng) < 0.3 ? 0.0 : 0.01 * u(rng));
         tan[v] = 0.5 + 0.3 * u(rng);
     }
@@ -234,7 +226,7 @@ void compare_solver(int threads, double randomness, double relocation_radius) {
         std::vector<std::uint32_t> ts;
         for (std::uint32_t l : ls)
             ts.push_back(num.tin_id(l));
-        return sorted(ts);
+        return test::sorted_ids(ts);
     };
     std::size_t moving = 0;
     for (int it = 0; it < 200 && !active.empty(); ++it) {
@@ -243,9 +235,11 @@ void compare_solver(int threads, double randomness, double relocation_radius) {
         const IterationStats r = by_strip.iterate(local, local_arrays, local_active, &local_splits);
         ASSERT_EQ(s.processed, r.processed) << "iteration " << it;
         ASSERT_EQ(s.changed, r.changed) << "iteration " << it;
-        ASSERT_EQ(sorted(by_id.changed()), to_tin(by_strip.changed())) << "iteration " << it;
-        ASSERT_EQ(sorted(active.list()), to_tin(local_active.list())) << "iteration " << it;
-        ASSERT_EQ(sorted(splits), to_tin(local_splits)) << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(by_id.changed()), to_tin(by_strip.changed()))
+            << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(active.list()), to_tin(local_active.list()))
+            << "iteration " << it;
+        ASSERT_EQ(test::sorted_ids(splits), to_tin(local_splits)) << "iteration " << it;
         for (std::uint32_t l = 0; l < n; ++l)
             ASSERT_EQ(std::memcmp(&hl[l], &h[num.tin_id(l)], sizeof(double)), 0)
                 << "iteration " << it << ", vertex " << num.tin_id(l);
@@ -275,7 +269,7 @@ void compare_physics(Schedule schedule, double randomness, double relocation_rad
         const VertexArrays& va = tin->vertices();
         for (std::uint32_t v = 0; v < va.size(); ++v) {
             if (!va.alive[v]) continue;
-            const double h = rough(va.position[v]);
+            const double h = test::rough_sand(va.position[v]);
             tin->set_height(VertexId{v}, h);
             if (v % 3 == 0) tin->set_bedrock(VertexId{v}, h - 0.01);
         }
