@@ -7,24 +7,12 @@
 #include <chrono>
 #include <thread>
 
+#include "flat_snapshot.hpp"
 #include "haptics/force_loop.hpp"
 #include "haptics/simulated_device.hpp"
 
 namespace sandtin::haptics {
 namespace {
-
-HapticSnapshot flat_snapshot(double h) {
-    HapticSnapshot s;
-    s.centre = {0.5, 0.5};
-    s.centre_height = h;
-    s.control_count = 6;
-    for (std::size_t i = 0; i < 6; ++i) {
-        const double a = 1.0471975511965976 * static_cast<double>(i);
-        s.control[i] = {0.5 + 0.03 * std::cos(a), 0.5 + 0.03 * std::sin(a)};
-        s.control_height[i] = h;
-    }
-    return s;
-}
 
 // With `backup`, a second thread races the primary for every tick (margin 0: both are at the
 // deadline), so ticks change hands often; the result must not depend on who ran which tick.
@@ -45,7 +33,7 @@ void check_runs_to_the_end_like_the_offline_renderer(bool backup) {
     config.backup_thread = backup;
     config.backup_margin_ns = 0;
     ForceLoop loop(device, config);
-    loop.publish(flat_snapshot(0.0));  // before start: the first tick takes it
+    loop.publish(test::flat_snapshot(0.0));  // before start: the first tick takes it
     loop.start();
     while (loop.running())
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -79,7 +67,7 @@ void check_runs_to_the_end_like_the_offline_renderer(bool backup) {
 
     // Offline: the same renderer over the same positions and times gives the same forces.
     ForceRenderer offline(loop.config().renderer);
-    HapticSnapshot s = flat_snapshot(0.0);
+    HapticSnapshot s = test::flat_snapshot(0.0);
     s.sequence = 1;
     // Published just before the first tick, as in the loop: with published_ns = 0 the offline
     // snapshot would count as stale once the machine has been up for stale_after_ns (an hour).
@@ -124,7 +112,7 @@ TEST(ForceLoop, StopFadesTheForceOutInsteadOfDroppingIt) {
     config.renderer.stale_after_ns = 3'600'000'000'000;
     config.stop_ramp_ns = 50'000'000;  // 50 ticks
     ForceLoop loop(device, config);
-    loop.publish(flat_snapshot(0.0));
+    loop.publish(test::flat_snapshot(0.0));
     loop.start();
     TickRecord latest;
     while (!(loop.poll(latest) && latest.tick >= 100 && length(latest.force) > 3.6)) {
@@ -175,7 +163,7 @@ TEST(ForceLoop, ASnapshotPublishedBeforeTheFirstPoseIsUsed) {
     config.renderer.ramp_ns = 1'000'000;
     config.renderer.stale_after_ns = 3'600'000'000'000;
     ForceLoop loop(device, config);
-    loop.publish(flat_snapshot(0.0));  // the only snapshot, taken while there is no pose
+    loop.publish(test::flat_snapshot(0.0));  // the only snapshot, taken while there is no pose
     loop.start();
     while (loop.running())
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -193,7 +181,7 @@ TEST(ForceLoop, StopsCleanlyOnRequestAndRejectsBadRates) {
         ForceLoop loop(device, config);
         loop.start();
         EXPECT_THROW(loop.start(), std::logic_error);
-        HapticSnapshot s = flat_snapshot(0.0);
+        HapticSnapshot s = test::flat_snapshot(0.0);
         TickRecord latest;
         for (int i = 0; i < 20; ++i) {
             loop.publish(s);

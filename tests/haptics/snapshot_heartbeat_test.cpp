@@ -11,6 +11,7 @@
 #include <cmath>
 #include <thread>
 
+#include "flat_snapshot.hpp"
 #include "haptics/force_loop.hpp"
 #include "haptics/snapshot_heartbeat.hpp"
 
@@ -18,19 +19,6 @@ namespace sandtin::haptics {
 namespace {
 
 using namespace std::chrono_literals;
-
-HapticSnapshot flat_snapshot() {
-    HapticSnapshot s;
-    s.centre = {0.5, 0.5};
-    s.centre_height = 0.0;
-    s.control_count = 6;
-    for (std::size_t i = 0; i < 6; ++i) {
-        const double a = 1.0471975511965976 * static_cast<double>(i);
-        s.control[i] = {0.5 + 0.03 * std::cos(a), 0.5 + 0.03 * std::sin(a)};
-        s.control_height[i] = 0.0;
-    }
-    return s;
-}
 
 // The pen held still 4 mm deep in the sand, for as long as the loop runs.
 class StillPen final : public HapticDevice {
@@ -70,7 +58,7 @@ TEST(SnapshotHeartbeat, HeldSnapshotStaysFreshAndReleasedOneFades) {
     StillPen pen;
     ForceLoop loop(pen, test_config());
     SnapshotHeartbeat heartbeat(loop, 10ms);
-    heartbeat.publish(flat_snapshot());
+    heartbeat.publish(test::flat_snapshot());
     heartbeat.hold();
     EXPECT_TRUE(heartbeat.held());
     loop.start();
