@@ -45,6 +45,7 @@
 #include "swapchain.hpp"
 #include "terrain_scale.hpp"
 #include "tools/brushes.hpp"
+#include "tools/falloff.hpp"
 #include "tools/sand.hpp"
 #include "tools/stroke.hpp"
 #include "tools/tool_json.hpp"
@@ -143,6 +144,7 @@ class App {
     void key(int key, bool ctrl);
     void run_script_op(const nlohmann::json& op);
     void set_physics(const std::string& name);
+    void set_falloff(const std::string& name);
 
     std::optional<Vec3> pick(double x, double y) const;
     void tool_at(Vec3 point);
@@ -250,6 +252,7 @@ class App {
     std::optional<StrokeSampler> sampler_;
     std::optional<Tool> active_tool_;
     std::optional<Vec2> last_dab_;
+    double flatten_level_ = 0.0;  ///< metres: the Flatten brush's level for this stroke
     std::string pending_label_;
     bool erosion_pending_ = false;
     /// The erosion's simplification ran; the sand settles what it steepened (settle_erosion).

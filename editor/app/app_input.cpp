@@ -44,11 +44,18 @@ void App::tool_at(Vec3 p) {
         }
         case ToolKind::Brush: {
             if (last_dab_ && distance(*last_dab_, xy) < settings_.tool_radius * 0.25) break;
+            if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
+                std::fprintf(stderr, "sandtin-editor: dab %.4f %.4f\n", xy.x, xy.y);
+            // Flatten levels the whole stroke to the surface where it began.
+            if (!last_dab_) flatten_level_ = p.z;
             BrushSettings b;
             b.kind = t.brush;
             b.radius = settings_.tool_radius;
-            b.strength = t.brush == BrushKind::Raise ? settings_.brush_strength : 0.5;
+            const bool height_brush = t.brush == BrushKind::Raise || t.brush == BrushKind::Lower;
+            b.strength = height_brush ? settings_.brush_strength : settings_.brush_blend;
+            b.falloff = falloff_named(settings_.brush_falloff).value_or(Falloff::Smooth);
             b.material = static_cast<std::uint16_t>(settings_.material);
+            if (t.brush == BrushKind::Flatten) b.flatten_to = flatten_level_;
             apply_brush(*doc_.tin, xy, b, *doc_.context);
             last_dab_ = xy;
             pending_label_ = std::string("brush (") + t.label + ")";
@@ -131,11 +138,13 @@ void App::key(int k, bool ctrl) {
         replace_document("New", [this] { new_document(); });
     } else if (ctrl && k == GLFW_KEY_O) {
         replace_document("Open", [this] { open_reporting(); });
-    } else if (k >= GLFW_KEY_0 && k <= GLFW_KEY_9) {
-        end_action();
-        settings_.tool = k == GLFW_KEY_0 ? 9 : k - GLFW_KEY_1;
+    } else if (ctrl) {
+        return;  // no other shortcut uses Ctrl: Ctrl+R must not pick the Raise brush
     } else if (k == GLFW_KEY_F) {
         frame_terrain();
+    } else if (const std::optional<int> tool = tool_for_key(k)) {
+        end_action();
+        settings_.tool = *tool;
     }
 }
 

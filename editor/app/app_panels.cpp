@@ -112,36 +112,88 @@ void App::panel_file() {
 }
 
 void App::panel_tools() {
-    for (int i = 0; i < kToolCount; ++i) {
-        if (i % 4 != 0) ImGui::SameLine();
-        if (ImGui::RadioButton(kTools[i].label, settings_.tool == i)) {
-            end_action();
-            settings_.tool = i;
+    // The palette by kind, three to a row; the controls below are those the picked tool uses.
+    const auto group = [&](const char* heading, auto member) {
+        int placed = 0;
+        for (int i = 0; i < kToolCount; ++i) {
+            if (!member(kTools[i])) continue;
+            if (placed % 3 == 0) ImGui::TextDisabled("%s", placed == 0 ? heading : "");
+            ImGui::SameLine(66.0f + 70.0f * static_cast<float>(placed % 3));
+            if (ImGui::RadioButton(kTools[i].label, settings_.tool == i)) {
+                end_action();
+                settings_.tool = i;
+            }
+            tip(kTools[i].help);
+            ++placed;
         }
-        tip(kTools[i].help);
-    }
+    };
+    group("Stamps", [](const ToolEntry& t) { return t.kind == ToolKind::Stamp; });
+    group("Sand", [](const ToolEntry& t) {
+        return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove;
+    });
+    group("Brushes", [](const ToolEntry& t) { return t.kind == ToolKind::Brush; });
+
+    const ToolEntry& tool = kTools[settings_.tool];
     const double size = settings_.scene_size;
     length_slider("Size", settings_.tool_radius, 0.005, 0.15, size, "%.1f");
     tip("Radius of round tools, brushes and the pour");
     length_slider("Depth", settings_.tool_depth, -0.02, 0.04, size, "%.1f");
-    tip("How deep a stamp tool presses below the terrain ahead of it");
-    length_slider("Spacing", settings_.stroke_spacing, 0.001, 0.05, size, "%.1f");
-    tip("Distance between stamps along a stroke (independent of frame rate)");
-    ImGui::Checkbox("Extrude", &settings_.extrude);
-    tip("Push the displaced sand into a rim beside and ahead of the tool (volume conserved).");
-    ImGui::SameLine();
-    ImGui::Checkbox("Follow path", &settings_.follow_path);
-    tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");
-    float angle = static_cast<float>(settings_.tool_angle);
-    if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
-        settings_.tool_angle = static_cast<double>(angle);
-    tip("Tool heading when it does not follow the path");
-    length_slider("Brush", settings_.brush_strength, 0.0005, 0.02, size, "%.1f", "/dab");
-    tip("Height a Raise brush dab adds at its centre");
-    const double cube = size * size * size;
-    scaled_slider("Pour", "", settings_.pour_volume, 1e-6 * cube, 2e-4 * cube,
-                  volume_unit(2e-4 * cube), "%.0f");
-    tip("Sand volume poured or removed per click or mouse move");
+    tip("How deep a stamp tool presses below the terrain ahead of it, and how deep the\n"
+        "haptic pen's tip rests in the sand");
+    switch (tool.kind) {
+        case ToolKind::Stamp: {
+            length_slider("Spacing", settings_.stroke_spacing, 0.001, 0.05, size, "%.1f");
+            tip("Distance between stamps along a stroke (independent of frame rate)");
+            ImGui::Checkbox("Extrude", &settings_.extrude);
+            tip("Push the displaced sand into a rim beside and ahead of the tool (volume "
+                "conserved).");
+            ImGui::SameLine();
+            ImGui::Checkbox("Follow path", &settings_.follow_path);
+            tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");
+            float angle = static_cast<float>(settings_.tool_angle);
+            if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
+                settings_.tool_angle = static_cast<double>(angle);
+            tip("Tool heading when it does not follow the path");
+            break;
+        }
+        case ToolKind::Pour:
+        case ToolKind::Remove: {
+            const double cube = size * size * size;
+            scaled_slider("Pour", "", settings_.pour_volume, 1e-6 * cube, 2e-4 * cube,
+                          volume_unit(2e-4 * cube), "%.0f");
+            tip("Sand volume poured or removed per click or mouse move");
+            break;
+        }
+        case ToolKind::Brush: {
+            if (tool.brush == BrushKind::Raise || tool.brush == BrushKind::Lower) {
+                length_slider("Height", settings_.brush_strength, 0.0005, 0.02, size, "%.1f",
+                              "/dab");
+                tip("Height a Raise or Lower dab adds or takes at its centre");
+            } else if (tool.brush == BrushKind::Smooth || tool.brush == BrushKind::Flatten) {
+                float blend = static_cast<float>(settings_.brush_blend);
+                if (ImGui::SliderFloat("Strength", &blend, 0.05f, 1.0f, "%.2f"))
+                    settings_.brush_blend = static_cast<double>(blend);
+                tip("Fraction of the way to the smooth surface (Smooth) or to the stroke's\n"
+                    "starting level (Flatten) that one dab goes at the brush centre");
+            }
+            if (tool.brush != BrushKind::PaintMaterial) {
+                int falloff = static_cast<int>(
+                    falloff_named(settings_.brush_falloff).value_or(Falloff::Smooth));
+                if (ImGui::Combo("Falloff", &falloff, kFalloffNames.data(),
+                                 static_cast<int>(kFalloffNames.size())))
+                    settings_.brush_falloff = kFalloffNames[static_cast<std::size_t>(falloff)];
+                tip("How a dab's effect fades from its centre to its rim: constant, linear,\n"
+                    "smooth (flat centre, soft rim) or gaussian (1 % at the rim)");
+            } else if (settings_.material >= 0 &&
+                       settings_.material < static_cast<int>(doc_.materials.size())) {
+                ImGui::TextWrapped(
+                    "Paints %s (pick the material under Materials)",
+                    doc_.materials.all()[static_cast<std::size_t>(settings_.material)]
+                        .name.c_str());
+            }
+            break;
+        }
+    }
 }
 
 void App::panel_materials() {

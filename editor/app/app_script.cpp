@@ -23,8 +23,11 @@ namespace sandtin::editor {
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
 //            "colour": [r, g, b]}  (the Materials panel's edit: one undo level) ] }
-// "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, steps,
-// relocation_radius and physics ("cpu" | "gpu", the Erosion panel's switch).
+// "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, brush_strength
+// (Raise and Lower, metres per dab), brush_blend (Smooth and Flatten, 0..1 per dab), falloff
+// ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
+// simplify_tolerance (metres, as the Erosion panel's slider) and physics ("cpu" | "gpu", the
+// Erosion panel's switch).
 // Positions are fractions of the window (0..1): scripts work at any --size.
 
 void App::set_physics(const std::string& name) {
@@ -34,6 +37,14 @@ void App::set_physics(const std::string& name) {
     end_action();
     settings_.erosion_gpu = name == "gpu";
     attach_physics(true);
+}
+
+void App::set_falloff(const std::string& name) {
+    if (!falloff_named(name)) {
+        throw std::runtime_error(
+            "script: falloff must be constant, linear, smooth or gaussian, not '" + name + "'");
+    }
+    settings_.brush_falloff = name;
 }
 
 void App::run_script_op(const nlohmann::json& op) {
@@ -46,14 +57,11 @@ void App::run_script_op(const nlohmann::json& op) {
         return std::pair<double, double>{p.at(0).get<double>() * w, p.at(1).get<double>() * h};
     };
     if (kind == "tool") {
+        // Through the tool's key, as an artist picks it.
         const std::string name = op.at("name").get<std::string>();
-        for (int i = 0; i < kToolCount; ++i) {
-            if (name == kTools[i].label) {
-                key(i == 9 ? GLFW_KEY_0 : GLFW_KEY_1 + i, false);
-                return;
-            }
-        }
-        throw std::runtime_error("script: unknown tool '" + name + "'");
+        const std::optional<int> tool = tool_named(name);
+        if (!tool) throw std::runtime_error("script: unknown tool '" + name + "'");
+        key(kTools[*tool].key, false);
     } else if (kind == "set") {
         nlohmann::json j = op;
         j.erase("op");
@@ -72,6 +80,15 @@ void App::run_script_op(const nlohmann::json& op) {
                 settings_.overlay_slope = v.get<bool>();
             else if (k2 == "pour_volume")
                 settings_.pour_volume = v.get<double>();
+            else if (k2 == "brush_strength")
+                settings_.brush_strength = v.get<double>();
+            else if (k2 == "brush_blend")
+                settings_.brush_blend = std::clamp(v.get<double>(), 0.0, 1.0);
+            else if (k2 == "falloff")
+                set_falloff(v.get<std::string>());
+            else if (k2 == "simplify_tolerance")
+                doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance =
+                    std::max(0.0, v.get<double>());
             else if (k2 == "steps")
                 settings_.erosion_steps = std::clamp(v.get<int>(), 1, 1000);
             else if (k2 == "relocation_radius")

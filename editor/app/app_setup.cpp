@@ -243,7 +243,6 @@ Tool App::build_tool() const {
 
 void App::end_action() {
     if (sampler_) {
-        const ToolEntry& t = kTools[settings_.tool];
         for (const StrokeSample& s : sampler_->finish()) {
             StrokeSettings ss;
             ss.depth = settings_.tool_depth;
@@ -254,7 +253,6 @@ void App::end_action() {
             stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
         }
         sampler_.reset();
-        (void)t;
     }
     if (!pending_label_.empty()) {
         if (doc_.history->record(pending_label_)) {

@@ -1,5 +1,6 @@
 #include "editor_settings.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -7,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tool_palette.hpp"
+#include "tools/falloff.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::editor {
@@ -16,7 +19,6 @@ namespace {
 // One table drives both directions so a new field cannot be saved but not loaded.
 template <class F>
 void fields(EditorSettings& s, F&& f) {
-    f("tool", s.tool);
     f("tool_radius", s.tool_radius);
     f("tool_depth", s.tool_depth);
     f("stroke_spacing", s.stroke_spacing);
@@ -24,6 +26,8 @@ void fields(EditorSettings& s, F&& f) {
     f("follow_path", s.follow_path);
     f("tool_angle", s.tool_angle);
     f("brush_strength", s.brush_strength);
+    f("brush_blend", s.brush_blend);
+    f("brush_falloff", s.brush_falloff);
     f("pour_volume", s.pour_volume);
     f("material", s.material);
     f("erosion_running", s.erosion_running);
@@ -62,6 +66,12 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
         fields(loaded, [&](const char* key, auto& value) {
             if (j.contains(key)) value = j.at(key).get<std::decay_t<decltype(value)>>();
         });
+        if (const auto t = j.find("tool"); t != j.end() && t->is_string())
+            loaded.tool = tool_named(t->get<std::string>()).value_or(0);
+        if (!falloff_named(loaded.brush_falloff))
+            throw std::runtime_error("brush_falloff '" + loaded.brush_falloff + "' is unknown");
+        if (!(loaded.brush_blend >= 0.0 && loaded.brush_blend <= 1.0))
+            throw std::runtime_error("brush_blend must lie in [0, 1]");
         s = loaded;
     } catch (const std::exception& e) {
         if (problem != nullptr)
@@ -74,6 +84,7 @@ void save_settings(const std::filesystem::path& path, const EditorSettings& sett
     nlohmann::json j = nlohmann::json::object();
     EditorSettings copy = settings;
     fields(copy, [&](const char* key, auto& value) { j[key] = value; });
+    j["tool"] = kTools[std::clamp(settings.tool, 0, kToolCount - 1)].label;
     std::error_code ec;
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
     const std::string text = j.dump(2) + "\n";

@@ -10,16 +10,18 @@
 namespace sandtin::editor {
 
 struct EditorSettings {
-    int tool = 0;                  ///< index into the editor's tool list
-    double tool_radius = 0.04;     ///< metres
-    double tool_depth = 0.01;      ///< metres below the terrain ahead of the tool
-    double stroke_spacing = 0.01;  ///< metres between stamps
-    bool extrude = true;           ///< push displaced sand into a rim beside and ahead of the tool
-    bool follow_path = true;       ///< tool heading follows the stroke
-    double tool_angle = 0.0;       ///< degrees, when not following the path
-    double brush_strength = 0.004;
-    double pour_volume = 2e-5;  ///< m³ per click / per 10 ms of drag
-    int material = 0;           ///< material painted and poured
+    int tool = 0;                   ///< index into kTools; saved as the tool's label
+    double tool_radius = 0.04;      ///< metres
+    double tool_depth = 0.01;       ///< metres below the terrain ahead of the tool
+    double stroke_spacing = 0.01;   ///< metres between stamps
+    bool extrude = true;            ///< push displaced sand into a rim beside and ahead of the tool
+    bool follow_path = true;        ///< tool heading follows the stroke
+    double tool_angle = 0.0;        ///< degrees, when not following the path
+    double brush_strength = 0.004;  ///< Raise/Lower: metres at the brush centre per dab
+    double brush_blend = 0.5;       ///< Smooth/Flatten: fraction of the way to the target per dab
+    std::string brush_falloff = "smooth";  ///< one of kFalloffNames (tools/falloff.hpp)
+    double pour_volume = 2e-5;             ///< m³ per click / per 10 ms of drag
+    int material = 0;                      ///< material painted and poured
     bool erosion_running = true;
     int erosion_steps = 20;              ///< relaxation iterations per frame
     bool erosion_gpu = false;            ///< relaxation on the GPU (GpuSandPhysics), else CPU
@@ -44,6 +46,8 @@ struct EditorSettings {
 
 std::filesystem::path default_settings_path();
 /// Missing file: defaults. Unreadable or invalid JSON: defaults, with `problem` set to why.
+/// The tool is found by its label; an index (files of older versions, whose palette had
+/// another order) or a label the palette no longer has falls back to the first tool.
 EditorSettings load_settings(const std::filesystem::path& path, std::string* problem = nullptr);
 /// Written atomically; throws std::runtime_error naming the path on failure.
 void save_settings(const std::filesystem::path& path, const EditorSettings& settings);

@@ -9,6 +9,7 @@
 
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
+#include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
 #include "util/json_fields.hpp"
@@ -126,12 +127,8 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
 };
 
 Falloff parse_falloff(JsonFields& f, const char* fallback) {
-    const std::string s =
-        f.choice("falloff", fallback, {"constant", "linear", "smooth", "gaussian"});
-    return s == "constant" ? Falloff::Constant
-           : s == "linear" ? Falloff::Linear
-           : s == "smooth" ? Falloff::Smooth
-                           : Falloff::Gaussian;
+    // choice() has checked the name against the list.
+    return *falloff_named(f.choice("falloff", fallback, kFalloffNames));
 }
 
 std::shared_ptr<const Tool> parse_tool(JsonFields& f, const std::filesystem::path& base_dir) {

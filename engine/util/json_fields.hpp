@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -98,6 +99,10 @@ class JsonFields {
     }
     std::string choice(const std::string& key, const std::string& fallback,
                        std::initializer_list<const char*> allowed) {
+        return choice(key, fallback, std::span<const char* const>(allowed.begin(), allowed.size()));
+    }
+    std::string choice(const std::string& key, const std::string& fallback,
+                       std::span<const char* const> allowed) {
         const std::string v = text(key, fallback);
         std::string list;
         for (const char* a : allowed) {

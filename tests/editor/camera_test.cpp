@@ -1,16 +1,13 @@
-// Camera math, picking and settings persistence. Oracles: analytic ray-plane intersections,
-// the matrix path (view_projection) against the direct projection, projection and pixel rays
-// inverting each other, and files read back.
+// Camera math and picking. Oracles: analytic ray-plane intersections, the matrix path
+// (view_projection) against the direct projection, and projection and pixel rays inverting
+// each other.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <random>
 
 #include "camera.hpp"
-#include "editor_settings.hpp"
 #include "picking.hpp"
 #include "tin/tin.hpp"
 
@@ -149,34 +146,6 @@ TEST(Picking, FindsTheFirstCrossingOverARidge) {
         const Vec3 p = r.origin + r.direction * t;
         EXPECT_GT(p.z, *tin.height_at({p.x + 0.5, p.y + 0.5}) - 1e-9);
     }
-}
-
-TEST(Settings, RoundTripAndBadFiles) {
-    const auto dir = std::filesystem::temp_directory_path() / "sandtin-editor-settings-test";
-    std::filesystem::remove_all(dir);
-    const auto path = dir / "nested" / "editor.json";
-    EditorSettings s;
-    EXPECT_EQ(load_settings(path), s);  // missing: defaults
-    s.tool = 4;
-    s.tool_radius = 0.07;
-    s.overlay_slope = true;
-    s.vsync = false;
-    s.erosion_steps = 77;
-    s.erosion_gpu = true;
-    s.settle_margin = 0.05;
-    save_settings(path, s);
-    std::string problem;
-    EXPECT_EQ(load_settings(path, &problem), s);
-    EXPECT_TRUE(problem.empty());
-
-    std::ofstream(path) << "{ not json";
-    EXPECT_EQ(load_settings(path, &problem), EditorSettings{});
-    EXPECT_NE(problem.find("editor.json"), std::string::npos);
-    std::ofstream(path) << R"({"tool_radius": "big"})";
-    problem.clear();
-    EXPECT_EQ(load_settings(path, &problem), EditorSettings{});
-    EXPECT_FALSE(problem.empty());
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

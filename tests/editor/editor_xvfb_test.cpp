@@ -12,8 +12,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -846,6 +849,131 @@ TEST_F(EditorXvfb, ErodedGroundIsSimplifiedOnceTheSandRests) {
     EXPECT_NEAR(va.height[apex], *scripted.height_at(at), 0.03 * va.height[apex]);
 }
 
+/// Heights by position of the vertices two terrains share (positions are exact in a session).
+std::vector<std::pair<double, double>> shared_heights(const Tin& before, const Tin& after,
+                                                      std::vector<Vec2>* where) {
+    std::map<std::pair<double, double>, double> h0;
+    const VertexArrays& v0 = before.vertices();
+    for (std::size_t i = 0; i < v0.size(); ++i) {
+        if (v0.alive[i]) h0[{v0.position[i].x, v0.position[i].y}] = v0.height[i];
+    }
+    std::vector<std::pair<double, double>> out;
+    const VertexArrays& v1 = after.vertices();
+    for (std::size_t i = 0; i < v1.size(); ++i) {
+        if (!v1.alive[i]) continue;
+        const auto it = h0.find({v1.position[i].x, v1.position[i].y});
+        if (it == h0.end()) continue;
+        out.push_back({it->second, v1.height[i]});
+        where->push_back(v1.position[i]);
+    }
+    return out;
+}
+
+TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
+    // One run, a save after each tool, with a settings file of its own. Simplification only
+    // of exactly planar patches, which moves no volume: otherwise a removal would shift the
+    // heights around it to keep the volume, and blur the exact oracles below.
+    const fs::path s0 = kWork / "brushes-0.sandtin", s1 = kWork / "brushes-1.sandtin",
+                   s2 = kWork / "brushes-2.sandtin", s3 = kWork / "brushes-3.sandtin";
+    const auto save = [](const fs::path& p) {
+        return R"({"op": "save", "path": ")" + p.string() + R"("})";
+    };
+    constexpr double kRadius = 0.05, kLower = 0.01;
+    const std::string ops =
+        R"([{"op": "set", "erosion": false, "radius": 0.05, "depth": 0.01,
+                    "simplify_tolerance": 0},
+            {"op": "wait", "frames": 1}, )" +
+        save(s0) + R"(, {"op": "tool", "name": "Lower"},
+            {"op": "set", "brush_strength": 0.01, "falloff": "constant"},
+            {"op": "click", "at": [0.5, 0.5]}, )" +
+        save(s1) + R"(, {"op": "tool", "name": "Flatten"},
+            {"op": "set", "brush_blend": 1.0, "falloff": "constant"},
+            {"op": "drag", "path": [[0.45, 0.58], [0.55, 0.58]], "steps": 1}, )" +
+        save(s2) + R"(, {"op": "tool", "name": "Foot"},
+            {"op": "drag", "path": [[0.6, 0.42], [0.72, 0.45]], "steps": 12}, )" +
+        save(s3) + "]";
+    const fs::path settings = kWork / "brushes-settings.json";
+    fs::remove(settings);
+    const EditorRun r = run_editor("brushes", ops, "--settings " + settings.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    const Tin t0 = Tin::from_snapshot(load_session(s0).terrain);
+    const Tin t1 = Tin::from_snapshot(load_session(s1).terrain);
+    const Tin t2 = Tin::from_snapshot(load_session(s2).terrain);
+    const Tin t3 = Tin::from_snapshot(load_session(s3).terrain);
+
+    {
+        // Lower with a constant falloff: the vertices within the radius of the dab went down
+        // by the brush height, the others did not move.
+        std::vector<Vec2> at;
+        const auto h = shared_heights(t0, t1, &at);
+        std::vector<Vec2> lowered;
+        for (std::size_t i = 0; i < h.size(); ++i) {
+            const double dz = h[i].second - h[i].first;
+            if (dz == 0.0) continue;
+            EXPECT_NEAR(dz, -kLower, 1e-12) << at[i].x << " " << at[i].y;
+            lowered.push_back(at[i]);
+        }
+        ASSERT_GT(lowered.size(), 20u);
+        Vec2 c{0.0, 0.0};
+        for (const Vec2 p : lowered)
+            c = c + p * (1.0 / static_cast<double>(lowered.size()));
+        for (std::size_t i = 0; i < h.size(); ++i) {
+            const double d = distance(at[i], c);
+            if (d < 0.85 * kRadius) {
+                EXPECT_NE(h[i].second, h[i].first) << d;
+            } else if (d > 1.15 * kRadius) {
+                EXPECT_EQ(h[i].second, h[i].first) << d;
+            }
+        }
+        // Volume: the brush height over the disc, to the TIN's resolution of its rim.
+        const double disc = kLower * 3.14159265358979 * kRadius * kRadius;
+        EXPECT_NEAR(t1.volume() - t0.volume(), -disc, 0.25 * disc);
+    }
+    {
+        // Flatten at full strength with a constant falloff: everything the stroke moved now
+        // sits at one level, the surface where the stroke began. The drag has two dabs more
+        // than a diameter apart, so a level taken at each dab's centre would give two.
+        std::vector<Vec2> at;
+        const auto h = shared_heights(t1, t2, &at);
+        std::vector<double> level;
+        double lo = 1e9, hi = -1e9;
+        for (const auto& [z0, z1] : h) {
+            if (z0 == z1) continue;
+            level.push_back(z1);
+            lo = std::min(lo, z0);
+            hi = std::max(hi, z0);
+        }
+        ASSERT_GT(level.size(), 20u);
+        const auto [low, high] = std::minmax_element(level.begin(), level.end());
+        EXPECT_LT(*high - *low, 1e-12);
+        EXPECT_GT(hi - lo, 1e-3);  // the dunes were not flat there already
+        EXPECT_GT(*low, lo);
+        EXPECT_LT(*low, hi);
+    }
+    {
+        // The foot stroke (extrusion on, as the panel's default) cuts its print and keeps
+        // the volume within 1 % of what it displaced. The displaced volume is measured by
+        // sampling both surfaces, independently of the tools' own accounting.
+        const Rect d = t3.domain();
+        constexpr int kN = 500;
+        const double cell = d.width() * d.height() / (kN * kN);
+        double cut = 0.0;
+        for (int j = 0; j < kN; ++j) {
+            for (int i = 0; i < kN; ++i) {
+                const Vec2 p{d.min.x + (i + 0.5) * d.width() / kN,
+                             d.min.y + (j + 0.5) * d.height() / kN};
+                cut += std::max(0.0, *t2.height_at(p) - *t3.height_at(p)) * cell;
+            }
+        }
+        // A print of the 0.26 m x 0.1 m sole 1 cm deep displaces well over 1e-4 m³.
+        EXPECT_GT(cut, 1e-4);
+        EXPECT_LE(std::abs(t3.volume() - t2.volume()), 0.01 * cut)
+            << "net " << t3.volume() - t2.volume() << " m^3, cut " << cut;
+        EXPECT_GT(t3.constrained_edge_count(), 0u);  // the print's rims are constrained edges
+    }
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1) << r.log;
@@ -853,6 +981,11 @@ TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun p = run_editor("bad-physics", R"([{"op": "set", "physics": "tpu"}])");
     EXPECT_EQ(p.exit_code, 1) << p.log;
     EXPECT_NE(p.log.find("physics must be cpu or gpu"), std::string::npos) << p.log;
+    const EditorRun f = run_editor("bad-falloff", R"([{"op": "set", "falloff": "cubic"}])");
+    EXPECT_EQ(f.exit_code, 1) << f.log;
+    EXPECT_NE(f.log.find("falloff must be constant, linear, smooth or gaussian, not 'cubic'"),
+              std::string::npos)
+        << f.log;
     const EditorRun s = run_editor("bad-scene", kFlat, (kWork / "missing.sandtin").string());
     EXPECT_EQ(s.exit_code, 1) << s.log;
     EXPECT_NE(s.log.find("does not exist"), std::string::npos) << s.log;

@@ -4,13 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "io/script.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
+#include "tools/falloff.hpp"
 #include "tools/tool_json.hpp"
 #include "util/json_fields.hpp"
 
@@ -29,6 +32,28 @@ std::string error_of(const std::string& text) {
         return e.what();
     }
     return "";
+}
+
+TEST(Script, EveryFalloffNameGivesTheDocumentedFormula) {
+    // The README's formulas at half the radius: constant 1, linear 1 - t, smooth
+    // 1 - smoothstep(t), gaussian exp(-4.5 t^2).
+    const std::pair<const char*, double> expected[] = {
+        {"constant", 1.0}, {"linear", 0.5}, {"smooth", 0.5}, {"gaussian", std::exp(-1.125)}};
+    for (const auto& [name, weight] : expected) {
+        const Script s = parse(std::string(R"([{"op": "brush", "at": [0.5, 0.5], "falloff": ")") +
+                               name + R"("}, {"op": "pour", "at": [0.5, 0.5], "volume": 1e-6,
+                                  "falloff": ")" +
+                               name + R"("}])");
+        const auto& brush = std::get<BrushOp>(s.steps[0].operation);
+        const auto& pour = std::get<PourOp>(s.steps[1].operation);
+        EXPECT_DOUBLE_EQ(falloff_weight(brush.settings.falloff, 0.5), weight) << name;
+        EXPECT_DOUBLE_EQ(falloff_weight(pour.settings.falloff, 0.5), weight) << name;
+        EXPECT_STREQ(falloff_name(brush.settings.falloff), name);
+    }
+    EXPECT_NE(error_of(R"([{"op": "brush", "at": [0.5, 0.5], "falloff": "cubic"}])")
+                  .find("expected one of: constant, linear, smooth, gaussian"),
+              std::string::npos);
+    EXPECT_FALSE(falloff_named("Smooth").has_value());  // names are matched exactly
 }
 
 TEST(Script, ArrayFormParsesEveryOperationWithItsLine) {

@@ -1,0 +1,71 @@
+// The editor's tool palette against what it must offer: every tool shipped in assets/tools
+// (read from the folder, not from a list), every brush the engine has, and keys that pick
+// exactly one tool without taking the keys the editor uses for other things.
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "tool_palette.hpp"
+#include "tools/tool.hpp"
+#include "tools/tool_json.hpp"
+
+namespace sandtin::editor {
+namespace {
+
+TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
+    const std::filesystem::path dir = std::filesystem::path(SANDTIN_SOURCE_DIR) / "assets/tools";
+    std::set<std::string> shipped;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        if (e.path().extension() == ".json") shipped.insert(e.path().stem().string());
+    }
+    ASSERT_GE(shipped.size(), 6u) << dir;
+    std::set<std::string> stamps;
+    std::set<BrushKind> brushes;
+    bool pour = false, remove = false;
+    for (const ToolEntry& t : kTools) {
+        if (t.kind == ToolKind::Stamp) {
+            stamps.insert(t.asset);
+            // The asset loads and builds: its contour and profile are valid.
+            EXPECT_NO_THROW(Tool::build(load_tool_asset(t.asset))) << t.label;
+        }
+        if (t.kind == ToolKind::Brush) brushes.insert(t.brush);
+        pour |= t.kind == ToolKind::Pour;
+        remove |= t.kind == ToolKind::Remove;
+    }
+    EXPECT_EQ(stamps, shipped);
+    for (const BrushKind b : {BrushKind::Raise, BrushKind::Lower, BrushKind::Smooth,
+                              BrushKind::Flatten, BrushKind::PaintMaterial}) {
+        EXPECT_EQ(brushes.count(b), 1u) << "brush kind " << static_cast<int>(b);
+    }
+    EXPECT_TRUE(pour);
+    EXPECT_TRUE(remove);
+}
+
+TEST(ToolPalette, EachKeyAndLabelPicksOneTool) {
+    std::set<char> keys;
+    std::set<std::string> labels;
+    for (int i = 0; i < kToolCount; ++i) {
+        const ToolEntry& t = kTools[i];
+        // A digit or an upper-case letter: GLFW's key code for that key.
+        EXPECT_TRUE(std::isdigit(t.key) || std::isupper(t.key)) << t.label;
+        // F frames the terrain.
+        EXPECT_NE(t.key, 'F') << t.label;
+        EXPECT_TRUE(keys.insert(t.key).second) << "key " << t.key << " twice";
+        EXPECT_TRUE(labels.insert(t.label).second) << t.label << " twice";
+        EXPECT_EQ(tool_for_key(t.key), i) << t.label;
+        EXPECT_EQ(tool_named(t.label), i) << t.label;
+        // The tooltip tells the artist the key.
+        EXPECT_NE(std::string(t.help).find(std::string("(key ") + t.key + ")"), std::string::npos)
+            << t.label << ": " << t.help;
+    }
+    EXPECT_FALSE(tool_for_key('F').has_value());
+    EXPECT_FALSE(tool_for_key('9').has_value());
+    EXPECT_FALSE(tool_named("circle").has_value());  // labels are matched exactly
+}
+
+}  // namespace
+}  // namespace sandtin::editor
