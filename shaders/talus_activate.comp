@@ -2,7 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // Activation (ActiveSet::activate): every changed vertex and its neighbours get a fresh quiet
 // count and join the next active list unless already in it. mode 1 (seeding from the host
-// list in the changed region): the vertices themselves only, into the current list.
+// list in the changed region, the vertices an outside edit changed): the same, into the
+// current list. The neighbours matter: lowering a vertex steepens the edges from the higher
+// neighbours, and only they can send sand down them.
 #include "talus_common.glsl"
 
 void activate(uint u, uint list_half, uint counter) {
@@ -15,12 +17,10 @@ void main() {
     uint idx = thread_index();
     if (idx >= ctl[C_CHANGED]) return;
     uint v = lists[R_CHANGED * pc.capacity + idx];
-    if (pc.mode == 1u) {
-        activate(v, ctl[C_PARITY], C_ACTIVE);
-        return;
-    }
-    uint next_half = 1u - ctl[C_PARITY];
-    activate(v, next_half, C_NEXT);
+    bool seeding = pc.mode == 1u;
+    uint into = seeding ? ctl[C_PARITY] : 1u - ctl[C_PARITY];
+    uint counter = seeding ? C_ACTIVE : C_NEXT;
+    activate(v, into, counter);
     uint begin = row_offset[v];
-    for (uint k = begin; k < begin + row_degree[v]; ++k) activate(target[k], next_half, C_NEXT);
+    for (uint k = begin; k < begin + row_degree[v]; ++k) activate(target[k], into, counter);
 }

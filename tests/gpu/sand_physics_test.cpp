@@ -9,6 +9,7 @@
 #include "gpu_fixture.hpp"
 #include "gpu_scenes.hpp"
 #include "physics/cone.hpp"
+#include "physics/physics_oracles.hpp"
 #include "physics/sand_physics.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool.hpp"
@@ -197,6 +198,25 @@ TEST_F(GpuTest, GpuPhysicsAtRestRecordsNothingAndUploadsNothing) {
     EXPECT_EQ(idle.iterations, 0);
     EXPECT_EQ(gpu.relaxation().dispatches_recorded(), dispatches);
     EXPECT_EQ(gpu.last_sync_bytes(), 0u);
+}
+
+TEST_F(GpuTest, LoweringAVertexWakesTheNeighboursAboveIt) {
+    // physics' ActiveSet test of the same name, on the GPU: an outside edit lowers one vertex
+    // of a flat terrain at rest. Only its higher neighbours can send sand down the edges it
+    // steepened, so they must wake with it.
+    Tin tin = Tin::random_points(kUnitSquare, 4000, 8);
+    GpuSandPhysics gpu(tin, ctx(), MaterialTable::presets());
+    gpu.activate_all();
+    ASSERT_TRUE(gpu.run_to_rest(1000).at_rest);  // flat: at rest at once
+    const VertexId pit{tin.locate({0.5, 0.5}).corners[0]};
+    tin.set_height(pit, -0.02);
+    const double volume = tin.volume();
+    const PhysicsStepReport r = gpu.run_to_rest(100000);
+    EXPECT_TRUE(r.at_rest);
+    EXPECT_GT(tin.height(pit), -0.02);
+    EXPECT_NEAR(tin.volume(), volume, 1e-6 * 0.02);  // float transfers: 1e-6 of the pit
+    const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+    EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
 }
 
 }  // namespace
