@@ -132,9 +132,13 @@ SandPhysics::~SandPhysics() = default;
 
 void SandPhysics::set_materials(MaterialTable materials) {
     materials_ = std::move(materials);
+    // tan_alpha_ is per local id: under a renumbering (Jacobi's strips) local l is TIN id
+    // numbering_.tin_id(l), not l.
     const VertexArrays& va = tin_.vertices();
-    for (std::size_t v = 0; v < va.size() && v < tan_alpha_.size(); ++v) {
-        if (va.alive[v]) tan_alpha_[v] = materials_.at(va.material[v]).talus_slope(va.moisture[v]);
+    for (std::uint32_t l = 0; l < numbering_.size() && l < tan_alpha_.size(); ++l) {
+        const std::uint32_t t = numbering_.tin_id(l);
+        if (t < va.size() && va.alive[t])
+            tan_alpha_[l] = materials_.at(va.material[t]).talus_slope(va.moisture[t]);
     }
     activate_all();
 }

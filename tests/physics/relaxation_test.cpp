@@ -174,6 +174,48 @@ TEST(ActiveSet, LoweringAVertexWakesTheNeighboursAboveIt) {
     }
 }
 
+TEST(Materials, ANewTableReachesEveryVertexOnBothSchedules) {
+    // Gravel on the left half, dry sand on the right, over-steep everywhere; then the table
+    // changes (sand 25 deg, gravel 40 deg) before any relaxation. At rest, every edge must
+    // stand within repose of its upper vertex's own material in the new table, and the
+    // gravel must stand steeper than the sand could: each vertex got its own angle.
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    for (Schedule schedule : {Schedule::Sequential, Schedule::Jacobi}) {
+        SCOPED_TRACE(schedule == Schedule::Sequential ? "sequential" : "jacobi");
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 21);
+        set_heights(tin, test::rough_sand);
+        const VertexArrays& va = tin.vertices();
+        for (std::uint32_t v = 0; v < va.size(); ++v) {
+            if (va.alive[v]) tin.set_material(VertexId{v}, va.position[v].x < 0.5 ? 2 : 0);
+        }
+        TalusSettings settings;
+        settings.schedule = schedule;
+        SandPhysics physics(tin, MaterialTable::presets(), settings);
+        std::vector<Material> all = MaterialTable::presets().all();
+        all[0].repose_dry = 25.0 * kDeg;
+        all[2].repose_dry = 40.0 * kDeg;
+        const MaterialTable table(all);
+        physics.set_materials(table);
+        ASSERT_TRUE(physics.run_to_rest(200000).at_rest);
+        std::vector<VertexId> ring;
+        double worst = 0.0, gravel_over_sand = 0.0;
+        for (std::uint32_t v = 0; v < va.size(); ++v) {
+            if (!va.alive[v]) continue;
+            const double tan_v = table.at(va.material[v]).talus_slope(va.moisture[v]);
+            tin.neighbours(VertexId{v}, ring);
+            for (VertexId w : ring) {
+                const double slope = (va.height[v] - va.height[w.value]) /
+                                     distance(va.position[v], va.position[w.value]);
+                worst = std::max(worst, slope / tan_v);
+                if (va.material[v] == 2 && va.material[w.value] == 2)
+                    gravel_over_sand = std::max(gravel_over_sand, slope / all[0].talus_slope(0.0));
+            }
+        }
+        EXPECT_LE(worst, 1.0 + 1e-3);
+        EXPECT_GT(gravel_over_sand, 1.2);
+    }
+}
+
 std::vector<double> run_random(double randomness, std::uint64_t seed, Schedule schedule) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 12);
     set_heights(tin, test::rough_sand);
