@@ -98,6 +98,11 @@ void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccess
     vkCmdPipelineBarrier(cb, src_stage, dst_stage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
+void host_read_barrier(VkCommandBuffer cb) {
+    memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
 std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer buffer,
                                        VkDeviceSize offset, VkDeviceSize bytes) {
     std::vector<unsigned char> out(bytes);
@@ -109,6 +114,7 @@ std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer bu
                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         VkBufferCopy c{offset, 0, bytes};
         vkCmdCopyBuffer(cb, buffer, host.get(), 1, &c);
+        host_read_barrier(cb);
     });
     host.invalidate(context);
     std::memcpy(out.data(), host.mapped(), bytes);

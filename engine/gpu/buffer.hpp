@@ -55,6 +55,12 @@ void buffer_barrier(VkCommandBuffer cb, VkBuffer buffer, VkPipelineStageFlags sr
 void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                     VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
+// Transfer writes -> host reads: recorded after the last copy into a host-visible buffer that
+// the host reads once the submission's fence has signalled. Waiting on the fence alone does not
+// make device writes visible to the host (Vulkan spec, "Host Write Ordering Guarantees" and the
+// fence's memory dependency, which excludes the host domain).
+void host_read_barrier(VkCommandBuffer cb);
+
 // Copies bytes [offset, offset + bytes) of a device buffer to the host and waits (after a
 // barrier making earlier shader and transfer writes visible). For read-backs and tests.
 std::vector<unsigned char> read_buffer(const VulkanContext& context, VkBuffer buffer,

@@ -235,6 +235,7 @@ GpuRunStats GpuRelaxation::run(int iterations) {
         }
         VkBufferCopy c{0, 0, kControlWords * 4};
         vkCmdCopyBuffer(cb, control_buf_.get(), control_host_.get(), 1, &c);
+        host_read_barrier(cb);
     });
     if (profile) timer_->collect();
 
@@ -266,6 +267,7 @@ std::vector<TouchedVertex> GpuRelaxation::read_back() {
         vkCmdCopyBuffer(cb, packed_.get(), readback_.get(), 1, &c);
         VkBufferCopy cc{0, 0, kControlWords * 4};
         vkCmdCopyBuffer(cb, control_buf_.get(), control_host_.get(), 1, &cc);
+        host_read_barrier(cb);
     });
     dispatches_total_ += 2;
     readback_.invalidate(context_);
@@ -292,6 +294,7 @@ std::vector<uint32_t> GpuRelaxation::take_split_requests() {
         compute_barrier(cb);
         VkBufferCopy cc{0, 0, kControlWords * 4};
         vkCmdCopyBuffer(cb, control_buf_.get(), control_host_.get(), 1, &cc);
+        host_read_barrier(cb);
     });
     host.invalidate(context_);
     std::memcpy(out.data(), host.mapped(), VkDeviceSize{n} * 4);
