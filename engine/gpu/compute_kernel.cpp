@@ -1,7 +1,10 @@
 #include "gpu/compute_kernel.hpp"
 
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "gpu/dispatch_grid.hpp"
 #include "gpu/gpu_error.hpp"
 #include "gpu/vulkan_context.hpp"
 
@@ -12,7 +15,9 @@ ComputeKernel::ComputeKernel(const VulkanContext& context, std::string name,
     : device_(context.device()),
       name_(std::move(name)),
       buffers_(buffers),
-      push_bytes_(push_bytes) {
+      push_bytes_(push_bytes),
+      max_groups_x_(context.dispatch_groups_x()),
+      max_groups_y_(context.dispatch_groups_y()) {
     const VkPhysicalDeviceLimits& limits = context.properties().limits;
     if (buffers > limits.maxPerStageDescriptorStorageBuffers) {
         throw GpuError("kernel " + name_ + " needs " + std::to_string(buffers) +
@@ -123,8 +128,14 @@ void ComputeKernel::prepare(VkCommandBuffer cb, const void* push) const {
 
 void ComputeKernel::dispatch(VkCommandBuffer cb, uint32_t threads, const void* push) const {
     if (threads == 0) return;
+    const uint32_t groups = (threads - 1) / kLocalSize + 1;  // no overflow near UINT32_MAX
+    const std::optional<DispatchGrid> grid = dispatch_grid(groups, max_groups_x_, max_groups_y_);
+    if (!grid) {
+        throw GpuError("kernel " + name_ + ": " + std::to_string(threads) +
+                       " threads exceed the device's workgroup grid");
+    }
     prepare(cb, push);
-    vkCmdDispatch(cb, (threads + kLocalSize - 1) / kLocalSize, 1, 1);
+    vkCmdDispatch(cb, grid->x, grid->y, 1);
 }
 
 void ComputeKernel::dispatch_indirect(VkCommandBuffer cb, VkBuffer args, VkDeviceSize offset,

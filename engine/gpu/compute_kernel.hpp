@@ -30,7 +30,9 @@ class ComputeKernel {
 
     // Binds pipeline + set and pushes `push` (push_bytes long) on `cb`.
     void prepare(VkCommandBuffer cb, const void* push) const;
-    // prepare() and vkCmdDispatch for `threads` invocations (workgroups of kLocalSize).
+    // prepare() and vkCmdDispatch for `threads` invocations (workgroups of kLocalSize, in rows
+    // when one row would pass the device's limit: dispatch_grid.hpp). Throws GpuError when
+    // even the 2-D grid is too small.
     void dispatch(VkCommandBuffer cb, uint32_t threads, const void* push = nullptr) const;
     // prepare() and vkCmdDispatchIndirect from `args` at `offset`.
     void dispatch_indirect(VkCommandBuffer cb, VkBuffer args, VkDeviceSize offset,
@@ -43,6 +45,8 @@ class ComputeKernel {
     std::string name_;
     uint32_t buffers_;
     uint32_t push_bytes_;
+    uint32_t max_groups_x_;
+    uint32_t max_groups_y_;
     UniqueShaderModule module_;
     UniqueDescriptorSetLayout set_layout_;
     UniquePipelineLayout layout_;

@@ -108,7 +108,8 @@ struct VulkanContext::DebugMessenger {
     }
 };
 
-VulkanContext::VulkanContext(const ContextOptions& options) {
+VulkanContext::VulkanContext(const ContextOptions& options)
+    : max_dispatch_groups_x_(options.max_dispatch_groups_x) {
     // --- instance ---------------------------------------------------------------------------
     uint32_t loader_version = VK_API_VERSION_1_0;
     if (vkEnumerateInstanceVersion(&loader_version) != VK_SUCCESS ||
@@ -308,6 +309,11 @@ VulkanContext::~VulkanContext() {
 
 std::string VulkanContext::device_type() const {
     return device_type_name(properties_.deviceType);
+}
+
+uint32_t VulkanContext::dispatch_groups_x() const {
+    const uint32_t device = properties_.limits.maxComputeWorkGroupCount[0];
+    return max_dispatch_groups_x_ == 0 ? device : std::min(device, max_dispatch_groups_x_);
 }
 
 std::string VulkanContext::describe() const {

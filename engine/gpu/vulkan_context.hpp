@@ -47,6 +47,9 @@ struct ContextOptions {
     // Device override; when unset, the SANDTIN_DEVICE environment variable is used.
     std::optional<std::string> device_override;
     std::string application_name = "sandtin";
+    // Caps the workgroups a direct dispatch puts along x below the device's own limit (0: the
+    // device's). Tests set a small cap to run large-dispatch splitting on small meshes.
+    uint32_t max_dispatch_groups_x = 0;
 };
 
 // Features enabled on the device when supported (queried, never required beyond Vulkan 1.2).
@@ -88,6 +91,11 @@ class VulkanContext {
     double timestamp_period_ns() const { return properties_.limits.timestampPeriod; }
     bool timestamps_supported() const { return timestamp_valid_bits_ != 0; }
 
+    // Workgroups a direct dispatch may put along x and y (the device's limits, x capped by
+    // ContextOptions::max_dispatch_groups_x).
+    uint32_t dispatch_groups_x() const;
+    uint32_t dispatch_groups_y() const { return properties_.limits.maxComputeWorkGroupCount[1]; }
+
     // Validation messages (warning or error severity) seen since construction; 0 when
     // validation is off. Thread-safe.
     uint64_t validation_message_count() const { return validation_count_.load(); }
@@ -128,6 +136,7 @@ class VulkanContext {
     VkPhysicalDeviceMemoryProperties memory_{};
     EnabledFeatures features_;
     std::string selection_reason_;
+    uint32_t max_dispatch_groups_x_ = 0;
     UniqueCommandPool one_shot_pool_;
     UniqueFence one_shot_fence_;
 
