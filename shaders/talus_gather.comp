@@ -37,6 +37,10 @@ void main() {
     float a = area[v];
     precise float total = delta + vs[v].residual;
     precise float nh = h + total / a;
+    // A source that sent all its sand lands on the bedrock, never below it by rounding (the
+    // residual keeps the difference, so no volume is lost). Written back, a height below the
+    // bedrock would carry the TIN's bedrock down with it.
+    if (total < 0.0 && nh < bedrock[v]) nh = min(h, bedrock[v]);
     precise float applied = nh - h;
     precise float residual = total - applied * a;
     vs[v].residual = residual;

@@ -1,6 +1,7 @@
 #include "gpu/tin_mirror.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "gpu/gpu_error.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -151,7 +152,14 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
         put(b, f_.data(), 4);
     };
     floats(VertexBuffer::Height, va.height);
-    floats(VertexBuffer::Bedrock, va.bedrock);
+    // The bedrock rounds up, so the float floor the shaders drain to is never below the
+    // double one (a float below it would let the GPU take sand the TIN does not have).
+    for (uint32_t i = 0; i < n; ++i) {
+        const double b = va.bedrock[r.begin + i];
+        f_[i] = static_cast<float>(b);
+        if (static_cast<double>(f_[i]) < b) f_[i] = std::nextafter(f_[i], HUGE_VALF);
+    }
+    put(VertexBuffer::Bedrock, f_.data(), 4);
     floats(VertexBuffer::Area, va.lumped_area);
     for (uint32_t i = 0; i < n; ++i) {
         const uint32_t v = r.begin + i;

@@ -219,5 +219,35 @@ TEST_F(GpuTest, LoweringAVertexWakesTheNeighboursAboveIt) {
     EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
 }
 
+TEST_F(GpuTest, SandDrainsToTheBedrockButNeverMovesIt) {
+    // 1 mm of sand on a bedrock mound far steeper than repose, at heights float cannot
+    // represent (+ i * 1e-9 m): the sand on the slopes drains to the rock and piles at the
+    // foot. Every vertex's bedrock in the TIN must come back exactly as it was, with the
+    // surface on or above it.
+    auto mound = [](Vec2 p) {
+        return 0.1 + std::max(0.0, 0.3 - 1.5 * std::hypot(p.x - 0.5, p.y - 0.5));
+    };
+    Tin tin = Tin::random_points(kUnitSquare, 6000, 17, mound);
+    const VertexArrays& va = tin.vertices();
+    std::vector<double> rock(va.size(), 0.0);
+    for (uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        rock[v] = mound(va.position[v]) + 1e-9 * static_cast<double>(v % 97);
+        tin.set_height(VertexId{v}, rock[v] + 0.001);
+        tin.set_bedrock(VertexId{v}, rock[v]);
+    }
+    GpuSandPhysics gpu(tin, ctx(), MaterialTable::presets());
+    gpu.activate_all();
+    EXPECT_GT(gpu.run_to_rest(20000).volume_moved, 0.0);
+    std::size_t bare = 0;
+    for (uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || v >= rock.size()) continue;
+        ASSERT_EQ(va.bedrock[v], rock[v]) << v;
+        ASSERT_GE(va.height[v], va.bedrock[v]) << v;
+        bare += va.height[v] - va.bedrock[v] < 1e-4;
+    }
+    EXPECT_GT(bare, 100u);  // the slopes were drained to the rock
+}
+
 }  // namespace
 }  // namespace sandtin::gpu
