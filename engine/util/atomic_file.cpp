@@ -4,11 +4,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sandtin {
 
@@ -26,6 +28,8 @@ class FileDescriptor {
     }
     FileDescriptor(const FileDescriptor&) = delete;
     FileDescriptor& operator=(const FileDescriptor&) = delete;
+    FileDescriptor(FileDescriptor&& other) noexcept : fd_(other.release()) {}
+    FileDescriptor& operator=(FileDescriptor&&) = delete;
     int get() const { return fd_; }
     int release() {
         const int fd = fd_;
@@ -37,16 +41,56 @@ class FileDescriptor {
     int fd_;
 };
 
+/// The file a save must replace: `path`, or the file a symbolic link at `path` leads to
+/// (followed link by link, as open() would), so that saving through a link updates the file
+/// it points to rather than replacing the link with a copy.
+std::filesystem::path save_target(const std::filesystem::path& path) {
+    std::filesystem::path target = path;
+    for (int hops = 0; hops < 40; ++hops) {
+        std::error_code ec;
+        if (!std::filesystem::is_symlink(std::filesystem::symlink_status(target, ec))) {
+            return target;
+        }
+        const std::filesystem::path next = std::filesystem::read_symlink(target, ec);
+        if (ec) fail("cannot follow the link", target, ec.value());
+        target = next.is_absolute() ? next : target.parent_path() / next;
+    }
+    fail("cannot follow the links at", path, ELOOP);
+}
+
+/// A new, empty temporary file beside `target`, created with mode 0666 less the umask, as
+/// any new file of the user's would be (mkstemp would force 0600).
+std::pair<FileDescriptor, std::filesystem::path> create_temporary(
+    const std::filesystem::path& dir, const std::filesystem::path& target) {
+    static std::atomic<std::uint64_t> counter{0};
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        const std::filesystem::path temp =
+            dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                   std::to_string(counter.fetch_add(1)));
+        const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0) return {FileDescriptor(fd), temp};
+        if (errno != EEXIST) fail("cannot create a temporary file next to", target, errno);
+    }
+    fail("cannot create a temporary file next to", target, EEXIST);
+}
+
 }  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
                            const WriteInterruption& interruption) {
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
-    std::string temp_template = (dir / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
-    FileDescriptor fd(::mkstemp(temp_template.data()));
-    const std::filesystem::path temp = temp_template;
-    if (fd.get() < 0) fail("cannot create a temporary file next to", path, errno);
-    ::fchmod(fd.get(), 0644);
+    const std::filesystem::path target = save_target(path);
+    const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
+    auto [fd, temp] = create_temporary(dir, target);
+    // Replacing a file keeps its permissions (a private scene stays private, a shared one
+    // group-writable).
+    struct stat old {};
+    if (::stat(target.c_str(), &old) == 0 && S_ISREG(old.st_mode)) {
+        if (::fchmod(fd.get(), old.st_mode & 07777) != 0) {
+            const int error = errno;
+            std::filesystem::remove(temp);
+            fail("cannot set the permissions of", temp, error);
+        }
+    }
 
     std::size_t written = 0;
     const std::size_t chunk = 1u << 20;
@@ -75,10 +119,10 @@ void write_file_atomically(const std::filesystem::path& path, std::span<const st
         std::filesystem::remove(temp);
         fail("cannot close", temp, error);
     }
-    if (::rename(temp.c_str(), path.c_str()) != 0) {
+    if (::rename(temp.c_str(), target.c_str()) != 0) {
         const int error = errno;
         std::filesystem::remove(temp);
-        fail("cannot replace", path, error);
+        fail("cannot replace", target, error);
     }
     // Make the rename itself durable.
     FileDescriptor dir_fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY));

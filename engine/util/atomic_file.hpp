@@ -17,7 +17,9 @@ namespace sandtin {
 using WriteInterruption = std::function<bool(std::size_t bytes_written)>;
 
 /// Writes `data` to `path` atomically. Throws std::runtime_error naming the path and the
-/// system error on failure; the previous file (if any) is then unchanged.
+/// system error on failure; the previous file (if any) is then unchanged. A symbolic link at
+/// `path` is followed: the file it leads to is replaced, the link stays. A replaced file keeps
+/// its permission bits; a new one gets 0666 less the umask.
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
                            const WriteInterruption& interruption = {});
 

@@ -1,6 +1,7 @@
 // Atomic file replacement and whole-file reads.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -51,6 +52,52 @@ TEST_F(AtomicFile, WriteThenReadBack) {
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_))
         ++entries;
     EXPECT_EQ(entries, 1u);
+}
+
+TEST_F(AtomicFile, ReplacingKeepsTheFilesPermissionsAndANewFileFollowsTheUmask) {
+    const fs::path p = dir_ / "private.bin";
+    write_file_atomically(p, pattern(10, 1));
+    fs::permissions(p, fs::perms::owner_read | fs::perms::owner_write);
+    write_file_atomically(p, pattern(20, 2));
+    EXPECT_EQ(fs::status(p).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+    fs::permissions(p, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                           fs::perms::group_write);
+    write_file_atomically(p, pattern(30, 3));
+    EXPECT_EQ(fs::status(p).permissions(), fs::perms::owner_read | fs::perms::owner_write |
+                                               fs::perms::group_read | fs::perms::group_write);
+    EXPECT_EQ(read_file(p), pattern(30, 3));
+    // A new file: 0666 less the umask, as the shell's own files are.
+    const mode_t mask = ::umask(027);
+    write_file_atomically(dir_ / "new.bin", pattern(5, 4));
+    ::umask(mask);
+    EXPECT_EQ(fs::status(dir_ / "new.bin").permissions(),
+              fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+}
+
+TEST_F(AtomicFile, SavingThroughALinkUpdatesTheFileItPointsTo) {
+    fs::create_directories(dir_ / "shared");
+    const fs::path real = dir_ / "shared" / "scene.bin";
+    write_file_atomically(real, pattern(10, 1));
+    fs::create_symlink(fs::path("shared") / "scene.bin", dir_ / "link.bin");  // relative
+    fs::create_symlink(dir_ / "link.bin", dir_ / "link2.bin");                // a chain
+    write_file_atomically(dir_ / "link2.bin", pattern(40, 7));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link.bin"));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link2.bin"));
+    EXPECT_EQ(read_file(real), pattern(40, 7));
+    // A dangling link: the file is created where it points.
+    fs::create_symlink(fs::path("shared") / "new.bin", dir_ / "dangling.bin");
+    write_file_atomically(dir_ / "dangling.bin", pattern(3, 9));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "dangling.bin"));
+    EXPECT_EQ(read_file(dir_ / "shared" / "new.bin"), pattern(3, 9));
+    // A loop of links is an error naming the path, not a hang.
+    fs::create_symlink(dir_ / "loop-b", dir_ / "loop-a");
+    fs::create_symlink(dir_ / "loop-a", dir_ / "loop-b");
+    try {
+        write_file_atomically(dir_ / "loop-a", pattern(3, 9));
+        ADD_FAILURE() << "a loop of links was written through";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("loop-a"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(AtomicFile, InterruptedWriteKeepsTheOldContent) {
