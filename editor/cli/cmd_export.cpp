@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "io/export_terrain.hpp"
 #include "io/session_file.hpp"
+#include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
 
@@ -45,6 +46,7 @@ int run_export(const std::vector<std::string>& raw) {
                                {"--json", 0}});
     args.require_positionals(1, kUsage);
     const std::string out = args.text("-o");
+    check_writable(out);  // before the work, not after it
     ExportFormat format{};
     ExportOptions options;
     try {

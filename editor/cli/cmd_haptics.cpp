@@ -140,12 +140,16 @@ int run_haptics(const std::vector<std::string>& raw) {
             std::cerr << "sandtin haptics: listening on 127.0.0.1:" << bound << "\n";
         };
     }
+    // A live session cannot be run again: where its results go is checked before it starts,
+    // and the recording (which replays it) is saved first.
+    check_writable(out);
+    if (args.has("--record")) check_writable(args.text("--record"));
     const UdpServeResult r = serve_udp_session(tin, context, options);
 
+    if (args.has("--record")) save_recording(args.text("--record"), r.recording);
     session.terrain = tin.snapshot();
     session.next_generation = context.peek_generation();
     save_session(out, session);
-    if (args.has("--record")) save_recording(args.text("--record"), r.recording);
 
     nlohmann::json j;
     j["ticks"] = r.loop.ticks;

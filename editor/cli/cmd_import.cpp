@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
 
@@ -42,6 +43,7 @@ int run_import(const std::vector<std::string>& raw) {
         throw UsageError("missing required option '--max-error'\nusage: " + std::string(kUsage));
     }
     const std::string out = args.text("-o");
+    check_writable(out);  // before the work, not after it
     ImportOptions options;
     options.greedy.max_error = args.number("--max-error");
     if (options.greedy.max_error < 0.0) throw UsageError("--max-error must be >= 0 metres");

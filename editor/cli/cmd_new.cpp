@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "io/session_file.hpp"
 #include "terrain_report.hpp"
+#include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
 
@@ -29,6 +30,7 @@ int run_new(const std::vector<std::string>& raw) {
                          std::string(kUsage));
     }
     const std::string out = args.text("-o");
+    check_writable(out);  // before the work, not after it
     const double z = args.number_or("--height", 0.0);
     const auto constant = [z](Vec2) { return z; };
     TinOptions options;

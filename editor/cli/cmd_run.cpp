@@ -29,6 +29,7 @@ int run_run(const std::vector<std::string>& raw) {
     args.require_positionals(1, kUsage);
     const std::filesystem::path script_path = args.positionals()[0];
     const std::string out = args.text("-o");
+    check_writable(out);  // before the work, not after it
     const std::vector<std::uint8_t> bytes = read_file(script_path, 1u << 28);
     const std::string text(bytes.begin(), bytes.end());
     // Parse everything before touching any terrain: a bad script changes nothing.

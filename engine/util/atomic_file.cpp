@@ -129,6 +129,24 @@ void write_file_atomically(const std::filesystem::path& path, std::span<const st
     if (dir_fd.get() >= 0) ::fsync(dir_fd.get());
 }
 
+void check_writable(const std::filesystem::path& path) {
+    const std::filesystem::path target = save_target(path);
+    const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
+    std::error_code ec;
+    if (!std::filesystem::exists(dir, ec)) {
+        throw std::runtime_error("cannot write '" + path.string() + "': the folder '" +
+                                 dir.string() + "' does not exist");
+    }
+    if (!std::filesystem::is_directory(dir, ec)) {
+        throw std::runtime_error("cannot write '" + path.string() + "': '" + dir.string() +
+                                 "' is not a folder");
+    }
+    if (::access(dir.c_str(), W_OK | X_OK) != 0) fail("cannot write in the folder of", path, errno);
+    if (std::filesystem::is_directory(target, ec)) {
+        throw std::runtime_error("cannot write '" + path.string() + "': it is a folder");
+    }
+}
+
 std::vector<std::uint8_t> read_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {

@@ -23,6 +23,11 @@ using WriteInterruption = std::function<bool(std::size_t bytes_written)>;
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
                            const WriteInterruption& interruption = {});
 
+/// Throws std::runtime_error naming the problem when write_file_atomically could not write
+/// `path` now: its folder does not exist, is not a folder, or is not writable. For commands to
+/// ask before long work whose result they then save.
+void check_writable(const std::filesystem::path& path);
+
 /// Reads a whole file. Throws std::runtime_error naming the path when it cannot be read or is
 /// larger than `max_bytes`.
 std::vector<std::uint8_t> read_file(const std::filesystem::path& path,

@@ -98,6 +98,26 @@ TEST(UdpCli, ServeRejectsBadOptions) {
                   dir / "out", dir / "err"),
               1);
     EXPECT_NE(test::read_text(dir / "err").find("cannot open"), std::string::npos);
+    // An output that cannot be written is refused before the live session starts (it could
+    // not be run again): at once, not after --max-seconds, and naming the folder. No port is
+    // ever announced.
+    for (const std::vector<std::string>& outputs :
+         {std::vector<std::string>{"-o", (dir / "missing" / "x.sandtin").string()},
+          std::vector<std::string>{"-o", (dir / "x.sandtin").string(), "--record",
+                                   (dir / "missing" / "s.haptic.json").string()}}) {
+        std::vector<std::string> cmd = {
+            SANDTIN_CLI,     "haptics", "serve", "--port-file", (dir / "port").string(),
+            "--max-seconds", "60"};
+        cmd.insert(cmd.end(), outputs.begin(), outputs.end());
+        const auto t0 = std::chrono::steady_clock::now();
+        EXPECT_EQ(test::run_process(cmd, dir / "out", dir / "err"), 1);
+        EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(30));
+        EXPECT_NE(test::read_text(dir / "err")
+                      .find("'" + (dir / "missing").string() + "' does not exist"),
+                  std::string::npos)
+            << test::read_text(dir / "err");
+        EXPECT_FALSE(std::filesystem::exists(dir / "port"));
+    }
 }
 
 }  // namespace

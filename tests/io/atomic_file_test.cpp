@@ -100,6 +100,27 @@ TEST_F(AtomicFile, SavingThroughALinkUpdatesTheFileItPointsTo) {
     }
 }
 
+TEST_F(AtomicFile, CheckWritableNamesWhatStandsInTheWay) {
+    const auto message = [](const fs::path& p) -> std::string {
+        try {
+            check_writable(p);
+        } catch (const std::runtime_error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(message(dir_ / "fine.bin"), "");
+    EXPECT_FALSE(fs::exists(dir_ / "fine.bin"));  // asking writes nothing
+    EXPECT_NE(message(dir_ / "missing" / "x.bin").find("does not exist"), std::string::npos);
+    write_file_atomically(dir_ / "plain", pattern(1, 1));
+    EXPECT_NE(message(dir_ / "plain" / "x.bin").find("is not a folder"), std::string::npos);
+    fs::create_directories(dir_ / "sub");
+    EXPECT_NE(message(dir_ / "sub").find("it is a folder"), std::string::npos);
+    // Through a link, the folder that counts is the one the link leads to.
+    fs::create_symlink(dir_ / "missing" / "x.bin", dir_ / "link.bin");
+    EXPECT_NE(message(dir_ / "link.bin").find("does not exist"), std::string::npos);
+}
+
 TEST_F(AtomicFile, InterruptedWriteKeepsTheOldContent) {
     const fs::path p = dir_ / "b.bin";
     const auto old_data = pattern(1000, 1);
