@@ -39,6 +39,8 @@ class Cursor {
         return t;
     }
     std::size_t line() const { return line_; }
+    /// Bytes not yet read.
+    std::size_t remaining() const { return text_.size() - pos_; }
     [[noreturn]] void fail(const std::string& what) const {
         throw std::runtime_error(name_ + ": line " + std::to_string(line_) + ": " + what);
     }
@@ -142,6 +144,14 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
     r.georeference.known = true;
     r.georeference.west = values["x"] + (x_centre ? 0.0 : 0.5 * cellsize);
     r.georeference.south = values["y"] + (y_centre ? 0.0 : 0.5 * cellsize);
+    // Each height takes a character and a separator: a file too short to hold them all is
+    // refused before the raster is allocated (a 60-byte header could ask for 2 GB).
+    if (in.remaining() + 1 < 2 * r.size()) {
+        throw std::runtime_error(
+            name + ": truncated: expected " + std::to_string(r.size()) + " heights (" +
+            std::to_string(r.width) + " x " + std::to_string(r.height) + "), but only " +
+            std::to_string(in.remaining()) + " bytes follow the header, too few for them");
+    }
     r.heights.resize(r.size());
     bool any_nodata = false;
     std::vector<std::uint8_t> valid(r.size(), 1);
