@@ -613,8 +613,17 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
                           const PhysicsBackendFactory& backend) {
     ScriptRunner runner(script, tin, context, false, backend);
     nlohmann::json reports = nlohmann::json::array();
-    for (const ScriptStep& step : script.steps)
-        reports.push_back(runner.run(step));
+    for (std::size_t i = 0; i < script.steps.size(); ++i) {
+        const ScriptStep& step = script.steps[i];
+        try {
+            reports.push_back(runner.run(step));
+        } catch (const std::invalid_argument& e) {
+            // Input that only the terrain shows to be bad: named by its line, like a parse error.
+            throw std::invalid_argument("line " + std::to_string(step.line) + ": operation " +
+                                        std::to_string(i + 1) + " (" + step.op_name +
+                                        "): " + e.what());
+        }
+    }
     return reports;
 }
 

@@ -71,9 +71,14 @@ class StressSession {
             return out;
         }
         const double before = volume_;
-        nlohmann::json report;
+        nlohmann::json report = nlohmann::json::object();
         try {
             report = runner_.run(script.steps.front());
+        } catch (const std::invalid_argument& e) {
+            // Input only the terrain shows to be bad (a tool too small for its size): a clear
+            // refusal, after which every invariant below must still hold and the volume must
+            // be as it was.
+            out.rejection = e.what();
         } catch (const std::exception& e) {
             out.violation = InvariantViolation{"exception", e.what()};
             return out;

@@ -436,7 +436,7 @@ TEST(BadHeightmap, WrongAsciiHeaders) {
     // A header that asks for the largest raster and holds one value is refused by its size,
     // before 2 GB of heights would be allocated.
     expect_rejected(bytes_of("ncols 16384\nnrows 16384\nxllcorner 0\nyllcorner 0\ncellsize 1\n0\n"),
-                    {"truncated", "expected 268435456 heights", "only 2 bytes follow the header"});
+                    {"truncated", "expected 268435456 heights", "only 3 bytes follow the header"});
     expect_rejected(bytes_of(header + "1 2\n3 4 5\n"), {"more heights"});
     expect_rejected(bytes_of(header + "1 2\n3 x4\n"), {"row 1, column 1", "not a number"});
 }

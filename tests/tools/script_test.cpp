@@ -139,6 +139,23 @@ TEST(Script, ObjectFormWithTerrainAndSettings) {
     EXPECT_EQ(stamp_op.tool->spec().name, "lambda");
 }
 
+TEST(Script, AnOperationTheTerrainRefusesIsNamedByItsLine) {
+    // A 5 cm tool on a 5 km terrain (stamp_test: too small to tell its contours apart).
+    const Script s = parse(R"([
+  {"op": "pour", "at": [2500, 2500], "volume": 1, "radius": 20},
+  {"op": "stamp", "tool": {"asset": "circle", "radius": 0.05}, "at": [100, 100], "depth": 0.01}
+])");
+    Tin tin = Tin::random_points(Rect::from_size(5000, 5000), 500, 602, [](Vec2) { return 1.0; });
+    SculptContext context(tin.domain());
+    try {
+        run_script(s, tin, context);
+        ADD_FAILURE() << "the stamp ran";
+    } catch (const std::invalid_argument& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind("line 3: operation 2 (stamp): stamp: the tool is too small", 0), 0u) << m;
+    }
+}
+
 TEST(Script, RunAppliesTheOperationsAndTheSettings) {
     const std::string text = R"({
   "settings": {"simplify_tolerance": 0.002, "keep_generations": 10},

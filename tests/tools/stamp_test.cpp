@@ -705,6 +705,30 @@ TEST(Stamp, AToolCoveringTheWholeDomainLowersAllOfIt) {
     }
 }
 
+TEST(Stamp, AToolTooSmallForTheTerrainIsAnErrorNotAStampThatDigsNothing) {
+    // A 5 km terrain merges points 5 mm apart (its snap distance, 1e-6 of its size). A 5 cm
+    // tool's contours are 1.25 mm apart: its inner contour would snap onto its rim.
+    Tin tin =
+        Tin::random_points(Rect::from_size(5000.0, 5000.0), 2000, 66, [](Vec2) { return 0.1; });
+    ASSERT_NEAR(tin.snap_distance(), 0.005, 1e-12);
+    SculptContext context(tin.domain());
+    const test::TinState before = test::capture(tin);
+    try {
+        stamp(tin, circle_tool(0.05, 12), {{2500.0, 2500.0}, 0.0, 0.08}, context);
+        ADD_FAILURE() << "a 5 cm tool stamped a 5 km terrain";
+    } catch (const std::invalid_argument& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("too small for this terrain"), std::string::npos) << m;
+        EXPECT_NE(m.find("radius of at least 0.8 m"), std::string::npos) << m;  // 4 * 5 mm / 2.5 %
+    }
+    test::expect_snapshots_equal(before.snapshot, tin.snapshot());
+    // The radius the message asks for digs: the floor reaches the tool.
+    const StampReport r = stamp(tin, circle_tool(0.81, 12), {{2500.0, 2500.0}, 0.0, 0.08}, context);
+    ASSERT_TRUE(r.applied);
+    EXPECT_GT(r.displaced_volume, 0.5 * 3.14159 * 0.81 * 0.81 * 0.02);
+    EXPECT_NEAR(*tin.height_at({2500.0, 2500.0}), 0.08, 1e-9);
+}
+
 TEST(Stamp, NonFinitePlacementThrowsAndChangesNothing) {
     Tin tin = Tin::random_points(test::kUnitSquare, 300, 63, rolling_sand);
     SculptContext context(tin.domain());
