@@ -439,6 +439,7 @@ nlohmann::json stamp_json(const StampReport& r) {
     return {{"stamps_applied", r.applied ? 1 : 0},
             {"displaced_volume", r.displaced_volume},
             {"deposited_volume", r.deposited_volume},
+            {"retriangulation_volume", r.retriangulation_volume},
             {"volume_change", r.volume_change},
             {"vertices_inserted", r.vertices_inserted},
             {"vertices_removed", r.vertices_removed},

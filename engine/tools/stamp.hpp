@@ -22,7 +22,16 @@ namespace sandtin {
 struct StampReport {
     bool applied = false;  ///< false when the tool missed the terrain entirely
     Generation generation = 0;
-    double displaced_volume = 0.0;  ///< m³ the inner part removed (negative when it filled)
+    /// m³ the stamp took from the terrain before extrusion (negative when it added): what the
+    /// inner part cut, less retriangulation_volume.
+    double displaced_volume = 0.0;
+    /// m³ the surface gained by re-triangulating around the rim's new vertices. They go in at
+    /// the terrain's heights, but Delaunay insertion re-shapes the triangles around them,
+    /// which on a coarse, curved TIN (an imported elevation model) reaches far beyond the
+    /// tool. Extrusion carries it back only while it is below a layer as thick as the tool's
+    /// radius over the tool's outer contour; beyond that it is no sand the tool moved, and it
+    /// stays in volume_change.
+    double retriangulation_volume = 0.0;
     double deposited_volume = 0.0;  ///< m³ put back by extrusion
     double volume_change = 0.0;     ///< m³ net change of the terrain volume
     std::size_t vertices_inserted = 0;

@@ -195,6 +195,58 @@ TEST(Extrusion, StrokeConservesVolume) {
     }
 }
 
+TEST(Extrusion, OnACoarseCurvedTinTheRidgeCarriesTheCutNotTheRetriangulation) {
+    // An imported elevation model: 400 points over 500 m of rolling hills, so each triangle
+    // is tens of metres wide and far from flat. Inserting a 0.5 m tool's rim re-triangulates
+    // those triangles, which changes far more volume than the tool cuts. The ridge must hold
+    // what the tool cut (the sand above its floor inside the circle, sampled on the terrain
+    // before the stamp), and nothing may stick up or down beyond the terrain's own range and
+    // the cut.
+    const auto hills = [](Vec2 p) {
+        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
+    };
+    Tin tin = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills);
+    double lo = 1e9, hi = -1e9;
+    for (VertexId v : live_ids(tin)) {
+        lo = std::min(lo, tin.height(v));
+        hi = std::max(hi, tin.height(v));
+    }
+    SculptContext context(tin.domain());
+    ToolSpec spec;
+    spec.radius = 0.5;
+    spec.extrude = true;
+    const Tool tool = Tool::build(spec);
+    const Vec2 at{203.0, 207.0};
+    const double depth = 0.05;
+    const double v0 = tin.volume();
+    const double bottom = *tin.height_at(at) - depth;
+    double cut = 0.0;
+    constexpr int kN = 400;
+    const double cell = (1.0 / kN) * (1.0 / kN);
+    for (int j = 0; j < kN; ++j) {
+        for (int i = 0; i < kN; ++i) {
+            const Vec2 p{at.x - 0.5 + (i + 0.5) / kN, at.y - 0.5 + (j + 0.5) / kN};
+            if (distance(p, at) < 0.5) cut += std::max(0.0, *tin.height_at(p) - bottom) * cell;
+        }
+    }
+    const StampReport r = stamp(tin, tool, {at, 0.0, bottom}, context, Vec2{1.0, 0.0});
+    ASSERT_TRUE(r.applied);
+    const double footprint = std::numbers::pi * 0.5 * 0.5;
+    // The scene does what it is for: the re-triangulation outweighs a tool-radius layer.
+    ASSERT_GT(std::abs(r.retriangulation_volume), footprint * 0.5);
+    // The band between the contours ramps down to the floor: a little more than the circle.
+    EXPECT_GT(r.deposited_volume, 0.98 * cut);
+    EXPECT_LT(r.deposited_volume, 1.15 * cut);
+    // The cut went into the ridge; the terrain's volume changed by the re-triangulation only.
+    EXPECT_NEAR(tin.volume() - v0, r.retriangulation_volume, 1e-9 * std::abs(v0));
+    EXPECT_NEAR(r.volume_change, r.retriangulation_volume, 1e-9 * std::abs(v0));
+    for (VertexId v : live_ids(tin)) {
+        EXPECT_GE(tin.height(v), lo - depth - 1e-6);
+        EXPECT_LE(tin.height(v), hi + depth);
+    }
+    EXPECT_TRUE(mesh_is_sound(tin));
+}
+
 TEST(Extrusion, StampAtTheDomainBorderStillConserves) {
     // Moving towards the border or into a corner: most of the ridge, or all of the part the cut
     // depth and the motion favour, would fall outside the domain. Every shipped tool.
