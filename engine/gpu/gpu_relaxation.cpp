@@ -304,8 +304,12 @@ std::vector<uint32_t> GpuRelaxation::take_split_requests() {
 }
 
 std::vector<float> GpuRelaxation::read_heights() const {
-    return read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Height),
-                              VkDeviceSize{mirror_.vertex_capacity()} * 4);
+    std::vector<float> h = read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Height),
+                                              VkDeviceSize{mirror_.vertex_capacity()} * 4);
+    const double origin = mirror_.height_origin();
+    for (float& z : h)
+        z = static_cast<float>(static_cast<double>(z) + origin);
+    return h;
 }
 
 std::vector<float> GpuRelaxation::read_slides() const {

@@ -73,7 +73,7 @@ double GpuSandPhysics::write_back(std::vector<VertexId>* changed) {
         // back would round the TIN's double and wake the vertex for nothing).
         if (!t.surface_changed() || !tin_.is_alive(v)) continue;
         ids.push_back(v);
-        heights.push_back(static_cast<double>(t.height));
+        heights.push_back(static_cast<double>(t.height) + mirror_.height_origin());
         const Vec2f slide{t.slide_x, t.slide_y};
         if (!(tin_.vertices().slide[t.id] == slide)) tin_.set_slide(v, slide);
     }

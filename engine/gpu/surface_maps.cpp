@@ -211,7 +211,7 @@ BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
     out.height.values.resize(texels);
     out.normal.values.resize(texels * 3);
     for (size_t i = 0; i < texels; ++i) {
-        out.height.values[i] = static_cast<double>(h[i]);
+        out.height.values[i] = static_cast<double>(h[i]) + mirror_.height_origin();
         for (size_t c = 0; c < 3; ++c)
             out.normal.values[3 * i + c] = static_cast<double>(n[4 * i + c]);
     }

@@ -151,11 +151,13 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
             f_[i] = static_cast<float>(src[r.begin + i]);
         put(b, f_.data(), 4);
     };
-    floats(VertexBuffer::Height, va.height);
+    for (uint32_t i = 0; i < n; ++i)
+        f_[i] = static_cast<float>(va.height[r.begin + i] - height_origin_);
+    put(VertexBuffer::Height, f_.data(), 4);
     // The bedrock rounds up, so the float floor the shaders drain to is never below the
     // double one (a float below it would let the GPU take sand the TIN does not have).
     for (uint32_t i = 0; i < n; ++i) {
-        const double b = va.bedrock[r.begin + i];
+        const double b = va.bedrock[r.begin + i] - height_origin_;
         f_[i] = static_cast<float>(b);
         if (static_cast<double>(f_[i]) < b) f_[i] = std::nextafter(f_[i], HUGE_VALF);
     }
@@ -258,6 +260,15 @@ SyncStats TinMirror::sync(Tin& tin, const ChangeSet& changes) {
     std::vector<uint32_t> dirty;  // vertices to report (activation)
     if (first_sync_) {
         origin_ = tin.domain().min;
+        const VertexArrays& va = tin.vertices();
+        double sum = 0.0;
+        std::size_t live = 0;
+        for (std::size_t v = 0; v < va.size(); ++v) {
+            if (!va.alive[v]) continue;
+            sum += va.height[v];
+            ++live;
+        }
+        height_origin_ = live > 0 ? sum / static_cast<double>(live) : 0.0;
         graph_.rebuild(tin);
         rows = graph_.take_dirty_rows();
     } else if (!changes.empty()) {

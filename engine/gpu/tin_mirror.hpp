@@ -7,7 +7,9 @@
 // Device buffers (all storage buffers; std430 arrays):
 //   per vertex id v (capacity vertex_capacity()):
 //     position  vec2  metres, relative to origin() (float keeps µm precision near the terrain)
-//     height    float metres          bedrock float metres (-1e30: none)
+//     height    float metres above height_origin()   bedrock float, the same (rounded up)
+//               (float keeps its precision for the heights that matter, the differences
+//               between neighbours, on an elevation model hundreds of metres up)
 //     area      float m², lumped      tan_alpha float (tan of the angle of repose, from materials)
 //     material  uint                  moisture float [0, 1]
 //     slide     vec2  texture units in [0, 1), written by the relaxation (texture sliding)
@@ -96,6 +98,9 @@ class TinMirror {
     // Bumped whenever a buffer is reallocated: descriptor sets must be rebound.
     uint64_t generation() const { return generation_; }
     Vec2 origin() const { return origin_; }
+    // Metres subtracted from every height and bedrock on the GPU: the mean height at the first
+    // sync. Read-backs add it again.
+    double height_origin() const { return height_origin_; }
 
     // Sum of the sizes of the mirrored buffers (bytes), the denominator of upload ratios.
     uint64_t mirrored_bytes() const;
@@ -122,6 +127,7 @@ class TinMirror {
     bool first_sync_ = true;
     bool materials_dirty_ = false;
     Vec2 origin_{};
+    double height_origin_ = 0.0;
     uint32_t vertex_capacity_ = 0;
     uint32_t slot_capacity_ = 0;
     uint32_t edge_capacity_ = 0;

@@ -40,7 +40,7 @@ void expect_mirror_equals_tin(const VulkanContext& ctx, const TinMirror& m, cons
         const Vec2 o = m.origin();
         if (pos[2 * v] != static_cast<float>(va.position[v].x - o.x) ||
             pos[2 * v + 1] != static_cast<float>(va.position[v].y - o.y) ||
-            h[v] != static_cast<float>(va.height[v]) ||
+            h[v] != static_cast<float>(va.height[v] - m.height_origin()) ||
             area[v] != static_cast<float>(va.lumped_area[v])) {
             ADD_FAILURE() << "vertex " << v << " attributes differ";
             ++bad;

@@ -11,6 +11,7 @@
 #include "physics/cone.hpp"
 #include "physics/physics_oracles.hpp"
 #include "physics/sand_physics.hpp"
+#include "tools/sand.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool.hpp"
 
@@ -247,6 +248,33 @@ TEST_F(GpuTest, SandDrainsToTheBedrockButNeverMovesIt) {
         bare += va.height[v] - va.bedrock[v] < 1e-4;
     }
     EXPECT_GT(bare, 100u);  // the slopes were drained to the rock
+}
+
+TEST_F(GpuTest, AnElevationModelHundredsOfMetresUpRestsAtReposeAsNearZero) {
+    // A pour relaxed on flat ground at 500 m and at 0 m. Float heights 500 m up have an ulp
+    // of 31 um, which on 1 cm edges is several per cent of the slope: without a height origin
+    // the GPU stopped with edges 1.58 times steeper than repose. Both must rest at repose,
+    // and be the same pile.
+    std::vector<double> piles[2];
+    for (const double ground : {0.0, 500.0}) {
+        Tin tin = Tin::random_points(kUnitSquare, 20000, 3, [&](Vec2) { return ground; });
+        GpuSandPhysics gpu(tin, ctx(), MaterialTable::presets());
+        SculptContext context(tin.domain());
+        PourSettings pour;
+        pour.radius = 0.05;
+        pour_sand(tin, {0.5, 0.5}, 2e-4, pour, context);
+        ASSERT_TRUE(gpu.run_to_rest(200000).at_rest);
+        const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+        EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3) << ground;
+        const VertexArrays& va = tin.vertices();
+        for (uint32_t v = 0; v < va.size(); ++v)
+            piles[ground > 0.0].push_back(va.alive[v] ? va.height[v] - ground : 0.0);
+    }
+    ASSERT_EQ(piles[0].size(), piles[1].size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < piles[0].size(); ++i)
+        worst = std::max(worst, std::abs(piles[0][i] - piles[1][i]));
+    EXPECT_LT(worst, 1e-3);  // metres: the same pile, to float rounding along its slopes
 }
 
 }  // namespace
