@@ -32,7 +32,7 @@ struct VertexState {
     uint source;    // iteration stamp: computed an outflow
     uint receiver;  // iteration stamp: in the receiver list
     uint changed;   // iteration stamp: height changed
-    uint split;     // iteration stamp: in the split list
+    uint split;     // split_batch stamp: in the split list
     uint quiet;     // still iterations while active
     uint in_list;   // 1 while in the active list
     uint touched;   // TOUCHED_* bits: in the touched list, and why (reset at read-back)
@@ -87,6 +87,7 @@ layout(push_constant) uniform Push {
     uint seed_hi;
     float randomness;   // TalusSettings::randomness; 0 = no jitter
     float settle_margin;  // TalusParameters::settle_margin: flowing edges level to (1 - m) r tan
+    uint split_batch;   // stamp of the split requests since the host last took them (>= 1)
 } pc;
 
 void set_args(uint word, uint threads) {

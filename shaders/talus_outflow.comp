@@ -18,7 +18,9 @@ void mark_receiver(uint v) {
 }
 
 void request_split(uint v) {
-    if (atomicExchange(vs[v].split, pc.iter) != pc.iter) append(R_SPLIT, C_SPLIT, v);
+    // Once per batch: the host takes the list (and starts a new batch) only every few
+    // iterations, and a vertex that stays blocked at a long edge asks again each iteration.
+    if (atomicExchange(vs[v].split, pc.split_batch) != pc.split_batch) append(R_SPLIT, C_SPLIT, v);
 }
 
 // 64-bit arithmetic on (lo, hi) pairs, so no shaderInt64 is needed.

@@ -89,6 +89,7 @@ GpuRelaxation::Push GpuRelaxation::push(uint32_t mode) const {
     pc.seed_hi = static_cast<uint32_t>(settings_.seed >> 32);
     pc.randomness = static_cast<float>(std::clamp(settings_.randomness, 0.0, 0.99));
     pc.settle_margin = static_cast<float>(p.settle_margin);
+    pc.split_batch = split_batch_;
     return pc;
 }
 
@@ -298,6 +299,7 @@ std::vector<uint32_t> GpuRelaxation::take_split_requests() {
     });
     host.invalidate(context_);
     std::memcpy(out.data(), host.mapped(), VkDeviceSize{n} * 4);
+    if (++split_batch_ == 0) split_batch_ = 1;  // the list is empty again: a new batch
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;

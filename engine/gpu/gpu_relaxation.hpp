@@ -103,6 +103,7 @@ class GpuRelaxation {
         uint32_t seed_hi;
         float randomness;
         float settle_margin;
+        uint32_t split_batch;
     };
     void ensure_buffers();
     void bind_all();
@@ -132,6 +133,9 @@ class GpuRelaxation {
     uint32_t edge_capacity_ = 0;  // edge capacity of q_
     uint64_t bound_generation_ = UINT64_MAX;
     uint32_t iteration_ = 0;  // stamps; 0 is never used
+    // Stamp of the split requests since the last take_split_requests(): a vertex is listed
+    // once per batch, so the list (one slot per vertex) cannot overflow. 0 is never used.
+    uint32_t split_batch_ = 1;
     uint32_t known_active_ = 0;
     std::vector<uint32_t> pending_;
     uint64_t dispatches_total_ = 0;

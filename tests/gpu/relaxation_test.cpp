@@ -319,5 +319,42 @@ TEST_F(GpuTest, TextureOffsetsMoveDownhillOnACollapsingSlopeAndStayZeroAtRest) {
     }
 }
 
+TEST_F(GpuTest, SplitRequestsOfAWholeBatchAreAllKept) {
+    // A collapsing cone with a relocation radius that blocks about half the edges, and
+    // vertices kept active through the batch: the blocked ones ask for a split in every
+    // iteration, and the front of moving sand meets new ones as it goes. Taken after
+    // each iteration or once after 64, the requests must name the same vertices: the list has
+    // one slot per vertex, and a vertex asking in every iteration of a batch must not crowd
+    // out the others (it did: listed once per iteration, the list overflowed and dropped them).
+    std::size_t asked = 0;  // requests, counted once per iteration when taken every iteration
+    const auto run = [&](int per_take) {
+        Tin tin =
+            Tin::random_points(kUnitSquare, 3000, 23, [](Vec2 p) { return collapsing_cone(p); });
+        TinMirror mirror(ctx());
+        mirror.sync(tin);
+        GpuRelaxationSettings gs;
+        gs.parameters.relocation_radius = 0.025;  // about half the edges are longer
+        gs.quiet_iterations = 100;                // blocked vertices stay active through the batch
+        GpuRelaxation gpu(mirror, gs);
+        gpu.activate(live_ids(tin));
+        std::vector<uint32_t> all;
+        for (int done = 0; done < 64; done += per_take) {
+            gpu.run(per_take);
+            const std::vector<uint32_t> got = gpu.take_split_requests();
+            if (per_take == 1) asked += got.size();
+            all.insert(all.end(), got.begin(), got.end());
+        }
+        std::sort(all.begin(), all.end());
+        all.erase(std::unique(all.begin(), all.end()), all.end());
+        return all;
+    };
+    const std::vector<uint32_t> each = run(1);
+    const std::vector<uint32_t> batch = run(64);
+    // The scene does what it is for: over 64 iterations the blocked vertices ask more often
+    // than the list has slots (one per vertex: 3000 and the mirror's headroom).
+    ASSERT_GT(asked, std::size_t{2 * 3000});
+    EXPECT_EQ(batch, each);
+}
+
 }  // namespace
 }  // namespace sandtin::gpu
