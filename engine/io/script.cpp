@@ -328,6 +328,7 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
     if (op == "save") {
         const std::string path = f.text("path", "");
         if (path.empty()) f.fail("missing required field 'path'");
+        f.reject_unknown();
         return SaveOp{base_dir / path};
     }
     if (op == "simplify") {

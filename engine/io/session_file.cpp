@@ -132,6 +132,14 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
 
 Session decode_session(std::span<const std::uint8_t> bytes, const std::string& name) {
     ByteReader header(bytes, name);
+    // A prefix of the magic (an empty file, a copy cut short) is a truncated session, which
+    // is what the user needs to hear, not "not a session".
+    if (bytes.size() < kMagic.size() &&
+        (bytes.empty() || std::memcmp(bytes.data(), kMagic.data(), bytes.size()) == 0)) {
+        header.fail("file is truncated: " + std::to_string(bytes.size()) +
+                    " bytes, too few for a session's header" +
+                    (bytes.empty() ? " (the file is empty)" : ""));
+    }
     if (bytes.size() < kMagic.size() ||
         std::memcmp(bytes.data(), kMagic.data(), kMagic.size()) != 0) {
         header.fail("not a sandtin session file (bad magic bytes)");

@@ -150,7 +150,10 @@ void check_writable(const std::filesystem::path& path) {
 std::vector<std::uint8_t> read_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
-        throw std::runtime_error("cannot read '" + path.string() + "': no such file");
+        throw std::runtime_error("cannot read '" + path.string() + "': " +
+                                 (std::filesystem::is_directory(path, ec)
+                                      ? "it is a folder, not a file"
+                                      : "no such file"));
     }
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw std::runtime_error("cannot read '" + path.string() + "': " + ec.message());

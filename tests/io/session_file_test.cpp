@@ -192,12 +192,17 @@ TEST_F(SessionFile, EmptyMetadataAndDefaultGeneration) {
 
 TEST_F(SessionFile, MissingFile) {
     expect_load_error(path("nope.sandtin"), {"no such file", "cannot"}, "missing file");
-    expect_load_error(dir_, {"no such file", "cannot"}, "a directory");
+    expect_load_error(dir_, {"it is a folder, not a file"}, "a directory");
 }
 
 TEST_F(SessionFile, EmptyFile) {
     write_bytes(path("empty.sandtin"), {});
-    expect_load_error(path("empty.sandtin"), {"empty", "truncated", "not a sandtin"}, "empty file");
+    // Empty, or cut short inside the magic: truncated, not "not a session".
+    expect_load_error(path("empty.sandtin"), {"truncated: 0 bytes"}, "empty file");
+    expect_load_error(path("empty.sandtin"), {"(the file is empty)"}, "empty file");
+    const std::vector<std::uint8_t> whole = encode_session(make_session(20));
+    write_bytes(path("cut.sandtin"), {whole.begin(), whole.begin() + 5});
+    expect_load_error(path("cut.sandtin"), {"truncated: 5 bytes"}, "a 5-byte prefix");
 }
 
 TEST_F(SessionFile, TruncatedFiles) {

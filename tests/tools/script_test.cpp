@@ -209,6 +209,9 @@ TEST(Script, ErrorsNameTheLineAndTheField) {
              "\n  {\"op\": \"stamp\", \"tool\": {\"asset\": \"circle\"}, \"at\": [0.5, "
              "0.5], \"depht\": 0.01}\n]",
          {"script.json:3:", "depht", "unknown"}},
+        {"unknown field of a save",
+         "[\n" + ok + "\n  {\"op\": \"save\", \"path\": \"ck.sandtin\", \"formt\": 2}\n]",
+         {"script.json:3:", "formt", "unknown"}},
         {"unknown op",
          "[\n  {\"op\": \"dig\", \"at\": [0.5, 0.5]}\n]",
          {"script.json:2:", "op", "dig"}},
