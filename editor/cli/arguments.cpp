@@ -59,7 +59,9 @@ double parse_number(const std::string& text, const std::string& what) {
 
 std::uint64_t parse_count(const std::string& text, const std::string& what) {
     char* end = nullptr;
-    if (text.empty() || text[0] == '-')
+    // strtoull skips leading spaces and accepts a sign, wrapping " -1" to 2^64 - 1: only
+    // digits are a count.
+    if (text.empty() || std::isdigit(static_cast<unsigned char>(text[0])) == 0)
         throw UsageError(what + ": '" + text + "' is not a non-negative integer");
     errno = 0;
     const unsigned long long v = std::strtoull(text.c_str(), &end, 10);

@@ -589,6 +589,19 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     require(!domain.empty() && is_finite(domain.min) && is_finite(domain.max) &&
                 domain.width() > 0.0 && domain.height() > 0.0,
             "terrain domain must be a finite rectangle with positive width and height");
+    // Beyond these, areas (side squared) and the snap distance (1e-6 of the side) leave the
+    // range where the lumped areas and the volume can be computed: a 1e160 m terrain was
+    // built and saved, and then refused when loaded.
+    constexpr double kMinSide = 1e-6, kMaxSide = 1e9, kMaxCoordinate = 1e12;
+    if (!(std::min(domain.width(), domain.height()) >= kMinSide &&
+          std::max(domain.width(), domain.height()) <= kMaxSide &&
+          std::max({std::abs(domain.min.x), std::abs(domain.min.y), std::abs(domain.max.x),
+                    std::abs(domain.max.y)}) <= kMaxCoordinate)) {
+        throw std::invalid_argument(
+            "terrain domain " + describe(domain.min) + " to " + describe(domain.max) +
+            ": its sides must lie between 1e-6 m and 1e9 m, and its corners within 1e12 m of "
+            "the origin");
+    }
     require(positions.size() == heights.size(), "positions and heights differ in length");
     for (std::size_t i = 0; i < positions.size(); ++i) {
         require_inside(domain, positions[i], "point");

@@ -170,7 +170,10 @@ scenario_bad_input() {
     expect_error bad_grid "NX" new --grid 10 10 0 2 -o g.sandtin
     expect_error nan_height "height" new --flat 10 10 --height nan -o h.sandtin
     expect_error no_dir "nosuchdir" new --flat 10 10 -o nosuchdir/x.sandtin
-    for f in nan zero neg inf negpts txt bogus both g h; do
+    expect_error huge "1e9 m" new --flat 1e160 1e160 --points 100 -o huge.sandtin
+    expect_error tiny "1e-6 m" new --flat 1e-200 1e-200 -o tiny.sandtin
+    expect_error spaced_count "points" new --flat 10 10 --points " -1" -o spaced.sandtin
+    for f in nan zero neg inf negpts txt bogus both g h huge tiny spaced; do
         [[ -e "$f.sandtin" ]] && fail "a failed 'new' left $f.sandtin behind"
     done
     expect_error unknown_command "frobnicate" frobnicate

@@ -369,6 +369,27 @@ TEST(Construction, RejectsBadDomainsAndSizes) {
     EXPECT_THROW((void)Tin::random_points(Rect{}, 10, 1), std::invalid_argument);
 }
 
+TEST(Construction, ADomainTooLargeOrTooSmallToComputeIsRefused) {
+    // 1e160 m squared overflows an area, 1e-200 m squared underflows one: such terrains were
+    // built and saved, then refused when loaded. The limits themselves build sound terrains.
+    for (const Rect bad : {Rect::from_size(1e160, 1e160), Rect::from_size(1e-200, 1e-200),
+                           Rect::from_size(1e10, 1.0), Rect{{1e13, 0.0}, {1e13 + 1e3, 1.0}}}) {
+        try {
+            (void)Tin::random_points(bad, 10, 1);
+            ADD_FAILURE() << "built a terrain " << bad.width() << " x " << bad.height() << " m";
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("sides must lie between 1e-6 m and 1e9 m"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    for (const Rect good : {Rect::from_size(1e-6, 1e-6), Rect::from_size(1e9, 1e9)}) {
+        const Tin tin = Tin::random_points(good, 100, 1, [&](Vec2 p) { return p.x * 1e-3; });
+        EXPECT_TRUE(test::tin_is_sound(tin)) << good.width();
+        EXPECT_TRUE(Tin::from_snapshot(tin.snapshot()).check_valid().ok()) << good.width();
+    }
+}
+
 TEST(Construction, MoveKeepsTheTerrain) {
     Tin a = Tin::random_points(Rect::from_size(1.0, 1.0), 50, 9, [](Vec2 p) { return p.x; });
     const TinSnapshot before = a.snapshot();
