@@ -592,14 +592,14 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     // Beyond these, areas (side squared) and the snap distance (1e-6 of the side) leave the
     // range where the lumped areas and the volume can be computed: a 1e160 m terrain was
     // built and saved, and then refused when loaded.
-    constexpr double kMinSide = 1e-6, kMaxSide = 1e9, kMaxCoordinate = 1e12;
+    constexpr double kMinSide = 1e-9, kMaxSide = 1e9, kMaxCoordinate = 1e12;
     if (!(std::min(domain.width(), domain.height()) >= kMinSide &&
           std::max(domain.width(), domain.height()) <= kMaxSide &&
           std::max({std::abs(domain.min.x), std::abs(domain.min.y), std::abs(domain.max.x),
                     std::abs(domain.max.y)}) <= kMaxCoordinate)) {
         throw std::invalid_argument(
             "terrain domain " + describe(domain.min) + " to " + describe(domain.max) +
-            ": its sides must lie between 1e-6 m and 1e9 m, and its corners within 1e12 m of "
+            ": its sides must lie between 1e-9 m and 1e9 m, and its corners within 1e12 m of "
             "the origin");
     }
     require(positions.size() == heights.size(), "positions and heights differ in length");

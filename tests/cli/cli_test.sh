@@ -171,7 +171,7 @@ scenario_bad_input() {
     expect_error nan_height "height" new --flat 10 10 --height nan -o h.sandtin
     expect_error no_dir "nosuchdir" new --flat 10 10 -o nosuchdir/x.sandtin
     expect_error huge "1e9 m" new --flat 1e160 1e160 --points 100 -o huge.sandtin
-    expect_error tiny "1e-6 m" new --flat 1e-200 1e-200 -o tiny.sandtin
+    expect_error tiny "1e-9 m" new --flat 1e-200 1e-200 -o tiny.sandtin
     expect_error spaced_count "points" new --flat 10 10 --points " -1" -o spaced.sandtin
     for f in nan zero neg inf negpts txt bogus both g h huge tiny spaced; do
         [[ -e "$f.sandtin" ]] && fail "a failed 'new' left $f.sandtin behind"

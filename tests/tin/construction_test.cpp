@@ -378,12 +378,12 @@ TEST(Construction, ADomainTooLargeOrTooSmallToComputeIsRefused) {
             (void)Tin::random_points(bad, 10, 1);
             ADD_FAILURE() << "built a terrain " << bad.width() << " x " << bad.height() << " m";
         } catch (const std::invalid_argument& e) {
-            EXPECT_NE(std::string(e.what()).find("sides must lie between 1e-6 m and 1e9 m"),
+            EXPECT_NE(std::string(e.what()).find("sides must lie between 1e-9 m and 1e9 m"),
                       std::string::npos)
                 << e.what();
         }
     }
-    for (const Rect good : {Rect::from_size(1e-6, 1e-6), Rect::from_size(1e9, 1e9)}) {
+    for (const Rect good : {Rect::from_size(1e-9, 1e-9), Rect::from_size(1e9, 1e9)}) {
         const Tin tin = Tin::random_points(good, 100, 1, [&](Vec2 p) { return p.x * 1e-3; });
         EXPECT_TRUE(test::tin_is_sound(tin)) << good.width();
         EXPECT_TRUE(Tin::from_snapshot(tin.snapshot()).check_valid().ok()) << good.width();
