@@ -146,14 +146,12 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
     }
     put(VertexBuffer::Position, f2_.data(), 8);
     f_.resize(n);
-    auto floats = [&](VertexBuffer b, const std::vector<double>& src) {
+    auto floats = [&](VertexBuffer b, const std::vector<double>& src, double origin) {
         for (uint32_t i = 0; i < n; ++i)
-            f_[i] = static_cast<float>(src[r.begin + i]);
+            f_[i] = static_cast<float>(src[r.begin + i] - origin);
         put(b, f_.data(), 4);
     };
-    for (uint32_t i = 0; i < n; ++i)
-        f_[i] = static_cast<float>(va.height[r.begin + i] - height_origin_);
-    put(VertexBuffer::Height, f_.data(), 4);
+    floats(VertexBuffer::Height, va.height, height_origin_);
     // The bedrock rounds up, so the float floor the shaders drain to is never below the
     // double one (a float below it would let the GPU take sand the TIN does not have).
     for (uint32_t i = 0; i < n; ++i) {
@@ -162,7 +160,7 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
         if (static_cast<double>(f_[i]) < b) f_[i] = std::nextafter(f_[i], HUGE_VALF);
     }
     put(VertexBuffer::Bedrock, f_.data(), 4);
-    floats(VertexBuffer::Area, va.lumped_area);
+    floats(VertexBuffer::Area, va.lumped_area, 0.0);
     for (uint32_t i = 0; i < n; ++i) {
         const uint32_t v = r.begin + i;
         tan_alpha_cpu_[v] =

@@ -128,16 +128,16 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const Rect domain = tin.domain();
     // Points closer than the snap distance are one vertex: an inner contour that close to
     // the outer one would merge with the rim, and the stamp would dig nothing.
-    if (!(tool.gap() > 4.0 * tin.snap_distance())) {
+    if (!(tool.shape().gap > 4.0 * tin.snap_distance())) {
         const auto metres = [](double m) {
             char text[32];
             std::snprintf(text, sizeof text, "%.3g m", m);
             return std::string(text);
         };
-        const double k = 4.0 * tin.snap_distance() / tool.gap();
+        const double k = 4.0 * tin.snap_distance() / tool.shape().gap;
         throw std::invalid_argument(
             "stamp: the tool is too small for this terrain: its contours are " +
-            metres(tool.gap()) + " apart, within four snap distances (" +
+            metres(tool.shape().gap) + " apart, within four snap distances (" +
             metres(tin.snap_distance()) +
             " on a terrain this size), so the inner one would merge with the rim and dig "
             "nothing; use a radius of at least " +

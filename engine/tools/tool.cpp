@@ -155,7 +155,6 @@ Tool Tool::build(const ToolSpec& spec) {
 
     require_non_negative(spec.gap, "gap");
     const double gap = spec.gap > 0.0 ? spec.gap : 0.025 * radius;
-    tool.gap_ = gap;
     tool.shape_ = make_tool_shape(inner, gap);
 
     require_non_negative(spec.rim_spacing, "rim_spacing");

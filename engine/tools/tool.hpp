@@ -74,7 +74,6 @@ class Tool {
     double radius() const { return radius_; }  ///< bounding radius of the inner contour (m)
     double rim_spacing() const { return rim_spacing_; }
     double rim_tolerance() const { return rim_tolerance_; }
-    double gap() const { return gap_; }  ///< between the inner and outer contours (m)
     double extrusion_width() const { return extrusion_width_; }
 
     /// One-off mappings; a loop over many points uses a ToolFrame (one sine and cosine).
@@ -109,7 +108,6 @@ class Tool {
     double radius_ = 0.0;
     double rim_spacing_ = 0.0;
     double rim_tolerance_ = 0.0;
-    double gap_ = 0.0;
     double extrusion_width_ = 0.0;
     InteriorSamples interior_samples_;
 };
