@@ -66,7 +66,22 @@ bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLim
     }
     const int color = png_get_color_type(png, info);
     int depth = png_get_bit_depth(png, info);
-    if (color == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+    if (color == PNG_COLOR_TYPE_PALETTE) {
+        png_set_palette_to_rgb(png);
+        // A palette of greys is a grey image saved by an image editor as indexed colour: it
+        // decodes as grey (libpng passes equal components through exactly).
+        png_colorp palette = nullptr;
+        int entries = 0;
+        png_get_PLTE(png, info, &palette, &entries);
+        bool grey = palette != nullptr;
+        for (int i = 0; grey && i < entries; ++i)
+            grey = palette[i].red == palette[i].green && palette[i].red == palette[i].blue;
+        if (grey) {
+            png_set_rgb_to_gray_fixed(png, 1, -1, -1);
+        } else {
+            image.indexed_colour = true;
+        }
+    }
     if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
     if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
     if (depth == 16) png_set_swap(png);  // little-endian samples in memory

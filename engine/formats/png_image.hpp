@@ -16,6 +16,9 @@ struct PngImage {
     std::uint32_t height = 0;
     int channels = 0;   ///< 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA
     int bit_depth = 0;  ///< 8 or 16
+    /// The file was indexed colour with colours in its palette (a palette of greys only is
+    /// decoded as grey, with `channels` 1 or 2).
+    bool indexed_colour = false;
     /// width * height * channels samples; 8-bit images use only the low byte range.
     std::vector<std::uint16_t> samples;
     /// tEXt key/value pairs (Latin-1), in file order: how sandtin records the height scale of

@@ -13,10 +13,15 @@ namespace sandtin {
 
 namespace {
 
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
 class Cursor {
   public:
     Cursor(std::span<const std::uint8_t> bytes, const std::string& name)
-        : text_(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name_(name) {}
+        : text_(reinterpret_cast<const char*>(bytes.data()), bytes.size()), name_(name) {
+        // Windows editors save text with a UTF-8 byte-order mark; it is not part of the grid.
+        if (text_.starts_with(kUtf8Bom)) pos_ = kUtf8Bom.size();
+    }
 
     /// The next whitespace-separated token (empty at the end).
     std::string_view token() {

@@ -36,7 +36,8 @@ std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size) {
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
+                                            double cell_height) {
     const auto [lo, hi] = std::minmax_element(heights.values.begin(), heights.values.end());
     const double z_min = *lo;
     const double range = *hi > *lo ? *hi - *lo : 1.0;  // a flat map still round-trips
@@ -53,14 +54,19 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
     image.text = {{kPngKeyZOffset, exact(z_min)},
                   {kPngKeyZRange, exact(range)},
                   {kPngKeyCellSize, exact(cell_size)}};
+    if (cell_height > 0.0 && cell_height != cell_size) {
+        image.text.emplace_back(kPngKeyCellHeight, exact(cell_height));
+    }
     return encode_png(image);
 }
 
-std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size) {
+std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
+                                            double cell_height) {
     HeightRaster raster;
     raster.width = heights.width;
     raster.height = heights.height;
     raster.cell_size = cell_size;
+    if (cell_height != cell_size) raster.cell_height = cell_height;
     raster.heights = heights.values;
     return encode_exr_heightmap(raster);
 }

@@ -15,9 +15,12 @@
 
 namespace sandtin {
 
-/// `heights` has one channel; `cell_size` in metres is stored for re-import.
-std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size);
-std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size);
+/// `heights` has one channel; `cell_size` (between columns) and, when the rows are spaced
+/// differently, `cell_height` (between rows), in metres, are stored for re-import.
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
+                                            double cell_height = 0.0);
+std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
+                                            double cell_height = 0.0);
 /// `normals` has three channels, unit vectors.
 std::vector<std::uint8_t> encode_normal_png(const MapImage& normals);
 /// `colours` has three channels in [0, 1].

@@ -172,14 +172,18 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         report.map_height = grid.height;
         if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
             const MapImage heights = bake_height_map(tin, grid);
+            // Both spacings: rounding a side to whole cells spaces the rows differently from
+            // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
+            // one spacing would stretch the terrain.
             const double cell = column_spacing(grid);
+            const double cell_height = row_spacing(grid);
             if (format == ExportFormat::HeightPng) {
                 const auto [lo, hi] =
                     std::minmax_element(heights.values.begin(), heights.values.end());
                 report.height_step = (*hi - *lo) / 65535.0;
-                write(out, encode_height_png(heights, cell), report);
+                write(out, encode_height_png(heights, cell, cell_height), report);
             } else {
-                write(out, encode_height_exr(heights, cell), report);
+                write(out, encode_height_exr(heights, cell, cell_height), report);
             }
         } else if (format == ExportFormat::NormalPng) {
             write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode)), report);

@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -63,11 +65,39 @@ class MemoryFile {
     std::string path_;
 };
 
+/// Metres per unit for the names GDAL and GeoTIFF writers give lengths, in lower case ("metre",
+/// "m", "ft", "US survey foot", "foot_us"...). Empty means metres. nullopt: a unit sandtin does
+/// not know, which must not be guessed.
+std::optional<double> metres_per_unit(std::string unit) {
+    std::transform(unit.begin(), unit.end(), unit.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::replace(unit.begin(), unit.end(), '_', ' ');
+    for (const char* metre : {"", "m", "metre", "meter", "metres", "meters"}) {
+        if (unit == metre) return 1.0;
+    }
+    // The international foot is exactly 0.3048 m; the US survey foot 1200/3937 m.
+    for (const char* foot : {"ft", "foot", "feet", "international foot", "foot international"}) {
+        if (unit == foot) return 0.3048;
+    }
+    for (const char* foot :
+         {"us survey foot", "us ft", "us-ft", "ftus", "foot us", "us foot", "survey foot"}) {
+        if (unit == foot) return 1200.0 / 3937.0;
+    }
+    if (unit == "cm" || unit == "centimetre" || unit == "centimeter") return 0.01;
+    if (unit == "mm" || unit == "millimetre" || unit == "millimeter") return 0.001;
+    if (unit == "km" || unit == "kilometre" || unit == "kilometer") return 1000.0;
+    return std::nullopt;
+}
+
+struct SpatialReferenceDeleter {
+    void operator()(void* srs) const { OSRDestroySpatialReference(srs); }
+};
+
 }  // namespace
 
 HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::string& name,
                             const RasterLimits& limits, bool nonfinite_as_nodata,
-                            bool pixel_size_override) {
+                            bool pixel_size_override, bool z_scale_override) {
     if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
     register_drivers();
     GdalErrors errors;
@@ -109,20 +139,49 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         r.georeference.known = true;
         r.georeference.west = gt[0] + 0.5 * gt[1];
         r.georeference.south = gt[3] + (height - 0.5) * gt[5];
-        if (const char* wkt = GDALGetProjectionRef(ds); wkt != nullptr && *wkt != '\0') {
-            r.georeference.crs = wkt;
-            OGRSpatialReferenceH srs = OSRNewSpatialReference(wkt);
-            const bool geographic = srs != nullptr && OSRIsGeographic(srs) != 0;
-            if (srs != nullptr) OSRDestroySpatialReference(srs);
-            if (geographic && !pixel_size_override) {
-                throw std::runtime_error(name +
-                                         ": the GeoTIFF is in geographic coordinates "
-                                         "(degrees); give the pixel size in metres");
+    }
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    // Heights in the unit the band names, else the one a compound CRS's vertical part names.
+    std::string vertical_unit =
+        GDALGetRasterUnitType(band) != nullptr ? GDALGetRasterUnitType(band) : std::string();
+    if (const char* wkt = GDALGetProjectionRef(ds); wkt != nullptr && *wkt != '\0') {
+        r.georeference.crs = wkt;
+        const std::unique_ptr<void, SpatialReferenceDeleter> srs(OSRNewSpatialReference(wkt));
+        if (srs && OSRIsGeographic(srs.get()) != 0 && !pixel_size_override) {
+            throw std::runtime_error(name +
+                                     ": the GeoTIFF is in geographic coordinates "
+                                     "(degrees); give the pixel size in metres");
+        }
+        if (srs && OSRIsProjected(srs.get()) != 0) {
+            // A state plane grid in US survey feet has 3.28 times the cell size in its numbers.
+            char* unit_name = nullptr;
+            const double metres = OSRGetLinearUnits(srs.get(), &unit_name);
+            r.georeference.horizontal_unit = unit_name != nullptr ? unit_name : "";
+            if (!(metres > 0.0) || !std::isfinite(metres)) {
+                throw std::runtime_error(name + ": the GeoTIFF's projection has a linear unit ('" +
+                                         r.georeference.horizontal_unit +
+                                         "') of no length; give the pixel size in metres");
             }
+            r.cell_size *= metres;
+        }
+        if (vertical_unit.empty() && srs && OSRIsVertical(srs.get()) != 0) {
+            char* unit_name = nullptr;
+            OSRGetTargetLinearUnits(srs.get(), "VERT_CS", &unit_name);
+            if (unit_name != nullptr) vertical_unit = unit_name;
         }
     }
+    r.georeference.vertical_unit = vertical_unit;
+    double height_metres = 1.0;
+    if (!z_scale_override) {
+        const std::optional<double> unit = metres_per_unit(vertical_unit);
+        if (!unit) {
+            throw std::runtime_error(name + ": the GeoTIFF's heights are in '" + vertical_unit +
+                                     "', a unit sandtin does not know; give the z-scale that "
+                                     "turns them into metres");
+        }
+        height_metres = *unit;
+    }
 
-    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
     r.heights.resize(r.size());
@@ -146,6 +205,8 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
                 name + ": the sample at row " + std::to_string(i / r.width) + ", column " +
                 std::to_string(i % r.width) + " is not finite (" + std::to_string(h) +
                 "); declare a no-data value or import with non-finite heights as no-data");
+        } else {
+            r.heights[i] = h * height_metres;
         }
     }
     if (any_nodata) r.valid = std::move(valid);

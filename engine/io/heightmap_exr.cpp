@@ -19,6 +19,7 @@ namespace sandtin {
 namespace {
 
 constexpr const char* kCellSizeAttribute = "sandtin:cell_size";
+constexpr const char* kCellHeightAttribute = "sandtin:cell_height";  ///< when not cell_size
 
 /// Reads the header alone and checks its data window (and tile size) against the limits.
 /// OpenEXR's InputFile sizes its line and tile buffers from the header before a caller can
@@ -64,6 +65,9 @@ std::vector<std::uint8_t> encode_exr_heightmap(const HeightRaster& raster) {
     header.compression() = Imf::ZIP_COMPRESSION;
     header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
     header.insert(kCellSizeAttribute, Imf::DoubleAttribute(raster.cell_size));
+    if (raster.cell_height > 0.0 && raster.cell_height != raster.cell_size) {
+        header.insert(kCellHeightAttribute, Imf::DoubleAttribute(raster.cell_height));
+    }
     Imf::StdOSStream stream;
     {
         Imf::OutputFile file(stream, header);
@@ -125,6 +129,11 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
                 file.header().findTypedAttribute<Imf::DoubleAttribute>(kCellSizeAttribute);
             cs != nullptr && std::isfinite(cs->value()) && cs->value() > 0.0) {
             r.cell_size = cs->value();
+        }
+        if (const auto* ch =
+                file.header().findTypedAttribute<Imf::DoubleAttribute>(kCellHeightAttribute);
+            ch != nullptr && std::isfinite(ch->value()) && ch->value() > 0.0) {
+            r.cell_height = ch->value();
         }
         r.heights.assign(pixels.begin(), pixels.end());
     } catch (const std::runtime_error&) {

@@ -28,8 +28,9 @@ Format detect(std::span<const std::uint8_t> b) {
         return Format::Tiff;
     }
     if (starts({0x76, 0x2f, 0x31, 0x01})) return Format::Exr;
-    // An ASCII grid opens with one of its header keys.
-    std::size_t i = 0;
+    // An ASCII grid opens with one of its header keys, after a UTF-8 byte-order mark if a
+    // Windows editor saved it.
+    std::size_t i = starts({0xEF, 0xBB, 0xBF}) ? 3 : 0;
     while (i < b.size() && std::isspace(b[i]))
         ++i;
     std::string word;
@@ -75,11 +76,12 @@ HeightRaster decode_heightmap(std::span<const std::uint8_t> bytes, const std::st
                 z_offset = *png.z_offset;
             }
             if (png.cell_size) r.cell_size = *png.cell_size;
+            if (png.cell_height) r.cell_height = *png.cell_height;
             break;
         }
         case Format::Tiff:
             r = decode_geotiff(bytes, name, options.limits, options.nonfinite_as_nodata,
-                               options.pixel_size.has_value());
+                               options.pixel_size.has_value(), options.z_scale.has_value());
             break;
         case Format::Ascii:
             r = parse_esri_ascii_grid(bytes, name, options.limits, options.nonfinite_as_nodata);
@@ -92,7 +94,10 @@ HeightRaster decode_heightmap(std::span<const std::uint8_t> bytes, const std::st
                                      ": not a heightmap sandtin can read (expected PNG, "
                                      "GeoTIFF, ESRI ASCII grid or OpenEXR)");
     }
-    if (options.pixel_size) r.cell_size = *options.pixel_size;
+    if (options.pixel_size) {
+        r.cell_size = *options.pixel_size;  // square pixels, as the user says
+        r.cell_height = 0.0;
+    }
     // Explicit options win over a sandtin PNG's own scale.
     z_scale = options.z_scale.value_or(z_scale);
     z_offset = options.z_offset.value_or(z_offset);
@@ -120,6 +125,7 @@ ImportResult import_heightmap(const std::filesystem::path& path, const ImportOpt
     report.width = raster.width;
     report.height = raster.height;
     report.cell_size = raster.cell_size;
+    report.cell_height = raster.row_spacing();
     report.georeference = raster.georeference;
     report.nodata_samples = fill_nodata(raster);
     report.read_ms = elapsed_ms(start);
@@ -137,12 +143,15 @@ nlohmann::json to_json(const ImportReport& r) {
     j["raster"] = {{"width", r.width},
                    {"height", r.height},
                    {"cell_size", r.cell_size},
+                   {"cell_height", r.cell_height},
                    {"nodata_samples", r.nodata_samples},
                    {"nodata_policy", "filled from the nearest valid sample; not measured"}};
     if (r.georeference.known) {
         j["georeference"] = {{"west", r.georeference.west},
                              {"south", r.georeference.south},
-                             {"crs", r.georeference.crs}};
+                             {"crs", r.georeference.crs},
+                             {"horizontal_unit", r.georeference.horizontal_unit},
+                             {"vertical_unit", r.georeference.vertical_unit}};
     }
     j["max_error_target"] = r.greedy.max_error;
     j["max_points"] = r.greedy.max_points;

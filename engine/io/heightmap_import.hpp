@@ -50,7 +50,8 @@ struct ImportReport {
     std::string format;
     std::uint32_t width = 0;
     std::uint32_t height = 0;
-    double cell_size = 0.0;
+    double cell_size = 0.0;          ///< metres between columns
+    double cell_height = 0.0;        ///< metres between rows (the cell size for square cells)
     std::size_t nodata_samples = 0;  ///< filled from their nearest valid sample, not measured
     Georeference georeference;
     GreedyOptions greedy;
@@ -66,7 +67,8 @@ struct ImportResult {
 
 ImportResult import_heightmap(const std::filesystem::path& path, const ImportOptions& options);
 
-/// The report as JSON: source, format, raster {width, height, cell_size, nodata_samples},
+/// The report as JSON: source, format, raster {width, height, cell_size, cell_height,
+/// nodata_samples},
 /// max_error_target, max_points, points, triangles, max_error, rmsd, reached_error,
 /// fix_up_points, and times in ms. Stored in the session's metadata under "import".
 nlohmann::json to_json(const ImportReport& report);

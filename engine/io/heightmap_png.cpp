@@ -44,6 +44,12 @@ PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std
                                  std::to_string(image.channels) + " channel(s) of " +
                                  std::to_string(image.bit_depth) + " bits");
     }
+    if (encoding == PngHeightEncoding::Auto && image.indexed_colour) {
+        throw std::runtime_error(name +
+                                 ": an indexed-colour PNG with colours in its palette is not a "
+                                 "heightmap encoding sandtin knows (use grey, or force "
+                                 "Terrain-RGB if its colours are Terrain-RGB codes)");
+    }
     if (!gray && image.bit_depth != 8) {
         throw std::runtime_error(name +
                                  ": a 16-bit colour PNG is not a heightmap encoding "
@@ -65,6 +71,10 @@ PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std
     out.cell_size = text_number(image, kPngKeyCellSize, name);
     if (out.cell_size && !(*out.cell_size > 0.0)) {
         throw std::runtime_error(name + ": the PNG's cell size must be positive");
+    }
+    out.cell_height = text_number(image, kPngKeyCellHeight, name);
+    if (out.cell_height && !(*out.cell_height > 0.0)) {
+        throw std::runtime_error(name + ": the PNG's cell height must be positive");
     }
 
     const auto channels = static_cast<std::size_t>(image.channels);

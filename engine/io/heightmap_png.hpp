@@ -20,7 +20,7 @@
 namespace sandtin {
 
 enum class PngHeightEncoding : std::uint8_t {
-    Auto,        ///< gray for 1-2 channels, Terrain-RGB for 8-bit colour
+    Auto,        ///< gray for 1-2 channels or a grey palette, Terrain-RGB for 8-bit colour
     Gray,        ///< reject anything but grayscale
     TerrainRgb,  ///< reject anything but 8-bit colour
 };
@@ -29,6 +29,8 @@ enum class PngHeightEncoding : std::uint8_t {
 inline constexpr const char* kPngKeyZOffset = "sandtin:z_offset";
 inline constexpr const char* kPngKeyZRange = "sandtin:z_range";
 inline constexpr const char* kPngKeyCellSize = "sandtin:cell_size";
+/// Between rows, when it differs from the cell size (between columns).
+inline constexpr const char* kPngKeyCellHeight = "sandtin:cell_height";
 
 /// A decoded PNG heightmap. Heights are raw: metres for Terrain-RGB, [0, 1] for grayscale.
 /// A grayscale PNG that sandtin exported also carries its scale (height = z_offset + raw *
@@ -38,6 +40,7 @@ struct PngHeightmap {
     std::optional<double> z_offset;
     std::optional<double> z_range;
     std::optional<double> cell_size;
+    std::optional<double> cell_height;  ///< metres between rows, when not the cell size
 };
 /// Throws std::runtime_error naming `name` for anything that is not a PNG heightmap within
 /// `limits`.

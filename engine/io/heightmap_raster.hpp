@@ -33,6 +33,11 @@ struct Georeference {
     double west = 0.0;   ///< source x of the first column's samples
     double south = 0.0;  ///< source y of the last row's samples
     std::string crs;     ///< coordinate reference system (WKT) when the source names one
+    /// The source's length units as it names them ("metre", "US survey foot"), empty when it
+    /// names none. `west` and `south` stay in the horizontal unit; cell sizes and heights in
+    /// the raster are already converted to metres.
+    std::string horizontal_unit;
+    std::string vertical_unit;
 };
 
 struct HeightRaster {

@@ -46,7 +46,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 #elif SANDTIN_FUZZ_FORMAT == 3
         check(sandtin::decode_exr_heightmap(bytes, "fuzz.exr", kLimits, size % 2 == 0));
 #elif SANDTIN_FUZZ_FORMAT == 4
-        check(sandtin::decode_geotiff(bytes, "fuzz.tif", kLimits, size % 2 == 0, size % 3 == 0));
+        check(sandtin::decode_geotiff(bytes, "fuzz.tif", kLimits, size % 2 == 0, size % 3 == 0,
+                                      size % 5 == 0));
 #else
 #error "SANDTIN_FUZZ_FORMAT must be 1 (PNG), 2 (ESRI), 3 (EXR) or 4 (GeoTIFF)"
 #endif

@@ -407,6 +407,37 @@ TEST_F(Export, HeightPngReimportsWithinTheQuantisation) {
     }
 }
 
+TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
+    // 1 x 0.5 m at 0.3 m cells: 4 columns 1/3 m apart, 3 rows 0.25 m apart. A plane, so the
+    // baked samples are exact and a stretched re-import shows as a wrong height.
+    const Rect domain = Rect::from_size(1.0, 0.5);
+    const auto plane = [](Vec2 p) { return 1.0 + 0.4 * p.x + 0.8 * p.y; };
+    const Tin tin = Tin::random_points(domain, 300, 611, plane);
+    ExportOptions o;
+    o.cell_size = 0.3;
+    for (const char* file : {"rows.png", "rows.exr"}) {
+        run(tin, file, o);
+        ASSERT_EQ(report_.map_width, 4u);
+        ASSERT_EQ(report_.map_height, 3u);
+        const HeightRaster back = read_heightmap(dir_ / file);
+        EXPECT_DOUBLE_EQ(back.cell_size, 1.0 / 3.0) << file;
+        EXPECT_DOUBLE_EQ(back.row_spacing(), 0.25) << file;
+        EXPECT_DOUBLE_EQ(back.domain().width(), 1.0) << file;
+        EXPECT_DOUBLE_EQ(back.domain().height(), 0.5) << file;
+        for (std::uint32_t row = 0; row < back.height; ++row) {
+            for (std::uint32_t col = 0; col < back.width; ++col) {
+                const Vec2 p = back.position(col, row);
+                EXPECT_NEAR(back.at(col, row), plane(p), 1e-4)  // both origins at 0
+                    << file << " " << col << ", " << row;
+            }
+        }
+    }
+    // A square grid writes no row spacing of its own.
+    o.cell_size = 0.25;
+    run(tin, "square.png", o);
+    EXPECT_EQ(read_heightmap(dir_ / "square.png").cell_height, 0.0);
+}
+
 TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
     const Tin tin = test_tin();
     ExportOptions o;

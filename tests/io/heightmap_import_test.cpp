@@ -1,8 +1,10 @@
 // Heightmap readers: every format decodes what it should, and every kind of bad input is
 // rejected with a message that names the problem, never a crash.
 
+#include <cpl_conv.h>
 #include <gdal.h>
 #include <gtest/gtest.h>
+#include <ogr_srs_api.h>
 
 #include <unistd.h>
 #include <zlib.h>
@@ -61,29 +63,55 @@ PngImage gray_image(std::uint32_t w, std::uint32_t h, int depth, int channels = 
     return image;
 }
 
-/// A PNG whose IHDR declares width x height (CRCs valid), with no image data after it.
-std::vector<std::uint8_t> png_with_header(std::uint32_t width, std::uint32_t height) {
+void put_be32(std::vector<std::uint8_t>& b, std::uint32_t v) {
+    for (int s = 24; s >= 0; s -= 8)
+        b.push_back(static_cast<std::uint8_t>(v >> s));
+}
+
+/// A PNG of the given chunks, each with its length and a valid CRC.
+std::vector<std::uint8_t> png_of_chunks(
+    const std::vector<std::pair<const char*, std::vector<std::uint8_t>>>& chunks) {
     std::vector<std::uint8_t> b = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    auto be32 = [&](std::uint32_t v) {
-        for (int s = 24; s >= 0; s -= 8)
-            b.push_back(static_cast<std::uint8_t>(v >> s));
-    };
-    auto chunk = [&](const char* type, const std::vector<std::uint8_t>& data) {
-        be32(static_cast<std::uint32_t>(data.size()));
+    for (const auto& [type, data] : chunks) {
+        put_be32(b, static_cast<std::uint32_t>(data.size()));
         const std::size_t start = b.size();
         b.insert(b.end(), type, type + 4);
         b.insert(b.end(), data.begin(), data.end());
-        be32(static_cast<std::uint32_t>(
-            crc32(0, b.data() + start, static_cast<uInt>(b.size() - start))));
-    };
-    std::vector<std::uint8_t> ihdr;
-    for (std::uint32_t v : {width, height})
-        for (int s = 24; s >= 0; s -= 8)
-            ihdr.push_back(static_cast<std::uint8_t>(v >> s));
-    ihdr.insert(ihdr.end(), {8, 0, 0, 0, 0});
-    chunk("IHDR", ihdr);
-    chunk("IEND", {});
+        put_be32(b, static_cast<std::uint32_t>(
+                        crc32(0, b.data() + start, static_cast<uInt>(b.size() - start))));
+    }
     return b;
+}
+
+std::vector<std::uint8_t> ihdr(std::uint32_t width, std::uint32_t height,
+                               std::uint8_t colour_type) {
+    std::vector<std::uint8_t> data;
+    put_be32(data, width);
+    put_be32(data, height);
+    data.insert(data.end(), {8, colour_type, 0, 0, 0});
+    return data;
+}
+
+/// A PNG whose IHDR declares width x height (CRCs valid), with no image data after it.
+std::vector<std::uint8_t> png_with_header(std::uint32_t width, std::uint32_t height) {
+    return png_of_chunks({{"IHDR", ihdr(width, height, 0)}, {"IEND", {}}});
+}
+
+/// An 8-bit indexed-colour PNG: `palette` holds RGB triples, `indices` one byte per pixel.
+std::vector<std::uint8_t> indexed_png(std::uint32_t width, std::uint32_t height,
+                                      const std::vector<std::uint8_t>& palette,
+                                      const std::vector<std::uint8_t>& indices) {
+    std::vector<std::uint8_t> rows;
+    for (std::uint32_t y = 0; y < height; ++y) {
+        rows.push_back(0);  // filter: none
+        rows.insert(rows.end(), indices.begin() + y * width, indices.begin() + (y + 1) * width);
+    }
+    std::vector<std::uint8_t> idat(compressBound(static_cast<uLong>(rows.size())));
+    uLongf size = static_cast<uLongf>(idat.size());
+    EXPECT_EQ(compress(idat.data(), &size, rows.data(), static_cast<uLong>(rows.size())), Z_OK);
+    idat.resize(size);
+    return png_of_chunks(
+        {{"IHDR", ihdr(width, height, 3)}, {"PLTE", palette}, {"IDAT", idat}, {"IEND", {}}});
 }
 
 class HeightmapFiles : public ::testing::Test {
@@ -102,7 +130,7 @@ class HeightmapFiles : public ::testing::Test {
 /// A GeoTIFF of float samples written through GDAL itself.
 std::vector<std::uint8_t> geotiff(const fs::path& path, int w, int h, const std::vector<float>& v,
                                   std::array<double, 6> transform, const char* wkt,
-                                  std::optional<double> nodata) {
+                                  std::optional<double> nodata, const char* unit_type = nullptr) {
     GDALAllRegister();
     GDALDriverH driver = GDALGetDriverByName("GTiff");
     GDALDatasetH ds = GDALCreate(driver, path.c_str(), w, h, 1, GDT_Float32, nullptr);
@@ -111,6 +139,7 @@ std::vector<std::uint8_t> geotiff(const fs::path& path, int w, int h, const std:
     if (wkt != nullptr) GDALSetProjection(ds, wkt);
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
     if (nodata) GDALSetRasterNoDataValue(band, *nodata);
+    if (unit_type != nullptr) GDALSetRasterUnitType(band, unit_type);
     std::vector<float> copy = v;
     EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, w, h, copy.data(), w, h, GDT_Float32, 0, 0),
               CE_None);
@@ -120,6 +149,9 @@ std::vector<std::uint8_t> geotiff(const fs::path& path, int w, int h, const std:
 
 constexpr const char* kUtm33 =
     R"(PROJCS["WGS 84 / UTM zone 33N",GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["latitude_of_origin",0],PARAMETER["central_meridian",15],PARAMETER["scale_factor",0.9996],PARAMETER["false_easting",500000],PARAMETER["false_northing",0],UNIT["metre",1]])";
+// NAD83 / California zone 3 (ftUS), EPSG 2227: a state plane grid in US survey feet.
+constexpr const char* kCaliforniaFeet =
+    R"wkt(PROJCS["NAD83 / California zone 3 (ftUS)",GEOGCS["NAD83",DATUM["North_American_Datum_1983",SPHEROID["GRS 1980",6378137,298.257222101]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]],PROJECTION["Lambert_Conformal_Conic_2SP"],PARAMETER["latitude_of_origin",36.5],PARAMETER["central_meridian",-120.5],PARAMETER["standard_parallel_1",38.4333333333333],PARAMETER["standard_parallel_2",37.0666666666667],PARAMETER["false_easting",6561666.667],PARAMETER["false_northing",1640416.667],UNIT["US survey foot",0.304800609601219]])wkt";
 constexpr const char* kWgs84 =
     R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";
 
@@ -183,6 +215,26 @@ TEST(HeightmapImport, EncodingCanBeForced) {
     expect_rejected(encode_png(rgb16), {"16-bit colour"});
 }
 
+TEST(HeightmapImport, IndexedPngWithAGreyPaletteIsAGreyHeightmap) {
+    // Image editors save a grey heightmap of few levels as indexed colour. The palette here is
+    // in a shuffled order, so reading the index instead of the grey level would show.
+    const std::vector<std::uint8_t> palette = {255, 255, 255, 0, 0, 0, 51, 51, 51, 204, 204, 204};
+    const std::vector<std::uint8_t> indices = {1, 2, 3, 0};
+    const HeightRaster r = decode_heightmap(indexed_png(2, 2, palette, indices), "idx.png");
+    EXPECT_EQ(r.source_format, "png-gray8");
+    EXPECT_EQ(r.heights, (std::vector<double>{0.0, 0.2, 0.8, 1.0}));
+
+    // A palette with colours is no heightmap encoding; forcing Terrain-RGB still reads it.
+    const std::vector<std::uint8_t> colours = {1, 134, 160, 1, 134, 170, 1, 134, 180, 1, 134, 190};
+    expect_rejected(indexed_png(2, 2, colours, indices), {"indexed-colour", "Terrain-RGB"});
+    HeightmapReadOptions terrain_rgb;
+    terrain_rgb.png_encoding = PngHeightEncoding::TerrainRgb;
+    const HeightRaster forced =
+        decode_heightmap(indexed_png(2, 2, colours, indices), "idx.png", terrain_rgb);
+    // Mapbox's formula on (1, 134, 170): -10000 + (65536 + 134 * 256 + 170) * 0.1.
+    EXPECT_NEAR(forced.at(0, 0), -10000.0 + (65536 + 134 * 256 + 170) * 0.1, 1e-9);
+}
+
 TEST(HeightmapImport, AsciiGridReadsHeaderAndValues) {
     const std::string text =
         "NCOLS 3\nnrows 2\nxllcorner 1000\nyllcenter 2000.5\ncellsize 10\nNODATA_value -9999\n"
@@ -198,6 +250,21 @@ TEST(HeightmapImport, AsciiGridReadsHeaderAndValues) {
     EXPECT_TRUE(r.georeference.known);
     EXPECT_EQ(r.georeference.west, 1005.0);   // corner + half a cell
     EXPECT_EQ(r.georeference.south, 2000.5);  // already a centre
+}
+
+TEST(HeightmapImport, AsciiGridSavedWithAByteOrderMarkReadsLikeWithout) {
+    // Notepad and Excel save UTF-8 text with EF BB BF in front; CRLF line ends come with it.
+    const std::string text =
+        "ncols 2\r\nnrows 2\r\nxllcorner 0\r\nyllcorner 0\r\n"
+        "cellsize 5\r\n7 8\r\n9 10\r\n";
+    const HeightRaster plain = decode_heightmap(bytes_of(text), "g.asc");
+    const HeightRaster marked = decode_heightmap(bytes_of("\xEF\xBB\xBF" + text), "g.asc");
+    EXPECT_EQ(marked.width, 2u);
+    EXPECT_EQ(marked.cell_size, 5.0);
+    EXPECT_EQ(marked.heights, plain.heights);
+    EXPECT_EQ(marked.heights, (std::vector<double>{7, 8, 9, 10}));
+    // Only a whole mark is skipped: a stray byte of one is still not a grid.
+    EXPECT_THROW(decode_heightmap(bytes_of("\xEF\xBB" + text), "g.asc"), std::runtime_error);
 }
 
 TEST_F(HeightmapFiles, GeoTiffReadsSamplesCellSizeNoDataAndGeoreference) {
@@ -216,6 +283,64 @@ TEST_F(HeightmapFiles, GeoTiffReadsSamplesCellSizeNoDataAndGeoreference) {
     HeightmapReadOptions scaled;
     scaled.z_scale = 2.0;
     EXPECT_EQ(decode_heightmap(bytes, "a.tif", scaled).at(2, 1), 12.0);
+}
+
+TEST_F(HeightmapFiles, GeoTiffInFeetIsConvertedToMetres) {
+    const std::vector<float> v = {100, 200, 300, 400};
+    // A state plane grid: 10 US survey feet per pixel, heights declared in feet on the band.
+    const auto state_plane = geotiff(dir_ / "ca.tif", 2, 2, v, {6000000, 10, 0, 2000000, 0, -10},
+                                     kCaliforniaFeet, std::nullopt, "ft");
+    const HeightRaster r = decode_heightmap(state_plane, "ca.tif");
+    constexpr double kUsFoot = 1200.0 / 3937.0;
+    EXPECT_NEAR(r.cell_size, 10.0 * kUsFoot, 1e-12);
+    EXPECT_NEAR(r.at(1, 1), 400.0 * 0.3048, 1e-9);
+    EXPECT_EQ(r.georeference.horizontal_unit, "US survey foot");
+    EXPECT_EQ(r.georeference.vertical_unit, "ft");
+    // The georeference stays in the source's own coordinates, the ones its CRS names.
+    EXPECT_EQ(r.georeference.west, 6000005.0);
+    // An explicit z-scale replaces the file's unit, as it replaces a sandtin PNG's scale.
+    HeightmapReadOptions scaled;
+    scaled.z_scale = 2.0;
+    EXPECT_EQ(decode_heightmap(state_plane, "ca.tif", scaled).at(1, 1), 800.0);
+    // An explicit pixel size wins over the projection's unit.
+    HeightmapReadOptions pixel;
+    pixel.pixel_size = 3.0;
+    EXPECT_EQ(decode_heightmap(state_plane, "ca.tif", pixel).cell_size, 3.0);
+
+    // A compound CRS, UTM 33N + NAVD88 height (ftUS) by its EPSG codes, as surveys publish
+    // them: GDAL writes the vertical unit into the GeoTIFF's keys and reports it back.
+    OGRSpatialReferenceH compound_srs = OSRNewSpatialReference(nullptr);
+    ASSERT_EQ(OSRSetFromUserInput(compound_srs, "EPSG:32633+6360"), OGRERR_NONE);
+    char* compound_wkt = nullptr;
+    OSRExportToWkt(compound_srs, &compound_wkt);
+    const auto compound = geotiff(dir_ / "c.tif", 2, 2, v, {500000, 30, 0, 4000000, 0, -30},
+                                  compound_wkt, std::nullopt);
+    CPLFree(compound_wkt);
+    OSRDestroySpatialReference(compound_srs);
+    const HeightRaster c = decode_heightmap(compound, "c.tif");
+    EXPECT_EQ(c.cell_size, 30.0);
+    EXPECT_NEAR(c.at(0, 0), 100.0 * kUsFoot, 1e-9);
+    EXPECT_EQ(c.georeference.vertical_unit, "US survey foot");
+
+    // A band in metres is left alone.
+    const auto metres =
+        geotiff(dir_ / "m.tif", 2, 2, v, {500000, 30, 0, 4000000, 0, -30}, kUtm33, {}, "metre");
+    EXPECT_EQ(decode_heightmap(metres, "m.tif").at(1, 1), 400.0);
+}
+
+TEST_F(HeightmapFiles, GeoTiffWithAnUnknownHeightUnitAsksForAZScale) {
+    const auto bytes = geotiff(dir_ / "f.tif", 2, 2, {1, 2, 3, 4}, {500000, 30, 0, 4000000, 0, -30},
+                               kUtm33, std::nullopt, "furlong");
+    try {
+        decode_heightmap(bytes, "f.tif");
+        ADD_FAILURE() << "an unknown unit was read as metres";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("'furlong'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("z-scale"), std::string::npos) << e.what();
+    }
+    HeightmapReadOptions scaled;
+    scaled.z_scale = 201.168;
+    EXPECT_DOUBLE_EQ(decode_heightmap(bytes, "f.tif", scaled).at(1, 1), 4 * 201.168);
 }
 
 TEST(HeightmapImport, ExrRoundTripsFloatHeights) {
