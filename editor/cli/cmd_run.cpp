@@ -83,7 +83,7 @@ int run_run(const std::vector<std::string>& raw) {
     SculptContext context(tin.domain());
     context.set_next_generation(session.next_generation);
     const double volume_before = tin.volume();
-    const nlohmann::json steps = run_script(script, tin, context, backend);
+    const nlohmann::json steps = run_script(script, tin, context, backend, &session);
 
     session.terrain = tin.snapshot();
     session.next_generation = context.peek_generation();

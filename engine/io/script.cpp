@@ -475,6 +475,11 @@ ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& contex
 
 ScriptRunner::~ScriptRunner() = default;
 
+void ScriptRunner::carry_into_saves(const Session& session) {
+    carried_.metadata_json = session.metadata_json;
+    carried_.unknown_chunks = session.unknown_chunks;
+}
+
 nlohmann::json ScriptRunner::run(const ScriptStep& step) {
     Tin& tin = tin_;
     SculptContext& context = context_;
@@ -587,7 +592,7 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                         {"volume_change",
                          s.volume_policy == VolumePolicy::Conserve ? 0.0 : sr.volume_change}};
             } else if constexpr (std::is_same_v<T, SaveOp>) {
-                Session session;
+                Session session = carried_;
                 session.terrain = tin.snapshot();
                 session.next_generation = context.peek_generation();
                 save_session(op.path, session);
@@ -612,8 +617,9 @@ Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
 }
 
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
-                          const PhysicsBackendFactory& backend) {
+                          const PhysicsBackendFactory& backend, const Session* carried) {
     ScriptRunner runner(script, tin, context, false, backend);
+    if (carried != nullptr) runner.carry_into_saves(*carried);
     nlohmann::json reports = nlohmann::json::array();
     for (std::size_t i = 0; i < script.steps.size(); ++i) {
         const ScriptStep& step = script.steps[i];

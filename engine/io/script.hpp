@@ -32,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
 #include "tin/tin.hpp"
@@ -171,16 +172,24 @@ class ScriptRunner {
 
     SandPhysics* physics() { return physics_.get(); }  ///< null with another backend
 
+    /// `save` checkpoints carry this session's metadata (scene name, tool settings, import
+    /// report) and its chunks from newer versions, as the final output does; its terrain is
+    /// not used. Without it a checkpoint holds the terrain alone.
+    void carry_into_saves(const Session& session);
+
   private:
     Tin& tin_;
     SculptContext& context_;
+    Session carried_;  ///< metadata and unknown chunks only; the terrain stays empty
     std::unique_ptr<SandPhysics> physics_;
     PhysicsBackend backend_;
 };
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
-/// per step.
+/// per step. `carried`, when given, is the session the terrain came from (see
+/// ScriptRunner::carry_into_saves).
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
-                          const PhysicsBackendFactory& backend = {});
+                          const PhysicsBackendFactory& backend = {},
+                          const Session* carried = nullptr);
 
 }  // namespace sandtin

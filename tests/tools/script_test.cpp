@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <variant>
@@ -185,6 +188,32 @@ TEST(Script, RunAppliesTheOperationsAndTheSettings) {
     EXPECT_GT(dug, inner * 0.05 * (1.0 - 1e-9));
     EXPECT_LT(dug, outer * 0.05);
     EXPECT_NEAR(*tin.height_at({0.7, 0.7}), 0.05, 1e-12);
+}
+
+TEST(Script, ACheckpointKeepsTheSessionsMetadataAndUnknownChunks) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("sandtin-checkpoint-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path checkpoint = dir / "ck.sandtin";
+    const Script s = parse(R"([
+  {"op": "pour", "at": [0.5, 0.5], "volume": 1e-5, "radius": 0.04},
+  {"op": "save", "path": ")" +
+                           checkpoint.string() + R"("}
+])");
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 500, 603, [](Vec2) { return 0.1; });
+    Session opened;
+    opened.metadata_json = R"({"scene":"dunes","import":{"source":"bay.png"}})";
+    opened.unknown_chunks[0x7A7A7A7Au] = {1, 2, 3};
+    SculptContext context(tin.domain());
+    run_script(s, tin, context, {}, &opened);
+    const Session saved = load_session(checkpoint);
+    EXPECT_EQ(nlohmann::json::parse(saved.metadata_json),
+              nlohmann::json::parse(opened.metadata_json));
+    EXPECT_EQ(saved.unknown_chunks, opened.unknown_chunks);
+    // The checkpoint holds the terrain after the pour, not the opened session's (empty) one.
+    EXPECT_EQ(Tin::from_snapshot(saved.terrain).vertex_count(), tin.vertex_count());
+    EXPECT_DOUBLE_EQ(Tin::from_snapshot(saved.terrain).volume(), tin.volume());
+    std::filesystem::remove_all(dir);
 }
 
 TEST(Script, ErrorsNameTheLineAndTheField) {
