@@ -90,7 +90,6 @@ TEST(GreedyTin, RmsdMatchesAnIndependentSum) {
     });
     const GreedyResult g = greedy_tin(r, {0.25, 0});
     long double sum = 0.0L;
-    LocateHint hint;
     for (std::uint32_t row = 0; row < r.height; ++row) {
         for (std::uint32_t col = 0; col < r.width; ++col) {
             const double z = test::brute_force_height(g.tin, r.position(col, row));

@@ -29,9 +29,13 @@ TwinProblem pair_half_edges(std::span<const std::array<std::uint32_t, 3>> triang
         const auto begin = leaving.begin() + row[v];
         const auto end = leaving.begin() + row[v + 1];
         std::sort(begin, end);
-        for (auto it = begin; it + 1 < end; ++it) {
-            if ((*it >> 32) == (*(it + 1) >> 32)) return TwinProblem::RepeatedHalfEdge;
-        }
+        // (adjacent_find, not `it + 1 < end`: on an empty soup begin is a null pointer, and
+        // adding 1 to it is undefined; clang's UBSan says so.)
+        const auto same_target = [](std::uint64_t a, std::uint64_t b) {
+            return a >> 32 == b >> 32;
+        };
+        if (std::adjacent_find(begin, end, same_target) != end)
+            return TwinProblem::RepeatedHalfEdge;
     }
 
     twin.resize(half_edges);
