@@ -128,14 +128,16 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         }
         const double dx = std::abs(gt[1]);
         const double dy = std::abs(gt[5]);
-        if (!(dx > 0.0) || std::abs(dx - dy) > 1e-9 * dx) {
-            if (!pixel_size_override) {
-                throw std::runtime_error(name + ": the GeoTIFF's pixels are not square (" +
-                                         std::to_string(dx) + " x " + std::to_string(dy) +
-                                         "); give the pixel size in metres");
-            }
+        if (!(dx > 0.0 && dy > 0.0 && std::isfinite(dx) && std::isfinite(dy)) &&
+            !pixel_size_override) {
+            throw std::runtime_error(name + ": the GeoTIFF's pixel size (" + std::to_string(dx) +
+                                     " x " + std::to_string(dy) +
+                                     ") is not positive; give the pixel size in metres");
         }
         r.cell_size = dx;
+        // Rows spaced unlike columns (a 10 x 15 m grid) are kept as such: the raster, and the
+        // TIN built from it, space them apart by their own size.
+        if (std::abs(dx - dy) > 1e-9 * dx) r.cell_height = dy;
         r.georeference.known = true;
         r.georeference.west = gt[0] + 0.5 * gt[1];
         r.georeference.south = gt[3] + (height - 0.5) * gt[5];
@@ -163,6 +165,7 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
                                          "') of no length; give the pixel size in metres");
             }
             r.cell_size *= metres;
+            r.cell_height *= metres;
         }
         if (vertical_unit.empty() && srs && OSRIsVertical(srs.get()) != 0) {
             char* unit_name = nullptr;

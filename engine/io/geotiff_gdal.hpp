@@ -11,7 +11,7 @@
 namespace sandtin {
 
 /// Decodes a GeoTIFF held in memory (through a GDAL in-memory file). The cell size is the pixel
-/// size in metres, converted from the projection's linear unit (US survey feet in many state
+/// size in metres (and cell_height the row spacing, when the pixels are not square), converted from the projection's linear unit (US survey feet in many state
 /// plane grids); a file in geographic coordinates (degrees) needs `pixel_size_override`. Heights
 /// are converted to metres from the unit the band or a compound CRS's vertical part declares,
 /// unless `z_scale_override` (the caller scales them itself); an unknown unit is an error. NaN/Inf

@@ -328,6 +328,28 @@ TEST_F(HeightmapFiles, GeoTiffInFeetIsConvertedToMetres) {
     EXPECT_EQ(decode_heightmap(metres, "m.tif").at(1, 1), 400.0);
 }
 
+TEST_F(HeightmapFiles, GeoTiffWithOblongPixelsKeepsBothSpacings) {
+    // 2 m between columns, 3 m between rows: a 4 x 3 grid spans 6 x 6 m.
+    const std::vector<float> v(12, 1.0f);
+    const auto bytes =
+        geotiff(dir_ / "o.tif", 4, 3, v, {500000, 2, 0, 4000000, 0, -3}, kUtm33, std::nullopt);
+    const HeightRaster r = decode_heightmap(bytes, "o.tif");
+    EXPECT_EQ(r.cell_size, 2.0);
+    EXPECT_EQ(r.row_spacing(), 3.0);
+    EXPECT_EQ(r.domain().width(), 6.0);
+    EXPECT_EQ(r.domain().height(), 6.0);
+    // In feet, both spacings are converted.
+    const auto feet = geotiff(dir_ / "of.tif", 4, 3, v, {6000000, 10, 0, 2000000, 0, -20},
+                              kCaliforniaFeet, std::nullopt);
+    const HeightRaster f = decode_heightmap(feet, "of.tif");
+    EXPECT_NEAR(f.cell_size, 10.0 * 1200.0 / 3937.0, 1e-12);
+    EXPECT_NEAR(f.row_spacing(), 20.0 * 1200.0 / 3937.0, 1e-12);
+    // A given pixel size makes the pixels square.
+    HeightmapReadOptions square;
+    square.pixel_size = 5.0;
+    EXPECT_EQ(decode_heightmap(bytes, "o.tif", square).row_spacing(), 5.0);
+}
+
 TEST_F(HeightmapFiles, GeoTiffWithAnUnknownHeightUnitAsksForAZScale) {
     const auto bytes = geotiff(dir_ / "f.tif", 2, 2, {1, 2, 3, 4}, {500000, 30, 0, 4000000, 0, -30},
                                kUtm33, std::nullopt, "furlong");
@@ -575,8 +597,6 @@ TEST_F(HeightmapFiles, BadGeoTiffs) {
     const auto rotated =
         geotiff(dir_ / "r.tif", 4, 4, v, {0, 2, 0.5, 8, 0.5, -2}, kUtm33, std::nullopt);
     expect_rejected(rotated, {"rotated"});
-    const auto skewed = geotiff(dir_ / "s.tif", 4, 4, v, {0, 2, 0, 8, 0, -3}, kUtm33, std::nullopt);
-    expect_rejected(skewed, {"not square"});
     const auto degrees =
         geotiff(dir_ / "d.tif", 4, 4, v, {10, 0.001, 0, 50, 0, -0.001}, kWgs84, std::nullopt);
     expect_rejected(degrees, {"degrees"});
