@@ -66,7 +66,7 @@ std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell
     raster.width = heights.width;
     raster.height = heights.height;
     raster.cell_size = cell_size;
-    if (cell_height != cell_size) raster.cell_height = cell_height;
+    raster.cell_height = cell_height;  // encode_exr_heightmap stores it only when it differs
     raster.heights = heights.values;
     return encode_exr_heightmap(raster);
 }

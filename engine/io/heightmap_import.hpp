@@ -68,7 +68,7 @@ struct ImportResult {
 ImportResult import_heightmap(const std::filesystem::path& path, const ImportOptions& options);
 
 /// The report as JSON: source, format, raster {width, height, cell_size, cell_height,
-/// nodata_samples},
+/// nodata_samples}, georeference {west, south, crs, horizontal_unit, vertical_unit} when known,
 /// max_error_target, max_points, points, triangles, max_error, rmsd, reached_error,
 /// fix_up_points, and times in ms. Stored in the session's metadata under "import".
 nlohmann::json to_json(const ImportReport& report);
