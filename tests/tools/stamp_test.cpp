@@ -786,5 +786,111 @@ TEST(Stamp, AToolFarLargerThanItsProfilesDetailIsRejected) {
     EXPECT_LE(static_cast<double>(tool.interior_samples().local.size()), Tool::kMaxInteriorSamples);
 }
 
+// A non-convex tool whose connecting part lies past the domain's border reaches the terrain
+// as separate pieces. Clipped as one polygon (Sutherland-Hodgman), the pieces are joined by
+// "bridges" along the border between them; the inner bridge is constrained at the floor's
+// height at both ends, and could dig a trench along the border between the arms. It does not:
+// O's bridge lies within I's, and its points, at the terrain's height, split it. Oracle: the
+// terrain is flat, so between the arms (beyond O's reach from either) it must still be at its
+// height, and the arms' floors must be at the tool's bottom.
+TEST(Stamp, AToolCutIntoPiecesByTheBorderDigsOnlyItsPieces) {
+    ToolSpec spec;
+    spec.name = "u";
+    spec.contour = ContourKind::Polygon;
+    // A U: two arms 4 cm wide, 12 cm apart, joined by a bar at the bottom.
+    spec.polygon = {{-0.1, -0.1},  {0.1, -0.1},    {0.1, 0.1},   {0.06, 0.1},
+                    {0.06, -0.06}, {-0.06, -0.06}, {-0.06, 0.1}, {-0.1, 0.1}};
+    const Tool tool = Tool::build(spec);
+    const auto flat = [](Vec2) { return 0.1; };
+    for (const int terrain : {0, 1, 2}) {
+        SCOPED_TRACE(terrain == 0   ? "a terrain of four corners"
+                     : terrain == 1 ? "random points"
+                                    : "a grid, with vertices along the border");
+        Tin tin = terrain == 0   ? Tin::flat_rectangle(test::kUnitSquare, 0.1)
+                  : terrain == 1 ? Tin::random_points(test::kUnitSquare, 3000, 66, flat)
+                                 : Tin::regular_grid(test::kUnitSquare, 100, 100, flat);
+        SculptContext context(tin.domain());
+        // The bar lies below y = 0, past the border; the arms reach 15 cm into the terrain.
+        const ToolPlacement at{{0.5, 0.05}, 0.0, 0.05};
+        const StampReport r = stamp(tin, tool, at, context);
+        ASSERT_TRUE(r.applied);
+        ASSERT_TRUE(mesh_is_sound(tin));
+        LocateHint hint;
+        const double gap = tool.shape().gap;
+        // Along the border and a little inside, between the arms' outer contours.
+        for (double x = 0.44 + 2.0 * gap; x <= 0.56 - 2.0 * gap; x += 0.001) {
+            for (double y : {0.0, 0.001, 0.02}) {
+                const std::optional<double> h = tin.height_at({x, y}, &hint);
+                ASSERT_TRUE(h.has_value());
+                EXPECT_NEAR(*h, 0.1, 1e-12) << "between the arms at " << x << ", " << y;
+            }
+        }
+        // The arms' floors, on the border and inside.
+        for (double x : {0.41, 0.42, 0.43, 0.57, 0.58, 0.59}) {
+            for (double y : {0.0, 0.05, 0.14}) {
+                const std::optional<double> h = tin.height_at({x, y}, &hint);
+                ASSERT_TRUE(h.has_value());
+                EXPECT_NEAR(*h, 0.05, 1e-12) << "in an arm at " << x << ", " << y;
+            }
+        }
+        // What went: the arms' floors (2 x 4 cm x 15 cm x 5 cm) and at most their walls.
+        const double floors = 2.0 * 0.04 * 0.15 * 0.05;
+        EXPECT_GT(r.displaced_volume, floors * (1.0 - 1e-9));
+        EXPECT_LT(r.displaced_volume, floors * 1.2);
+    }
+}
+
+// The same on a tilted plane, for the λ with its legs poking in across each side of the
+// domain, its junction outside, at a few headings: outside O every grid point stays on the
+// plane (re-triangulating a plane cannot bend it), and inside I it is at the floor.
+TEST(Stamp, ALambdaCutIntoPiecesByEachSideKeepsThePlaneOutsideItsOuterContour) {
+    const test::Plane plane{0.05, -0.03, 0.1};
+    const Tool lambda = Tool::build(load_tool_asset("lambda"));
+    const double pi = std::numbers::pi;
+    for (const double tilt : {0.0, 0.25, -0.3}) {
+        const ToolPlacement places[] = {{{0.5, 1.01}, tilt, 0.0},
+                                        {{0.4, -0.01}, pi + tilt, 0.0},
+                                        {{-0.01, 0.6}, 0.5 * pi + tilt, 0.0},
+                                        {{1.01, 0.3}, -0.5 * pi + tilt, 0.0}};
+        for (const ToolPlacement& at : places) {
+            SCOPED_TRACE("at " + std::to_string(at.centre.x) + ", " + std::to_string(at.centre.y) +
+                         " heading " + std::to_string(at.angle));
+            for (const bool grid : {false, true}) {
+                // A grid has vertices all along the border, where the pieces' clipped contours run.
+                SCOPED_TRACE(grid ? "grid" : "random points");
+                Tin tin = grid ? Tin::regular_grid(test::kUnitSquare, 100, 100, plane)
+                               : Tin::random_points(test::kUnitSquare, 4000, 67, plane);
+                SculptContext context(tin.domain());
+                ASSERT_TRUE(stamp(tin, lambda, at, context).applied);
+                ASSERT_TRUE(mesh_is_sound(tin));
+                const std::vector<Vec2> inner = world(at, lambda.shape().inner);
+                const std::vector<Vec2> outer = world(at, lambda.shape().outer);
+                LocateHint hint;
+                std::size_t outside = 0, inside = 0, moved = 0, shallow = 0;
+                Rect box;
+                for (Vec2 p : outer)
+                    box.expand(p);
+                box = Rect{{std::max(box.min.x - 0.02, 0.0), std::max(box.min.y - 0.02, 0.0)},
+                           {std::min(box.max.x + 0.02, 1.0), std::min(box.max.y + 0.02, 1.0)}};
+                for (Vec2 p : test::grid_points(box, 121, 121)) {
+                    const double h = *tin.height_at(p, &hint);
+                    if (outside_by(p, outer, 1e-6)) {
+                        ++outside;
+                        if (std::abs(h - plane(p)) > 1e-12) ++moved;
+                    } else if (inside_by(p, inner, 1e-9)) {
+                        ++inside;
+                        if (std::abs(h) > 1e-12) ++shallow;
+                    }
+                }
+                EXPECT_EQ(moved, 0u) << moved << " of " << outside << " points outside O moved";
+                EXPECT_EQ(shallow, 0u) << shallow << " of " << inside << " points inside I are "
+                                       << "not at the floor";
+                EXPECT_GT(inside, 100u);
+                EXPECT_GT(outside, 1000u);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace sandtin
