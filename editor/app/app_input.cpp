@@ -36,7 +36,9 @@ void App::tool_at(Vec3 p) {
             for (const StrokeSample& s : sampler_->add_point(xy)) {
                 const ToolPlacement at =
                     placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
-                stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+                const StampReport r =
+                    stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+                if (const std::optional<std::string> w = lost_extrusion_warning(r)) report(*w);
                 last_heading_ = at.angle;
             }
             pending_label_ = std::string("stroke (") + t.label + ")";

@@ -84,6 +84,11 @@ int run_run(const std::vector<std::string>& raw) {
     context.set_next_generation(session.next_generation);
     const double volume_before = tin.volume();
     const nlohmann::json steps = run_script(script, tin, context, backend, &session);
+    for (const nlohmann::json& step : steps) {
+        if (const auto w = step.find("warning"); w != step.end() && w->is_string()) {
+            std::cerr << "sandtin run: warning: " << w->get<std::string>() << "\n";
+        }
+    }
 
     session.terrain = tin.snapshot();
     session.next_generation = context.peek_generation();

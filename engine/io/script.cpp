@@ -437,18 +437,21 @@ Script parse_script(std::string_view text, const std::string& name,
 namespace {
 
 nlohmann::json stamp_json(const StampReport& r) {
-    return {{"stamps_applied", r.applied ? 1 : 0},
-            {"displaced_volume", r.displaced_volume},
-            {"deposited_volume", r.deposited_volume},
-            {"retriangulation_volume", r.retriangulation_volume},
-            {"volume_change", r.volume_change},
-            {"vertices_inserted", r.vertices_inserted},
-            {"vertices_removed", r.vertices_removed},
-            {"triangles_touched", r.triangles_touched},
-            {"constraints_released", r.constraints_released},
-            {"enforce_ms", r.enforce_ms},
-            {"simplify_ms", r.simplify_ms},
-            {"extrude_ms", r.extrude_ms}};
+    nlohmann::json j = {{"stamps_applied", r.applied ? 1 : 0},
+                        {"displaced_volume", r.displaced_volume},
+                        {"deposited_volume", r.deposited_volume},
+                        {"undeposited_volume", r.undeposited_volume},
+                        {"retriangulation_volume", r.retriangulation_volume},
+                        {"volume_change", r.volume_change},
+                        {"vertices_inserted", r.vertices_inserted},
+                        {"vertices_removed", r.vertices_removed},
+                        {"triangles_touched", r.triangles_touched},
+                        {"constraints_released", r.constraints_released},
+                        {"enforce_ms", r.enforce_ms},
+                        {"simplify_ms", r.simplify_ms},
+                        {"extrude_ms", r.extrude_ms}};
+    if (const std::optional<std::string> w = lost_extrusion_warning(r)) j["warning"] = *w;
+    return j;
 }
 
 }  // namespace
@@ -624,7 +627,13 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
     for (std::size_t i = 0; i < script.steps.size(); ++i) {
         const ScriptStep& step = script.steps[i];
         try {
-            reports.push_back(runner.run(step));
+            nlohmann::json report = runner.run(step);
+            // A warning names its operation as an error would, so the artist finds it.
+            if (const auto w = report.find("warning"); w != report.end() && w->is_string()) {
+                *w = "line " + std::to_string(step.line) + ": operation " + std::to_string(i + 1) +
+                     " (" + step.op_name + "): " + w->get<std::string>();
+            }
+            reports.push_back(std::move(report));
         } catch (const std::invalid_argument& e) {
             // Input that only the terrain shows to be bad: named by its line, like a parse error.
             throw std::invalid_argument("line " + std::to_string(step.line) + ": operation " +

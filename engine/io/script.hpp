@@ -186,7 +186,9 @@ class ScriptRunner {
 };
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
-/// per step. `carried`, when given, is the session the terrain came from (see
+/// per step; a step that did something the artist should hear of (extrusion that lost sand
+/// over the terrain's edge) has a "warning" string naming its line and operation. `carried`,
+/// when given, is the session the terrain came from (see
 /// ScriptRunner::carry_into_saves).
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
                           const PhysicsBackendFactory& backend = {},

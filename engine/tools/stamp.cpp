@@ -21,6 +21,7 @@ void StampReport::accumulate(const StampReport& o) {
     generation = std::max(generation, o.generation);
     displaced_volume += o.displaced_volume;
     deposited_volume += o.deposited_volume;
+    undeposited_volume += o.undeposited_volume;
     retriangulation_volume += o.retriangulation_volume;
     volume_change += o.volume_change;
     vertices_inserted += o.vertices_inserted;
@@ -35,6 +36,19 @@ void StampReport::accumulate(const StampReport& o) {
     enforce_ms += o.enforce_ms;
     simplify_ms += o.simplify_ms;
     extrude_ms += o.extrude_ms;
+}
+
+std::optional<std::string> lost_extrusion_warning(const StampReport& report) {
+    const double lost = report.undeposited_volume;
+    const double owed = report.deposited_volume + lost;
+    if (!(std::abs(lost) > 0.01 * std::abs(owed))) return std::nullopt;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "extrusion had nowhere to put %.3g m³ of the %.3g m³ the tool pushed: the band "
+                  "beside it, where the ridge goes, lies outside the terrain, so that sand left "
+                  "the terrain (a tool smaller than the terrain, or extrusion off, keeps it)",
+                  std::abs(lost), std::abs(owed));
+    return std::string(text);
 }
 
 namespace {
@@ -564,6 +578,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         const RidgeReport ridge_report =
             deposit_ridge(tin, rim, cut, motion, tool.extrusion_width(), to_deposit, hint, &ridge);
         report.deposited_volume = ridge_report.deposited;
+        report.undeposited_volume = to_deposit - ridge_report.deposited;
         context.simplifier.enqueue(ridge);
     }
     report.extrude_ms = elapsed_ms(t2);

@@ -11,6 +11,7 @@
 //   7. optionally push the displaced volume into a ridge outside O (extrusion).
 
 #include <optional>
+#include <string>
 
 #include "tin/bulk_removal.hpp"
 #include "tin/tin.hpp"
@@ -33,7 +34,12 @@ struct StampReport {
     /// stays in volume_change.
     double retriangulation_volume = 0.0;
     double deposited_volume = 0.0;  ///< m³ put back by extrusion
-    double volume_change = 0.0;     ///< m³ net change of the terrain volume
+    /// m³ extrusion had to put back but could not: the band beside the tool where its ridge
+    /// goes lay wholly outside the domain (a tool covering the whole terrain). That volume
+    /// left the terrain with the sand pushed over its edge. 0 without extrusion, and up to
+    /// rounding whenever any of the band lies in the domain.
+    double undeposited_volume = 0.0;
+    double volume_change = 0.0;  ///< m³ net change of the terrain volume
     std::size_t vertices_inserted = 0;
     std::size_t vertices_removed = 0;
     std::size_t triangles_touched = 0;  ///< triangle slots the stamp changed
@@ -46,6 +52,11 @@ struct StampReport {
 
     void accumulate(const StampReport& o);
 };
+
+/// A sentence for the artist when extrusion lost more than 1 % of what it had to put back
+/// (StampReport::undeposited_volume; the tools issue's bound on a stamp's volume change), for a
+/// stamp or a stroke's accumulated report; nothing otherwise.
+std::optional<std::string> lost_extrusion_warning(const StampReport& report);
 
 /// Stamps `tool` at `at`. `motion` (any length) is the direction the tool moves in, which
 /// shapes the extrusion ridge; without it the ridge surrounds the tool.

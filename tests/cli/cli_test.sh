@@ -324,6 +324,20 @@ END_OF_SCRIPT
     check_eq "input run valid" "$(json info2.out /valid)" true
     abs_le "$(json info2.out /volume)" 0.402 1e-12 "saved volume"
 
+    # A tool bigger than the terrain, extruding: the sand it pushes has nowhere to go. The run
+    # succeeds, and says on stderr, naming the line, how much left the terrain; a good run
+    # says nothing there.
+    grep -q "warning" run2.err && fail "a run with nothing to warn of warned: $(cat run2.err)"
+    cat >lost.json <<'END_OF_SCRIPT'
+{"terrain": {"points": 500, "seed": 2, "height": 0.1},
+ "operations": [
+   {"op": "stamp", "tool": {"radius": 5, "control_points": 64, "extrude": true},
+    "at": [0.5, 0.5], "bottom": 0.08}]}
+END_OF_SCRIPT
+    expect_ok lost1 run lost.json -o lost.sandtin || return
+    grep -q "warning: line 3: operation 1 (stamp): extrusion had nowhere to put 0.02 m" \
+        lost1.err || fail "no warning of the lost extrusion: $(cat lost1.err)"
+
     # Neither -i nor a terrain: a usage error and no file.
     printf '[{"op": "simplify"}]\n' >noterrain.json
     expect_error noterrain "terrain" run noterrain.json -o noterrain.sandtin

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -272,8 +273,45 @@ TEST(Extrusion, StampAtTheDomainBorderStillConserves) {
             ASSERT_GT(r.displaced_volume, 0.0);
             EXPECT_LE(std::abs(tin.volume() - v0), 0.01 * r.displaced_volume);
             EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 0.01 * r.displaced_volume);
+            // Part of the band lies in the domain: nothing is lost, and nothing is warned of.
+            EXPECT_LE(std::abs(r.undeposited_volume), 1e-9 * r.displaced_volume);
+            EXPECT_FALSE(lost_extrusion_warning(r).has_value());
         }
     }
+}
+
+// A tool covering the whole terrain has nowhere beside it to push the sand: the band where the
+// ridge goes lies outside the domain. That sand leaves the terrain, and the report says how
+// much. Oracle: the sand is flat, so the terrain loses the domain's area times the depth, and
+// that is what the report must call undeposited.
+TEST(Extrusion, ARidgeWithNowhereToGoIsReportedAndWarnedOf) {
+    const Rect domain = Rect::from_size(2.0, 1.0);
+    Tin tin = Tin::random_points(domain, 2000, 203, [](Vec2) { return 0.1; });
+    SculptContext context(domain);
+    ToolSpec spec;
+    spec.radius = 100.0;
+    spec.control_points = 64;
+    spec.extrude = true;
+    const Tool tool = Tool::build(spec);
+    const double v0 = tin.volume();
+    const StampReport r = stamp(tin, tool, {{1.0, 0.5}, 0.0, 0.09}, context, Vec2{1.0, 0.0});
+    ASSERT_TRUE(r.applied);
+    ASSERT_TRUE(mesh_is_sound(tin));
+    const double lost = 2.0 * 1.0 * 0.01;
+    EXPECT_NEAR(v0 - tin.volume(), lost, 1e-12);
+    EXPECT_NEAR(r.undeposited_volume, lost, 1e-12);
+    EXPECT_NEAR(r.deposited_volume, 0.0, 1e-12);
+    const std::optional<std::string> warning = lost_extrusion_warning(r);
+    ASSERT_TRUE(warning.has_value());
+    EXPECT_NE(warning->find("nowhere to put 0.02 m³"), std::string::npos) << *warning;
+    // Without extrusion nothing was owed, so nothing is lost or warned of.
+    Tin plain = Tin::random_points(domain, 2000, 203, [](Vec2) { return 0.1; });
+    SculptContext plain_context(domain);
+    spec.extrude = false;
+    const StampReport q =
+        stamp(plain, Tool::build(spec), {{1.0, 0.5}, 0.0, 0.09}, plain_context, Vec2{1.0, 0.0});
+    EXPECT_EQ(q.undeposited_volume, 0.0);
+    EXPECT_FALSE(lost_extrusion_warning(q).has_value());
 }
 
 TEST(Extrusion, DepositRidgeAddsExactlyTheVolumeOutsideTheContour) {

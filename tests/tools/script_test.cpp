@@ -159,6 +159,29 @@ TEST(Script, AnOperationTheTerrainRefusesIsNamedByItsLine) {
     }
 }
 
+// A stamp whose extrusion pushed sand over the terrain's edge says so, naming its line; the
+// volume it reports lost is what the flat terrain lost (area times depth).
+TEST(Script, AStampThatLosesItsExtrusionWarnsNamingItsLine) {
+    const Script s = parse(R"([
+  {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "bottom": 0.09},
+  {"op": "stamp", "tool": {"radius": 5, "control_points": 64, "extrude": true},
+   "at": [0.5, 0.5], "bottom": 0.08}
+])");
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 500, 603, [](Vec2) { return 0.1; });
+    SculptContext context(tin.domain());
+    const double v0 = tin.volume();
+    const nlohmann::json report = run_script(s, tin, context);
+    ASSERT_EQ(report.size(), 2u);
+    EXPECT_FALSE(report[0].contains("warning")) << report[0].dump();
+    ASSERT_TRUE(report[1].contains("warning")) << report[1].dump();
+    const std::string w = report[1]["warning"];
+    EXPECT_EQ(w.rfind("line 3: operation 2 (stamp): extrusion had nowhere to put", 0), 0u) << w;
+    // The second stamp leaves the whole 1 m² at its 8 cm floor; it lost all it cut.
+    EXPECT_NEAR(tin.volume(), 0.08, 1e-12);
+    const double before_second = v0 + report[0]["volume_change"].get<double>();
+    EXPECT_NEAR(report[1]["undeposited_volume"].get<double>(), before_second - 0.08, 1e-12);
+}
+
 TEST(Script, RunAppliesTheOperationsAndTheSettings) {
     const std::string text = R"({
   "settings": {"simplify_tolerance": 0.002, "keep_generations": 10},
