@@ -25,7 +25,7 @@ void App::tool_at(Vec3 p) {
         case ToolKind::Stamp: {
             if (!sampler_) {
                 active_tool_ = build_tool();
-                sampler_.emplace(settings_.stroke_spacing);
+                sampler_.emplace(settings_.stroke_spacing_ratio * active_tool_->radius());
             }
             StrokeSettings ss;
             ss.depth = settings_.tool_depth;

@@ -142,8 +142,14 @@ void App::panel_tools() {
         "haptic pen's tip rests in the sand");
     switch (tool.kind) {
         case ToolKind::Stamp: {
-            length_slider("Spacing", settings_.stroke_spacing, 0.001, 0.05, size, "%.1f");
-            tip("Distance between stamps along a stroke (independent of frame rate)");
+            float spacing = static_cast<float>(100.0 * settings_.stroke_spacing_ratio);
+            if (ImGui::SliderFloat("Spacing", &spacing,
+                                   static_cast<float>(100.0 * kMinStrokeSpacingRatio),
+                                   static_cast<float>(100.0 * kMaxStrokeSpacingRatio),
+                                   "%.0f %% of size", ImGuiSliderFlags_Logarithmic))
+                settings_.stroke_spacing_ratio = static_cast<double>(spacing) / 100.0;
+            tip("Distance between stamps along a stroke, as a share of the tool's radius\n"
+                "(independent of frame rate)");
             ImGui::Checkbox("Extrude", &settings_.extrude);
             tip("Push the displaced sand into a rim beside and ahead of the tool (volume "
                 "conserved).");

@@ -203,7 +203,7 @@ void App::fit_settings_to_document() {
         haptic_tool_.reset();
         char text[160];
         std::snprintf(text, sizeof(text),
-                      "tool size, depth, spacing, brush, pour, r_S and simplification scaled "
+                      "tool size, depth, brush, pour, r_S and simplification scaled "
                       "x%.3g for this %.4g m terrain",
                       k, size);
         report(text);
@@ -250,7 +250,8 @@ void App::end_action() {
             ss.angle = settings_.tool_angle * 3.14159265358979 / 180.0;
             const ToolPlacement at =
                 placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
-            stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+            const StampReport r = stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
+            if (const std::optional<std::string> w = lost_extrusion_warning(r)) report(*w);
         }
         sampler_.reset();
     }

@@ -21,7 +21,8 @@ template <class F>
 void fields(EditorSettings& s, F&& f) {
     f("tool_radius", s.tool_radius);
     f("tool_depth", s.tool_depth);
-    f("stroke_spacing", s.stroke_spacing);
+    // Not "stroke_spacing": that key held metres in earlier versions, and is ignored now.
+    f("stroke_spacing_ratio", s.stroke_spacing_ratio);
     f("extrude", s.extrude);
     f("follow_path", s.follow_path);
     f("tool_angle", s.tool_angle);
@@ -72,6 +73,13 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
             throw std::runtime_error("brush_falloff '" + loaded.brush_falloff + "' is unknown");
         if (!(loaded.brush_blend >= 0.0 && loaded.brush_blend <= 1.0))
             throw std::runtime_error("brush_blend must lie in [0, 1]");
+        if (!(loaded.stroke_spacing_ratio >= kMinStrokeSpacingRatio &&
+              loaded.stroke_spacing_ratio <= kMaxStrokeSpacingRatio)) {
+            static_assert(kMinStrokeSpacingRatio == 0.02 && kMaxStrokeSpacingRatio == 2.0,
+                          "the message below names the range");
+            throw std::runtime_error(
+                "stroke_spacing_ratio must lie in [0.02, 2] (a fraction of the tool's radius)");
+        }
         s = loaded;
     } catch (const std::exception& e) {
         if (problem != nullptr)

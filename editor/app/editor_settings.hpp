@@ -10,10 +10,13 @@
 namespace sandtin::editor {
 
 struct EditorSettings {
-    int tool = 0;                   ///< index into kTools; saved as the tool's label
-    double tool_radius = 0.04;      ///< metres
-    double tool_depth = 0.01;       ///< metres below the terrain ahead of the tool
-    double stroke_spacing = 0.01;   ///< metres between stamps
+    int tool = 0;               ///< index into kTools; saved as the tool's label
+    double tool_radius = 0.04;  ///< metres
+    double tool_depth = 0.01;   ///< metres below the terrain ahead of the tool
+    /// Stamps along a stroke, this fraction of the tool's radius apart (as a paint program's
+    /// brush spacing): a big tool does not stamp dozens of times per width, nor a small one
+    /// leave gaps. 0.25 is 1 cm for the default 4 cm tool.
+    double stroke_spacing_ratio = 0.25;
     bool extrude = true;            ///< push displaced sand into a rim beside and ahead of the tool
     bool follow_path = true;        ///< tool heading follows the stroke
     double tool_angle = 0.0;        ///< degrees, when not following the path
@@ -43,6 +46,10 @@ struct EditorSettings {
 
     friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
 };
+
+/// The range of stroke_spacing_ratio the panel offers and a settings file may hold.
+inline constexpr double kMinStrokeSpacingRatio = 0.02;
+inline constexpr double kMaxStrokeSpacingRatio = 2.0;
 
 std::filesystem::path default_settings_path();
 /// Missing file: defaults. Unreadable or invalid JSON: defaults, with `problem` set to why.

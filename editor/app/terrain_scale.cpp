@@ -14,8 +14,9 @@ double fit_settings_to_terrain(EditorSettings& s, double size) {
     if (!(s.scene_size > 0.0) || !std::isfinite(s.scene_size)) s.scene_size = 1.0;
     if (size == s.scene_size) return 1.0;
     const double k = size / s.scene_size;
-    for (double* length : {&s.tool_radius, &s.tool_depth, &s.stroke_spacing, &s.brush_strength,
-                           &s.relocation_radius, &s.simplify_tolerance})
+    // (The stroke spacing is a fraction of the tool's radius, so it follows the tool.)
+    for (double* length : {&s.tool_radius, &s.tool_depth, &s.brush_strength, &s.relocation_radius,
+                           &s.simplify_tolerance})
         *length *= k;
     s.pour_volume *= k * k * k;
     s.scene_size = size;

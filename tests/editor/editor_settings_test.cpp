@@ -76,6 +76,23 @@ TEST(Settings, TheToolIsSavedByItsLabelAndBrushSettingsAreChecked) {
         EXPECT_EQ(load_settings(path, &problem), EditorSettings{}) << bad;
         EXPECT_NE(problem.find("brush_"), std::string::npos) << bad << ": " << problem;
     }
+    // A stroke spacing of zero would never finish a stroke; one past the slider's range is no
+    // setting the panel could have written.
+    for (const char* bad : {R"({"stroke_spacing_ratio": 0})", R"({"stroke_spacing_ratio": -0.5})",
+                            R"({"stroke_spacing_ratio": 50})"}) {
+        std::ofstream(path) << bad;
+        problem.clear();
+        EXPECT_EQ(load_settings(path, &problem), EditorSettings{}) << bad;
+        EXPECT_NE(problem.find("stroke_spacing_ratio"), std::string::npos)
+            << bad << ": " << problem;
+    }
+    // The metres of earlier versions' "stroke_spacing" are not a fraction: the key is ignored,
+    // and the rest of the file counts.
+    std::ofstream(path) << R"({"stroke_spacing": 0.01, "tool_radius": 0.03})";
+    problem.clear();
+    EXPECT_EQ(load_settings(path, &problem).stroke_spacing_ratio, 0.25);
+    EXPECT_EQ(load_settings(path, &problem).tool_radius, 0.03);
+    EXPECT_TRUE(problem.empty()) << problem;
     std::filesystem::remove_all(dir);
 }
 

@@ -18,7 +18,6 @@ EditorSettings defaults_scaled(double k) {
     EditorSettings s;
     s.tool_radius *= k;
     s.tool_depth *= k;
-    s.stroke_spacing *= k;
     s.brush_strength *= k;
     s.relocation_radius *= k;
     s.simplify_tolerance *= k;
