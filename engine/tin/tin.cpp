@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -2019,6 +2020,151 @@ std::vector<ConstraintId> Tin::insert_constraints(std::span<const std::array<Ver
     }
     finisher.finish(policy, {}, report);
     return ids;
+}
+
+namespace {
+
+/// Height of the plane through the three vertices at p.
+double plane_height_at(const Tin::Impl& m, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                       Vec2 p) {
+    const Vec2 pa = m.va.position[a];
+    const Vec2 u = m.va.position[b] - pa;
+    const Vec2 w = m.va.position[c] - pa;
+    const double area = cross(u, w);
+    const double beta = cross(p - pa, w) / area;
+    const double gamma = cross(u, p - pa) / area;
+    return m.va.height[a] + beta * (m.va.height[b] - m.va.height[a]) +
+           gamma * (m.va.height[c] - m.va.height[a]);
+}
+
+/// How far the surface over the quadrilateral of edge (f, i) moves if the edge gives way to
+/// the other diagonal: the vertical gap between the two diagonals where they cross. A
+/// non-convex quadrilateral cannot flip, but a re-triangulation can still remove its edge:
+/// there, how far each far corner stands off the plane of the other face. 0 for coplanar
+/// faces either way.
+double edge_bend(const Tin::Impl& m, Fh f, int i) {
+    const Fh g = f->neighbor(i);
+    const std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
+    const std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
+    const std::uint32_t c = f->vertex(i)->id;
+    const std::uint32_t d = g->vertex(g->index(f))->id;
+    const Vec2 pa = m.va.position[a], pc = m.va.position[c];
+    const Vec2 e = m.va.position[b] - pa;
+    const Vec2 k = m.va.position[d] - pc;
+    const double denom = cross(e, k);
+    const double t = cross(pc - pa, k) / denom;
+    const double s = cross(pc - pa, e) / denom;
+    if (t >= 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0) {
+        const double on_edge = (1.0 - t) * m.va.height[a] + t * m.va.height[b];
+        const double on_diagonal = (1.0 - s) * m.va.height[c] + s * m.va.height[d];
+        return std::abs(on_edge - on_diagonal);
+    }
+    return std::max(std::abs(m.va.height[d] - plane_height_at(m, a, b, c, m.va.position[d])),
+                    std::abs(m.va.height[c] - plane_height_at(m, a, b, d, pc)));
+}
+
+}  // namespace
+
+std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
+                                  std::span<const std::array<Vec2, 2>> segments, double tolerance,
+                                  double min_length, Generation generation,
+                                  const PolygonInclusion* within, LocateHint* hint,
+                                  EditReport* report) {
+    Impl& m = *impl_;
+    if (m.cdt.dimension() != 2) return 0;
+    std::vector<std::array<VertexId, 2>> bent;
+    auto consider = [&](Fh f, int i) {
+        const Fh g = f->neighbor(i);
+        if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g) || m.cdt.is_constrained({f, i})) return;
+        std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
+        std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
+        if (!(length_squared(m.va.position[b] - m.va.position[a]) > min_length * min_length))
+            return;
+        if (!(edge_bend(m, f, i) > tolerance)) return;
+        if (within != nullptr) {
+            const std::uint32_t c = f->vertex(i)->id;
+            const std::uint32_t d = g->vertex(g->index(f))->id;
+            if (within->contains(m.va.position[a]) && within->contains(m.va.position[b]) &&
+                within->contains(m.va.position[c]) && within->contains(m.va.position[d])) {
+                return;
+            }
+        }
+        if (b < a) std::swap(a, b);
+        bent.push_back({VertexId{a}, VertexId{b}});
+    };
+    // A point: the insertion removes the edges between faces in conflict with it. Walking
+    // out from the face that holds it, a bent edge is fenced and not crossed, so faces beyond
+    // it stay out of the cavity and their edges need no fence.
+    std::vector<Fh> zone, reached;
+    for (const Vec2 p : points) {
+        if (!is_finite(p) || !m.domain.contains(p)) continue;
+        zone.clear();
+        m.cdt.get_conflicts(to_point(p), std::back_inserter(zone), start_face(m, p, hint));
+        if (zone.empty()) continue;  // on a vertex
+        auto in = [](const std::vector<Fh>& set, Fh f) {
+            return std::find(set.begin(), set.end(), f) != set.end();
+        };
+        reached.assign(1, zone.front());  // the face holding p (CGAL lists it first)
+        // A point on an edge, or within the snap distance of one (rim samples are crossings
+        // of edges), goes into that edge, and the flips after the split start on both sides.
+        const double snap2 = m.snap_distance * m.snap_distance;
+        for (int i = 0; i < 3; ++i) {
+            const Fh g = zone.front()->neighbor(i);
+            if (m.cdt.is_infinite(g)) continue;
+            const Vec2 a = m.va.position[zone.front()->vertex(CdtPlus::ccw(i))->id];
+            const Vec2 e = m.va.position[zone.front()->vertex(CdtPlus::cw(i))->id] - a;
+            const double c = cross(e, p - a);
+            if (c * c <= snap2 * length_squared(e)) {
+                consider(zone.front(), i);
+                if (!in(reached, g)) reached.push_back(g);
+            }
+        }
+        for (std::size_t next = 0; next < reached.size(); ++next) {
+            const Fh f = reached[next];
+            for (int i = 0; i < 3; ++i) {
+                const Fh g = f->neighbor(i);
+                if (!in(zone, g) || in(reached, g) || m.cdt.is_constrained({f, i})) continue;
+                const std::size_t before = bent.size();
+                consider(f, i);
+                if (bent.size() == before) reached.push_back(g);
+            }
+        }
+    }
+    // A segment: every edge of the faces it crosses (those it removes, and the rims of the
+    // pockets it leaves, which the flips after it may take).
+    for (const auto& s : segments) {
+        if (!is_finite(s[0]) || !is_finite(s[1]) || !m.domain.contains(s[0]) ||
+            !m.domain.contains(s[1]) || s[0] == s[1]) {
+            continue;
+        }
+        const detail::Point pa = to_point(s[0]);
+        const detail::Point pb = to_point(s[1]);
+        // The walk must start in a face holding its first end.
+        CdtPlus::Locate_type lt;
+        int li = 0;
+        const Fh holder = m.cdt.locate(pa, lt, li, start_face(m, s[0], hint));
+        auto walk = m.cdt.line_walk(pa, pb, holder);
+        if (walk.is_empty()) continue;
+        const auto first = walk;
+        // A segment inside the domain crosses finitely many faces; the bound only guards
+        // against a walk that never meets the end (it cannot, short of a CGAL defect).
+        for (std::size_t step = 0; step <= m.cdt.number_of_faces(); ++step) {
+            const Fh f = walk;
+            if (m.cdt.is_infinite(f)) break;
+            for (int i = 0; i < 3; ++i)
+                consider(f, i);
+            if (m.cdt.oriented_side(f, pb) != CGAL::ON_NEGATIVE_SIDE) break;
+            if (++walk == first) break;
+        }
+    }
+    if (bent.empty()) return 0;
+    std::sort(bent.begin(), bent.end(), [](const auto& x, const auto& y) {
+        return std::pair(x[0].value, x[1].value) < std::pair(y[0].value, y[1].value);
+    });
+    bent.erase(std::unique(bent.begin(), bent.end()), bent.end());
+    // Constraining an existing edge re-triangulates nothing.
+    insert_constraints(bent, generation, VolumePolicy::Report, report);
+    return bent.size();
 }
 
 namespace {
