@@ -447,6 +447,7 @@ nlohmann::json stamp_json(const StampReport& r) {
                         {"vertices_removed", r.vertices_removed},
                         {"triangles_touched", r.triangles_touched},
                         {"constraints_released", r.constraints_released},
+                        {"edges_fenced", r.edges_fenced},
                         {"enforce_ms", r.enforce_ms},
                         {"simplify_ms", r.simplify_ms},
                         {"extrude_ms", r.extrude_ms}};

@@ -24,6 +24,10 @@ struct SculptSettings {
     /// points (about 60 per stamp) clearing cost 7 % more CPU than the plain path, at 10^6
     /// (about 800) 30 % less.
     std::size_t min_bulk_clearing = 200;
+    /// A stamp first constrains the bent edges, longer than the tool is wide, that inserting
+    /// its rim would re-triangulate (Tin::fence_bent_edges), so on a coarse TIN it re-shapes
+    /// nothing beyond its outer contour. Off only to measure what that costs.
+    bool fence_coarse_edges = true;
 };
 
 class SculptContext {

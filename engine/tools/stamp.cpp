@@ -28,6 +28,7 @@ void StampReport::accumulate(const StampReport& o) {
     vertices_removed += o.vertices_removed;
     triangles_touched += o.triangles_touched;
     constraints_released += o.constraints_released;
+    edges_fenced += o.edges_fenced;
     simplify.accumulate(o.simplify);
     cleared.candidates += o.cleared.candidates;
     cleared.removed += o.cleared.removed;
@@ -300,6 +301,34 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             }
         }
     }
+    // Before anything changes: the bent edges that inserting O would re-triangulate are
+    // constrained (Tin::fence_bent_edges), so the surface outside O stays as it was, and where
+    // O crosses them it takes the terrain's own height there. Edges no longer than the tool is
+    // wide stay free: sand that tools sculpted has no longer ones but flat floors, and its
+    // re-triangulation beside a tool is the tool's own detail (fencing there too left the
+    // constraints of a long stroke unbounded). An elevation model's triangles are far wider
+    // than a tool. The
+    // fences are one generation older than the stamp: the release after O is constrained frees
+    // them inside O; outside they stay until a later footprint or their expiry frees them.
+    // (After the bulk clearing below, an edge across the cleared sand would give a crossing the
+    // cleared surface's height.) A fenced terrain (a coarse elevation model) gets all of O
+    // constrained, not only the parts next to an active I: the release's flips inside O must
+    // not leave through an unconstrained stretch of it.
+    // Where O crosses edges far more often than once per fence length the terrain is sand
+    // sculpted at the tool's scale, and looking for long edges costs a stamp 9 % (at 10^6
+    // points) to find none: it is skipped.
+    const PolygonInclusion in_outer(outer, at.centre);
+    const double perimeter = polygon_perimeter(outer);
+    const double fence_above = 2.0 * tool.shape().bounding_radius;
+    const bool coarse = 8.0 * perimeter > fence_above * static_cast<double>(rim_crossings);
+    if (context.settings.fence_coarse_edges && coarse) {
+        std::vector<std::array<Vec2, 2>> spans;
+        for (std::size_t k = 0; k < rim.size(); ++k)
+            spans.push_back({rim[k], rim[(k + 1) % rim.size()]});
+        report.edges_fenced = tin.fence_bent_edges(rim, spans, tol, fence_above, generation - 1,
+                                                   &in_outer, hint, &edit);
+        if (report.edges_fenced > 0) std::fill(rim_active.begin(), rim_active.end(), 1);
+    }
     // Inserts the endpoints of the active segments of a closed contour and constrains them,
     // adding what that did to `into`.
     auto enforce = [&](const std::vector<Vec2>& pts, const std::vector<double>& hs,
@@ -346,7 +375,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         std::all_of(rim_active.begin(), rim_active.end(), [](std::uint8_t a) { return a != 0; });
     auto both_active_at = [&](Vec2 p) { return all_active || band_position(p).both_active; };
     const VertexArrays& va = tin.vertices();
-    const PolygonInclusion in_outer(outer, at.centre);
     const PolygonInclusion in_inner(inner, at.centre);
 
     // Sand the imprint is about to replace goes first, in bulk (tin/bulk_removal.hpp). The contours
@@ -361,7 +389,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // Whether enough vertices could qualify to be worth the walk that finds them: a segment of
     // length L crosses about 1.08 sqrt(rho) L edges of a Delaunay triangulation of density rho
     // (Poisson points), so the rim's crossings estimate the vertices inside O.
-    const double perimeter = polygon_perimeter(outer);
     const double per_metre = perimeter > 0.0 ? static_cast<double>(rim_crossings) / perimeter : 0.0;
     const double density = (per_metre / 1.08) * (per_metre / 1.08);
     const double expected_inside = density * std::abs(signed_area(outer));
@@ -481,6 +508,10 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
                                       to_rim.t * rim_h[(nearest_rim + 1) % rim.size()];
             const double profile = frame.underside(p);
             if (!std::isfinite(profile) || !(d_inner + d_outer > 0.0)) continue;
+            // A vertex on O itself (where O crossed a fenced edge, at that edge's height) is
+            // the terrain the rim follows, which may stand off the chord between rim samples
+            // by up to the rim tolerance.
+            if (d_outer <= tin.snap_distance()) continue;
             const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
                                 (d_inner + d_outer);
             if (va.height[v.value] > wall) tin.set_height(v, wall);

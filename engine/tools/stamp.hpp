@@ -44,6 +44,9 @@ struct StampReport {
     std::size_t vertices_removed = 0;
     std::size_t triangles_touched = 0;  ///< triangle slots the stamp changed
     std::size_t constraints_released = 0;
+    /// Bent edges constrained so the rim's insertion could not re-shape the surface beyond O
+    /// (Tin::fence_bent_edges): 0 on dense sand, some on a coarse elevation model.
+    std::size_t edges_fenced = 0;
     SimplifyReport simplify;
     BulkRemoval cleared;       ///< sand removed in bulk before the contours (tin/bulk_removal.hpp)
     double enforce_ms = 0.0;   ///< steps 1-5

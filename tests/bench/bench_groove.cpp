@@ -74,12 +74,14 @@ ToolSpec seeds_circle() {
 /// the stamps' enforcement and simplification.
 GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validate,
                      bool clear_before_imprint = true, Erosion erosion = Erosion::None,
-                     TalusSettings physics_settings = {}, double side = 1.0) {
+                     TalusSettings physics_settings = {}, double side = 1.0,
+                     bool fence_coarse_edges = true) {
     TinOptions options;
     options.track_changes = false;
     Tin tin = Tin::random_points(Rect::from_size(side, side), n, 2009, {}, options);
     SculptContext context(tin.domain());
     context.settings.clear_before_imprint = clear_before_imprint;
+    context.settings.fence_coarse_edges = fence_coarse_edges;
     std::unique_ptr<SandPhysics> physics;
     if (erosion != Erosion::None) {
         physics = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), physics_settings);
@@ -277,12 +279,17 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         // repetition with the median total.
         // The same groove without the stamp's bulk clearing (SculptSettings::
         // clear_before_imprint), alternating with the default runs, for the ratio.
+        // And without the fence against re-shaping coarse terrain (SculptSettings::
+        // fence_coarse_edges), which finds nothing to fence in sand: what looking costs.
         std::vector<GrooveRun> runs;
         std::vector<GrooveRun> plain;
+        std::vector<GrooveRun> unfenced;
         const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
         for (int r = 0; r < reps; ++r) {
             runs.push_back(run_groove(tool, n, 0.8, r == 0));
             plain.push_back(run_groove(tool, n, 0.8, false, false));
+            unfenced.push_back(
+                run_groove(tool, n, 0.8, false, true, Erosion::None, {}, 1.0, false));
         }
         const GrooveRun mid = median_by_total(runs);
         const GrooveRun plain_mid = median_by_total(plain);
@@ -292,6 +299,12 @@ nlohmann::json bench_groove(const BenchConfig& config) {
             {"total_ms", plain_mid.total_ms},
             {"vertices_after", plain_mid.vertices_after},
             {"per_stamp_ratio", mid.per_stamp_median_ms / plain_mid.per_stamp_median_ms}};
+        const GrooveRun unfenced_mid = median_by_total(unfenced);
+        row["without_fence"] = {
+            {"per_stamp_median_ms", unfenced_mid.per_stamp_median_ms},
+            {"total_ms", unfenced_mid.total_ms},
+            {"vertices_after", unfenced_mid.vertices_after},
+            {"per_stamp_ratio", mid.per_stamp_median_ms / unfenced_mid.per_stamp_median_ms}};
         // Once more with erosion after every stamp (one run: the relaxation's share is what
         // it adds, not a target).
         const GrooveRun eroded = run_groove(tool, n, 0.8, true, true, Erosion::BetweenStamps);

@@ -220,14 +220,18 @@ TEST(DegenerateGeometry, StrokeCrossingManyOldConstraints) {
     EXPECT_GT(r.constraints_released, 0u);
     // Bounded by the generations kept, not by the stamps: a stroke keeps at most the rims of
     // its last keep_generations stamps (each measured alone on a fresh terrain) plus the old
-    // constraints, which it can only release or split.
+    // constraints, which it can only release or split, plus the edges it fenced: the bars'
+    // long, bent edges, which guard their imprints beside the stroke (Tin::fence_bent_edges;
+    // each is fenced once, and the stroke's later stamps do not fence them again).
     Tin fresh = Tin::flat_rectangle(Rect::from_size(1.0, 1.0), 0.1);
     SculptContext fresh_ctx(fresh.domain());
     stamp(fresh, circle(0.03), {{0.5, 0.5}, 0.0, 0.08}, fresh_ctx);
     const std::size_t per_stamp = fresh.constraint_count();
     ASSERT_GT(per_stamp, 0u);
-    EXPECT_LE(tin.constraint_count(),
-              constraints_before + (ctx.settings.keep_generations + 1) * per_stamp);
+    EXPECT_LE(
+        tin.constraint_count(),
+        constraints_before + (ctx.settings.keep_generations + 1) * per_stamp + r.edges_fenced);
+    EXPECT_LT(r.edges_fenced, constraints_before / 4) << "fences grew with the stamps";
 }
 
 }  // namespace

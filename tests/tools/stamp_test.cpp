@@ -892,5 +892,57 @@ TEST(Stamp, ALambdaCutIntoPiecesByEachSideKeepsThePlaneOutsideItsOuterContour) {
     }
 }
 
+// An imported elevation model: 400 points over 500 m of hills, each triangle tens of metres wide
+// and far from flat. Inserting a tool's rim by Delaunay's rule re-shaped triangles far beyond
+// it (4.6 cm, 23 m away, under a 0.5 m tool placed on a vertex of the model); the bent edges
+// around the rim are now constrained first (Tin::fence_bent_edges). Oracle: the surface before
+// the stamp, sampled on a grid around the tool. Outside O it may move by no more than the rim
+// tolerance (the rim follows the terrain that closely, and the wall leans on it); placements in
+// a triangle, on a vertex, next to one and on an edge, for a small and a large tool.
+TEST(Stamp, OnACoarseElevationModelTheSurfaceOutsideOHoldsWithinTheRimTolerance) {
+    const auto hills_at = [](Vec2 p) {
+        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
+    };
+    const Tin model = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills_at);
+    const std::vector<VertexId> ids = live_ids(model);
+    std::vector<VertexId> next_to;
+    model.neighbours(ids[60], next_to);
+    const Vec2 places[] = {{203.0, 207.0},
+                           model.position(ids[57]),
+                           model.position(ids[58]) + Vec2{0.2, -0.1},
+                           (model.position(ids[60]) + model.position(next_to[0])) * 0.5};
+    for (const double radius : {0.5, 5.0}) {
+        const Tool tool = circle_tool(radius, 12);
+        for (const Vec2 at : places) {
+            SCOPED_TRACE(std::to_string(radius) + " m tool at " + std::to_string(at.x) + ", " +
+                         std::to_string(at.y));
+            Tin tin = Tin::from_snapshot(model.snapshot());
+            SculptContext context(tin.domain());
+            const StampReport r = stamp(tin, tool, {at, 0.0, *tin.height_at(at) - 0.05}, context);
+            ASSERT_TRUE(r.applied);
+            ASSERT_TRUE(mesh_is_sound(tin));
+            EXPECT_GT(r.edges_fenced, 0u) << "the premise: this model has bent edges to fence";
+            const std::vector<Vec2> outer = world({at, 0.0, 0.0}, tool.shape().outer);
+            double worst = 0.0;
+            Vec2 worst_at;
+            std::size_t compared = 0;
+            LocateHint before_hint, after_hint;
+            for (Vec2 p :
+                 test::grid_points(Rect{at - Vec2{60.0, 60.0}, at + Vec2{60.0, 60.0}}, 241, 241)) {
+                if (!model.domain().contains(p) || !outside_by(p, outer, 1e-3)) continue;
+                ++compared;
+                const double d =
+                    std::abs(*tin.height_at(p, &after_hint) - *model.height_at(p, &before_hint));
+                if (d > worst) worst_at = p;
+                worst = std::max(worst, d);
+            }
+            EXPECT_GT(compared, 50000u);
+            EXPECT_LE(worst, tool.rim_tolerance())
+                << "the surface moved outside O by " << worst << " m at " << worst_at.x << ", "
+                << worst_at.y << ", " << distance(worst_at, at) << " m from the tool";
+        }
+    }
+}
+
 }  // namespace
 }  // namespace sandtin
