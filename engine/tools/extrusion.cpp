@@ -10,6 +10,7 @@
 #include "geom/polygon.hpp"
 #include "geom/polygon_inclusion.hpp"
 #include "tools/slivers.hpp"
+#include "tools/tool_shape.hpp"
 
 namespace sandtin {
 
@@ -85,11 +86,42 @@ std::vector<std::pair<VertexId, double>> ridge_shares(const Tin& tin,
     return ks;
 }
 
+/// The band's outer edge on a coarse TIN (RidgeFence): the contour offset by the width, clipped
+/// to the domain, points a quarter width apart, inserted at the surface's height and
+/// constrained once the bent edges around it are fenced.
+void enclose_band(Tin& tin, std::span<const Vec2> outer, double width, const RidgeFence& fence,
+                  LocateHint* hint, RidgeReport& report) {
+    const Rect domain = tin.domain();
+    std::vector<Vec2> edge = clip_to_rect(offset_contour(outer, width), domain.min, domain.max);
+    if (edge.size() < 3) return;
+    edge = subdivide_contour(edge, 0.25 * width);
+    std::vector<std::array<Vec2, 2>> sides;
+    for (std::size_t k = 0; k < edge.size(); ++k)
+        sides.push_back({edge[k], edge[(k + 1) % edge.size()]});
+    report.edges_fenced += tin.fence_bent_edges(edge, sides, fence.tolerance, fence.min_length,
+                                                fence.generation, nullptr, hint);
+    const std::vector<VertexId> ids =
+        tin.insert_points_on_surface(edge, hint, VolumePolicy::Report);
+    std::vector<std::array<VertexId, 2>> segments;
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+        const VertexId a = ids[k];
+        const VertexId b = ids[(k + 1) % ids.size()];
+        // Along the domain's border the hull holds the band already.
+        const Vec2 pa = tin.position(a), pb = tin.position(b);
+        const bool on_border = (pa.x == domain.min.x && pb.x == domain.min.x) ||
+                               (pa.x == domain.max.x && pb.x == domain.max.x) ||
+                               (pa.y == domain.min.y && pb.y == domain.min.y) ||
+                               (pa.y == domain.max.y && pb.y == domain.max.y);
+        if (a != b && !on_border) segments.push_back({a, b});
+    }
+    tin.insert_constraints(segments, fence.generation, VolumePolicy::Report);
+}
+
 }  // namespace
 
 RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
                           std::optional<Vec2> motion, double width, double volume, LocateHint* hint,
-                          std::vector<VertexId>* touched) {
+                          std::vector<VertexId>* touched, const RidgeFence* fence) {
     RidgeReport report;
     const std::size_t n = outer.size();
     if (volume == 0.0 || !std::isfinite(volume) || n < 3 || !(width > 0.0)) return report;
@@ -124,6 +156,12 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     const std::vector<double> every_side(n, 1.0);
     if (direction != every_side) preferences.push_back(every_side);  // no motion: the same
 
+    // Enclosing the band re-triangulates what its fences leave free (edges bent by less than
+    // their tolerance): the ridge makes up that volume, so the deposit is exact.
+    const double ledger_start = tin.volume_ledger();
+    if (fence != nullptr) enclose_band(tin, outer, width, *fence, hint, report);
+    const double to_raise = volume - (tin.volume_ledger() - ledger_start);
+
     // The band's vertices: every vertex within reach of the ridge, before any is added.
     Rect box;
     for (Vec2 p : outer)
@@ -152,9 +190,11 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
         if (denominator > 0.0) break;
     }
     report.vertices_inserted = tin.vertex_count() - before;
-    if (!(denominator > 0.0)) return report;
-    const double ridge_height = volume / denominator;
-    const double ledger0 = tin.volume_ledger();
+    if (!(denominator > 0.0)) {
+        report.deposited = tin.volume_ledger() - ledger_start;
+        return report;
+    }
+    const double ridge_height = to_raise / denominator;
     for (const auto& [v, kv] : ks) {
         tin.set_height(v, va.height[v.value] + ridge_height * kv);
         if (touched != nullptr) touched->push_back(v);
@@ -163,7 +203,7 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     for (const auto& [v, kv] : ks)
         raised.push_back(v);
     equalise_slivers(tin, raised, volume < 0.0);
-    report.deposited = tin.volume_ledger() - ledger0;
+    report.deposited = tin.volume_ledger() - ledger_start;
     return report;
 }
 

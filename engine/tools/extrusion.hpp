@@ -21,6 +21,18 @@ namespace sandtin {
 struct RidgeReport {
     double deposited = 0.0;  ///< m³ added to the terrain
     std::size_t vertices_inserted = 0;
+    std::size_t edges_fenced = 0;  ///< with a RidgeFence
+};
+
+/// On a coarse TIN (an imported elevation model, whose triangles are far wider than the tool)
+/// raising a vertex in the band tilts triangles tens of metres long, and inserting stations
+/// re-triangulates beyond it. With these values the band's outer edge (the contour offset by
+/// the width) is first inserted at the surface's height and constrained, after the bent edges
+/// around it are fenced (Tin::fence_bent_edges), so the ridge changes nothing past it.
+struct RidgeFence {
+    double tolerance = 0.0;     ///< m of bend above which an edge is fenced
+    double min_length = 0.0;    ///< m; shorter edges stay free
+    Generation generation = 0;  ///< of the fences and the band's edge
 };
 
 /// Deposits `volume` m³ (negative: takes it away) in a ridge of width `width` m outside the
@@ -30,6 +42,7 @@ struct RidgeReport {
 /// the volume is deposited whenever any of the band lies in the domain.
 RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const double> cut_depth,
                           std::optional<Vec2> motion, double width, double volume,
-                          LocateHint* hint = nullptr, std::vector<VertexId>* touched = nullptr);
+                          LocateHint* hint = nullptr, std::vector<VertexId>* touched = nullptr,
+                          const RidgeFence* fence = nullptr);
 
 }  // namespace sandtin

@@ -321,7 +321,8 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const double perimeter = polygon_perimeter(outer);
     const double fence_above = 2.0 * tool.shape().bounding_radius;
     const bool coarse = 8.0 * perimeter > fence_above * static_cast<double>(rim_crossings);
-    if (context.settings.fence_coarse_edges && coarse) {
+    const bool fenced_terrain = context.settings.fence_coarse_edges && coarse;
+    if (fenced_terrain) {
         std::vector<std::array<Vec2, 2>> spans;
         for (std::size_t k = 0; k < rim.size(); ++k)
             spans.push_back({rim[k], rim[(k + 1) % rim.size()]});
@@ -606,9 +607,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             }
         }
         std::vector<VertexId> ridge;
+        // On a terrain the rim was fenced on, the ridge's band is enclosed too.
+        const RidgeFence ridge_fence{tol, fence_above, generation - 1};
         const RidgeReport ridge_report =
-            deposit_ridge(tin, rim, cut, motion, tool.extrusion_width(), to_deposit, hint, &ridge);
+            deposit_ridge(tin, rim, cut, motion, tool.extrusion_width(), to_deposit, hint, &ridge,
+                          fenced_terrain ? &ridge_fence : nullptr);
         report.deposited_volume = ridge_report.deposited;
+        report.edges_fenced += ridge_report.edges_fenced;
         report.undeposited_volume = to_deposit - ridge_report.deposited;
         context.simplifier.enqueue(ridge);
     }

@@ -23,6 +23,7 @@
 #include "tools/stroke.hpp"
 #include "tools/tool.hpp"
 #include "tools/tool_json.hpp"
+#include "tools/tool_shape.hpp"
 
 namespace sandtin {
 namespace {
@@ -431,6 +432,58 @@ TEST(Extrusion, StationsGoOnlyWhereTheBandLacksVertices) {
         const RidgeReport r = deposit_ridge(tin, outer, cut, std::nullopt, width, 1e-5);
         EXPECT_EQ(r.vertices_inserted, 0u);
         EXPECT_NEAR(tin.volume() - v0, 1e-5, 1e-15);
+    }
+}
+
+// On an elevation model whose triangles are tens of metres wide, raising a vertex of the band
+// tilted whole triangles: the ridge of a 5 m tool moved the surface 1.7 m, 50 m beyond its band
+// (0.5 m tool: 5 cm, 33 m away). The band's outer edge is now constrained at the surface's
+// height first (RidgeFence). Oracles: the surface before the stamp, sampled on a grid beyond
+// the band (O offset by the ridge width), which may move by no more than the rim tolerance;
+// and the volume, which the stamp with extrusion must keep within 1 % of what it displaced.
+TEST(Extrusion, OnACoarseElevationModelTheRidgeStaysInItsBand) {
+    const auto hills_at = [](Vec2 p) {
+        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
+    };
+    const Tin model = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills_at);
+    const std::vector<VertexId> ids = live_ids(model);
+    const Vec2 places[] = {
+        {203.0, 207.0}, model.position(ids[57]), model.position(ids[58]) + Vec2{0.2, -0.1}};
+    for (const double radius : {0.5, 5.0}) {
+        ToolSpec spec;
+        spec.radius = radius;
+        spec.extrude = true;
+        const Tool tool = Tool::build(spec);
+        for (const Vec2 at : places) {
+            SCOPED_TRACE(std::to_string(radius) + " m tool at " + std::to_string(at.x) + ", " +
+                         std::to_string(at.y));
+            Tin tin = Tin::from_snapshot(model.snapshot());
+            SculptContext context(tin.domain());
+            const double v0 = tin.volume();
+            const StampReport r =
+                stamp(tin, tool, {at, 0.0, *tin.height_at(at) - 0.05}, context, Vec2{1.0, 0.0});
+            ASSERT_TRUE(r.applied);
+            ASSERT_TRUE(mesh_is_sound(tin));
+            ASSERT_GT(r.displaced_volume, 0.0);
+            EXPECT_LE(std::abs(tin.volume() - v0), 0.01 * r.displaced_volume);
+            EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 0.01 * r.displaced_volume);
+            const std::vector<Vec2> band = offset_contour(
+                test::rotate_all(tool.shape().outer, at, 0.0), tool.extrusion_width());
+            double worst = 0.0;
+            Vec2 worst_at;
+            LocateHint before_hint, after_hint;
+            for (Vec2 p :
+                 test::grid_points(Rect{at - Vec2{60.0, 60.0}, at + Vec2{60.0, 60.0}}, 241, 241)) {
+                if (!model.domain().contains(p) || !test::outside_by(p, band, 1e-3)) continue;
+                const double d =
+                    std::abs(*tin.height_at(p, &after_hint) - *model.height_at(p, &before_hint));
+                if (d > worst) worst_at = p;
+                worst = std::max(worst, d);
+            }
+            EXPECT_LE(worst, tool.rim_tolerance())
+                << "the surface moved beyond the ridge's band by " << worst << " m at "
+                << worst_at.x << ", " << worst_at.y;
+        }
     }
 }
 
