@@ -33,10 +33,12 @@ std::optional<InvariantViolation> check_terrain_invariants(const Tin& tin,
     if (const ValidationReport v = tin.check_valid(); !v.ok())
         return InvariantViolation{"valid", v.summary()};
     for (const ConstraintInfo& c : tin.constraints()) {
-        if (c.generation < 1 || c.generation >= next_generation) {
+        // Generation 0 is the terrain before the first stamp: the first stamp's fences
+        // (Tin::fence_bent_edges) guard it, one generation older than the stamp.
+        if (c.generation >= next_generation) {
             return InvariantViolation{
                 "generations", "constraint " + std::to_string(c.id.value) + " has generation " +
-                                   std::to_string(c.generation) + ", but only 1.." +
+                                   std::to_string(c.generation) + ", but only 0.." +
                                    std::to_string(next_generation - 1) + " were handed out"};
         }
     }

@@ -2,7 +2,8 @@
 // The invariants a terrain must keep after every operation, checked by the stress runner:
 // a valid constrained Delaunay triangulation (CGAL's own check), finite attributes everywhere
 // (moisture in [0, 1], texture slide in [0, 1), bedrock never above the surface),
-// constraints only from generations that were handed out, and vertex and constraint counts
+// constraints only from generations that were handed out (or 0, the terrain before the first
+// stamp, which that stamp's fences guard), and vertex and constraint counts
 // within the bounds a long session must respect.
 
 #include <cstddef>

@@ -94,6 +94,10 @@ TEST(TerrainInvariants, ConstraintsFromGenerationsNotHandedOutAreReported) {
     const auto v = check_terrain_invariants(tin, 5, {});
     ASSERT_TRUE(v.has_value());
     EXPECT_EQ(v->invariant, "generations");
+    // Generation 0 is the terrain before the first stamp (whose fences guard it).
+    Tin fenced = Tin::flat_rectangle(Rect::from_size(1.0, 1.0), 0.0);
+    constrain(fenced, {0.2, 0.2}, {0.8, 0.3}, 0);
+    EXPECT_FALSE(check_terrain_invariants(fenced, 1, {}).has_value());
 }
 
 TEST(TerrainInvariants, VertexAndConstraintBoundsAreReported) {
