@@ -23,6 +23,12 @@ struct Rect {
     constexpr bool contains(Vec2 p) const {
         return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y;
     }
+    /// Whether the segment a-b runs along one of the sides: both ends exactly on it (as
+    /// clipping to the rectangle leaves them).
+    constexpr bool has_on_one_side(Vec2 a, Vec2 b) const {
+        return (a.x == min.x && b.x == min.x) || (a.x == max.x && b.x == max.x) ||
+               (a.y == min.y && b.y == min.y) || (a.y == max.y && b.y == max.y);
+    }
     constexpr bool intersects(const Rect& o) const {
         return !(o.min.x > max.x || o.max.x < min.x || o.min.y > max.y || o.max.y < min.y);
     }

@@ -1057,6 +1057,27 @@ Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
     return loc.face;
 }
 
+/// Walks the finite faces the segment a-b crosses, from the one holding a, calling
+/// visit(face) until it returns true (it has seen b) or the walk leaves the hull. Each face is
+/// met at most once, so the walk is bounded by the face count.
+template <class Visit>
+void walk_faces_along(const Tin::Impl& m, Vec2 a, Vec2 b, LocateHint* hint, Visit&& visit) {
+    auto lfc = m.cdt.line_walk(to_point(a), to_point(b), face_at(m, a, hint));
+    if (lfc.is_empty()) return;
+    const auto done = lfc;
+    for (std::size_t step = 0; step <= m.cdt.number_of_faces(); ++step) {
+        if (m.cdt.is_infinite(lfc)) return;
+        if (visit(Fh(lfc))) return;
+        if (++lfc == done) return;
+    }
+}
+
+/// Whether p lies within sqrt(snap2) of the line through a and b.
+bool near_line(Vec2 a, Vec2 b, Vec2 p, double snap2) {
+    const double c = cross(b - a, p - a);
+    return c * c <= snap2 * length_squared(b - a);
+}
+
 /// Ids of the constraints whose bounding boxes meet `box`, ascending: every constraint whose
 /// polyline meets the box is among them. Read from the grid of constraint bounds, so a tool
 /// pays for the constraints near its footprint, not for every constraint in the terrain.
@@ -1203,39 +1224,30 @@ std::vector<std::pair<double, double>> Tin::section(Vec2 a, Vec2 b, LocateHint* 
     if (!is_finite(a) || !is_finite(b)) return out;
     out.emplace_back(0.0, height_at(a, hint).value_or(0.0));
     if (a == b) return out;
-    const Fh start = face_at(m, a, hint);
-    auto lfc = m.cdt.line_walk(to_point(a), to_point(b), start);
     std::vector<std::pair<double, double>> crossings;
-    if (!lfc.is_empty()) {
-        const auto done = lfc;
-        const Vec2 ab = b - a;
-        for (std::size_t steps = 0; steps < 4'000'000; ++steps) {
-            if (m.cdt.is_infinite(lfc)) break;
-            const Fh f = lfc;
-            double t_exit = 0.0;
-            bool contains_b = true;
-            for (int i = 0; i < 3; ++i) {
-                const std::uint32_t iu = f->vertex(CdtPlus::ccw(i))->id;
-                const std::uint32_t iw = f->vertex(CdtPlus::cw(i))->id;
-                const Vec2 u = m.va.position[iu];
-                const Vec2 w = m.va.position[iw];
-                if (cross(w - u, b - u) < 0.0) contains_b = false;
-                const double denom = cross(ab, w - u);
-                if (denom == 0.0) continue;  // parallel: the crossings are at its ends
-                const double t = cross(u - a, w - u) / denom;
-                const double sp = cross(u - a, ab) / denom;
-                if (sp < -1e-12 || sp > 1.0 + 1e-12) continue;
-                t_exit = std::max(t_exit, t);
-                if (t > 0.0 && t < 1.0) {
-                    const double c = std::clamp(sp, 0.0, 1.0);
-                    crossings.emplace_back(t, (1.0 - c) * m.va.height[iu] + c * m.va.height[iw]);
-                }
+    const Vec2 ab = b - a;
+    walk_faces_along(m, a, b, hint, [&](Fh f) {
+        double t_exit = 0.0;
+        bool contains_b = true;
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t iu = f->vertex(CdtPlus::ccw(i))->id;
+            const std::uint32_t iw = f->vertex(CdtPlus::cw(i))->id;
+            const Vec2 u = m.va.position[iu];
+            const Vec2 w = m.va.position[iw];
+            if (cross(w - u, b - u) < 0.0) contains_b = false;
+            const double denom = cross(ab, w - u);
+            if (denom == 0.0) continue;  // parallel: the crossings are at its ends
+            const double t = cross(u - a, w - u) / denom;
+            const double sp = cross(u - a, ab) / denom;
+            if (sp < -1e-12 || sp > 1.0 + 1e-12) continue;
+            t_exit = std::max(t_exit, t);
+            if (t > 0.0 && t < 1.0) {
+                const double c = std::clamp(sp, 0.0, 1.0);
+                crossings.emplace_back(t, (1.0 - c) * m.va.height[iu] + c * m.va.height[iw]);
             }
-            if (contains_b || t_exit >= 1.0) break;
-            ++lfc;
-            if (lfc == done) break;
         }
-    }
+        return contains_b || t_exit >= 1.0;
+    });
     std::sort(crossings.begin(), crossings.end());
     for (const auto& c : crossings) {
         // Each interior edge is met from both of its faces.
@@ -1398,10 +1410,10 @@ std::pair<VertexId, bool> insert_one(Tin& tin, Tin::Impl& m, EditFinisher& finis
     std::array<bool, 3> near_edge{};  // p within the snap distance of the edge opposite corner i
     for (std::size_t i = 0; i < 3; ++i) {
         // Only across an edge p is within the snap distance of (corner i is opposite it).
-        const Vec2 a = m.va.position[loc.corners[(i + 1) % 3]];
-        const Vec2 b = m.va.position[loc.corners[(i + 2) % 3]];
-        const double c = cross(b - a, p - a);
-        if (c * c > snap2 * length_squared(b - a)) continue;
+        if (!near_line(m.va.position[loc.corners[(i + 1) % 3]],
+                       m.va.position[loc.corners[(i + 2) % 3]], p, snap2)) {
+            continue;
+        }
         near_edge[i] = true;
         const Fh g = loc.face->neighbor(static_cast<int>(i));
         const Vh far = g->vertex(g->index(loc.face));
@@ -2111,10 +2123,8 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
         for (int i = 0; i < 3; ++i) {
             const Fh g = zone.front()->neighbor(i);
             if (m.cdt.is_infinite(g)) continue;
-            const Vec2 a = m.va.position[zone.front()->vertex(CdtPlus::ccw(i))->id];
-            const Vec2 e = m.va.position[zone.front()->vertex(CdtPlus::cw(i))->id] - a;
-            const double c = cross(e, p - a);
-            if (c * c <= snap2 * length_squared(e)) {
+            if (near_line(m.va.position[zone.front()->vertex(CdtPlus::ccw(i))->id],
+                          m.va.position[zone.front()->vertex(CdtPlus::cw(i))->id], p, snap2)) {
                 consider(zone.front(), i);
                 if (!in(reached, g)) reached.push_back(g);
             }
@@ -2137,25 +2147,12 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
             !m.domain.contains(s[1]) || s[0] == s[1]) {
             continue;
         }
-        const detail::Point pa = to_point(s[0]);
         const detail::Point pb = to_point(s[1]);
-        // The walk must start in a face holding its first end.
-        CdtPlus::Locate_type lt;
-        int li = 0;
-        const Fh holder = m.cdt.locate(pa, lt, li, start_face(m, s[0], hint));
-        auto walk = m.cdt.line_walk(pa, pb, holder);
-        if (walk.is_empty()) continue;
-        const auto first = walk;
-        // A segment inside the domain crosses finitely many faces; the bound only guards
-        // against a walk that never meets the end (it cannot, short of a CGAL defect).
-        for (std::size_t step = 0; step <= m.cdt.number_of_faces(); ++step) {
-            const Fh f = walk;
-            if (m.cdt.is_infinite(f)) break;
+        walk_faces_along(m, s[0], s[1], hint, [&](Fh f) {
             for (int i = 0; i < 3; ++i)
                 consider(f, i);
-            if (m.cdt.oriented_side(f, pb) != CGAL::ON_NEGATIVE_SIDE) break;
-            if (++walk == first) break;
-        }
+            return m.cdt.oriented_side(f, pb) != CGAL::ON_NEGATIVE_SIDE;
+        });
     }
     if (bent.empty()) return 0;
     std::sort(bent.begin(), bent.end(), [](const auto& x, const auto& y) {

@@ -107,12 +107,8 @@ void enclose_band(Tin& tin, std::span<const Vec2> outer, double width, const Rid
         const VertexId a = ids[k];
         const VertexId b = ids[(k + 1) % ids.size()];
         // Along the domain's border the hull holds the band already.
-        const Vec2 pa = tin.position(a), pb = tin.position(b);
-        const bool on_border = (pa.x == domain.min.x && pb.x == domain.min.x) ||
-                               (pa.x == domain.max.x && pb.x == domain.max.x) ||
-                               (pa.y == domain.min.y && pb.y == domain.min.y) ||
-                               (pa.y == domain.max.y && pb.y == domain.max.y);
-        if (a != b && !on_border) segments.push_back({a, b});
+        if (a != b && !domain.has_on_one_side(tin.position(a), tin.position(b)))
+            segments.push_back({a, b});
     }
     tin.insert_constraints(segments, fence.generation, VolumePolicy::Report);
 }

@@ -303,20 +303,17 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     }
     // Before anything changes: the bent edges that inserting O would re-triangulate are
     // constrained (Tin::fence_bent_edges), so the surface outside O stays as it was, and where
-    // O crosses them it takes the terrain's own height there. Edges no longer than the tool is
-    // wide stay free: sand that tools sculpted has no longer ones but flat floors, and its
-    // re-triangulation beside a tool is the tool's own detail (fencing there too left the
-    // constraints of a long stroke unbounded). An elevation model's triangles are far wider
-    // than a tool. The
-    // fences are one generation older than the stamp: the release after O is constrained frees
-    // them inside O; outside they stay until a later footprint or their expiry frees them.
-    // (After the bulk clearing below, an edge across the cleared sand would give a crossing the
-    // cleared surface's height.) A fenced terrain (a coarse elevation model) gets all of O
-    // constrained, not only the parts next to an active I: the release's flips inside O must
-    // not leave through an unconstrained stretch of it.
-    // Where O crosses edges far more often than once per fence length the terrain is sand
-    // sculpted at the tool's scale, and looking for long edges costs a stamp 9 % (at 10^6
-    // points) to find none: it is skipped.
+    // O crosses them it takes the terrain's own height there (after the bulk clearing below, an
+    // edge across the cleared sand would give it the cleared surface's height).
+    // - Only edges longer than the tool is wide: an elevation model's triangles are far wider
+    //   than a tool, while sand the tools sculpted has no longer ones but flat floors (fencing
+    //   its shorter edges too left a long stroke's constraints unbounded).
+    // - Only where O crosses edges less than 8 times per fence length: denser sand has none to
+    //   find, and looking cost a stamp 9 % at 10^6 points.
+    // - One generation older than the stamp: the release after O is constrained frees them
+    //   inside O; outside they stay until a later footprint or their expiry frees them.
+    // - A fenced terrain gets all of O constrained, not only the parts next to an active I: the
+    //   release's flips inside O must not leave through an unconstrained stretch of it.
     const PolygonInclusion in_outer(outer, at.centre);
     const double perimeter = polygon_perimeter(outer);
     const double fence_above = 2.0 * tool.shape().bounding_radius;

@@ -216,10 +216,7 @@ std::vector<Vec2> samples_along_sides(std::span<const Vec2> polygon, const Rect&
     for (std::size_t k = 0; k < n; ++k) {
         const Vec2 a = polygon[k];
         const Vec2 b = polygon[(k + 1) % n];
-        const bool on_side =
-            (a.x == rect.min.x && b.x == rect.min.x) || (a.x == rect.max.x && b.x == rect.max.x) ||
-            (a.y == rect.min.y && b.y == rect.min.y) || (a.y == rect.max.y && b.y == rect.max.y);
-        if (!on_side) continue;
+        if (!rect.has_on_one_side(a, b)) continue;
         const double pieces = std::ceil(distance(a, b) / spacing);
         for (double i = 1.0; i < pieces; i += 1.0) {
             Vec2 p = lerp(a, b, i / pieces);

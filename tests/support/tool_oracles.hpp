@@ -281,6 +281,28 @@ inline double rolling_sand(Vec2 p) {
     return 0.1 + 0.02 * std::sin(7.0 * p.x + 0.3) * std::cos(5.0 * p.y - 0.2) + 0.01 * p.x;
 }
 
+/// An imported elevation model in the editing tests: 400 points over 500 m of rolling hills, so
+/// each triangle is tens of metres wide and far from flat.
+inline Tin coarse_hills_model() {
+    return Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, [](Vec2 p) {
+        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
+    });
+}
+
+/// Where the coarse-model tests press a tool: in a triangle, on a vertex, next to one, and
+/// (with `on_edge`) on the midpoint of an edge.
+inline std::vector<Vec2> coarse_model_placements(const Tin& model, bool on_edge) {
+    const std::vector<VertexId> ids = live_ids(model);
+    std::vector<Vec2> places = {
+        {203.0, 207.0}, model.position(ids[57]), model.position(ids[58]) + Vec2{0.2, -0.1}};
+    if (on_edge) {
+        std::vector<VertexId> next_to;
+        model.neighbours(ids[60], next_to);
+        places.push_back((model.position(ids[60]) + model.position(next_to[0])) * 0.5);
+    }
+    return places;
+}
+
 inline std::vector<Vec2> rotate_all(std::span<const Vec2> pts, Vec2 centre, double angle) {
     std::vector<Vec2> out;
     for (Vec2 p : pts)

@@ -205,10 +205,7 @@ TEST(Extrusion, OnACoarseCurvedTinTheRidgeCarriesTheCut) {
     // next to none. The ridge must hold what the tool cut (the sand above its floor inside the
     // circle, sampled on the terrain before the stamp), and nothing may stick up or down
     // beyond the terrain's own range and the cut.
-    const auto hills = [](Vec2 p) {
-        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
-    };
-    Tin tin = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills);
+    Tin tin = test::coarse_hills_model();
     double lo = 1e9, hi = -1e9;
     for (VertexId v : live_ids(tin)) {
         lo = std::min(lo, tin.height(v));
@@ -442,13 +439,8 @@ TEST(Extrusion, StationsGoOnlyWhereTheBandLacksVertices) {
 // the band (O offset by the ridge width), which may move by no more than the rim tolerance;
 // and the volume, which the stamp with extrusion must keep within 1 % of what it displaced.
 TEST(Extrusion, OnACoarseElevationModelTheRidgeStaysInItsBand) {
-    const auto hills_at = [](Vec2 p) {
-        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
-    };
-    const Tin model = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills_at);
-    const std::vector<VertexId> ids = live_ids(model);
-    const Vec2 places[] = {
-        {203.0, 207.0}, model.position(ids[57]), model.position(ids[58]) + Vec2{0.2, -0.1}};
+    const Tin model = test::coarse_hills_model();
+    const std::vector<Vec2> places = test::coarse_model_placements(model, false);
     for (const double radius : {0.5, 5.0}) {
         ToolSpec spec;
         spec.radius = radius;

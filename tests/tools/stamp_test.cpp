@@ -900,17 +900,8 @@ TEST(Stamp, ALambdaCutIntoPiecesByEachSideKeepsThePlaneOutsideItsOuterContour) {
 // tolerance (the rim follows the terrain that closely, and the wall leans on it); placements in
 // a triangle, on a vertex, next to one and on an edge, for a small and a large tool.
 TEST(Stamp, OnACoarseElevationModelTheSurfaceOutsideOHoldsWithinTheRimTolerance) {
-    const auto hills_at = [](Vec2 p) {
-        return 100.0 + 40.0 * std::sin(p.x / 60.0) * std::cos(p.y / 45.0) + 0.05 * p.x;
-    };
-    const Tin model = Tin::random_points(Rect::from_size(500.0, 500.0), 400, 71, hills_at);
-    const std::vector<VertexId> ids = live_ids(model);
-    std::vector<VertexId> next_to;
-    model.neighbours(ids[60], next_to);
-    const Vec2 places[] = {{203.0, 207.0},
-                           model.position(ids[57]),
-                           model.position(ids[58]) + Vec2{0.2, -0.1},
-                           (model.position(ids[60]) + model.position(next_to[0])) * 0.5};
+    const Tin model = test::coarse_hills_model();
+    const std::vector<Vec2> places = test::coarse_model_placements(model, true);
     for (const double radius : {0.5, 5.0}) {
         const Tool tool = circle_tool(radius, 12);
         for (const Vec2 at : places) {
