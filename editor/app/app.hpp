@@ -19,6 +19,7 @@
 #include <functional>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -40,6 +41,7 @@
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "layout_probe.hpp"
 #include "physics/sand_physics.hpp"
 #include "picking.hpp"
 #include "swapchain.hpp"
@@ -244,6 +246,9 @@ class App {
     OrbitCamera camera_;
     StageTimes times_;
     std::string status_;
+    LayoutProbe layout_;  ///< how far the panels' controls reach past their edges
+    /// Opens (true) or closes every panel header in the next frame (the script's "panels" op).
+    std::optional<bool> open_panels_;
 
     // Interaction state.
     bool left_down_ = false, right_down_ = false, middle_down_ = false;

@@ -26,26 +26,67 @@ bool length_slider(const char* name, double& metres, double lo, double hi, doubl
     return scaled_slider(name, per, metres, lo * size, hi * size, length_unit(hi * size), format);
 }
 
+/// A material's name as the panels show it: "dry_sand" reads "dry sand".
+std::string shown_name(std::string name) {
+    std::replace(name.begin(), name.end(), '_', ' ');
+    return name;
+}
+
+/// The label the panels' label column is sized for: the longest one beside a control.
+constexpr const char* kWidestLabel = "Settle margin (%)";
+
+/// A path field filling its row with its button at the right end, "[path ......][Button]";
+/// `hint` shows while the field is empty, and hovering the field shows its whole path. True
+/// when the button was pressed; the caller's `tip` that follows explains the button.
+bool path_field(const char* id, const char* hint, char* buffer, std::size_t size,
+                const char* button) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float button_width = ImGui::CalcTextSize(button).x + 2.0f * style.FramePadding.x;
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - button_width - style.ItemSpacing.x);
+    ImGui::InputTextWithHint(id, hint, buffer, size);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", buffer[0] != '\0' ? buffer : hint);
+    ImGui::SameLine();
+    return ImGui::Button(button);
+}
+
 }  // namespace
 
 // ---- Panels ---------------------------------------------------------------------------------
 
 void App::draw_panels() {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_Always);
     ImGui::Begin("sandtin", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
-    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) panel_file();
-    if (ImGui::CollapsingHeader("Tools", ImGuiTreeNodeFlags_DefaultOpen)) panel_tools();
-    if (ImGui::CollapsingHeader("Materials")) panel_materials();
-    if (ImGui::CollapsingHeader("Erosion", ImGuiTreeNodeFlags_DefaultOpen)) panel_erosion();
-    if (ImGui::CollapsingHeader("Haptics")) panel_haptics();
+    // Controls take the width left of a column wide enough for the longest label; the layout
+    // probe reports any control that still reaches past the panel's edge.
+    ImGui::PushItemWidth(
+        -(ImGui::CalcTextSize(kWidestLabel).x + ImGui::GetStyle().ItemInnerSpacing.x));
+    const auto section = [&](const char* name, ImGuiTreeNodeFlags flags, void (App::*draw)()) {
+        if (open_panels_) ImGui::SetNextItemOpen(*open_panels_);
+        if (!ImGui::CollapsingHeader(name, flags)) return;
+        layout_.begin(name);
+        (this->*draw)();
+        layout_.end();
+    };
+    section("File", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_file);
+    section("Tools", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_tools);
+    section("Materials", 0, &App::panel_materials);
+    section("Erosion", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_erosion);
+    section("Haptics", 0, &App::panel_haptics);
+    open_panels_.reset();
     if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::PopItemWidth();
     ImGui::End();
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(290, 0), ImGuiCond_Always);
+    // As wide as its widest line with the stage times at their usual magnitudes.
+    const float stats_width = ImGui::CalcTextSize("upload 00.00  bake 00.00  render 000.00 ms").x +
+                              2.0f * ImGui::GetStyle().WindowPadding.x;
+    ImGui::SetNextWindowSize(ImVec2(stats_width, 0), ImGuiCond_Always);
     ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    layout_.begin("Stats");
     panel_stats();
+    layout_.end();
     ImGui::End();
     recovery_prompt();
     discard_prompt();
@@ -77,16 +118,12 @@ void App::panel_file() {
         }
     }
     tip("Save the scene under the path above");
-    ImGui::InputText("Heightmap", import_buf_, sizeof(import_buf_));
-    tip("PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid to import");
-    ImGui::SameLine();
-    if (ImGui::Button("Import")) replace_document("Import", [this] { import_document(); });
-    tip("Import the heightmap as an error-bounded TIN (replaces the scene)");
-    ImGui::InputText("Export to", export_buf_, sizeof(export_buf_));
-    tip("Mesh (.obj .ply .stl .gltf .glb) or heightmap (.png .exr); the extension picks the "
-        "format");
-    ImGui::SameLine();
-    if (ImGui::Button("Export")) {
+    if (path_field("##heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
+                   "Import"))
+        replace_document("Import", [this] { import_document(); });
+    tip("Import the heightmap named on the left as an error-bounded TIN (replaces the scene):\n"
+        "PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid");
+    if (path_field("##export", "file to export to", export_buf_, sizeof(export_buf_), "Export")) {
         try {
             end_action();
             const ExportReport r =
@@ -96,7 +133,8 @@ void App::panel_file() {
             report(std::string("export failed: ") + e.what());
         }
     }
-    tip("Write the terrain to the file above");
+    tip("Write the terrain to the file named on the left: a mesh (.obj .ply .stl .gltf .glb)\n"
+        "or a heightmap (.png .exr); the extension picks the format");
     ImGui::BeginDisabled(!undo_log_.can_undo());
     if (ImGui::Button("Undo")) undo();
     ImGui::EndDisabled();
@@ -112,13 +150,27 @@ void App::panel_file() {
 }
 
 void App::panel_tools() {
-    // The palette by kind, three to a row; the controls below are those the picked tool uses.
+    // The palette by kind, three to a row after a column of headings. A column is as wide as
+    // the widest tool's button, so that no label runs into the next button.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const std::array<const char*, 3> headings{"Stamps", "Sand", "Brushes"};
+    float heading_width = 0.0f;
+    for (const char* h : headings)
+        heading_width = std::max(heading_width, ImGui::CalcTextSize(h).x);
+    float button_width = 0.0f;
+    for (int i = 0; i < kToolCount; ++i) {
+        button_width = std::max(button_width, ImGui::GetFrameHeight() + style.ItemInnerSpacing.x +
+                                                  ImGui::CalcTextSize(kTools[i].label).x);
+    }
+    const float left = heading_width + style.ItemSpacing.x;
+    const float column = std::max(button_width + style.ItemSpacing.x,
+                                  (ImGui::GetContentRegionAvail().x - left) / 3.0f);
     const auto group = [&](const char* heading, auto member) {
         int placed = 0;
         for (int i = 0; i < kToolCount; ++i) {
             if (!member(kTools[i])) continue;
             if (placed % 3 == 0) ImGui::TextDisabled("%s", placed == 0 ? heading : "");
-            ImGui::SameLine(66.0f + 70.0f * static_cast<float>(placed % 3));
+            ImGui::SameLine(left + column * static_cast<float>(placed % 3));
             if (ImGui::RadioButton(kTools[i].label, settings_.tool == i)) {
                 end_action();
                 settings_.tool = i;
@@ -127,11 +179,11 @@ void App::panel_tools() {
             ++placed;
         }
     };
-    group("Stamps", [](const ToolEntry& t) { return t.kind == ToolKind::Stamp; });
-    group("Sand", [](const ToolEntry& t) {
+    group(headings[0], [](const ToolEntry& t) { return t.kind == ToolKind::Stamp; });
+    group(headings[1], [](const ToolEntry& t) {
         return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove;
     });
-    group("Brushes", [](const ToolEntry& t) { return t.kind == ToolKind::Brush; });
+    group(headings[2], [](const ToolEntry& t) { return t.kind == ToolKind::Brush; });
 
     const ToolEntry& tool = kTools[settings_.tool];
     const double size = settings_.scene_size;
@@ -157,9 +209,14 @@ void App::panel_tools() {
             ImGui::Checkbox("Follow path", &settings_.follow_path);
             tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");
             float angle = static_cast<float>(settings_.tool_angle);
+            ImGui::BeginDisabled(settings_.follow_path);
             if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
                 settings_.tool_angle = static_cast<double>(angle);
-            tip("Tool heading when it does not follow the path");
+            ImGui::EndDisabled();
+            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+                ImGui::SetTooltip(
+                    "Tool heading when it does not follow the path (turn Follow "
+                    "path off to set it)");
             break;
         }
         case ToolKind::Pour:
@@ -194,8 +251,9 @@ void App::panel_tools() {
                        settings_.material < static_cast<int>(doc_.materials.size())) {
                 ImGui::TextWrapped(
                     "Paints %s (pick the material under Materials)",
-                    doc_.materials.all()[static_cast<std::size_t>(settings_.material)]
-                        .name.c_str());
+                    shown_name(
+                        doc_.materials.all()[static_cast<std::size_t>(settings_.material)].name)
+                        .c_str());
             }
             break;
         }
@@ -210,7 +268,8 @@ void App::panel_materials() {
                            ImVec4(m.colour[0], m.colour[1], m.colour[2], 1.0f));
         tip("Material colour (linear RGB)");
         ImGui::SameLine();
-        if (ImGui::RadioButton(m.name.c_str(), settings_.material == static_cast<int>(i)))
+        const std::string label = shown_name(m.name) + "##material" + std::to_string(i);
+        if (ImGui::RadioButton(label.c_str(), settings_.material == static_cast<int>(i)))
             settings_.material = static_cast<int>(i);
         tip("Select: the Paint brush and the pour use this material; edit it below");
         ImGui::SameLine();
@@ -314,7 +373,7 @@ void App::panel_erosion() {
 void App::panel_haptics() {
     const bool connected = haptics_ != nullptr;
     ImGui::BeginDisabled(connected);
-    const char* devices[] = {"Simulated pen (spring to the mouse)", "UDP driver (loopback)"};
+    const char* devices[] = {"Simulated pen", "UDP driver"};
     ImGui::Combo("Device", &haptic_device_, devices, 2);
     tip("Simulated: a virtual pen pulled to the tool cursor by a spring and pushed back by the "
         "sand. UDP: a separate driver process that owns the hardware (see engine/haptics)");

@@ -18,6 +18,7 @@ namespace sandtin::editor {
 //            Open, Import or closing drops an untitled scene's unsaved edits)
 //         | {"op": "close"}  (the window's close button)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
+//         | {"op": "panels", "open": true|false}  (every panel header, from the next frame)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
@@ -62,6 +63,8 @@ void App::run_script_op(const nlohmann::json& op) {
         const std::optional<int> tool = tool_named(name);
         if (!tool) throw std::runtime_error("script: unknown tool '" + name + "'");
         key(kTools[*tool].key, false);
+    } else if (kind == "panels") {
+        open_panels_ = op.at("open").get<bool>();
     } else if (kind == "set") {
         nlohmann::json j = op;
         j.erase("op");

@@ -535,6 +535,7 @@ int App::run() {
         s["idle_submissions"] = idle_submissions;
         s["idle_gpu_work"] = idle_gpu_work;
         s["validation_messages"] = validation;
+        s["layout_overflow_px"] = layout_.overflow_px();
         if (haptics_) {
             const HapticsLive l = haptics_->live();
             s["haptics"] = {{"device", l.device},

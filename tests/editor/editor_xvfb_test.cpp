@@ -31,6 +31,7 @@
 #include "scene_materials.hpp"
 #include "tin/tin.hpp"
 #include "tin/tin_snapshot.hpp"
+#include "tool_palette.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin {
@@ -971,6 +972,40 @@ TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
         EXPECT_LE(std::abs(t3.volume() - t2.volume()), 0.01 * cut)
             << "net " << t3.volume() - t2.volume() << " m^3, cut " << cut;
         EXPECT_GT(t3.constrained_edge_count(), 0u);  // the print's rims are constrained edges
+    }
+}
+
+TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
+    // The panels have a fixed width: a control or label that does not fit is cut off at the
+    // edge (the Import and Export buttons and the Settle margin label once were). Every panel
+    // open, every tool picked in turn (each shows its own controls) and the haptic loop
+    // connected (its live lines), on the 1 m sandbox and on a 100 m terrain, whose sliders
+    // show other units. The editor measures how far each section's controls reach past its
+    // window's edge (layout_probe.hpp); it must be nowhere.
+    std::string ops = R"([{"op": "set", "erosion": false}, {"op": "panels", "open": true},
+        {"op": "wait", "frames": 1})";
+    for (const editor::ToolEntry& t : editor::kTools)
+        ops += std::string(R"(, {"op": "tool", "name": ")") + t.label +
+               R"("}, {"op": "wait", "frames": 1})";
+    ops += R"(, {"op": "haptics", "connect": true}, {"op": "wait", "frames": 3}])";
+    const fs::path large = kWork / "layout-100m.sandtin";
+    // unit_square_points spans the unit square: scaled to the 100 m terrain.
+    std::vector<Vec2> points = unit_square_points(400, 7);
+    for (Vec2& p : points)
+        p = p * 100.0;
+    save_flat_scene(large, 100.0, points);
+    for (const std::string& scene : {std::string(), large.string()}) {
+        const EditorRun r =
+            run_editor(scene.empty() ? "layout-sandbox" : "layout-100m", ops, scene);
+        ASSERT_EQ(r.exit_code, 0) << r.log;
+        EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+        const nlohmann::json& overflow = r.stats.at("layout_overflow_px");
+        for (const char* section : {"File", "Tools", "Materials", "Erosion", "Haptics", "Stats"}) {
+            ASSERT_TRUE(overflow.contains(section)) << section << " was never drawn: " << overflow;
+            EXPECT_EQ(overflow.at(section).get<double>(), 0.0)
+                << section << " reaches past its panel's edge on "
+                << (scene.empty() ? "the sandbox" : scene);
+        }
     }
 }
 

@@ -1,0 +1,36 @@
+#include "layout_probe.hpp"
+
+#include <imgui.h>
+#include <imgui_internal.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace sandtin::editor {
+
+// ImGui keeps, per window, the right end of the widest control drawn so far in the frame
+// (DC.CursorMaxPos.x, the width the window would need). The probe restarts it at the section's
+// left edge, reads it at the end of the section, and gives the window back the larger of the
+// two, so the window's own sizing is unchanged.
+
+void LayoutProbe::begin(const std::string& section) {
+    if (!section_.empty())
+        throw std::logic_error("layout probe: '" + section + "' begins inside '" + section_ + "'");
+    ImGuiWindow* window = ImGui::GetCurrentWindow();
+    section_ = section;
+    window_reach_ = window->DC.CursorMaxPos.x;
+    window->DC.CursorMaxPos.x = window->DC.CursorPos.x;
+}
+
+void LayoutProbe::end() {
+    if (section_.empty()) throw std::logic_error("layout probe: end without begin");
+    ImGuiWindow* window = ImGui::GetCurrentWindow();
+    const float reach = window->DC.CursorMaxPos.x;
+    const float overflow = std::max(0.0f, reach - window->WorkRect.Max.x);
+    float& widest = overflow_px_[section_];
+    widest = std::max(widest, overflow);
+    window->DC.CursorMaxPos.x = std::max(window_reach_, reach);
+    section_.clear();
+}
+
+}  // namespace sandtin::editor
