@@ -4,7 +4,6 @@
 #include <imgui_internal.h>
 
 #include <algorithm>
-#include <stdexcept>
 
 namespace sandtin::editor {
 
@@ -14,8 +13,8 @@ namespace sandtin::editor {
 // two, so the window's own sizing is unchanged.
 
 void LayoutProbe::begin(const std::string& section) {
-    if (!section_.empty())
-        throw std::logic_error("layout probe: '" + section + "' begins inside '" + section_ + "'");
+    // A section left open (a panel that threw) is simply replaced: measuring must never stop
+    // the editor.
     ImGuiWindow* window = ImGui::GetCurrentWindow();
     section_ = section;
     window_reach_ = window->DC.CursorMaxPos.x;
@@ -23,7 +22,7 @@ void LayoutProbe::begin(const std::string& section) {
 }
 
 void LayoutProbe::end() {
-    if (section_.empty()) throw std::logic_error("layout probe: end without begin");
+    if (section_.empty()) return;
     ImGuiWindow* window = ImGui::GetCurrentWindow();
     const float reach = window->DC.CursorMaxPos.x;
     const float overflow = std::max(0.0f, reach - window->WorkRect.Max.x);
