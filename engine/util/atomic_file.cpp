@@ -58,15 +58,36 @@ std::filesystem::path save_target(const std::filesystem::path& path) {
     fail("cannot follow the links at", path, ELOOP);
 }
 
+/// Throws when something other than a regular file stands at `target` (already resolved by
+/// save_target): a save replaces the file by renaming over it, which would delete a folder's
+/// place, a device (as root, -o /dev/null would replace the system's), a pipe or a socket.
+void require_regular_or_absent(const std::filesystem::path& path,
+                               const std::filesystem::path& target) {
+    std::error_code ec;
+    const std::filesystem::file_status st = std::filesystem::symlink_status(target, ec);
+    if (!std::filesystem::exists(st) || std::filesystem::is_regular_file(st)) return;
+    const std::string what = std::filesystem::is_directory(st)        ? "a folder"
+                             : std::filesystem::is_character_file(st) ? "a character device"
+                             : std::filesystem::is_block_file(st)     ? "a block device"
+                             : std::filesystem::is_fifo(st)           ? "a named pipe"
+                             : std::filesystem::is_socket(st)         ? "a socket"
+                                                                      : "not a regular file";
+    throw std::runtime_error("cannot write '" + path.string() +
+                             "': " + (target == path ? "it" : "'" + target.string() + "'") +
+                             " is " + what + ", and a save only replaces regular files");
+}
+
 /// A new, empty temporary file beside `target`, created with mode 0666 less the umask, as
-/// any new file of the user's would be (mkstemp would force 0600).
+/// any new file of the user's would be (mkstemp would force 0600). Its name starts with the
+/// target's, cut short so that it stays a legal name (255 bytes) whatever the target's length.
 std::pair<FileDescriptor, std::filesystem::path> create_temporary(
     const std::filesystem::path& dir, const std::filesystem::path& target) {
     static std::atomic<std::uint64_t> counter{0};
     for (int attempt = 0; attempt < 100; ++attempt) {
+        constexpr std::size_t kNameKept = 160;
         const std::filesystem::path temp =
-            dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                   std::to_string(counter.fetch_add(1)));
+            dir / ("." + target.filename().string().substr(0, kNameKept) + ".tmp-" +
+                   std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1)));
         const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) return {FileDescriptor(fd), temp};
         if (errno != EEXIST) fail("cannot create a temporary file next to", target, errno);
@@ -79,6 +100,7 @@ std::pair<FileDescriptor, std::filesystem::path> create_temporary(
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
                            const WriteInterruption& interruption) {
     const std::filesystem::path target = save_target(path);
+    require_regular_or_absent(path, target);
     const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
     auto [fd, temp] = create_temporary(dir, target);
     // Replacing a file keeps its permissions (a private scene stays private, a shared one
@@ -142,17 +164,17 @@ void check_writable(const std::filesystem::path& path) {
                                  "' is not a folder");
     }
     if (::access(dir.c_str(), W_OK | X_OK) != 0) fail("cannot write in the folder of", path, errno);
-    if (std::filesystem::is_directory(target, ec)) {
-        throw std::runtime_error("cannot write '" + path.string() + "': it is a folder");
-    }
+    require_regular_or_absent(path, target);
 }
 
 std::vector<std::uint8_t> read_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
+    const std::filesystem::file_status st = std::filesystem::status(path, ec);
+    if (!std::filesystem::is_regular_file(st)) {
         throw std::runtime_error("cannot read '" + path.string() + "': " +
-                                 (std::filesystem::is_directory(path, ec)
-                                      ? "it is a folder, not a file"
+                                 (std::filesystem::is_directory(st) ? "it is a folder, not a file"
+                                  : std::filesystem::exists(st)
+                                      ? "it is not a regular file (a device, pipe or socket)"
                                       : "no such file"));
     }
     const auto size = std::filesystem::file_size(path, ec);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -160,6 +161,69 @@ TEST_F(AtomicFile, ErrorsNameThePath) {
         EXPECT_NE(std::string(e.what()).find("absent.bin"), std::string::npos) << e.what();
     }
     EXPECT_THROW((void)read_file(dir_), std::runtime_error);
+}
+
+TEST_F(AtomicFile, DevicesPipesAndFoldersAreRefusedAndLeftInPlace) {
+    // A save renames its temporary over the target: over a device or a pipe that would delete
+    // it (as root, `-o /dev/null` replaced the system's). They are refused, and stay.
+    const fs::path fifo = dir_ / "pipe.stl";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::vector<fs::path> special{fifo};
+    // A character device like /dev/null's (1, 3) needs root; without it the pipe stands alone.
+    const fs::path device = dir_ / "null.sandtin";
+    if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) special.push_back(device);
+    fs::create_directories(dir_ / "folder.sandtin");
+    special.push_back(dir_ / "folder.sandtin");
+    // Through a link too: what counts is what the link leads to.
+    fs::create_symlink(fifo, dir_ / "link.stl");
+    special.push_back(dir_ / "link.stl");
+    for (const fs::path& p : special) {
+        for (const bool ask_first : {true, false}) {
+            try {
+                if (ask_first) {
+                    check_writable(p);
+                } else {
+                    write_file_atomically(p, pattern(10, 5));
+                }
+                ADD_FAILURE() << p << " was accepted";
+            } catch (const std::runtime_error& e) {
+                const std::string m = e.what();
+                EXPECT_NE(m.find(p.string()), std::string::npos) << m;
+                EXPECT_NE(m.find("only replaces regular files"), std::string::npos) << m;
+            }
+        }
+    }
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link.stl"));
+    EXPECT_TRUE(fs::is_directory(dir_ / "folder.sandtin"));
+    if (special.size() == 4) {
+        EXPECT_TRUE(fs::is_character_file(device));
+    }
+    // Nothing was left behind: the pipe, the link, the folder and perhaps the device only.
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_))
+        ++entries;
+    EXPECT_EQ(entries, special.size());
+    // Reading one says what it is rather than that it does not exist.
+    try {
+        (void)read_file(fifo);
+        ADD_FAILURE() << "a pipe was read";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(AtomicFile, ALongButLegalNameCanBeSaved) {
+    // 250 bytes: legal (the limit is 255), though the temporary beside it must not add a
+    // prefix and a suffix to all of it.
+    const fs::path p = dir_ / (std::string(242, 'f') + ".sandtin");
+    ASSERT_EQ(p.filename().string().size(), 250u);
+    write_file_atomically(p, pattern(100, 6));
+    EXPECT_EQ(read_file(p), pattern(100, 6));
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_))
+        ++entries;
+    EXPECT_EQ(entries, 1u);
 }
 
 TEST_F(AtomicFile, ReadRefusesFilesAboveTheLimit) {
