@@ -1,6 +1,7 @@
 #include "haptics/haptic_recording.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.hpp"
@@ -111,6 +112,35 @@ nlohmann::json recording_to_json(const HapticRecording& r) {
     return j;
 }
 
+namespace {
+
+/// Most stamps a replay may place: the bound a script has for one operation. A million stamps
+/// take minutes; a spacing of 1e-12 m (a typo, or a damaged file) would ask for days.
+constexpr double kMaxReplayStamps = 1e6;
+
+/// Fails on edit.spacing, before anything runs, when the edits' pressed stretches (the button
+/// in `edit.button_mask` held at both ends, as the live editor stamps them) are longer than
+/// kMaxReplayStamps spacings.
+void check_stamp_count(const HapticRecording& r, const std::string& en) {
+    double pressed_length = 0.0;
+    for (std::size_t i = 1; i < r.edits.size(); ++i) {
+        const EditInput& a = r.edits[i - 1];
+        const EditInput& b = r.edits[i];
+        if ((a.buttons & r.edit.button_mask) == 0 || (b.buttons & r.edit.button_mask) == 0)
+            continue;
+        pressed_length += std::hypot(b.position.x - a.position.x, b.position.y - a.position.y);
+    }
+    const double stamps = pressed_length / r.edit.spacing;
+    if (stamps <= kMaxReplayStamps) return;
+    std::ostringstream what;
+    what << "spacing of " << r.edit.spacing << " m along the " << pressed_length
+         << " m the edits stroke asks for " << stamps << " stamps, more than the "
+         << static_cast<long>(kMaxReplayStamps) << " a replay may place";
+    bad(en, what.str());
+}
+
+}  // namespace
+
 HapticRecording recording_from_json(const nlohmann::json& j, const std::string& name) {
     if (!j.is_object()) bad(name, "a haptic recording must be a JSON object");
     const nlohmann::json& format = field(j, "format", name);
@@ -194,6 +224,7 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
              {number(e[1], name, what), number(e[2], name, what), number(e[3], name, what)},
              buttons(e[4], name, what)});
     }
+    check_stamp_count(r, en);
     if (j.contains("result")) r.result = summary_from(j["result"], name + ": result");
     return r;
 }

@@ -208,6 +208,24 @@ TEST(HapticRecording, BadRecordingsAreRejectedWithTheField) {
     k = j;
     k.erase("start");
     EXPECT_NE(error_of(k.dump()).find("missing field \"start\""), std::string::npos);
+    // A spacing that would stamp for days is refused before anything runs: two pressed edits
+    // 0.8 m apart at 1e-12 m ask for 8e11 stamps. Released, the same path stamps nothing.
+    k = j;
+    k["edit"]["spacing"] = 1e-12;
+    k["edit"]["button_mask"] = 1;
+    k["edits"] = {{0, 0.1, 0.5, 0.04, 1}, {1, 0.9, 0.5, 0.04, 1}};
+    const std::string too_many = error_of(k.dump());
+    EXPECT_NE(too_many.find("spacing"), std::string::npos) << too_many;
+    EXPECT_NE(too_many.find("8e+11 stamps"), std::string::npos) << too_many;
+    k["edits"] = {{0, 0.1, 0.5, 0.04, 0}, {1, 0.9, 0.5, 0.04, 0}};
+    EXPECT_EQ(error_of(k.dump()), "");
+    // The bound itself: 0.8 m at 8e-7 m is a million stamps, allowed; a little less spacing
+    // is not.
+    k["edits"] = {{0, 0.1, 0.5, 0.04, 1}, {1, 0.9, 0.5, 0.04, 1}};
+    k["edit"]["spacing"] = 8.0000001e-7;
+    EXPECT_EQ(error_of(k.dump()), "");
+    k["edit"]["spacing"] = 7.9e-7;
+    EXPECT_NE(error_of(k.dump()).find("a replay may place"), std::string::npos);
     EXPECT_TRUE(is_haptic_recording(j.dump()));
     EXPECT_FALSE(is_haptic_recording(R"({"operations": []})"));
     EXPECT_FALSE(is_haptic_recording("not json"));
