@@ -44,6 +44,7 @@ int run_import(const std::vector<std::string>& raw) {
     }
     const std::string out = args.text("-o");
     check_writable(out);  // before the work, not after it
+    check_not_overwriting(out, args.positionals()[0], "the heightmap being imported");
     ImportOptions options;
     options.greedy.max_error = args.number("--max-error");
     if (options.greedy.max_error < 0.0) throw UsageError("--max-error must be >= 0 metres");

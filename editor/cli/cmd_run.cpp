@@ -30,6 +30,8 @@ int run_run(const std::vector<std::string>& raw) {
     const std::filesystem::path script_path = args.positionals()[0];
     const std::string out = args.text("-o");
     check_writable(out);  // before the work, not after it
+    // -i and -o may be one session (an edit in place); the script must survive its run.
+    check_not_overwriting(out, script_path, "the script being run");
     const std::vector<std::uint8_t> bytes = read_file(script_path, 1u << 28);
     const std::string text(bytes.begin(), bytes.end());
     // Parse everything before touching any terrain: a bad script changes nothing.
@@ -38,6 +40,20 @@ int run_run(const std::vector<std::string>& raw) {
         haptics::is_haptic_recording(text)
             ? haptics::recording_script(text, script_path.string(), script_path.parent_path())
             : parse_script(text, script_path.string(), script_path.parent_path());
+    // A checkpoint that cannot be written fails now, before any work.
+    for (std::size_t k = 0; k < script.steps.size(); ++k) {
+        const ScriptStep& step = script.steps[k];
+        if (const auto* save = std::get_if<SaveOp>(&step.operation)) {
+            try {
+                check_writable(save->path);
+                check_not_overwriting(save->path, script_path, "the script being run");
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error(script_path.string() + ":" + std::to_string(step.line) +
+                                         ": operation " + std::to_string(k + 1) +
+                                         " (save): " + e.what());
+            }
+        }
+    }
 
     // --physics gpu: the relaxation runs on the GPU (engine/gpu), fed by the TIN's journal.
     const std::string physics = args.text_or("--physics", "cpu");

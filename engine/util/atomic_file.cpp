@@ -167,6 +167,16 @@ void check_writable(const std::filesystem::path& path) {
     require_regular_or_absent(path, target);
 }
 
+void check_not_overwriting(const std::filesystem::path& output, const std::filesystem::path& input,
+                           const std::string& role) {
+    std::error_code ec;
+    if (!std::filesystem::equivalent(output, input, ec) || ec) return;
+    throw std::runtime_error("cannot write '" + output.string() + "': it is " + role + " ('" +
+                             input.string() +
+                             "'), which the save would destroy; choose another "
+                             "output");
+}
+
 std::vector<std::uint8_t> read_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
     std::error_code ec;
     const std::filesystem::file_status st = std::filesystem::status(path, ec);

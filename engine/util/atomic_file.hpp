@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace sandtin {
@@ -27,6 +28,13 @@ void write_file_atomically(const std::filesystem::path& path, std::span<const st
 /// `path` now: its folder does not exist, is not a folder, or is not writable. For commands to
 /// ask before long work whose result they then save.
 void check_writable(const std::filesystem::path& path);
+
+/// Throws std::runtime_error when `output` is the same file as `input` (the same path, or
+/// another name for it: a link, a relative path), which a command reads as its `role` (for
+/// example "the script being run") and a save to `output` would destroy. Nothing is thrown
+/// when either does not exist.
+void check_not_overwriting(const std::filesystem::path& output, const std::filesystem::path& input,
+                           const std::string& role);
 
 /// Reads a whole file. Throws std::runtime_error naming the path when it cannot be read or is
 /// larger than `max_bytes`.

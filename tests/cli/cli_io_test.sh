@@ -120,6 +120,11 @@ scenario_import_bad() {
     expect_error no_output "-o" import "$TILE" --max-error 1
     expect_error no_dir "nosuchdir" import "$TILE" --max-error 1 -o nosuchdir/x.sandtin
     [[ -e x.sandtin ]] && fail "a failed import left x.sandtin behind"
+    # The heightmap is not an output: importing over itself would destroy it.
+    printf 'ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n5 6\n7 8\n' >self.asc
+    cp self.asc self.orig
+    expect_error over_itself "the heightmap being imported" import self.asc --max-error 0.1 -o self.asc
+    cmp -s self.asc self.orig || fail "importing a heightmap over itself changed it"
     return 0
 }
 

@@ -387,6 +387,26 @@ scenario_run_bad() {
     [[ -e out_noin.sandtin ]] && fail "a run without its input created its output"
     expect_error no_output "-o" run fine.json -i in.sandtin
     cmp -s in.sandtin in.orig || fail "the input session changed"
+    # The script is not an output: not as -o, not through a link, not as a save op's path
+    # (named with its line, before any work). The script stays as it was.
+    cp fine.json fine.orig
+    ln -sf fine.json fine_link.json
+    expect_error script_as_output "the script being run" run fine.json -i in.sandtin -o fine.json
+    expect_error script_via_link "the script being run" run fine.json -i in.sandtin -o fine_link.json
+    printf '[\n  {"op": "simplify"},\n  {"op": "save", "path": "self.json"}\n]\n' >self.json
+    cp self.json self.orig
+    expect_error script_saved_over "self.json:3:" run self.json -i in.sandtin -o out_self.sandtin
+    [[ -e out_self.sandtin ]] && fail "a script saving over itself created the output"
+    cmp -s fine.json fine.orig || fail "-o naming the script changed it"
+    cmp -s self.json self.orig || fail "a save op naming the script changed it"
+    printf '[\n  {"op": "simplify"},\n  {"op": "save", "path": "nodir/cp.sandtin"}\n]\n' >nodir.json
+    expect_error save_nowhere "nodir.json:3:" run nodir.json -i in.sandtin -o out_nodir.sandtin
+    [[ -e out_nodir.sandtin ]] && fail "a checkpoint that cannot be written still ran the script"
+    # A pipe in the output's place is refused, and stays a pipe.
+    mkfifo pipe.sandtin
+    expect_error pipe_output "named pipe" run fine.json -i in.sandtin -o pipe.sandtin
+    [[ -p pipe.sandtin ]] || fail "the pipe at the output was replaced"
+    cmp -s in.sandtin in.orig || fail "the input session changed"
     return 0
 }
 
