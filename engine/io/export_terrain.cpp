@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/export_maps.hpp"
@@ -93,10 +94,6 @@ GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
 void write(const fs::path& p, std::span<const std::uint8_t> bytes, ExportReport& report) {
     write_file_atomically(p, bytes, {});
     report.files.push_back(p);
-}
-
-void write_text(const fs::path& p, const std::string& text, ExportReport& report) {
-    write(p, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, report);
 }
 
 bool is_mesh(ExportFormat f) {
@@ -225,6 +222,19 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                       std::max(report.max.z, p.z)};
     }
 
+    // Every mesh format stores 32-bit floats: a coordinate beyond their range would be written
+    // as infinity.
+    for (const double c :
+         {report.min.x, report.min.y, report.min.z, report.max.x, report.max.y, report.max.z}) {
+        if (!(std::abs(c) <= static_cast<double>(std::numeric_limits<float>::max()))) {
+            std::ostringstream what;
+            what << "export: the mesh reaches a coordinate of " << c
+                 << " (in the output's units), beyond the 32-bit floats mesh files store; check "
+                    "the terrain's heights and --base";
+            throw std::invalid_argument(what.str());
+        }
+    }
+
     // Textures come from the original terrain: simplification changes geometry, not looks.
     GltfTextures textures;
     const bool with_textures = o.textures && (format == ExportFormat::Obj || gltf);
@@ -241,18 +251,27 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
             const fs::path dir = out.parent_path();
             const std::string stem = out.stem().string();
             const std::string mtl = stem + ".mtl";
-            write_text(out, encode_obj(mesh, mtl), report);
             ObjMaterial material;
             material.colour = o.palette.colours.front();
             if (with_textures) {
                 material.albedo_texture = stem + "_albedo.png";
                 material.normal_texture = stem + "_normal.png";
             }
-            write_text(dir / mtl, encode_mtl(material), report);
+            // The mesh, its material and its textures as one save: a failure leaves none.
+            const std::string obj_text = encode_obj(mesh, mtl);
+            const std::string mtl_text = encode_mtl(material);
+            const auto bytes = [](const std::string& t) {
+                return std::span<const std::uint8_t>(
+                    reinterpret_cast<const std::uint8_t*>(t.data()), t.size());
+            };
+            std::vector<FileToWrite> files{{out, bytes(obj_text)}, {dir / mtl, bytes(mtl_text)}};
             if (with_textures) {
-                write(dir / material.albedo_texture, textures.albedo_png, report);
-                write(dir / material.normal_texture, textures.normal_png, report);
+                files.push_back({dir / material.albedo_texture, textures.albedo_png});
+                files.push_back({dir / material.normal_texture, textures.normal_png});
             }
+            write_files_atomically(files);
+            for (const FileToWrite& f : files)
+                report.files.push_back(f.path);
             break;
         }
         case ExportFormat::Ply:

@@ -95,12 +95,12 @@ std::pair<FileDescriptor, std::filesystem::path> create_temporary(
     fail("cannot create a temporary file next to", target, EEXIST);
 }
 
-}  // namespace
-
-void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
-                           const WriteInterruption& interruption) {
-    const std::filesystem::path target = save_target(path);
-    require_regular_or_absent(path, target);
+/// Writes `data` to a new temporary beside `target` and flushes it to disk; returns the
+/// temporary's path. On failure the temporary is removed and the error names it.
+std::filesystem::path write_temporary(const std::filesystem::path& path,
+                                      const std::filesystem::path& target,
+                                      std::span<const std::uint8_t> data,
+                                      const WriteInterruption& interruption) {
     const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
     auto [fd, temp] = create_temporary(dir, target);
     // Replacing a file keeps its permissions (a private scene stays private, a shared one
@@ -141,14 +141,66 @@ void write_file_atomically(const std::filesystem::path& path, std::span<const st
         std::filesystem::remove(temp);
         fail("cannot close", temp, error);
     }
+    return temp;
+}
+
+/// Renames the flushed temporary over `target` (removing the temporary when that fails).
+void replace_with(const std::filesystem::path& temp, const std::filesystem::path& target) {
     if (::rename(temp.c_str(), target.c_str()) != 0) {
         const int error = errno;
         std::filesystem::remove(temp);
         fail("cannot replace", target, error);
     }
-    // Make the rename itself durable.
+}
+
+/// Makes the renames in the folder of `target` durable.
+void sync_folder_of(const std::filesystem::path& target) {
+    const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
     FileDescriptor dir_fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY));
     if (dir_fd.get() >= 0) ::fsync(dir_fd.get());
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
+                           const WriteInterruption& interruption) {
+    const std::filesystem::path target = save_target(path);
+    require_regular_or_absent(path, target);
+    replace_with(write_temporary(path, target, data, interruption), target);
+    sync_folder_of(target);
+}
+
+void write_files_atomically(std::span<const FileToWrite> files) {
+    std::vector<std::filesystem::path> targets;
+    for (const FileToWrite& f : files) {
+        targets.push_back(save_target(f.path));
+        require_regular_or_absent(f.path, targets.back());
+    }
+    // Every temporary first: a full disk or a folder in the way then changes no target.
+    std::vector<std::filesystem::path> temps;
+    try {
+        for (std::size_t i = 0; i < files.size(); ++i)
+            temps.push_back(write_temporary(files[i].path, targets[i], files[i].data, {}));
+    } catch (...) {
+        for (const std::filesystem::path& t : temps) {
+            std::error_code ec;
+            std::filesystem::remove(t, ec);
+        }
+        throw;
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        try {
+            replace_with(temps[i], targets[i]);
+        } catch (...) {
+            for (std::size_t j = i + 1; j < files.size(); ++j) {
+                std::error_code ec;
+                std::filesystem::remove(temps[j], ec);
+            }
+            throw;
+        }
+    }
+    for (const std::filesystem::path& t : targets)
+        sync_folder_of(t);
 }
 
 void check_writable(const std::filesystem::path& path) {

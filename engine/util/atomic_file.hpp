@@ -24,6 +24,18 @@ using WriteInterruption = std::function<bool(std::size_t bytes_written)>;
 void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> data,
                            const WriteInterruption& interruption = {});
 
+struct FileToWrite {
+    std::filesystem::path path;
+    std::span<const std::uint8_t> data;
+};
+
+/// Writes several files that belong together (a mesh and its material and textures) as one
+/// save: each goes to its temporary first, and only when all of them were written are they
+/// renamed into place. When writing any of them fails (a full disk), no target has changed
+/// and no temporary is left. Links, devices and permissions as for write_file_atomically.
+/// (The renames are not one atomic step: a crash between two leaves some replaced.)
+void write_files_atomically(std::span<const FileToWrite> files);
+
 /// Throws std::runtime_error naming the problem when write_file_atomically could not write
 /// `path` now: its folder does not exist, is not a folder, or is not writable. For commands to
 /// ask before long work whose result they then save.

@@ -144,6 +144,13 @@ scenario_export_bad() {
     echo "garbage" >g.sandtin
     expect_error garbage "not a sandtin" export g.sandtin -o s.obj
     expect_error no_dir "nosuchdir" export s.sandtin -o nosuchdir/s.stl
+    # An OBJ's four files are one save: a folder where its normal map goes leaves none of them.
+    mkdir -p objset/m_normal.png
+    expect_error obj_set "m_normal.png" export s.sandtin -o objset/m.obj
+    check_eq "files left by a failed OBJ export" "$(ls objset)" "m_normal.png"
+    # Coordinates beyond 32-bit floats are an error, not infinities in the file.
+    expect_error huge_base "32-bit floats" export s.sandtin -o huge.stl --base 1e40
+    [[ -e huge.stl ]] && fail "an export beyond float range wrote huge.stl"
     return 0
 }
 

@@ -226,6 +226,42 @@ TEST_F(AtomicFile, ALongButLegalNameCanBeSaved) {
     EXPECT_EQ(entries, 1u);
 }
 
+TEST_F(AtomicFile, FilesSavedTogetherChangeNothingWhenOneCannotBeWritten) {
+    // A mesh and its material and textures: when the last cannot be written, the others keep
+    // their old content and no temporary is left.
+    const fs::path a = dir_ / "m.obj", b = dir_ / "m.mtl";
+    write_file_atomically(a, pattern(10, 1));
+    write_file_atomically(b, pattern(20, 2));
+    const auto new_a = pattern(30, 3), new_b = pattern(40, 4), new_c = pattern(50, 5);
+    const auto entries = [&] {
+        std::size_t n = 0;
+        for ([[maybe_unused]] const auto& e : fs::recursive_directory_iterator(dir_))
+            ++n;
+        return n;
+    };
+    // Its folder is missing: the temporaries of the first two were already written.
+    const std::vector<FileToWrite> missing{
+        {a, new_a}, {b, new_b}, {dir_ / "no" / "m_albedo.png", new_c}};
+    EXPECT_THROW(write_files_atomically(missing), std::runtime_error);
+    EXPECT_EQ(read_file(a), pattern(10, 1));
+    EXPECT_EQ(read_file(b), pattern(20, 2));
+    EXPECT_EQ(entries(), 2u);
+    // A folder in its place: refused before anything is written.
+    fs::create_directories(dir_ / "m_normal.png");
+    const std::vector<FileToWrite> blocked{{a, new_a}, {b, new_b}, {dir_ / "m_normal.png", new_c}};
+    EXPECT_THROW(write_files_atomically(blocked), std::runtime_error);
+    EXPECT_EQ(read_file(a), pattern(10, 1));
+    EXPECT_EQ(read_file(b), pattern(20, 2));
+    EXPECT_EQ(entries(), 3u);
+    // All writable: all replaced.
+    const std::vector<FileToWrite> fine{{a, new_a}, {b, new_b}, {dir_ / "m_albedo.png", new_c}};
+    write_files_atomically(fine);
+    EXPECT_EQ(read_file(a), new_a);
+    EXPECT_EQ(read_file(b), new_b);
+    EXPECT_EQ(read_file(dir_ / "m_albedo.png"), new_c);
+    EXPECT_EQ(entries(), 4u);
+}
+
 TEST_F(AtomicFile, ReadRefusesFilesAboveTheLimit) {
     const fs::path p = dir_ / "big.bin";
     write_file_atomically(p, pattern(5000, 4));
