@@ -1,12 +1,14 @@
 // sandtin import: a heightmap (PNG, Terrain-RGB, ESRI ASCII grid, GeoTIFF, EXR) to an
 // error-bounded TIN, saved as a session.
 
+#include <cmath>
 #include <iostream>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
@@ -57,7 +59,11 @@ int run_import(const std::vector<std::string>& raw) {
         if (!(*options.read.pixel_size > 0.0)) throw UsageError("--pixel-size must be positive");
     }
     if (args.has("--z-scale")) options.read.z_scale = args.number("--z-scale");
-    if (args.has("--z-offset")) options.read.z_offset = args.number("--z-offset");
+    if (args.has("--z-offset")) {
+        options.read.z_offset = args.number("--z-offset");
+        if (!(std::abs(*options.read.z_offset) <= kMaxHeight))
+            throw UsageError("--z-offset must lie within -1e9 and 1e9 m");
+    }
     options.read.png_encoding = encoding_of(args.text_or("--encoding", "auto"));
     options.read.nonfinite_as_nodata = args.has("--nonfinite-as-nodata");
     if (args.has("--max-size")) {

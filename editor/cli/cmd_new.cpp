@@ -1,11 +1,13 @@
 // sandtin new: create a terrain and save it as a session.
 
+#include <cmath>
 #include <iostream>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/session_file.hpp"
 #include "terrain_report.hpp"
+#include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
@@ -32,6 +34,8 @@ int run_new(const std::vector<std::string>& raw) {
     const std::string out = args.text("-o");
     check_writable(out);  // before the work, not after it
     const double z = args.number_or("--height", 0.0);
+    if (!(std::abs(z) <= kMaxHeight))
+        throw UsageError("--height must lie within -1e9 and 1e9 m\nusage: " + std::string(kUsage));
     const auto constant = [z](Vec2) { return z; };
     TinOptions options;
     options.track_changes = false;

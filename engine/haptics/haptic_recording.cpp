@@ -190,6 +190,8 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
         if (terrain.points > 10'000'000) bad(tn, "points must be at most 10000000");
         terrain.seed = count(field(t, "seed", tn), tn, "seed");
         terrain.height = number(field(t, "height", tn), tn, "height");
+        if (!(std::abs(terrain.height) <= kMaxHeight))
+            bad(tn, "height must lie within -1e9 and 1e9 m");
         r.terrain = terrain;
     }
     const nlohmann::json& start = field(j, "start", name);
@@ -223,6 +225,11 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
             {count(e[0], name, what),
              {number(e[1], name, what), number(e[2], name, what), number(e[3], name, what)},
              buttons(e[4], name, what)});
+    }
+    for (std::size_t i = 0; i < r.edits.size(); ++i) {
+        // The pen's depth becomes the tool's bottom: a height like the terrain's.
+        if (!(std::abs(r.edits[i].position.z) <= kMaxHeight))
+            bad(name, "edits[" + std::to_string(i) + "] has a height beyond 1e9 m");
     }
     check_stamp_count(r, en);
     if (j.contains("result")) r.result = summary_from(j["result"], name + ": result");

@@ -141,15 +141,21 @@ std::shared_ptr<const Tool> parse_tool(JsonFields& f, const std::filesystem::pat
     }
 }
 
+/// A height or a depth (m), within the kMaxHeight a terrain may reach.
+double height_field(JsonFields& f, const std::string& key, double fallback) {
+    return f.in_range(key, fallback, -kMaxHeight, kMaxHeight);
+}
+
 /// Depth fields: "depth" (metres below the terrain) or "bottom" (absolute height), not both.
 void parse_depth(JsonFields& f, DepthMode& mode, double& value) {
     if (f.has("depth") && f.has("bottom")) f.fail("give either 'depth' or 'bottom', not both");
     if (f.has("bottom")) {
         mode = DepthMode::Absolute;
-        value = f.required_number("bottom");
+        f.required("bottom");
+        value = height_field(f, "bottom", 0.0);
     } else {
         mode = DepthMode::Relative;
-        value = f.number("depth", 0.0);
+        value = height_field(f, "depth", 0.0);
     }
 }
 
@@ -281,7 +287,8 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
     if (op == "pour" || op == "remove") {
         PourOp p;
         p.remove = op == "remove";
-        p.volume = f.non_negative("volume", 0.0);
+        // Up to a kMaxHeight-deep pile over the largest terrain.
+        p.volume = f.in_range("volume", 0.0, 0.0, kMaxHeight * kMaxHeight * kMaxHeight);
         if (!f.has("volume")) f.fail("missing required field 'volume'");
         p.settings.radius = f.positive("radius", p.settings.radius);
         p.settings.falloff = parse_falloff(f, "smooth");
@@ -302,12 +309,13 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         b.settings.radius = f.positive("radius", b.settings.radius);
         const bool fraction =
             b.settings.kind == BrushKind::Smooth || b.settings.kind == BrushKind::Flatten;
-        b.settings.strength = fraction ? f.in_range("strength", 0.5, 0.0, 1.0)
-                                       : f.non_negative("strength", b.settings.strength);
+        b.settings.strength = fraction
+                                  ? f.in_range("strength", 0.5, 0.0, 1.0)
+                                  : f.in_range("strength", b.settings.strength, 0.0, kMaxHeight);
         b.settings.falloff = parse_falloff(f, "smooth");
         b.settings.refine_spacing = f.non_negative("refine_spacing", 0.0);
         b.settings.material = static_cast<std::uint16_t>(f.integer("material", 0, 0, 65535));
-        if (f.has("height")) b.settings.flatten_to = f.required_number("height");
+        if (f.has("height")) b.settings.flatten_to = height_field(f, "height", 0.0);
         b.points = parse_points(f, 0.25 * b.settings.radius);
         f.reject_unknown();
         return b;
@@ -401,7 +409,7 @@ Script parse_script(std::string_view text, const std::string& name,
             }
             st.points = static_cast<std::size_t>(t.integer("points", 0, 0, 50'000'000));
             st.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, INT64_MAX));
-            st.height = t.number("height", 0.0);
+            st.height = height_field(t, "height", 0.0);
             t.reject_unknown();
             script.terrain = st;
         }

@@ -610,6 +610,12 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
             throw std::invalid_argument("point " + describe(positions[i]) +
                                         ": height is not finite");
         }
+        if (!(std::abs(heights[i]) <= kMaxHeight)) {
+            std::ostringstream what;
+            what << "point " << describe(positions[i]) << ": height " << heights[i]
+                 << " m is beyond the " << kMaxHeight << " m a terrain may reach";
+            throw std::invalid_argument(what.str());
+        }
     }
 
     NoEventScope quiet;

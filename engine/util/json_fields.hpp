@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <set>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -134,10 +135,9 @@ class JsonFields {
 
   private:
     static std::string format(double v) {
-        std::string s = std::to_string(v);
-        s.erase(s.find_last_not_of('0') + 1);
-        if (!s.empty() && s.back() == '.') s.pop_back();
-        return s;
+        std::ostringstream out;  // 0.02, 1, 1e+09: as written, without padding zeros
+        out << v;
+        return out.str();
     }
     double as_number(const std::string& key, const nlohmann::json& v) const {
         if (!v.is_number()) fail_field(key, "must be a number");

@@ -120,6 +120,7 @@ scenario_import_bad() {
     expect_error no_output "-o" import "$TILE" --max-error 1
     expect_error no_dir "nosuchdir" import "$TILE" --max-error 1 -o nosuchdir/x.sandtin
     [[ -e x.sandtin ]] && fail "a failed import left x.sandtin behind"
+    expect_error huge_offset "--z-offset" import "$TILE" --max-error 1 --z-offset 1e308 -o x.sandtin
     # The heightmap is not an output: importing over itself would destroy it.
     printf 'ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n5 6\n7 8\n' >self.asc
     cp self.asc self.orig

@@ -141,6 +141,9 @@ scenario_bad_input() {
     size=$(stat -c %s good.sandtin)
 
     expect_error missing "missing.sandtin" info missing.sandtin --json
+    # Heights beyond 1e9 m (the largest terrain side) would give infinite volumes and meshes.
+    expect_error huge_height "--height" new --flat 1 1 --height 1e308 -o huge.sandtin
+    [[ -e huge.sandtin ]] && fail "new with a height of 1e308 m wrote huge.sandtin"
     head -c $((size / 2)) good.sandtin >truncated.sandtin
     expect_error truncated "truncated" info truncated.sandtin
     head -c 20 good.sandtin >header_only.sandtin

@@ -326,6 +326,12 @@ TEST(Construction, FromPointsRejectsBadInput) {
     const std::vector<Vec2> ok_pos = {{1.0, 1.0}, {2.0, 2.0}};
     const std::vector<double> nan_h = {0.0, test::kNaN};
     expect_invalid_argument([&] { (void)Tin::from_points(d, ok_pos, nan_h); }, "not finite");
+    // Finite but beyond the kMaxHeight a terrain may reach (its volume would overflow); the
+    // limit itself is fine.
+    const std::vector<double> huge_h = {0.0, -1.0000001e9};
+    expect_invalid_argument([&] { (void)Tin::from_points(d, ok_pos, huge_h); }, "beyond");
+    const std::vector<double> limit_h = {kMaxHeight, -kMaxHeight};
+    EXPECT_NO_THROW((void)Tin::from_points(d, ok_pos, limit_h));
 
     const std::vector<Vec2> outside = {{1.0, 1.0}, {4.0000001, 2.0}};
     expect_invalid_argument([&] { (void)Tin::from_points(d, outside, two); }, "outside");

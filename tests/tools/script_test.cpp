@@ -306,6 +306,28 @@ TEST(Script, ErrorsNameTheLineAndTheField) {
         {"brush spacing too fine",
          "[\n  {\"op\": \"brush\", \"path\": [[0, 0], [0, 1], [1, 1]], \"spacing\": 1e-6}\n]",
          {"script.json:2:", "spacing", "2000000"}},
+        // Heights beyond kMaxHeight (1e9 m, the largest terrain side) would make volumes and
+        // exported meshes infinite: a depth of 1e300 m once gave a volume of -4.9e297 m^3.
+        {"stamp depth beyond 1e9 m",
+         "[\n  {\"op\": \"stamp\", \"tool\": {\"asset\": \"circle\"}, \"at\": [0, 0], "
+         "\"depth\": 1e300}\n]",
+         {"script.json:2:", "depth", "[-1e+09, 1e+09]"}},
+        {"stroke bottom beyond 1e9 m",
+         "[\n  {\"op\": \"stroke\", \"tool\": {\"asset\": \"circle\"}, \"path\": [[0, 0], [1, "
+         "1]], \"bottom\": -2e9}\n]",
+         {"script.json:2:", "bottom", "1e+09"}},
+        {"flatten height beyond 1e9 m",
+         "[\n  {\"op\": \"brush\", \"kind\": \"flatten\", \"at\": [0, 0], \"height\": 1e300}\n]",
+         {"script.json:2:", "height"}},
+        {"raise strength beyond 1e9 m",
+         "[\n  {\"op\": \"brush\", \"kind\": \"raise\", \"at\": [0, 0], \"strength\": 1e300}\n]",
+         {"script.json:2:", "strength"}},
+        {"pour volume beyond 1e27 m^3",
+         "[\n  {\"op\": \"pour\", \"at\": [0, 0], \"volume\": 1e300}\n]",
+         {"script.json:2:", "volume", "1e+27"}},
+        {"terrain height beyond 1e9 m",
+         R"({"terrain": {"height": 1e300}, "operations": []})",
+         {"terrain", "height"}},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
