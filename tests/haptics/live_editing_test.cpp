@@ -226,6 +226,10 @@ TEST(HapticRecording, BadRecordingsAreRejectedWithTheField) {
     EXPECT_EQ(error_of(k.dump()), "");
     k["edit"]["spacing"] = 7.9e-7;
     EXPECT_NE(error_of(k.dump()).find("a replay may place"), std::string::npos);
+    // A pen height beyond the 1e9 m a terrain may reach.
+    k = j;
+    k["edits"] = {{0, 0.5, 0.5, -1e300, 1}};
+    EXPECT_NE(error_of(k.dump()).find("edits[0] has a height beyond"), std::string::npos);
     EXPECT_TRUE(is_haptic_recording(j.dump()));
     EXPECT_FALSE(is_haptic_recording(R"({"operations": []})"));
     EXPECT_FALSE(is_haptic_recording("not json"));
