@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <span>
 #include <sstream>
@@ -463,6 +464,27 @@ nlohmann::json stamp_json(const StampReport& r) {
     return j;
 }
 
+/// A stamp or stroke that changed nothing (touched no triangle) says so: the artist asked for
+/// a change.
+void warn_if_nothing_stamped(nlohmann::json& j, const StampReport& total) {
+    if (total.triangles_touched > 0 || j.contains("warning")) return;
+    j["warning"] =
+        "no stamp changed the terrain: the tool misses it, presses no deeper than its surface, "
+        "or the terrain already holds its imprint";
+}
+
+/// A pour or removal that moved less than asked says how much and why.
+void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
+    if (!(std::abs(moved) < 0.99 * asked)) return;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  remove ? "removed %.3g m³ of the %.3g m³ asked: there is no more sand above the "
+                           "bedrock there, or the point lies outside the terrain"
+                         : "poured %.3g m³ of the %.3g m³ asked: the rest fell outside the terrain",
+                  std::abs(moved), asked);
+    j["warning"] = text;
+}
+
 }  // namespace
 
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
@@ -534,7 +556,10 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                                  std::clamp(op.at.y, d.min.y, d.max.y)};
                     at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
                 }
-                return stamp_json(stamp(tin, *op.tool, at, context));
+                const StampReport report = stamp(tin, *op.tool, at, context);
+                nlohmann::json j = stamp_json(report);
+                warn_if_nothing_stamped(j, report);
+                return j;
             } else if constexpr (std::is_same_v<T, StrokeOp>) {
                 std::vector<StampReport> per;
                 PhysicsStepReport physics_total;
@@ -548,6 +573,7 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                     apply_stroke(tin, *op.tool, op.path, op.settings, context, &per, after_stamp);
                 nlohmann::json j = stamp_json(total);
                 j["stamps_applied"] = per.size();
+                warn_if_nothing_stamped(j, total);
                 if (op.erode_iterations > 0) {
                     j["erosion_iterations"] = physics_total.iterations;
                     j["erosion_ms"] = physics_total.ms;
@@ -575,7 +601,10 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                 }
                 if (context.settings.simplify_after_edit)
                     context.simplifier.run(tin, context.settings.simplify);
-                return {{"volume", moved}, {"points", op.points.size()}, {"volume_change", moved}};
+                nlohmann::json j = {
+                    {"volume", moved}, {"points", op.points.size()}, {"volume_change", moved}};
+                warn_if_short(j, op.remove, op.volume, moved);
+                return j;
             } else if constexpr (std::is_same_v<T, BrushOp>) {
                 std::size_t changed = 0;
                 double dv = 0.0;

@@ -182,6 +182,42 @@ TEST(Script, AStampThatLosesItsExtrusionWarnsNamingItsLine) {
     EXPECT_NEAR(report[1]["undeposited_volume"].get<double>(), before_second - 0.08, 1e-12);
 }
 
+// Operations that change less than they ask for say so: a stamp and a stroke beside the
+// terrain, a stamp no deeper than the surface, a pour beside it, a removal from a terrain
+// whose sand is gone. Those that do their work say nothing.
+TEST(Script, OperationsThatMissTheTerrainWarn) {
+    const Script s = parse(R"([
+  {"op": "stamp", "tool": {"asset": "circle"}, "at": [5, 5], "depth": 0.01},
+  {"op": "stroke", "tool": {"asset": "circle"}, "path": [[5, 5], [6, 5]], "depth": 0.01},
+  {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5]},
+  {"op": "pour", "at": [5, 5], "volume": 0.001},
+  {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "depth": 0.01},
+  {"op": "pour", "at": [0.3, 0.3], "volume": 0.0001},
+  {"op": "remove", "at": [0.7, 0.7], "volume": 1}
+])");
+    // 10 cm of sand over bedrock at 0: a removal can take at most 0.1 m³ from the 1 m².
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 500, 604, [](Vec2) { return 0.1; });
+    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+        if (tin.is_alive(VertexId{i})) tin.set_bedrock(VertexId{i}, 0.0);
+    }
+    SculptContext context(tin.domain());
+    const nlohmann::json report = run_script(s, tin, context);
+    ASSERT_EQ(report.size(), 7u);
+    const auto warning = [&](std::size_t k) { return report[k].value("warning", std::string()); };
+    EXPECT_EQ(warning(0).rfind("line 2: operation 1 (stamp): no stamp changed the terrain", 0), 0u)
+        << warning(0);
+    EXPECT_EQ(warning(1).rfind("line 3: operation 2 (stroke): no stamp changed the terrain", 0), 0u)
+        << warning(1);
+    EXPECT_NE(warning(2).find("no stamp changed the terrain"), std::string::npos) << warning(2);
+    EXPECT_NE(warning(3).find("poured 0 m³ of the 0.001 m³ asked"), std::string::npos)
+        << warning(3);
+    EXPECT_EQ(warning(4), "") << report[4].dump();
+    EXPECT_EQ(warning(5), "") << report[5].dump();
+    EXPECT_NE(warning(6).find("of the 1 m³ asked: there is no more sand"), std::string::npos)
+        << warning(6);
+    EXPECT_LE(-report[6]["volume"].get<double>(), 0.1 + 1e-9);
+}
+
 TEST(Script, RunAppliesTheOperationsAndTheSettings) {
     const std::string text = R"({
   "settings": {"simplify_tolerance": 0.002, "keep_generations": 10},
