@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include "tools/tool_json.hpp"
@@ -47,8 +48,19 @@ nlohmann::json replay_recording(const HapticRecording& r, Tin& tin, SculptContex
     j["volume_change"] = tin.volume() - volume_before;
     if (r.result) {
         const TerrainSummary after = summarise(tin);
-        j["result_matches_recording"] =
+        const bool matches =
             after.vertices == r.result->vertices && after.volume == r.result->volume;
+        j["result_matches_recording"] = matches;
+        if (!matches) {
+            // The replay is still a valid edit; the artist should know it is not the recorded
+            // one (the tools' code, or the recording's file, changed since).
+            std::ostringstream w;
+            w.precision(17);
+            w << "the replay does not reproduce the recording: it ends with " << after.vertices
+              << " vertices and " << after.volume << " m³, the recording with "
+              << r.result->vertices << " and " << r.result->volume << " m³";
+            j["warning"] = w.str();
+        }
     }
     return j;
 }
