@@ -1,6 +1,7 @@
 #include "io/export_terrain.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -249,7 +250,12 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     switch (format) {
         case ExportFormat::Obj: {
             const fs::path dir = out.parent_path();
-            const std::string stem = out.stem().string();
+            // The companions' names go into the OBJ and MTL as bare words (mtllib, map_Kd),
+            // which readers split at white space: "my scene.mtl" would read as two names.
+            std::string stem = out.stem().string();
+            std::replace_if(
+                stem.begin(), stem.end(), [](unsigned char c) { return std::isspace(c) != 0; },
+                '_');
             const std::string mtl = stem + ".mtl";
             ObjMaterial material;
             material.colour = o.palette.colours.front();

@@ -145,6 +145,11 @@ scenario_export_bad() {
     echo "garbage" >g.sandtin
     expect_error garbage "not a sandtin" export g.sandtin -o s.obj
     expect_error no_dir "nosuchdir" export s.sandtin -o nosuchdir/s.stl
+    # Its companions' names are bare words in the OBJ and MTL: a space would split them.
+    expect_ok spaced export s.sandtin -o "my scene.obj" || return
+    grep -qx "mtllib my_scene.mtl" "my scene.obj" || fail "mtllib line: $(grep mtllib "my scene.obj")"
+    grep -qx "map_Kd my_scene_albedo.png" my_scene.mtl || fail "map_Kd line: $(grep map_Kd my_scene.mtl)"
+    [[ -s my_scene_albedo.png && -s my_scene_normal.png ]] || fail "textures named with spaces"
     # An OBJ's four files are one save: a folder where its normal map goes leaves none of them.
     mkdir -p objset/m_normal.png
     expect_error obj_set "m_normal.png" export s.sandtin -o objset/m.obj
