@@ -10,6 +10,10 @@ namespace sandtin::cli {
 Arguments::Arguments(const std::vector<std::string>& args, const std::map<std::string, int>& spec) {
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
+        if (a == "--help" || a == "-h") {
+            help_ = true;
+            continue;
+        }
         if (a.size() > 1 && a[0] == '-' &&
             !(a.size() > 1 && (std::isdigit(static_cast<unsigned char>(a[1])) || a[1] == '.'))) {
             const auto it = spec.find(a);
@@ -45,7 +49,13 @@ std::uint64_t Arguments::count(const std::string& option, std::size_t index) con
 }
 
 void Arguments::require_positionals(std::size_t n, const std::string& usage) const {
-    if (positionals_.size() != n) throw UsageError("usage: " + usage);
+    if (help_) throw HelpRequested(usage);
+    if (positionals_.size() == n) return;
+    if (positionals_.size() > n) {
+        throw UsageError("unexpected argument '" + positionals_[n] + "'\nusage: " + usage);
+    }
+    throw UsageError("missing " + std::to_string(n - positionals_.size()) + " of its " +
+                     std::to_string(n) + " argument(s)\nusage: " + usage);
 }
 
 double parse_number(const std::string& text, const std::string& what) {

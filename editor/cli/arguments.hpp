@@ -16,6 +16,11 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// --help or -h on a command: main prints `what()`, the command's usage, on stdout and exits 0.
+struct HelpRequested : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 class Arguments {
   public:
     /// `spec` maps each allowed option (with its dashes) to the number of values it takes.
@@ -38,9 +43,13 @@ class Arguments {
     std::uint64_t count_or(const std::string& option, std::uint64_t fallback) const {
         return has(option) ? count(option) : fallback;
     }
+    /// Throws HelpRequested with `usage` when --help or -h was given (every command calls this
+    /// first), else UsageError naming what is missing or extra unless there are exactly `n`
+    /// positional arguments.
     void require_positionals(std::size_t n, const std::string& usage) const;
 
   private:
+    bool help_ = false;
     std::vector<std::string> positionals_;
     std::map<std::string, std::vector<std::string>> values_;
 };

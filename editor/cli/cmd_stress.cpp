@@ -24,9 +24,7 @@ int run_stress(const std::vector<std::string>& raw) {
                                {"--no-minimise", 0},
                                {"--repro", 1},
                                {"--json", 0}});
-    if (!args.positionals().empty()) {
-        throw UsageError("unexpected argument '" + args.positionals()[0] + "'\nusage: " + kUsage);
-    }
+    args.require_positionals(0, kUsage);
     StressOptions options;
     options.seed = args.count_or("--seed", 1);
     options.operations = args.count_or("--ops", 1000);

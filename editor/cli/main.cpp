@@ -15,7 +15,8 @@ constexpr const char* kHelp = R"(sandtin - interactive sand terrain on a TIN
 usage: sandtin <command> [options]
 
 commands:
-  new     create a terrain:   sandtin new --flat W H [--points N] [--seed S] -o scene.sandtin
+  new     create a terrain:   sandtin new (--flat W H [--points N] [--seed S] | --grid W H NX NY)
+                              [--height Z] -o scene.sandtin
   info    describe a session: sandtin info scene.sandtin [--json]
   run     apply a script:     sandtin run script.json [-i in.sandtin] -o out.sandtin [--physics cpu|gpu] [--json]
   import  heightmap to TIN:   sandtin import FILE --max-error E [--max-points N] -o scene.sandtin
@@ -28,7 +29,8 @@ commands:
                               sandtin stress [--seed S] [--ops N] [--json]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
-Errors go to stderr and the exit code is non-zero.
+sandtin <command> --help prints the command's usage; README.md has every option, its default
+and its unit. Errors go to stderr and the exit code is non-zero.
 )";
 
 }  // namespace
@@ -57,6 +59,10 @@ int main(int argc, char** argv) {
         }
         std::cerr << "sandtin: error: unknown command '" << command << "'\n\n" << kHelp;
         return 2;
+    } catch (const sandtin::cli::HelpRequested& e) {
+        std::cout << "usage: " << e.what()
+                  << "\nEvery option, its default and its unit: README.md\n";
+        return 0;
     } catch (const sandtin::cli::UsageError& e) {
         std::cerr << "sandtin " << command << ": error: " << e.what() << "\n";
         return 2;

@@ -141,6 +141,18 @@ scenario_bad_input() {
     size=$(stat -c %s good.sandtin)
 
     expect_error missing "missing.sandtin" info missing.sandtin --json
+    # --help on any command prints its usage on stdout and succeeds; a stray or missing
+    # argument is named.
+    local cmd
+    for cmd in new info run import export stress haptics demo "bench erosion"; do
+        # shellcheck disable=SC2086
+        expect_ok "help_${cmd// /_}" $cmd --help || continue
+        grep -q "^usage: sandtin ${cmd%% *}" "help_${cmd// /_}.out" ||
+            fail "'$cmd --help' printed no usage: $(cat "help_${cmd// /_}.out")"
+    done
+    grep -q -- "--grid" help_new.out || fail "new's usage lacks --grid"
+    expect_error stray "unexpected argument 'extra'" new --flat 1 1 extra -o stray.sandtin
+    expect_error missing_arg "missing 1 of its 1" info
     # Heights beyond 1e9 m (the largest terrain side) would give infinite volumes and meshes.
     expect_error huge_height "--height" new --flat 1 1 --height 1e308 -o huge.sandtin
     [[ -e huge.sandtin ]] && fail "new with a height of 1e308 m wrote huge.sandtin"
