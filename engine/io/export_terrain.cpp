@@ -35,9 +35,10 @@ std::string lower_extension(const fs::path& p) {
 std::uint32_t samples_along(double length, double cell) {
     const double n = std::round(length / cell) + 1.0;
     if (!(n <= kMaxMapSide)) {
-        throw std::invalid_argument("export: a cell size of " + std::to_string(cell) +
-                                    " m gives more than " + std::to_string(kMaxMapSide) +
-                                    " samples along a " + std::to_string(length) + " m side");
+        std::ostringstream what;
+        what << "export: a cell size of " << cell << " m gives more than " << kMaxMapSide
+             << " samples along a " << length << " m side";
+        throw std::invalid_argument(what.str());
     }
     return std::max<std::uint32_t>(2, static_cast<std::uint32_t>(n));
 }

@@ -170,9 +170,11 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
     if (version >= 2 && !header_intact) {
         header.fail("header checksum mismatch: the file is corrupted");
     }
-    if (length != header.remaining()) {
-        header.fail(length > header.remaining() ? "file is truncated: payload is incomplete"
-                                                : "file has trailing bytes after the payload");
+    if (length > header.remaining()) header.fail("file is truncated: payload is incomplete");
+    if (length < header.remaining()) {
+        // Named where they start, not where the header ends.
+        header.get_bytes(length);
+        header.fail("file has trailing bytes after the payload");
     }
     const auto payload = header.get_bytes(length);
     if (crc32_of(payload) != crc) header.fail("checksum mismatch: the file is corrupted");

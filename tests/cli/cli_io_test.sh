@@ -145,6 +145,8 @@ scenario_export_bad() {
     echo "garbage" >g.sandtin
     expect_error garbage "not a sandtin" export g.sandtin -o s.obj
     expect_error no_dir "nosuchdir" export s.sandtin -o nosuchdir/s.stl
+    # A tiny cell is named as given, not rounded to 0.000000.
+    expect_error tiny_cell "cell size of 1e-07 m" export s.sandtin -o tiny.png --cell-size 1e-7
     # Its companions' names are bare words in the OBJ and MTL: a space would split them.
     expect_ok spaced export s.sandtin -o "my scene.obj" || return
     grep -qx "mtllib my_scene.mtl" "my scene.obj" || fail "mtllib line: $(grep mtllib "my scene.obj")"

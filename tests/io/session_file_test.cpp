@@ -262,9 +262,13 @@ TEST_F(SessionFile, BadMagic) {
 
 TEST_F(SessionFile, TrailingBytes) {
     std::vector<std::uint8_t> bytes = encode_session(make_session(20));
+    const std::size_t end = bytes.size();
     bytes.push_back(0);
     write_bytes(path("trailing.sandtin"), bytes);
+    // Named where they start: the end of the session's own bytes.
     expect_load_error(path("trailing.sandtin"), {"trailing"}, "trailing bytes");
+    expect_load_error(path("trailing.sandtin"), {"(at byte " + std::to_string(end) + ")"},
+                      "trailing bytes' offset");
 }
 
 TEST_F(SessionFile, CraftedFilesWithValidChecksum) {
