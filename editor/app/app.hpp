@@ -41,6 +41,7 @@
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "layout_probe.hpp"
 #include "physics/sand_physics.hpp"
 #include "picking.hpp"

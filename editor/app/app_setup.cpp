@@ -70,7 +70,8 @@ void App::load_initial_scene() {
         throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
     }
     const Session s = load_session(options_.scene);
-    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, options_.scene, materials_of(s));
+    doc_.adopt(session_terrain(s, options_.scene), s.next_generation, options_.scene,
+               materials_of(s));
     // An autosave newer than the scene: the prompt asks (a script answers with "recovery").
     if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
         recovery_for_ = options_.scene;
@@ -225,7 +226,7 @@ void App::open(const std::filesystem::path& p) {
     end_action();
     keep_unsaved_edits();
     const Session s = load_session(p);
-    doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, p, materials_of(s));
+    doc_.adopt(session_terrain(s, p), s.next_generation, p, materials_of(s));
     document_replaced();
     frame_terrain();
     report("opened " + p.string());

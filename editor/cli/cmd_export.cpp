@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "io/export_terrain.hpp"
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
@@ -96,7 +97,7 @@ int run_export(const std::vector<std::string>& raw) {
     }
     TinOptions tin_options;
     tin_options.track_changes = false;
-    const Tin tin = Tin::from_snapshot(session.terrain, tin_options);
+    const Tin tin = session_terrain(session, args.positionals()[0], tin_options);
     ExportReport report;
     try {
         report = export_terrain(tin, out, format, options);

@@ -13,6 +13,7 @@
 #include "haptics/haptic_recording.hpp"
 #include "haptics/udp_session_server.hpp"
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
 
@@ -112,7 +113,7 @@ int run_haptics(const std::vector<std::string>& raw) {
                 args.has("--seed"))
                 throw UsageError("-i and a generated terrain (--size ...) exclude each other");
             session = load_session(args.text("-i"));
-            return Tin::from_snapshot(session.terrain, tin_options);
+            return session_terrain(session, args.text("-i"), tin_options);
         }
         ScriptTerrain t;
         if (args.has("--size")) t.size = {args.number("--size", 0), args.number("--size", 1)};

@@ -5,6 +5,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
 
 namespace sandtin::cli {
@@ -16,7 +17,7 @@ int run_info(const std::vector<std::string>& raw) {
     const Session session = load_session(path);
     TinOptions options;
     options.track_changes = false;
-    const Tin tin = Tin::from_snapshot(session.terrain, options);
+    const Tin tin = session_terrain(session, path, options);
     // Valid: from_snapshot ends with check_valid() and refuses the file on any problem (a
     // second check cost a quarter of `info` on a 10^6-vertex scene).
     nlohmann::json j = describe_terrain(tin, false);

@@ -13,6 +13,7 @@
 #include "haptics/recording_replay.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
 
@@ -87,7 +88,7 @@ int run_run(const std::vector<std::string>& raw) {
     Tin tin = [&] {
         if (args.has("-i")) {
             session = load_session(args.text("-i"));
-            return Tin::from_snapshot(session.terrain, options);
+            return session_terrain(session, args.text("-i"), options);
         }
         if (!script.terrain) {
             throw UsageError(

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
@@ -269,6 +270,27 @@ TEST_F(SessionFile, TrailingBytes) {
     expect_load_error(path("trailing.sandtin"), {"trailing"}, "trailing bytes");
     expect_load_error(path("trailing.sandtin"), {"(at byte " + std::to_string(end) + ")"},
                       "trailing bytes' offset");
+}
+
+TEST_F(SessionFile, AnInvalidTerrainInAnIntactFileNamesTheFile) {
+    // Bytes and checksums intact, the triangulation not: a triangle names a vertex id past the
+    // vertex table. The terrain is refused, and the message says which file it came from.
+    Session s = make_session(20);
+    ASSERT_FALSE(s.terrain.slots.empty());
+    s.terrain.slots.front()[0] = 1000000;
+    save_session(path("bad-topology.sandtin"), s);
+    const Session loaded = load_session(path("bad-topology.sandtin"));
+    try {
+        (void)session_terrain(loaded, path("bad-topology.sandtin"));
+        ADD_FAILURE() << "an invalid triangulation was accepted";
+    } catch (const std::exception& e) {
+        const std::string m = e.what();
+        EXPECT_EQ(m.rfind("'" + path("bad-topology.sandtin").string() + "': ", 0), 0u) << m;
+    }
+    // An intact one loads the same as Tin::from_snapshot.
+    const Session good = make_session(20);
+    EXPECT_EQ(session_terrain(good, "x").vertex_count(),
+              Tin::from_snapshot(good.terrain).vertex_count());
 }
 
 TEST_F(SessionFile, CraftedFilesWithValidChecksum) {

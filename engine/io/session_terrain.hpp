@@ -1,0 +1,17 @@
+#pragma once
+// The terrain of a loaded session, with the file named in any error: a session whose bytes and
+// checksums are intact can still describe an invalid triangulation (Tin::from_snapshot refuses
+// it), and the user must learn which file that is.
+
+#include <filesystem>
+
+#include "io/session_file.hpp"
+#include "tin/tin.hpp"
+
+namespace sandtin {
+
+/// Tin::from_snapshot(session.terrain, options); its errors are prefixed with "'<file>': ".
+Tin session_terrain(const Session& session, const std::filesystem::path& file,
+                    TinOptions options = {});
+
+}  // namespace sandtin
