@@ -14,6 +14,7 @@
 #include "haptics/udp_session_server.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
+#include "session_output.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
 
@@ -143,7 +144,7 @@ int run_haptics(const std::vector<std::string>& raw) {
     }
     // A live session cannot be run again: where its results go is checked before it starts,
     // and the recording (which replays it) is saved first.
-    check_writable(out);
+    check_session_output(out);
     if (args.has("--record")) check_writable(args.text("--record"));
     const UdpServeResult r = serve_udp_session(tin, context, options);
 

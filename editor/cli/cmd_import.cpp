@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "session_output.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
 
@@ -45,7 +46,7 @@ int run_import(const std::vector<std::string>& raw) {
         throw UsageError("missing required option '--max-error'\nusage: " + std::string(kUsage));
     }
     const std::string out = args.text("-o");
-    check_writable(out);  // before the work, not after it
+    check_session_output(out);  // before the work, not after it
     check_not_overwriting(out, args.positionals()[0], "the heightmap being imported");
     ImportOptions options;
     options.greedy.max_error = args.number("--max-error");

@@ -6,6 +6,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/session_file.hpp"
+#include "session_output.hpp"
 #include "terrain_report.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
@@ -32,7 +33,7 @@ int run_new(const std::vector<std::string>& raw) {
                          std::string(kUsage));
     }
     const std::string out = args.text("-o");
-    check_writable(out);  // before the work, not after it
+    check_session_output(out);  // before the work, not after it
     const double z = args.number_or("--height", 0.0);
     if (!(std::abs(z) <= kMaxHeight))
         throw UsageError("--height must lie within -1e9 and 1e9 m\nusage: " + std::string(kUsage));

@@ -14,6 +14,7 @@
 #include "io/script.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
+#include "session_output.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
 
@@ -30,7 +31,7 @@ int run_run(const std::vector<std::string>& raw) {
     args.require_positionals(1, kUsage);
     const std::filesystem::path script_path = args.positionals()[0];
     const std::string out = args.text("-o");
-    check_writable(out);  // before the work, not after it
+    check_session_output(out);  // before the work, not after it
     // -i and -o may be one session (an edit in place); the script must survive its run.
     check_not_overwriting(out, script_path, "the script being run");
     const std::vector<std::uint8_t> bytes = read_file(script_path, 1u << 28);

@@ -405,9 +405,12 @@ scenario_run_bad() {
     # The script is not an output: not as -o, not through a link, not as a save op's path
     # (named with its line, before any work). The script stays as it was.
     cp fine.json fine.orig
-    ln -sf fine.json fine_link.json
-    expect_error script_as_output "the script being run" run fine.json -i in.sandtin -o fine.json
-    expect_error script_via_link "the script being run" run fine.json -i in.sandtin -o fine_link.json
+    ln -sf fine.json fine_link.sandtin
+    expect_error script_as_output ".json" run fine.json -i in.sandtin -o fine.json
+    expect_error script_via_link "the script being run" run fine.json -i in.sandtin -o fine_link.sandtin
+    # Nor is any name that says mesh, map or heightmap.
+    expect_error session_as_png "name it .sandtin" new --flat 1 1 -o looks_like.png
+    [[ -e looks_like.png ]] && fail "new wrote a session named looks_like.png"
     printf '[\n  {"op": "simplify"},\n  {"op": "save", "path": "self.json"}\n]\n' >self.json
     cp self.json self.orig
     expect_error script_saved_over "self.json:3:" run self.json -i in.sandtin -o out_self.sandtin
