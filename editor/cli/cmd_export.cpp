@@ -88,6 +88,27 @@ int run_export(const std::vector<std::string>& raw) {
     }
     options.textures = !args.has("--no-textures");
     if (args.has("--faceted")) options.normal_mode = NormalMode::Faceted;
+    // An option the chosen output would ignore is an error: the user expected it to act.
+    const bool textured_mesh =
+        format == ExportFormat::Obj || format == ExportFormat::Gltf || format == ExportFormat::Glb;
+    const bool mesh = textured_mesh || format == ExportFormat::Ply || format == ExportFormat::Stl;
+    const bool samples_a_grid = !mesh || (textured_mesh && options.textures) || options.max_error;
+    const auto refuse = [&](const char* option, const char* applies_to) {
+        if (args.has(option)) {
+            throw UsageError(std::string(option) + " applies to " + applies_to + ", not to '" +
+                             out + "'\nusage: " + kUsage);
+        }
+    };
+    if (args.has("--cell-size") && args.has("--size"))
+        throw UsageError("give at most one of --cell-size and --size");
+    if (!samples_a_grid) {
+        refuse("--cell-size", "maps, textured meshes and --max-error");
+        refuse("--size", "maps, textured meshes and --max-error");
+    }
+    if (!mesh) refuse("--units", "meshes");
+    if (!textured_mesh) refuse("--no-textures", ".obj, .gltf and .glb");
+    if (!(format == ExportFormat::NormalPng || (textured_mesh && options.textures)))
+        refuse("--faceted", "normal maps, and the textures of .obj, .gltf and .glb");
 
     const Session session = load_session(args.positionals()[0]);
     // Height maps and simplification default to the grid the terrain was imported from, so

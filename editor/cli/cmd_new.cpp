@@ -48,6 +48,9 @@ int run_new(const std::vector<std::string>& raw) {
         return Rect::from_size(w, h);
     };
     Tin tin = [&] {
+        // The seed places random points: without them it would be ignored.
+        if (args.has("--seed") && args.count_or("--points", 0) == 0)
+            throw UsageError("--seed applies to --flat with --points N");
         if (args.has("--grid")) {
             if (args.has("--points")) throw UsageError("--points applies to --flat, not --grid");
             const auto nx = args.count("--grid", 2);

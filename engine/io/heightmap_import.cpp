@@ -66,7 +66,18 @@ HeightRaster decode_heightmap(std::span<const std::uint8_t> bytes, const std::st
     HeightRaster r;
     double z_scale = 1.0;
     double z_offset = 0.0;
-    switch (detect(bytes)) {
+    const Format format = detect(bytes);
+    if (options.png_encoding != PngHeightEncoding::Auto && format != Format::Png &&
+        format != Format::Unknown) {
+        const char* kind = format == Format::Tiff    ? "a GeoTIFF"
+                           : format == Format::Ascii ? "an ESRI ASCII grid"
+                                                     : "an OpenEXR image";
+        throw std::invalid_argument(name +
+                                    ": a PNG height encoding applies to PNG heightmaps, "
+                                    "and this is " +
+                                    kind);
+    }
+    switch (format) {
         case Format::Png: {
             PngHeightmap png =
                 decode_png_heightmap(bytes, name, options.png_encoding, options.limits);

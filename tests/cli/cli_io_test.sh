@@ -120,6 +120,7 @@ scenario_import_bad() {
     expect_error no_output "-o" import "$TILE" --max-error 1
     expect_error no_dir "nosuchdir" import "$TILE" --max-error 1 -o nosuchdir/x.sandtin
     [[ -e x.sandtin ]] && fail "a failed import left x.sandtin behind"
+    expect_error encoding_asc "applies to PNG heightmaps" import nan.asc --max-error 1 --encoding gray -o x.sandtin
     expect_error huge_offset "--z-offset" import "$TILE" --max-error 1 --z-offset 1e308 -o x.sandtin
     # The heightmap is not an output: importing over itself would destroy it.
     printf 'ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n5 6\n7 8\n' >self.asc
@@ -146,6 +147,14 @@ scenario_export_bad() {
     echo "garbage" >g.sandtin
     expect_error garbage "not a sandtin" export g.sandtin -o s.obj
     expect_error no_dir "nosuchdir" export s.sandtin -o nosuchdir/s.stl
+    # Options the output would ignore are errors.
+    expect_error size_and_cell "at most one of --cell-size and --size" export s.sandtin -o a.png --size 64 --cell-size 2
+    expect_error units_map "--units applies to meshes" export s.sandtin -o a.png --units km
+    expect_error cell_stl "--cell-size applies to" export s.sandtin -o a.stl --cell-size 1
+    expect_error textures_ply "--no-textures applies to" export s.sandtin -o a.ply --no-textures
+    expect_error faceted_height "--faceted applies to" export s.sandtin -o a.png --faceted
+    expect_ok cell_stl_simplified export s.sandtin -o b.stl --cell-size 1 --max-error 0.01 || return
+    [[ -e a.png || -e a.stl || -e a.ply ]] && fail "a refused export wrote a file"
     # A tiny cell is named as given, not rounded to 0.000000.
     expect_error tiny_cell "cell size of 1e-07 m" export s.sandtin -o tiny.png --cell-size 1e-7
     # Its companions' names are bare words in the OBJ and MTL: a space would split them.

@@ -152,6 +152,7 @@ scenario_bad_input() {
     done
     grep -q -- "--grid" help_new.out || fail "new's usage lacks --grid"
     expect_error stray "unexpected argument 'extra'" new --flat 1 1 extra -o stray.sandtin
+    expect_error seed_unused "--seed applies to --flat with --points" new --flat 1 1 --seed 3 -o s.sandtin
     expect_error missing_arg "missing 1 of its 1" info
     # Heights beyond 1e9 m (the largest terrain side) would give infinite volumes and meshes.
     expect_error huge_height "--height" new --flat 1 1 --height 1e308 -o huge.sandtin
