@@ -71,6 +71,7 @@ Script recording_script(std::string_view text, const std::string& name,
     // Check the tool now, so a bad recording fails before any terrain is touched.
     (void)Tool::build(parse_tool_spec(recording->tool, base_dir, name + ": tool"));
     Script script;
+    script.name = name;
     script.terrain = recording->terrain;
     CustomOp op;
     op.name = "haptic_replay";

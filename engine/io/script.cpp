@@ -385,6 +385,7 @@ Script parse_script(std::string_view text, const std::string& name,
                               LineCountingIterator(text.data() + text.size(), &cursor), &lines);
 
     Script script;
+    script.name = name;
     const nlohmann::json* operations = &document;
     if (document.is_object()) {
         JsonFields top(document, name);
@@ -662,21 +663,24 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
     ScriptRunner runner(script, tin, context, false, backend);
     if (carried != nullptr) runner.carry_into_saves(*carried);
     nlohmann::json reports = nlohmann::json::array();
+    const auto where = [&](std::size_t line) {
+        return script.name.empty() ? "line " + std::to_string(line)
+                                   : script.name + ":" + std::to_string(line);
+    };
     for (std::size_t i = 0; i < script.steps.size(); ++i) {
         const ScriptStep& step = script.steps[i];
         try {
             nlohmann::json report = runner.run(step);
             // A warning names its operation as an error would, so the artist finds it.
             if (const auto w = report.find("warning"); w != report.end() && w->is_string()) {
-                *w = "line " + std::to_string(step.line) + ": operation " + std::to_string(i + 1) +
-                     " (" + step.op_name + "): " + w->get<std::string>();
+                *w = where(step.line) + ": operation " + std::to_string(i + 1) + " (" +
+                     step.op_name + "): " + w->get<std::string>();
             }
             reports.push_back(std::move(report));
         } catch (const std::invalid_argument& e) {
             // Input that only the terrain shows to be bad: named by its line, like a parse error.
-            throw std::invalid_argument("line " + std::to_string(step.line) + ": operation " +
-                                        std::to_string(i + 1) + " (" + step.op_name +
-                                        "): " + e.what());
+            throw std::invalid_argument(where(step.line) + ": operation " + std::to_string(i + 1) +
+                                        " (" + step.op_name + "): " + e.what());
         }
     }
     return reports;

@@ -117,6 +117,9 @@ struct ScriptTerrain {
 Tin make_script_terrain(const ScriptTerrain& terrain, TinOptions options = {});
 
 struct Script {
+    /// The script's name as parsed (its path): runtime errors and warnings begin with
+    /// "<name>:<line>:", as parse errors do. Empty: they begin with "line <line>:".
+    std::string name;
     std::vector<ScriptStep> steps;
     TalusSettings physics;  ///< "settings": relocation_radius, schedule, damping, ...
     bool uses_physics = false;

@@ -351,7 +351,7 @@ END_OF_SCRIPT
     "at": [0.5, 0.5], "bottom": 0.08}]}
 END_OF_SCRIPT
     expect_ok lost1 run lost.json -o lost.sandtin || return
-    grep -q "warning: line 3: operation 1 (stamp): extrusion had nowhere to put 0.02 m" \
+    grep -q "warning: lost.json:3: operation 1 (stamp): extrusion had nowhere to put 0.02 m" \
         lost1.err || fail "no warning of the lost extrusion: $(cat lost1.err)"
 
     # Neither -i nor a terrain: a usage error and no file.

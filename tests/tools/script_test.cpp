@@ -155,7 +155,9 @@ TEST(Script, AnOperationTheTerrainRefusesIsNamedByItsLine) {
         ADD_FAILURE() << "the stamp ran";
     } catch (const std::invalid_argument& e) {
         const std::string m = e.what();
-        EXPECT_EQ(m.rfind("line 3: operation 2 (stamp): stamp: the tool is too small", 0), 0u) << m;
+        EXPECT_EQ(m.rfind("script.json:3: operation 2 (stamp): stamp: the tool is too small", 0),
+                  0u)
+            << m;
     }
 }
 
@@ -175,7 +177,8 @@ TEST(Script, AStampThatLosesItsExtrusionWarnsNamingItsLine) {
     EXPECT_FALSE(report[0].contains("warning")) << report[0].dump();
     ASSERT_TRUE(report[1].contains("warning")) << report[1].dump();
     const std::string w = report[1]["warning"];
-    EXPECT_EQ(w.rfind("line 3: operation 2 (stamp): extrusion had nowhere to put", 0), 0u) << w;
+    EXPECT_EQ(w.rfind("script.json:3: operation 2 (stamp): extrusion had nowhere to put", 0), 0u)
+        << w;
     // The second stamp leaves the whole 1 m² at its 8 cm floor; it lost all it cut.
     EXPECT_NEAR(tin.volume(), 0.08, 1e-12);
     const double before_second = v0 + report[0]["volume_change"].get<double>();
@@ -204,9 +207,12 @@ TEST(Script, OperationsThatMissTheTerrainWarn) {
     const nlohmann::json report = run_script(s, tin, context);
     ASSERT_EQ(report.size(), 7u);
     const auto warning = [&](std::size_t k) { return report[k].value("warning", std::string()); };
-    EXPECT_EQ(warning(0).rfind("line 2: operation 1 (stamp): no stamp changed the terrain", 0), 0u)
+    EXPECT_EQ(
+        warning(0).rfind("script.json:2: operation 1 (stamp): no stamp changed the terrain", 0), 0u)
         << warning(0);
-    EXPECT_EQ(warning(1).rfind("line 3: operation 2 (stroke): no stamp changed the terrain", 0), 0u)
+    EXPECT_EQ(
+        warning(1).rfind("script.json:3: operation 2 (stroke): no stamp changed the terrain", 0),
+        0u)
         << warning(1);
     EXPECT_NE(warning(2).find("no stamp changed the terrain"), std::string::npos) << warning(2);
     EXPECT_NE(warning(3).find("poured 0 m³ of the 0.001 m³ asked"), std::string::npos)
