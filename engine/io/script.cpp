@@ -315,6 +315,13 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
                                   : f.in_range("strength", b.settings.strength, 0.0, kMaxHeight);
         b.settings.falloff = parse_falloff(f, "smooth");
         b.settings.refine_spacing = f.non_negative("refine_spacing", 0.0);
+        // Fields another kind of brush reads would be ignored here: an error, as unknown ones.
+        if (f.has("material") && b.settings.kind != BrushKind::PaintMaterial)
+            f.fail_field("material", "applies to the paint brush, not to " + kind);
+        if (f.has("height") && b.settings.kind != BrushKind::Flatten)
+            f.fail_field("height", "applies to the flatten brush, not to " + kind);
+        if (f.has("strength") && b.settings.kind == BrushKind::PaintMaterial)
+            f.fail_field("strength", "does not apply to the paint brush");
         b.settings.material = static_cast<std::uint16_t>(f.integer("material", 0, 0, 65535));
         if (f.has("height")) b.settings.flatten_to = height_field(f, "height", 0.0);
         b.points = parse_points(f, 0.25 * b.settings.radius);
@@ -327,6 +334,8 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
             f.fail("give either 'iterations' or \"until_rest\": true");
         }
         e.until_rest = f.boolean("until_rest", false);
+        if (!e.until_rest && f.has("max_iterations"))
+            f.fail_field("max_iterations", "applies with \"until_rest\": true; give iterations");
         e.iterations = static_cast<int>(f.integer("iterations", 0, 1, 100'000'000));
         e.max_iterations = static_cast<int>(f.integer("max_iterations", 100000, 1, 100'000'000));
         TalusSettings t = physics;
