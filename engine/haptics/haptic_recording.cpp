@@ -1,6 +1,8 @@
 #include "haptics/haptic_recording.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +15,17 @@ namespace {
 
 [[noreturn]] void bad(const std::string& name, const std::string& what) {
     throw JsonInputError(name + ": " + what);
+}
+
+/// A field the reader does not know is an error, as in scripts: a typo must not be ignored.
+void reject_unknown(const nlohmann::json& j, std::initializer_list<const char*> known,
+                    const std::string& name) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (std::find_if(known.begin(), known.end(),
+                         [&](const char* k) { return it.key() == k; }) == known.end()) {
+            bad(name, "unknown field \"" + it.key() + "\"");
+        }
+    }
 }
 
 const nlohmann::json& field(const nlohmann::json& j, const char* key, const std::string& name) {
@@ -149,6 +162,10 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
     const std::uint64_t version = count(field(j, "version", name), name, "version");
     if (version != kRecordingVersion)
         bad(name, "unsupported recording version " + std::to_string(version));
+    reject_unknown(j,
+                   {"format", "version", "rate_hz", "tool", "edit", "terrain", "start", "ticks",
+                    "edits", "result"},
+                   name);
     HapticRecording r;
     r.rate_hz = number(field(j, "rate_hz", name), name, "rate_hz");
     if (!(r.rate_hz > 0.0)) bad(name, "rate_hz must be positive");
@@ -158,6 +175,10 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
     const nlohmann::json& edit = field(j, "edit", name);
     if (!edit.is_object()) bad(name, "\"edit\" must be an object");
     const std::string en = name + ": edit";
+    reject_unknown(edit,
+                   {"spacing", "erode_iterations", "button_mask", "relocation_radius", "damping",
+                    "rest_tolerance"},
+                   en);
     r.edit.spacing = number(field(edit, "spacing", en), en, "spacing");
     if (!(r.edit.spacing > 0.0)) bad(en, "spacing must be positive");
     const std::uint64_t erode = count(field(edit, "erode_iterations", en), en, "erode_iterations");
@@ -181,6 +202,7 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
         const nlohmann::json& t = j["terrain"];
         const std::string tn = name + ": terrain";
         if (!t.is_object()) bad(tn, "must be an object");
+        reject_unknown(t, {"size", "points", "seed", "height"}, tn);
         ScriptTerrain terrain;
         const nlohmann::json& size = field(t, "size", tn);
         if (!size.is_array() || size.size() != 2) bad(tn, "size must be [width, height]");
@@ -196,6 +218,7 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
     }
     const nlohmann::json& start = field(j, "start", name);
     if (!start.is_object()) bad(name, "\"start\" must be an object");
+    reject_unknown(start, {"next_generation", "vertices", "volume"}, name + ": start");
     const std::uint64_t generation =
         count(field(start, "next_generation", name + ": start"), name, "start.next_generation");
     if (generation < 1 || generation > 0xFFFFFFFFu)
@@ -232,7 +255,10 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
             bad(name, "edits[" + std::to_string(i) + "] has a height beyond 1e9 m");
     }
     check_stamp_count(r, en);
-    if (j.contains("result")) r.result = summary_from(j["result"], name + ": result");
+    if (j.contains("result")) {
+        r.result = summary_from(j["result"], name + ": result");
+        reject_unknown(j["result"], {"vertices", "volume"}, name + ": result");
+    }
     return r;
 }
 

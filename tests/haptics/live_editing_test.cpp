@@ -238,6 +238,13 @@ TEST(HapticRecording, BadRecordingsAreRejectedWithTheField) {
     EXPECT_EQ(error_of(k.dump()), "");
     k["edit"]["spacing"] = 7.9e-7;
     EXPECT_NE(error_of(k.dump()).find("a replay may place"), std::string::npos);
+    // An unknown field, at the top or inside an object, is an error, as in scripts.
+    k = j;
+    k["bogus"] = 1;
+    EXPECT_NE(error_of(k.dump()).find("unknown field \"bogus\""), std::string::npos);
+    k = j;
+    k["edit"]["spacnig"] = 0.01;
+    EXPECT_NE(error_of(k.dump()).find("edit: unknown field \"spacnig\""), std::string::npos);
     // A pen height beyond the 1e9 m a terrain may reach.
     k = j;
     k["edits"] = {{0, 0.5, 0.5, -1e300, 1}};
