@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <optional>
+#include <set>
 #include <span>
 #include <sstream>
 
@@ -55,11 +57,17 @@ class LineCountingIterator {
     Cursor* cursor_ = nullptr;
 };
 
-/// Records the line on which each operation object starts.
+/// Records the line on which each operation object starts, and the first key an object gives
+/// twice (JSON parsers keep the last one silently: one of two values would be ignored).
 class OperationLines : public nlohmann::json_sax<nlohmann::json> {
   public:
     explicit OperationLines(const LineCountingIterator::Cursor* cursor) : cursor_(cursor) {}
     std::vector<std::size_t> lines;
+    struct Duplicate {
+        std::string key;
+        std::size_t line = 0;
+    };
+    std::optional<Duplicate> duplicate;
 
     bool null() override { return value(); }
     bool boolean(bool) override { return value(); }
@@ -70,12 +78,14 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
     bool binary(binary_t&) override { return value(); }
     bool start_object(std::size_t) override {
         record();
-        stack_.push_back({false, pending_key_});
+        stack_.push_back({false, pending_key_, {}});
         pending_key_.clear();
         return true;
     }
     bool key(string_t& k) override {
         pending_key_ = k;
+        if (!stack_.empty() && !stack_.back().keys.insert(k).second && !duplicate)
+            duplicate = Duplicate{k, cursor_->newlines + 1};
         return true;
     }
     bool end_object() override {
@@ -84,7 +94,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
     }
     bool start_array(std::size_t) override {
         record();
-        stack_.push_back({true, pending_key_});
+        stack_.push_back({true, pending_key_, {}});
         pending_key_.clear();
         return true;
     }
@@ -100,6 +110,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
     struct Level {
         bool array;
         std::string key;
+        std::set<std::string> keys;  ///< an object's keys so far
     };
     bool value() {
         record();
@@ -392,6 +403,11 @@ Script parse_script(std::string_view text, const std::string& name,
     OperationLines lines(&cursor);
     nlohmann::json::sax_parse(LineCountingIterator(text.data(), &cursor),
                               LineCountingIterator(text.data() + text.size(), &cursor), &lines);
+    if (lines.duplicate) {
+        throw JsonInputError(name + ":" + std::to_string(lines.duplicate->line) + ": the key '" +
+                             lines.duplicate->key +
+                             "' is given twice in one object; only one value can count");
+    }
 
     Script script;
     script.name = name;
