@@ -141,7 +141,16 @@ ImportResult import_heightmap(const std::filesystem::path& path, const ImportOpt
     report.nodata_samples = fill_nodata(raster);
     report.read_ms = elapsed_ms(start);
     report.greedy = options.greedy;
-    GreedyResult result = greedy_tin(raster, options.greedy);
+    // The raster's extent and heights (pixel size, z-scale and offset applied) must make a
+    // terrain; when they do not, the file and the options that scaled it are named.
+    GreedyResult result = [&] {
+        try {
+            return greedy_tin(raster, options.greedy);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(
+                path.string() + " (with its pixel size, z-scale and z-offset): " + e.what());
+        }
+    }();
     report.stats = result.stats;
     report.total_ms = elapsed_ms(start);
     return {std::move(result.tin), std::move(report)};

@@ -120,6 +120,7 @@ scenario_import_bad() {
     expect_error no_output "-o" import "$TILE" --max-error 1
     expect_error no_dir "nosuchdir" import "$TILE" --max-error 1 -o nosuchdir/x.sandtin
     [[ -e x.sandtin ]] && fail "a failed import left x.sandtin behind"
+    expect_error tiny_pixels "nan.asc (with its pixel size" import nan.asc --max-error 1 --nonfinite-as-nodata --pixel-size 1e-12 -o x.sandtin
     expect_error encoding_asc "applies to PNG heightmaps" import nan.asc --max-error 1 --encoding gray -o x.sandtin
     expect_error huge_offset "--z-offset" import "$TILE" --max-error 1 --z-offset 1e308 -o x.sandtin
     # The heightmap is not an output: importing over itself would destroy it.
