@@ -7,6 +7,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "io/session_file.hpp"
 
 namespace {
 
@@ -29,7 +30,7 @@ commands:
                               sandtin stress [--seed S] [--ops N] [--json]
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
-sandtin <command> --help prints the command's usage; README.md has every option, its default
+sandtin <command> --help prints the command's usage, sandtin --version the version; README.md has every option, its default
 and its unit. Errors go to stderr and the exit code is non-zero.
 )";
 
@@ -53,6 +54,13 @@ int main(int argc, char** argv) {
         if (command == "export") return sandtin::cli::run_export(args);
         if (command == "haptics") return sandtin::cli::run_haptics(args);
         if (command == "stress") return sandtin::cli::run_stress(args);
+        if (command == "--version" || command == "version") {
+            std::cout << "sandtin " << SANDTIN_VERSION << " (session format "
+                      << sandtin::kSessionFormatVersion << ", reads "
+                      << sandtin::kOldestSessionFormatVersion << " to "
+                      << sandtin::kSessionFormatVersion << ")\n";
+            return 0;
+        }
         if (command == "help" || command == "--help" || command == "-h") {
             std::cout << kHelp;
             return 0;

@@ -151,6 +151,9 @@ scenario_bad_input() {
             fail "'$cmd --help' printed no usage: $(cat "help_${cmd// /_}.out")"
     done
     grep -q -- "--grid" help_new.out || fail "new's usage lacks --grid"
+    expect_ok version --version || return
+    grep -Eq "^sandtin [0-9]+\.[0-9]+\.[0-9]+ \(session format [0-9]+" version.out ||
+        fail "--version printed: $(cat version.out)"
     expect_error stray "unexpected argument 'extra'" new --flat 1 1 extra -o stray.sandtin
     expect_error seed_unused "--seed applies to --flat with --points" new --flat 1 1 --seed 3 -o s.sandtin
     expect_error missing_arg "missing 1 of its 1" info
