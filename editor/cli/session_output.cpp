@@ -2,18 +2,16 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <string>
 
 #include "arguments.hpp"
 #include "util/atomic_file.hpp"
+#include "util/lower_extension.hpp"
 
 namespace sandtin::cli {
 
 void check_session_output(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lower_extension(path);
     // What export writes and import reads: never a session's name.
     constexpr std::array<const char*, 12> kOtherFormats{".obj",  ".ply", ".stl",  ".gltf",
                                                         ".glb",  ".png", ".exr",  ".tif",

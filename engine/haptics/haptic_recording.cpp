@@ -127,13 +127,9 @@ nlohmann::json recording_to_json(const HapticRecording& r) {
 
 namespace {
 
-/// Most stamps a replay may place: the bound a script has for one operation. A million stamps
-/// take minutes; a spacing of 1e-12 m (a typo, or a damaged file) would ask for days.
-constexpr double kMaxReplayStamps = 1e6;
-
 /// Fails on edit.spacing, before anything runs, when the edits' pressed stretches (the button
 /// in `edit.button_mask` held at both ends, as the live editor stamps them) are longer than
-/// kMaxReplayStamps spacings.
+/// kMaxPlacementsPerOperation spacings.
 void check_stamp_count(const HapticRecording& r, const std::string& en) {
     double pressed_length = 0.0;
     for (std::size_t i = 1; i < r.edits.size(); ++i) {
@@ -144,11 +140,11 @@ void check_stamp_count(const HapticRecording& r, const std::string& en) {
         pressed_length += std::hypot(b.position.x - a.position.x, b.position.y - a.position.y);
     }
     const double stamps = pressed_length / r.edit.spacing;
-    if (stamps <= kMaxReplayStamps) return;
+    if (stamps <= kMaxPlacementsPerOperation) return;
     std::ostringstream what;
     what << "spacing of " << r.edit.spacing << " m along the " << pressed_length
          << " m the edits stroke asks for " << stamps << " stamps, more than the "
-         << static_cast<long>(kMaxReplayStamps) << " a replay may place";
+         << static_cast<long>(kMaxPlacementsPerOperation) << " a replay may place";
     bad(en, what.str());
 }
 

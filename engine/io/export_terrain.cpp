@@ -16,6 +16,7 @@
 #include "io/heightmap_raster.hpp"
 #include "maps/height_map.hpp"
 #include "util/atomic_file.hpp"
+#include "util/lower_extension.hpp"
 
 namespace sandtin {
 
@@ -24,13 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::uint32_t kMaxMapSide = 16384;
-
-std::string lower_extension(const fs::path& p) {
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 std::uint32_t samples_along(double length, double cell) {
     const double n = std::round(length / cell) + 1.0;

@@ -171,11 +171,6 @@ void parse_depth(JsonFields& f, DepthMode& mode, double& value) {
     }
 }
 
-/// Most stamps or dabs one operation may place along its path: a million circle stamps take
-/// about five minutes; a spacing of 1e-7 m along a 1 m path would ask for ten million, an
-/// hour or more, and is almost certainly a typo.
-constexpr double kMaxPlacementsPerOperation = 1e6;
-
 /// Fails on the "spacing" field when a path of `length` metres would take more placements than
 /// kMaxPlacementsPerOperation, before any of them is computed.
 void check_placement_count(JsonFields& f, double length, double spacing) {

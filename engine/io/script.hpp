@@ -116,6 +116,11 @@ struct ScriptTerrain {
 /// Builds the terrain a "terrain" object describes.
 Tin make_script_terrain(const ScriptTerrain& terrain, TinOptions options = {});
 
+/// Most stamps or dabs one operation (or one haptic replay) may place along its path: a
+/// million circle stamps take about five minutes; a spacing of 1e-7 m along a 1 m path would
+/// ask for ten million, an hour or more, and is almost certainly a typo.
+inline constexpr double kMaxPlacementsPerOperation = 1e6;
+
 struct Script {
     /// The script's name as parsed (its path): runtime errors and warnings begin with
     /// "<name>:<line>:", as parse errors do. Empty: they begin with "line <line>:".
