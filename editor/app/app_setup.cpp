@@ -1,6 +1,7 @@
 // Set-up, document operations and the main loop of the editor.
 
 #include "app.hpp"
+#include "util/json_document.hpp"
 
 namespace sandtin::editor {
 
@@ -419,9 +420,7 @@ int App::run() {
     settings_.tool = std::clamp(settings_.tool, 0, kToolCount - 1);
     saved_settings_ = settings_;
     if (!options_.script.empty()) {
-        std::ifstream in(options_.script);
-        if (!in) throw std::runtime_error("cannot read script " + options_.script.string());
-        const nlohmann::json j = nlohmann::json::parse(in);
+        const nlohmann::json j = read_json_document(options_.script, "editor script");
         if (!j.contains("ops") || !j["ops"].is_array())
             throw std::runtime_error("script " + options_.script.string() +
                                      " has no \"ops\" array");

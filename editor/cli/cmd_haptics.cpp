@@ -17,6 +17,7 @@
 #include "session_output.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
+#include "util/json_document.hpp"
 
 namespace sandtin::cli {
 
@@ -28,11 +29,9 @@ constexpr const char* kUsage =
     "[--spacing M] [--erode N] [--relocation-radius M] [--rate HZ] [--max-seconds S] "
     "[--record rec.haptic.json] [--backup] [--json]";
 
-nlohmann::json read_json_file(const std::filesystem::path& path) {
-    const std::vector<std::uint8_t> bytes = read_file(path, 1u << 24);
-    nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-    if (j.is_discarded() || !j.is_object())
-        throw UsageError(path.string() + ": not a JSON object (a tool definition)");
+nlohmann::json read_tool_file(const std::filesystem::path& path) {
+    nlohmann::json j = read_json_document(path, "tool file");
+    if (!j.is_object()) throw UsageError(path.string() + ": not a JSON object (a tool definition)");
     return j;
 }
 
@@ -97,12 +96,11 @@ int run_haptics(const std::vector<std::string>& raw) {
     if (args.has("--tool") && args.has("--tool-json"))
         throw UsageError("give --tool or --tool-json, not both");
     if (args.has("--tool")) {
-        options.tool = read_json_file(args.text("--tool"));
+        options.tool = read_tool_file(args.text("--tool"));
         options.tool_base_dir = std::filesystem::path(args.text("--tool")).parent_path();
     } else if (args.has("--tool-json")) {
-        options.tool = nlohmann::json::parse(args.text("--tool-json"), nullptr, false);
-        if (options.tool.is_discarded() || !options.tool.is_object())
-            throw UsageError("--tool-json is not a JSON object");
+        options.tool = parse_json_document(args.text("--tool-json"), "--tool-json");
+        if (!options.tool.is_object()) throw UsageError("--tool-json is not a JSON object");
     }
 
     Session session;

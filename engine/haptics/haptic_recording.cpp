@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "util/atomic_file.hpp"
+#include "util/json_document.hpp"
 #include "util/json_fields.hpp"
 
 namespace sandtin::haptics {
@@ -263,9 +264,7 @@ std::string format_recording(const HapticRecording& recording) {
 }
 
 HapticRecording parse_recording(std::string_view text, const std::string& name) {
-    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded()) bad(name, "not valid JSON");
-    return recording_from_json(j, name);
+    return recording_from_json(parse_json_document(text, name), name);
 }
 
 bool is_haptic_recording(std::string_view text) {

@@ -15,59 +15,19 @@
 #include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
+#include "util/json_document.hpp"
 #include "util/json_fields.hpp"
 
 namespace sandtin {
 
 namespace {
 
-/// Reads characters for nlohmann's SAX parser and counts the lines it has passed.
-class LineCountingIterator {
-  public:
-    using iterator_category = std::input_iterator_tag;
-    using value_type = char;
-    using difference_type = std::ptrdiff_t;
-    using pointer = const char*;
-    using reference = const char&;
-
-    LineCountingIterator() = default;
-    struct Cursor {
-        std::size_t newlines = 0;
-        char last = 0;  ///< the character consumed last
-    };
-    LineCountingIterator(const char* p, Cursor* cursor) : p_(p), cursor_(cursor) {}
-    reference operator*() const { return *p_; }
-    LineCountingIterator& operator++() {
-        if (*p_ == '\n') ++cursor_->newlines;
-        cursor_->last = *p_;
-        ++p_;
-        return *this;
-    }
-    LineCountingIterator operator++(int) {
-        LineCountingIterator old = *this;
-        ++*this;
-        return old;
-    }
-    friend bool operator==(const LineCountingIterator& a, const LineCountingIterator& b) {
-        return a.p_ == b.p_;
-    }
-
-  private:
-    const char* p_ = nullptr;
-    Cursor* cursor_ = nullptr;
-};
-
-/// Records the line on which each operation object starts, and the first key an object gives
-/// twice (JSON parsers keep the last one silently: one of two values would be ignored).
+/// Records the line on which each operation object starts.
 class OperationLines : public nlohmann::json_sax<nlohmann::json> {
   public:
-    explicit OperationLines(const LineCountingIterator::Cursor* cursor) : cursor_(cursor) {}
+    /// What the iterators feeding this pass advance.
+    LineCountingIterator::Cursor* cursor() { return &cursor_; }
     std::vector<std::size_t> lines;
-    struct Duplicate {
-        std::string key;
-        std::size_t line = 0;
-    };
-    std::optional<Duplicate> duplicate;
 
     bool null() override { return value(); }
     bool boolean(bool) override { return value(); }
@@ -78,14 +38,12 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
     bool binary(binary_t&) override { return value(); }
     bool start_object(std::size_t) override {
         record();
-        stack_.push_back({false, pending_key_, {}});
+        stack_.push_back({false, pending_key_});
         pending_key_.clear();
         return true;
     }
     bool key(string_t& k) override {
         pending_key_ = k;
-        if (!stack_.empty() && !stack_.back().keys.insert(k).second && !duplicate)
-            duplicate = Duplicate{k, cursor_->newlines + 1};
         return true;
     }
     bool end_object() override {
@@ -94,7 +52,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
     }
     bool start_array(std::size_t) override {
         record();
-        stack_.push_back({true, pending_key_, {}});
+        stack_.push_back({true, pending_key_});
         pending_key_.clear();
         return true;
     }
@@ -103,29 +61,27 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
         return true;
     }
     bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
-        return false;
+        return false;  // parse_json_document has reported it
     }
 
   private:
     struct Level {
         bool array;
         std::string key;
-        std::set<std::string> keys;  ///< an object's keys so far
     };
     bool value() {
         record();
         pending_key_.clear();
         return true;
     }
-    /// The lexer knows a number ended only by reading one character past it.
     bool number() {
-        record(cursor_->last == '\n' ? 1 : 0);
+        if (in_operations()) lines.push_back(cursor_.line_before_lookahead());
         pending_key_.clear();
         return true;
     }
     /// Any element of the operations array, object or not, starts on the current line.
-    void record(std::size_t lookahead_newlines = 0) {
-        if (in_operations()) lines.push_back(cursor_->newlines - lookahead_newlines + 1);
+    void record() {
+        if (in_operations()) lines.push_back(cursor_.newlines + 1);
     }
     bool in_operations() const {
         // A bare top-level array, or the array under the top-level key "operations".
@@ -133,7 +89,7 @@ class OperationLines : public nlohmann::json_sax<nlohmann::json> {
         return stack_.size() == 2 && !stack_[0].array && stack_[1].array &&
                stack_[1].key == "operations";
     }
-    const LineCountingIterator::Cursor* cursor_;
+    LineCountingIterator::Cursor cursor_;
     std::vector<Level> stack_;
     std::string pending_key_;
 };
@@ -368,6 +324,15 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
     f.fail_field("op", "names an unknown operation '" + op + "'");
 }
 
+/// The line where each operation starts, from a SAX pass over a document already parsed.
+OperationLines operation_lines(std::string_view text) {
+    OperationLines lines;
+    nlohmann::json::sax_parse(LineCountingIterator(text.data(), lines.cursor()),
+                              LineCountingIterator(text.data() + text.size(), lines.cursor()),
+                              &lines);
+    return lines;
+}
+
 bool step_uses_physics(const ScriptStep& step) {
     if (std::holds_alternative<ErodeOp>(step.operation)) return true;
     const auto* stroke = std::get_if<StrokeOp>(&step.operation);
@@ -379,30 +344,8 @@ bool step_uses_physics(const ScriptStep& step) {
 Script parse_script(std::string_view text, const std::string& name,
                     const std::filesystem::path& base_dir,
                     const std::vector<ScriptExtension>& extensions) {
-    nlohmann::json document;
-    try {
-        document = nlohmann::json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::parse_error& e) {
-        // nlohmann reports a byte offset; turn it into a line.
-        const std::size_t offset = std::min<std::size_t>(e.byte, text.size());
-        const std::size_t line =
-            1 + static_cast<std::size_t>(std::count(
-                    text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
-        throw JsonInputError(name + ":" + std::to_string(line) + ": not valid JSON: " + e.what());
-    } catch (const nlohmann::json::exception& e) {
-        // Valid syntax the parser still cannot hold, e.g. a number beyond double's range
-        // (1e660000): nlohmann throws out_of_range, not parse_error (found by fuzzing).
-        throw JsonInputError(name + ": not valid JSON: " + e.what());
-    }
-    LineCountingIterator::Cursor cursor;
-    OperationLines lines(&cursor);
-    nlohmann::json::sax_parse(LineCountingIterator(text.data(), &cursor),
-                              LineCountingIterator(text.data() + text.size(), &cursor), &lines);
-    if (lines.duplicate) {
-        throw JsonInputError(name + ":" + std::to_string(lines.duplicate->line) + ": the key '" +
-                             lines.duplicate->key +
-                             "' is given twice in one object; only one value can count");
-    }
+    const nlohmann::json document = parse_json_document(text, name);
+    const OperationLines lines = operation_lines(text);
 
     Script script;
     script.name = name;

@@ -1,12 +1,12 @@
 #include "physics/material.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "util/json_document.hpp"
 #include "util/json_fields.hpp"
 
 namespace sandtin {
@@ -65,15 +65,7 @@ MaterialTable MaterialTable::presets() {
 }
 
 MaterialTable MaterialTable::load(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw JsonInputError("cannot open material file '" + path.string() + "'");
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw JsonInputError(path.string() + ": " + e.what());
-    }
-    return from_json(j, path.string());
+    return from_json(read_json_document(path, "material file"), path.string());
 }
 
 MaterialTable MaterialTable::from_json(const nlohmann::json& j, const std::string& context) {

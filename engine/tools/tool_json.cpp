@@ -1,9 +1,7 @@
 #include "tools/tool_json.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "util/asset_path.hpp"
+#include "util/json_document.hpp"
 #include "util/json_fields.hpp"
 
 namespace sandtin {
@@ -51,16 +49,6 @@ void apply_fields(ToolSpec& spec, JsonFields& f, const std::filesystem::path& ba
     f.reject_unknown();
 }
 
-nlohmann::json read_json_file(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw JsonInputError("cannot open tool file '" + path.string() + "'");
-    try {
-        return nlohmann::json::parse(in);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw JsonInputError(path.string() + ": " + e.what());
-    }
-}
-
 }  // namespace
 
 ToolSpec parse_tool_spec(const nlohmann::json& object, const std::filesystem::path& base_dir,
@@ -83,7 +71,7 @@ ToolSpec parse_tool_spec(const nlohmann::json& object, const std::filesystem::pa
 ToolSpec load_tool_asset(const std::string& name_or_path) {
     std::filesystem::path path = name_or_path;
     if (path.extension() != ".json") path = find_asset("tools/" + name_or_path + ".json");
-    const nlohmann::json j = read_json_file(path);
+    const nlohmann::json j = read_json_document(path, "tool file");
     JsonFields f(j, path.string());
     ToolSpec spec;
     apply_fields(spec, f, path.parent_path());

@@ -446,6 +446,13 @@ TEST(Script, NumberBeyondDoubleRangeIsAClearError) {
     const std::string e = error_of("{\"version\": 1e660000, \"operations\": []}");
     EXPECT_NE(e.find("script.json"), std::string::npos) << e;
     EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+    // It names its line, also when the number ends the line (the lexer reads one past it).
+    for (const char* text : {"[\n {\"op\": \"pour\",\n  \"volume\": 1e400}\n]",
+                             "[\n {\"op\": \"pour\",\n  \"volume\": 1e400\n }\n]",
+                             "[\n {\"op\": \"pour\",\n  \"volume\": -1e400, \"at\": [0, 0]}]"}) {
+        const std::string line = error_of(text);
+        EXPECT_NE(line.find("script.json:3: not valid JSON"), std::string::npos) << line;
+    }
 }
 
 }  // namespace
