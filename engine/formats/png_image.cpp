@@ -47,10 +47,21 @@ void read_bytes(png_structp png, png_bytep out, png_size_t n) {
                   std::to_string(limits.max_height);
 }
 
+// An indexed image's palette and transparency, copied out of libpng's info struct. Plain data:
+// it lives in decode_png's frame and is filled in decode_into's.
+struct Palette {
+    bool used = false;  ///< the image is indexed colour
+    int entries = 0;
+    png_color colours[PNG_MAX_PALETTE_LENGTH] = {};
+    int transparent = 0;  ///< entries of `alpha` given by tRNS; the rest are opaque
+    png_byte alpha[PNG_MAX_PALETTE_LENGTH] = {};
+};
+
 // libpng reports errors with longjmp, so no C++ object with a destructor may live in the frame
 // that calls setjmp: the decode loop works on plain pointers owned by the caller.
 bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLimits& limits,
-                 PngImage& image, std::vector<png_bytep>& rows, std::vector<std::uint8_t>& raw) {
+                 PngImage& image, Palette& palette, std::vector<png_bytep>& rows,
+                 std::vector<std::uint8_t>& raw) {
     if (setjmp(png_jmpbuf(png))) return false;
     png_set_read_fn(png, &state, read_bytes);
     png_read_info(png, info);
@@ -67,24 +78,27 @@ bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLim
     const int color = png_get_color_type(png, info);
     int depth = png_get_bit_depth(png, info);
     if (color == PNG_COLOR_TYPE_PALETTE) {
-        png_set_palette_to_rgb(png);
-        // A palette of greys is a grey image saved by an image editor as indexed colour: it
-        // decodes as grey (libpng passes equal components through exactly).
-        png_colorp palette = nullptr;
-        int entries = 0;
-        png_get_PLTE(png, info, &palette, &entries);
-        bool grey = palette != nullptr;
-        for (int i = 0; grey && i < entries; ++i)
-            grey = palette[i].red == palette[i].green && palette[i].red == palette[i].blue;
-        if (grey) {
-            png_set_rgb_to_gray_fixed(png, 1, -1, -1);
-        } else {
-            image.indexed_colour = true;
+        // Indices are read as they are, one byte each, and looked up by expand_palette: libpng's
+        // own expansion turns an index past the palette into black without a word (its
+        // palette-index check does not run on 8-bit images once expansion is on).
+        png_set_packing(png);
+        png_colorp colours = nullptr;
+        png_get_PLTE(png, info, &colours, &palette.entries);
+        palette.used = true;
+        for (int i = 0; i < palette.entries && i < PNG_MAX_PALETTE_LENGTH; ++i)
+            palette.colours[i] = colours[i];
+        png_bytep alpha = nullptr;
+        if (png_get_tRNS(png, info, &alpha, &palette.transparent, nullptr) == 0 ||
+            alpha == nullptr) {
+            palette.transparent = 0;
         }
+        for (int i = 0; i < palette.transparent && i < PNG_MAX_PALETTE_LENGTH; ++i)
+            palette.alpha[i] = alpha[i];
+    } else {
+        if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+        if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+        if (depth == 16) png_set_swap(png);  // little-endian samples in memory
     }
-    if (color == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(png);
-    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
-    if (depth == 16) png_set_swap(png);  // little-endian samples in memory
     png_read_update_info(png, info);
     depth = png_get_bit_depth(png, info);
     const int channels = png_get_channels(png, info);
@@ -105,6 +119,40 @@ bool decode_into(png_structp png, png_infop info, ReadState& state, const PngLim
     image.channels = channels;
     image.bit_depth = depth;
     return true;
+}
+
+// Looks the indices in `raw` (one byte per pixel) up in the palette. A palette of greys is a
+// grey image saved by an image editor as indexed colour: it becomes grey. tRNS adds alpha.
+void expand_palette(const Palette& palette, const std::vector<std::uint8_t>& raw,
+                    const std::string& name, PngImage& image) {
+    bool grey = true;
+    for (int i = 0; grey && i < palette.entries; ++i) {
+        const png_color& c = palette.colours[i];
+        grey = c.red == c.green && c.red == c.blue;
+    }
+    const bool alpha = palette.transparent > 0;
+    image.indexed_colour = !grey;
+    image.channels = (grey ? 1 : 3) + (alpha ? 1 : 0);
+    image.bit_depth = 8;
+    const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+    image.samples.resize(pixels * static_cast<std::size_t>(image.channels));
+    std::uint16_t* out = image.samples.data();
+    for (std::size_t p = 0; p < pixels; ++p) {
+        const int index = raw[p];
+        if (index >= palette.entries) {
+            throw std::runtime_error(
+                name + ": invalid PNG: pixel (" + std::to_string(p % image.width) + ", " +
+                std::to_string(p / image.width) + ") uses palette index " + std::to_string(index) +
+                ", but the palette has only " + std::to_string(palette.entries) + " entries");
+        }
+        const png_color& c = palette.colours[index];
+        *out++ = c.red;
+        if (!grey) {
+            *out++ = c.green;
+            *out++ = c.blue;
+        }
+        if (alpha) *out++ = index < palette.transparent ? palette.alpha[index] : 255;
+    }
 }
 
 }  // namespace
@@ -171,11 +219,16 @@ PngImage decode_png(std::span<const std::uint8_t> bytes, const std::string& name
     png_set_chunk_malloc_max(png, kMaxAncillaryChunkBytes);
     png_set_chunk_cache_max(png, kMaxAncillaryChunks);
     PngImage image;
+    Palette palette;
     std::vector<png_bytep> rows;
     std::vector<std::uint8_t> raw;
-    const bool ok = decode_into(png, info, state, limits, image, rows, raw);
+    const bool ok = decode_into(png, info, state, limits, image, palette, rows, raw);
     png_destroy_read_struct(&png, &info, nullptr);
     if (!ok) throw std::runtime_error(name + ": invalid PNG: " + state.error);
+    if (palette.used) {
+        expand_palette(palette, raw, name, image);
+        return image;
+    }
     const std::size_t n = static_cast<std::size_t>(image.width) * image.height *
                           static_cast<std::size_t>(image.channels);
     image.samples.resize(n);

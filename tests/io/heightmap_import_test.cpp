@@ -83,12 +83,12 @@ std::vector<std::uint8_t> png_of_chunks(
     return b;
 }
 
-std::vector<std::uint8_t> ihdr(std::uint32_t width, std::uint32_t height,
-                               std::uint8_t colour_type) {
+std::vector<std::uint8_t> ihdr(std::uint32_t width, std::uint32_t height, std::uint8_t colour_type,
+                               std::uint8_t depth = 8) {
     std::vector<std::uint8_t> data;
     put_be32(data, width);
     put_be32(data, height);
-    data.insert(data.end(), {8, colour_type, 0, 0, 0});
+    data.insert(data.end(), {depth, colour_type, 0, 0, 0});
     return data;
 }
 
@@ -97,21 +97,40 @@ std::vector<std::uint8_t> png_with_header(std::uint32_t width, std::uint32_t hei
     return png_of_chunks({{"IHDR", ihdr(width, height, 0)}, {"IEND", {}}});
 }
 
-/// An 8-bit indexed-colour PNG: `palette` holds RGB triples, `indices` one byte per pixel.
+/// An indexed-colour PNG: `palette` holds RGB triples, `indices` one per pixel, packed at
+/// `depth` bits (1, 2, 4 or 8) from the high bits of each byte; `alpha` is its tRNS chunk.
 std::vector<std::uint8_t> indexed_png(std::uint32_t width, std::uint32_t height,
                                       const std::vector<std::uint8_t>& palette,
-                                      const std::vector<std::uint8_t>& indices) {
+                                      const std::vector<std::uint8_t>& indices,
+                                      std::uint8_t depth = 8,
+                                      const std::vector<std::uint8_t>& alpha = {}) {
     std::vector<std::uint8_t> rows;
     for (std::uint32_t y = 0; y < height; ++y) {
         rows.push_back(0);  // filter: none
-        rows.insert(rows.end(), indices.begin() + y * width, indices.begin() + (y + 1) * width);
+        int bits = 0;
+        for (std::uint32_t x = 0; x < width; ++x) {
+            if (bits == 0) rows.push_back(0);
+            bits += depth;
+            rows.back() =
+                static_cast<std::uint8_t>(rows.back() | (indices[y * width + x] << (8 - bits)));
+            if (bits == 8) bits = 0;
+        }
     }
     std::vector<std::uint8_t> idat(compressBound(static_cast<uLong>(rows.size())));
     uLongf size = static_cast<uLongf>(idat.size());
     EXPECT_EQ(compress(idat.data(), &size, rows.data(), static_cast<uLong>(rows.size())), Z_OK);
     idat.resize(size);
-    return png_of_chunks(
-        {{"IHDR", ihdr(width, height, 3)}, {"PLTE", palette}, {"IDAT", idat}, {"IEND", {}}});
+    if (alpha.empty()) {
+        return png_of_chunks({{"IHDR", ihdr(width, height, 3, depth)},
+                              {"PLTE", palette},
+                              {"IDAT", idat},
+                              {"IEND", {}}});
+    }
+    return png_of_chunks({{"IHDR", ihdr(width, height, 3, depth)},
+                          {"PLTE", palette},
+                          {"tRNS", alpha},
+                          {"IDAT", idat},
+                          {"IEND", {}}});
 }
 
 class HeightmapFiles : public ::testing::Test {
@@ -233,6 +252,36 @@ TEST(HeightmapImport, IndexedPngWithAGreyPaletteIsAGreyHeightmap) {
         decode_heightmap(indexed_png(2, 2, colours, indices), "idx.png", terrain_rgb);
     // Mapbox's formula on (1, 134, 170): -10000 + (65536 + 134 * 256 + 170) * 0.1.
     EXPECT_NEAR(forced.at(0, 0), -10000.0 + (65536 + 134 * 256 + 170) * 0.1, 1e-9);
+}
+
+// libpng expands an index past the end of the palette to black without a word, which would
+// import as the lowest height. Such a file is broken; the error names the pixel.
+TEST(HeightmapImport, AnIndexPastThePaletteIsAnErrorNamingThePixel) {
+    const std::vector<std::uint8_t> greys = {0, 0, 0, 128, 128, 128, 255, 255, 255};  // 3 entries
+    expect_rejected(indexed_png(2, 2, greys, {0, 1, 2, 3}),
+                    {"pixel (1, 1)", "palette index 3", "only 3 entries"});
+    // Packed at 2 bits per pixel, where 3 is the largest index the file can hold.
+    expect_rejected(indexed_png(3, 2, greys, {2, 2, 0, 2, 3, 0}, 2),
+                    {"pixel (1, 1)", "palette index 3"});
+    // A two-entry palette, every index inside it, at 1, 2, 4 and 8 bits: the grey levels. Nine
+    // pixels a row, so that packed rows end part-way through a byte.
+    const std::vector<std::uint8_t> two = {0, 0, 0, 255, 255, 255};
+    const std::vector<std::uint8_t> bits = {1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 0, 1, 1, 1, 0, 1};
+    for (const std::uint8_t depth : {1, 2, 4, 8}) {
+        const HeightRaster r = decode_heightmap(indexed_png(9, 2, two, bits, depth), "i.png");
+        EXPECT_EQ(r.heights, std::vector<double>(bits.begin(), bits.end())) << int{depth};
+    }
+}
+
+// tRNS gives the first entries an alpha, the rest stay opaque: a transparent pixel is no data.
+TEST(HeightmapImport, IndexedTransparencyMarksPixelsWithoutData) {
+    const std::vector<std::uint8_t> greys = {0, 0, 0, 51, 51, 51, 255, 255, 255};
+    const HeightRaster r =
+        decode_heightmap(indexed_png(3, 2, greys, {0, 1, 2, 2, 1, 1}, 8, {0}), "transparent.png");
+    ASSERT_EQ(r.valid.size(), 6u);
+    EXPECT_EQ(r.valid, (std::vector<std::uint8_t>{0, 1, 1, 1, 1, 1}));
+    EXPECT_NEAR(r.heights[1], 0.2, 1e-12);
+    EXPECT_NEAR(r.heights[2], 1.0, 1e-12);
 }
 
 TEST(HeightmapImport, AsciiGridReadsHeaderAndValues) {
