@@ -8,18 +8,27 @@ namespace sandtin {
 
 namespace {
 
+/// The number sandtin recorded under `key`. A key given twice with different values is an
+/// error: the file was edited by hand or by a tool that appended, and which value holds is a guess.
 std::optional<double> text_number(const PngImage& image, const char* key, const std::string& name) {
+    const std::string* value = nullptr;
     for (const auto& [k, v] : image.text) {
         if (k != key) continue;
-        double x = 0.0;
-        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
-        if (ec != std::errc() || end != v.data() + v.size() || !std::isfinite(x)) {
-            throw std::runtime_error(name + ": the PNG text chunk '" + k + "' holds '" + v +
-                                     "', not a finite number");
+        if (value != nullptr && *value != v) {
+            throw std::runtime_error(name + ": the PNG text chunk '" + k +
+                                     "' is given twice, as '" + *value + "' and as '" + v +
+                                     "'; only one can count");
         }
-        return x;
+        value = &v;
     }
-    return std::nullopt;
+    if (value == nullptr) return std::nullopt;
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), x);
+    if (ec != std::errc() || end != value->data() + value->size() || !std::isfinite(x)) {
+        throw std::runtime_error(name + ": the PNG text chunk '" + std::string(key) + "' holds '" +
+                                 *value + "', not a finite number");
+    }
+    return x;
 }
 
 }  // namespace

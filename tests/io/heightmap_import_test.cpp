@@ -668,6 +668,11 @@ TEST_F(HeightmapFiles, HeightmapExportImportRoundTripsWithinTheQuantisation) {
     EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png", o).at(0, 0), -12.5 + 1.0);
     image.text = {{kPngKeyZOffset, "lots"}};
     expect_rejected(encode_png(image), {"not a finite number"});
+    // A key given twice: the same value is one statement, two values are a contradiction.
+    image.text = {{kPngKeyZRange, "200"}, {kPngKeyZOffset, "-12.5"}, {kPngKeyZRange, "200"}};
+    EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png").at(0, 0), 187.5);
+    image.text = {{kPngKeyZRange, "200"}, {kPngKeyZOffset, "-12.5"}, {kPngKeyZRange, "20"}};
+    expect_rejected(encode_png(image), {"'sandtin:z_range' is given twice", "'200'", "'20'"});
 }
 
 }  // namespace
