@@ -113,9 +113,8 @@ int run_export(const std::vector<std::string>& raw) {
     const Session session = load_session(args.positionals()[0]);
     // Height maps and simplification default to the grid the terrain was imported from, so
     // export followed by import reproduces it.
-    if (!options.cell_size && !args.has("--size")) {
-        options.cell_size = imported_cell_size(session.metadata_json);
-    }
+    const bool cell_size_from_session = !options.cell_size && !args.has("--size");
+    if (cell_size_from_session) options.cell_size = imported_cell_size(session.metadata_json);
     TinOptions tin_options;
     tin_options.track_changes = false;
     const Tin tin = session_terrain(session, args.positionals()[0], tin_options);
@@ -123,6 +122,14 @@ int run_export(const std::vector<std::string>& raw) {
     try {
         report = export_terrain(tin, out, format, options);
     } catch (const std::invalid_argument& e) {
+        // An option the user gave is a usage error (exit 2); a default the session file supplied
+        // is bad data in that file (exit 1).
+        if (cell_size_from_session && options.cell_size) {
+            throw std::runtime_error(args.positionals()[0] +
+                                     ": the import cell size in the session's metadata cannot be "
+                                     "used (" +
+                                     std::string(e.what()) + "); give --cell-size or --size");
+        }
         throw UsageError(e.what());
     }
     if (args.has("--json")) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of `sandtin import`, `sandtin export` and `sandtin bench import`.
-# usage: cli_io_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get <data-dir>
+# usage: cli_io_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get <data-dir> \
+#          /path/to/session_metadata
 #   scenarios: import, export, import_bad, export_bad, bench_import
 set -uo pipefail
 
@@ -9,6 +10,7 @@ SCENARIO=${2:?scenario}
 WORK=${3:?work directory}
 JSON_GET=${4:?path to json_get}
 DATA=${5:?test data directory}
+SESSION_METADATA=${6:?path to session_metadata}
 TILE="$DATA/bay-hills-terrain-rgb.png"
 
 rm -rf "$WORK"
@@ -170,6 +172,18 @@ scenario_export_bad() {
     # Coordinates beyond 32-bit floats are an error, not infinities in the file.
     expect_error huge_base "32-bit floats" export s.sandtin -o huge.stl --base 1e40
     [[ -e huge.stl ]] && fail "an export beyond float range wrote huge.stl"
+    # A map's cell size defaults to the one the terrain was imported with. When the session's
+    # metadata holds one no map can use, that is bad data in the file (exit 1, naming it), not
+    # a usage error (exit 2); an explicit --size still exports.
+    printf 'ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 1 2\n1 2 3\n2 3 4\n' >g.asc
+    expect_ok imp_g import g.asc --max-error 0 -o g.sandtin || return
+    "$SESSION_METADATA" g.sandtin tiny.sandtin /import/raster/cell_size 1e-300 ||
+        fail "session_metadata could not write tiny.sandtin"
+    expect_error tiny_meta "tiny.sandtin: the import cell size in the session's metadata" \
+        export tiny.sandtin -o tiny_meta.png
+    check_eq "exit code for bad session data" "$rc" 1
+    grep -q -- "--cell-size or --size" tiny_meta.err || fail "no way out named: $(cat tiny_meta.err)"
+    expect_ok tiny_meta_sized export tiny.sandtin -o tiny_meta.png --size 8 || return
     return 0
 }
 
