@@ -250,6 +250,15 @@ HapticRecording recording_from_json(const nlohmann::json& j, const std::string& 
         // The pen's depth becomes the tool's bottom: a height like the terrain's.
         if (!(std::abs(r.edits[i].position.z) <= kMaxHeight))
             bad(name, "edits[" + std::to_string(i) + "] has a height beyond 1e9 m");
+        // The simulation takes the device's latest pose, so its ticks never go back. Edits out
+        // of tick order were reordered or spliced by hand: the replay, which follows the list,
+        // would not be the session that was recorded.
+        if (i > 0 && r.edits[i].tick < r.edits[i - 1].tick) {
+            bad(name, "edits[" + std::to_string(i) + "] was taken at tick " +
+                          std::to_string(r.edits[i].tick) + ", before edits[" +
+                          std::to_string(i - 1) + "] (tick " + std::to_string(r.edits[i - 1].tick) +
+                          "); edits must be in the order they were taken");
+        }
     }
     check_stamp_count(r, en);
     if (j.contains("result")) {

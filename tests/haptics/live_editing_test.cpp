@@ -249,6 +249,17 @@ TEST(HapticRecording, BadRecordingsAreRejectedWithTheField) {
     k = j;
     k["edits"] = {{0, 0.5, 0.5, -1e300, 1}};
     EXPECT_NE(error_of(k.dump()).find("edits[0] has a height beyond"), std::string::npos);
+    // Edits in the order they were taken: the same tick twice is fine, an earlier one is not.
+    k = j;
+    k["edits"] = {{3, 0.5, 0.5, 0.04, 0}, {3, 0.5, 0.5, 0.04, 0}, {7, 0.5, 0.5, 0.04, 0}};
+    EXPECT_EQ(error_of(k.dump()), "");
+    k["edits"] = {{3, 0.5, 0.5, 0.04, 0}, {7, 0.5, 0.5, 0.04, 0}, {5, 0.5, 0.5, 0.04, 0}};
+    EXPECT_NE(error_of(k.dump()).find("edits[2] was taken at tick 5, before edits[1] (tick 7)"),
+              std::string::npos)
+        << error_of(k.dump());
+    // The line of a JSON error, as in scripts.
+    EXPECT_NE(error_of("{\n\"format\": 1e400}").find("r.json:2: not valid JSON"),
+              std::string::npos);
     EXPECT_TRUE(is_haptic_recording(j.dump()));
     EXPECT_FALSE(is_haptic_recording(R"({"operations": []})"));
     EXPECT_FALSE(is_haptic_recording("not json"));
