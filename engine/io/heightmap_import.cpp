@@ -82,10 +82,18 @@ HeightRaster decode_heightmap(std::span<const std::uint8_t> bytes, const std::st
             PngHeightmap png =
                 decode_png_heightmap(bytes, name, options.png_encoding, options.limits);
             r = std::move(png.raster);
-            if (png.z_range && png.z_offset) {
-                z_scale = *png.z_range;
-                z_offset = *png.z_offset;
+            // The scale is one statement in two keys. With one missing, the option for that
+            // half must say it: a default would guess.
+            if (png.z_range.has_value() != png.z_offset.has_value() &&
+                !(png.z_range ? options.z_offset : options.z_scale)) {
+                throw std::runtime_error(
+                    name + ": the PNG gives '" + (png.z_range ? kPngKeyZRange : kPngKeyZOffset) +
+                    "' without '" + (png.z_range ? kPngKeyZOffset : kPngKeyZRange) +
+                    "', and sandtin's height scale needs both: give " +
+                    (png.z_range ? "--z-offset" : "--z-scale") + " for the missing one");
             }
+            z_scale = png.z_range.value_or(z_scale);
+            z_offset = png.z_offset.value_or(z_offset);
             if (png.cell_size) r.cell_size = *png.cell_size;
             if (png.cell_height) r.cell_height = *png.cell_height;
             break;

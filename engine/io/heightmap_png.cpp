@@ -31,6 +31,16 @@ std::optional<double> text_number(const PngImage& image, const char* key, const 
     return x;
 }
 
+/// Whether an RGB(A) image has R = G = B in every pixel.
+bool every_pixel_is_grey(const PngImage& image) {
+    const auto channels = static_cast<std::size_t>(image.channels);
+    for (std::size_t i = 0; i < image.samples.size(); i += channels) {
+        const std::uint16_t* px = image.samples.data() + i;
+        if (px[0] != px[1] || px[0] != px[2]) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std::string& name,
@@ -42,18 +52,24 @@ PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std
     const PngImage image = decode_png(bytes, name, png_limits);
     check_raster_size(image.width, image.height, name, limits);
 
-    const bool gray = image.channels <= 2;
+    // A grey heightmap that an image editor saved as RGB(A) has R = G = B in every pixel. Read
+    // as Terrain-RGB it would span kilometres; no real Terrain-RGB tile is grey throughout.
+    const bool neutral_colour = image.channels >= 3 && encoding != PngHeightEncoding::TerrainRgb &&
+                                every_pixel_is_grey(image);
+    const bool gray = image.channels <= 2 || neutral_colour;
     if (encoding == PngHeightEncoding::Gray && !gray) {
         throw std::runtime_error(name + ": a grayscale heightmap was expected, but the PNG has " +
-                                 std::to_string(image.channels) + " channels");
+                                 std::to_string(image.channels) +
+                                 " channels whose pixels are not all grey (R = G = B)");
     }
-    if (encoding == PngHeightEncoding::TerrainRgb && (gray || image.bit_depth != 8)) {
+    if (encoding == PngHeightEncoding::TerrainRgb &&
+        (image.channels <= 2 || image.bit_depth != 8)) {
         throw std::runtime_error(name +
                                  ": Terrain-RGB needs an 8-bit RGB or RGBA PNG, but this one has " +
                                  std::to_string(image.channels) + " channel(s) of " +
                                  std::to_string(image.bit_depth) + " bits");
     }
-    if (encoding == PngHeightEncoding::Auto && image.indexed_colour) {
+    if (encoding == PngHeightEncoding::Auto && image.indexed_colour && !gray) {
         throw std::runtime_error(name +
                                  ": an indexed-colour PNG with colours in its palette is not a "
                                  "heightmap encoding sandtin knows (use grey, or force "

@@ -234,6 +234,49 @@ TEST(HeightmapImport, EncodingCanBeForced) {
     expect_rejected(encode_png(rgb16), {"16-bit colour"});
 }
 
+// Image editors and terrain generators often save a grey heightmap as RGB(A), R = G = B. Read
+// as Terrain-RGB, 0..255 greys would span -10 km to +1668 km.
+TEST(HeightmapImport, GreyStoredAsColourIsAGreyHeightmap) {
+    const std::vector<std::uint16_t> greys = {0, 51, 255, 102, 204, 0};
+    const auto colour = [&](int channels, int depth, std::uint16_t alpha_of_last) {
+        PngImage image = gray_image(3, 2, depth, channels);
+        for (std::size_t i = 0; i < greys.size(); ++i) {
+            const std::uint16_t v =
+                depth == 16 ? static_cast<std::uint16_t>(greys[i] * 257) : greys[i];
+            for (int c = 0; c < 3; ++c)
+                image
+                    .samples[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] =
+                    v;
+            if (channels == 4)
+                image.samples[i * 4 + 3] = i + 1 == greys.size() ? alpha_of_last : 255;
+        }
+        return encode_png(image);
+    };
+    const std::vector<double> expected = {0.0, 0.2, 1.0, 0.4, 0.8, 0.0};
+    for (const PngHeightEncoding e : {PngHeightEncoding::Auto, PngHeightEncoding::Gray}) {
+        HeightmapReadOptions o;
+        o.png_encoding = e;
+        EXPECT_EQ(decode_heightmap(colour(3, 8, 255), "rgb.png", o).heights, expected);
+        EXPECT_EQ(decode_heightmap(colour(3, 16, 255), "rgb16.png", o).heights, expected);
+        const HeightRaster rgba = decode_heightmap(colour(4, 8, 0), "rgba.png", o);
+        EXPECT_EQ(rgba.valid, (std::vector<std::uint8_t>{1, 1, 1, 1, 1, 0}));
+        EXPECT_NEAR(rgba.heights[4], 0.8, 1e-15);
+    }
+    // Forced, the same pixels are Terrain-RGB codes: 51 grey is -10000 + 51 * 65793 * 0.1 m.
+    HeightmapReadOptions terrain_rgb;
+    terrain_rgb.png_encoding = PngHeightEncoding::TerrainRgb;
+    EXPECT_NEAR(decode_heightmap(colour(3, 8, 255), "rgb.png", terrain_rgb).heights[1],
+                -10000.0 + 51 * 65793 * 0.1, 1e-6);
+    // One coloured pixel makes it colour again.
+    PngImage tinted = gray_image(3, 2, 8, 3);
+    for (std::size_t i = 0; i < tinted.samples.size(); ++i)
+        tinted.samples[i] = 100;
+    tinted.samples[16] = 101;
+    EXPECT_EQ(decode_heightmap(encode_png(tinted), "t.png").source_format, "terrain-rgb");
+    expect_rejected(encode_png(tinted), {"not all grey"},
+                    {{}, {}, {}, {}, false, PngHeightEncoding::Gray});
+}
+
 TEST(HeightmapImport, IndexedPngWithAGreyPaletteIsAGreyHeightmap) {
     // Image editors save a grey heightmap of few levels as indexed colour. The palette here is
     // in a shuffled order, so reading the index instead of the grey level would show.
@@ -673,6 +716,15 @@ TEST_F(HeightmapFiles, HeightmapExportImportRoundTripsWithinTheQuantisation) {
     EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png").at(0, 0), 187.5);
     image.text = {{kPngKeyZRange, "200"}, {kPngKeyZOffset, "-12.5"}, {kPngKeyZRange, "20"}};
     expect_rejected(encode_png(image), {"'sandtin:z_range' is given twice", "'200'", "'20'"});
+    // Half a scale is refused unless the option for the missing half is given.
+    image.text = {{kPngKeyZRange, "200"}};
+    expect_rejected(encode_png(image),
+                    {"'sandtin:z_range' without 'sandtin:z_offset'", "--z-offset"});
+    HeightmapReadOptions offset;
+    offset.z_offset = 1.0;
+    EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png", offset).at(0, 0), 201.0);
+    image.text = {{kPngKeyZOffset, "3"}};
+    expect_rejected(encode_png(image), {"without 'sandtin:z_range'", "--z-scale"});
 }
 
 }  // namespace
