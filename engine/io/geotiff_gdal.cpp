@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -120,6 +121,10 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
     r.height = static_cast<std::uint32_t>(height);
     r.source_format = "geotiff";
     std::array<double, 6> gt{};
+    // A raster whose first row is its southern one (gt[5] > 0), or whose columns run west
+    // (gt[1] < 0), is read in file order and then mirrored: sandtin's rasters are north-up.
+    bool south_first = false;
+    bool east_first = false;
     if (GDALGetGeoTransform(ds, gt.data()) == CE_None) {
         if (gt[2] != 0.0 || gt[4] != 0.0) {
             throw std::runtime_error(name +
@@ -138,9 +143,12 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         // Rows spaced unlike columns (a 10 x 15 m grid) are kept as such: the raster, and the
         // TIN built from it, space them apart by their own size.
         if (std::abs(dx - dy) > 1e-9 * dx) r.cell_height = dy;
+        south_first = gt[5] > 0.0;
+        east_first = gt[1] < 0.0;
+        // The centres of the westmost column and the southmost row.
         r.georeference.known = true;
-        r.georeference.west = gt[0] + 0.5 * gt[1];
-        r.georeference.south = gt[3] + (height - 0.5) * gt[5];
+        r.georeference.west = gt[0] + (east_first ? width - 0.5 : 0.5) * gt[1];
+        r.georeference.south = gt[3] + (south_first ? 0.5 : height - 0.5) * gt[5];
     }
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
     // Heights in the unit the band names, else the one a compound CRS's vertical part names.
@@ -185,12 +193,43 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         height_metres = *unit;
     }
 
+    // Stored counts become heights in the band's unit through its scale and offset (an Int16
+    // DEM in centimetres has scale 0.01). The no-data value is a stored count.
+    int has_scale = 0;
+    int has_offset = 0;
+    const double scale = GDALGetRasterScale(band, &has_scale);
+    const double offset = GDALGetRasterOffset(band, &has_offset);
+    const double count_scale = has_scale != 0 ? scale : 1.0;
+    const double count_offset = has_offset != 0 ? offset : 0.0;
+    if (!(std::isfinite(count_scale) && count_scale != 0.0 && std::isfinite(count_offset))) {
+        std::ostringstream what;
+        what << name << ": the GeoTIFF's band scale (" << count_scale << ") and offset ("
+             << count_offset << ") cannot turn its samples into heights";
+        throw std::runtime_error(what.str());
+    }
+    r.georeference.count_scale = count_scale;
+    r.georeference.count_offset = count_offset;
+
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
     r.heights.resize(r.size());
     if (GDALRasterIO(band, GF_Read, 0, 0, width, height, r.heights.data(), width, height,
                      GDT_Float64, 0, 0) != CE_None) {
         throw std::runtime_error(name + ": cannot read the GeoTIFF's samples: " + errors.message());
+    }
+    if (south_first) {
+        for (std::size_t y = 0; y < r.height / 2; ++y) {
+            std::swap_ranges(
+                r.heights.begin() + static_cast<std::ptrdiff_t>(y * r.width),
+                r.heights.begin() + static_cast<std::ptrdiff_t>((y + 1) * r.width),
+                r.heights.begin() + static_cast<std::ptrdiff_t>((r.height - 1 - y) * r.width));
+        }
+    }
+    if (east_first) {
+        for (std::size_t y = 0; y < r.height; ++y) {
+            const auto row = r.heights.begin() + static_cast<std::ptrdiff_t>(y * r.width);
+            std::reverse(row, row + r.width);
+        }
     }
     const bool nan_nodata = has_nodata != 0 && std::isnan(nodata);
     std::vector<std::uint8_t> valid(r.size(), 1);
@@ -209,7 +248,7 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
                 std::to_string(i % r.width) + " is not finite (" + std::to_string(h) +
                 "); declare a no-data value or import with non-finite heights as no-data");
         } else {
-            r.heights[i] = h * height_metres;
+            r.heights[i] = (h * count_scale + count_offset) * height_metres;
         }
     }
     if (any_nodata) r.valid = std::move(valid);

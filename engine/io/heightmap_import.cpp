@@ -179,7 +179,9 @@ nlohmann::json to_json(const ImportReport& r) {
                              {"south", r.georeference.south},
                              {"crs", r.georeference.crs},
                              {"horizontal_unit", r.georeference.horizontal_unit},
-                             {"vertical_unit", r.georeference.vertical_unit}};
+                             {"vertical_unit", r.georeference.vertical_unit},
+                             {"count_scale", r.georeference.count_scale},
+                             {"count_offset", r.georeference.count_offset}};
     }
     j["max_error_target"] = r.greedy.max_error;
     j["max_points"] = r.greedy.max_points;

@@ -38,6 +38,10 @@ struct Georeference {
     /// the raster are already converted to metres.
     std::string horizontal_unit;
     std::string vertical_unit;
+    /// The stored samples are counts: height in `vertical_unit` = count * count_scale +
+    /// count_offset (a GeoTIFF band's scale and offset; an Int16 DEM in cm has scale 0.01).
+    double count_scale = 1.0;
+    double count_offset = 0.0;
 };
 
 struct HeightRaster {

@@ -377,6 +377,68 @@ TEST_F(HeightmapFiles, GeoTiffReadsSamplesCellSizeNoDataAndGeoreference) {
     EXPECT_EQ(decode_heightmap(bytes, "a.tif", scaled).at(2, 1), 12.0);
 }
 
+// GDAL reports a raster stored south row first as gt[5] > 0, and one whose columns run west as
+// gt[1] < 0. Read in file order they would import mirrored.
+TEST_F(HeightmapFiles, GeoTiffStoredSouthFirstOrEastFirstImportsNorthUp) {
+    // File rows: row 0 is the south row {1, 2, 3}, row 1 the north row {4, 5, 6}.
+    const HeightRaster south_first =
+        decode_heightmap(geotiff(dir_ / "s.tif", 3, 2, {1, 2, 3, 4, 5, 6},
+                                 {500000, 30, 0, 4000000, 0, 30}, kUtm33, std::nullopt),
+                         "s.tif");
+    EXPECT_EQ(south_first.heights, (std::vector<double>{4, 5, 6, 1, 2, 3}));  // north row first
+    EXPECT_EQ(south_first.georeference.west, 500015.0);
+    EXPECT_EQ(south_first.georeference.south, 4000015.0);  // the centre of file row 0
+    EXPECT_EQ(south_first.cell_size, 30.0);
+    // File columns from east to west: the first sample lies at the east edge.
+    const HeightRaster east_first =
+        decode_heightmap(geotiff(dir_ / "e.tif", 3, 2, {1, 2, 3, 4, 5, 6},
+                                 {500090, -30, 0, 4000000, 0, -30}, kUtm33, std::nullopt),
+                         "e.tif");
+    EXPECT_EQ(east_first.heights, (std::vector<double>{3, 2, 1, 6, 5, 4}));
+    EXPECT_EQ(east_first.georeference.west, 500015.0);
+    EXPECT_EQ(east_first.georeference.south, 4000000.0 - 45.0);
+    // Both at once, with a no-data sample that must move with its height.
+    const HeightRaster both =
+        decode_heightmap(geotiff(dir_ / "b.tif", 3, 2, {1, 2, -9, 4, 5, 6},
+                                 {500090, -30, 0, 4000000, 0, 30}, kUtm33, -9.0),
+                         "b.tif");
+    EXPECT_EQ(both.at(0, 0), 6.0);
+    EXPECT_EQ(both.at(2, 1), 1.0);
+    EXPECT_FALSE(both.is_valid(both.index(0, 1)));  // file (2, 0): east column, south row
+    EXPECT_EQ(both.nodata_count(), 1u);
+}
+
+// A DEM stored as Int16 centimetres above a datum: height = count * scale + offset.
+TEST_F(HeightmapFiles, GeoTiffBandScaleAndOffsetTurnCountsIntoHeights) {
+    const fs::path path = dir_ / "scaled.tif";
+    GDALAllRegister();
+    GDALDatasetH ds =
+        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 2, 2, 1, GDT_Int16, nullptr);
+    ASSERT_NE(ds, nullptr);
+    std::array<double, 6> transform = {500000, 10, 0, 4000000, 0, -10};
+    GDALSetGeoTransform(ds, transform.data());
+    GDALSetProjection(ds, kUtm33);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    GDALSetRasterScale(band, 0.01);
+    GDALSetRasterOffset(band, 100.0);
+    GDALSetRasterNoDataValue(band, -32768);
+    std::vector<std::int16_t> counts = {0, 1000, 3000, -32768};
+    ASSERT_EQ(GDALRasterIO(band, GF_Write, 0, 0, 2, 2, counts.data(), 2, 2, GDT_Int16, 0, 0),
+              CE_None);
+    GDALClose(ds);
+    const HeightRaster r = decode_heightmap(read_file(path), "scaled.tif");
+    EXPECT_DOUBLE_EQ(r.heights[0], 100.0);
+    EXPECT_DOUBLE_EQ(r.heights[1], 110.0);
+    EXPECT_DOUBLE_EQ(r.heights[2], 130.0);
+    EXPECT_FALSE(r.is_valid(3));  // no-data is a count, compared before scaling
+    EXPECT_EQ(r.georeference.count_scale, 0.01);
+    EXPECT_EQ(r.georeference.count_offset, 100.0);
+    // --z-scale replaces the height unit, not the encoding of the counts.
+    HeightmapReadOptions o;
+    o.z_scale = 2.0;
+    EXPECT_DOUBLE_EQ(decode_heightmap(read_file(path), "scaled.tif", o).heights[1], 220.0);
+}
+
 TEST_F(HeightmapFiles, GeoTiffInFeetIsConvertedToMetres) {
     const std::vector<float> v = {100, 200, 300, 400};
     // A state plane grid: 10 US survey feet per pixel, heights declared in feet on the band.
