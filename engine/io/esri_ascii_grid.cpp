@@ -105,7 +105,9 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
         if (values.count(it->second) != 0) in.fail("header key '" + key + "' is given twice");
         const std::string_view value_text = in.token();
         const std::optional<double> value = parse_double(value_text);
-        if (!value || !std::isfinite(*value)) {
+        // GDAL writes "NODATA_value nan" for a band whose no-data is NaN.
+        const bool nan_nodata = it->second == "nodata" && value && std::isnan(*value);
+        if (!value || (!std::isfinite(*value) && !nan_nodata)) {
             in.fail("header key '" + key + "' needs a finite number, not '" +
                     std::string(value_text) + "'");
         }
@@ -137,9 +139,11 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
         throw std::runtime_error(name + ": header key 'cellsize' must be positive, not " +
                                  std::to_string(cellsize));
     }
-    // A plain flag and value: GCC 12 misreads an optional here (-Wmaybe-uninitialized).
-    const bool has_nodata = values.count("nodata") != 0;
-    const double nodata = has_nodata ? values["nodata"] : 0.0;
+    // Without the key, ESRI's documented default of -9999 holds: files written without it
+    // still mark missing cells that way. A plain value: GCC 12 misreads an optional here
+    // (-Wmaybe-uninitialized). NaN as no-data makes every NaN sample missing.
+    const double nodata = values.count("nodata") != 0 ? values["nodata"] : kEsriDefaultNodata;
+    const bool nan_is_nodata = std::isnan(nodata);
 
     HeightRaster r;
     r.width = static_cast<std::uint32_t>(cols);
@@ -174,7 +178,8 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
             in.fail("the height at row " + std::to_string(row) + ", column " + std::to_string(col) +
                     " is not a number: '" + std::string(t.substr(0, 40)) + "'");
         }
-        if ((has_nodata && *v == nodata) || (!std::isfinite(*v) && nonfinite_as_nodata)) {
+        if (*v == nodata || (std::isnan(*v) && nan_is_nodata) ||
+            (!std::isfinite(*v) && nonfinite_as_nodata)) {
             valid[i] = 0;
             any_nodata = true;
             r.heights[i] = 0.0;

@@ -6,7 +6,8 @@
 //   xllcorner 100.0    or xllcenter: west edge (or first column centre) in source units
 //   yllcorner 200.0    or yllcenter: south edge (or last row centre)
 //   cellsize 5.0       square cells (> 0)
-//   NODATA_value -9999 optional
+//   NODATA_value -9999 optional; ESRI's default is -9999 (kEsriDefaultNodata); "nan" makes NaN
+//                      samples no-data
 //   then nrows lines of ncols heights, north row first.
 //
 // Keys are case-insensitive and may come in any order; anything else in the header, a missing
@@ -19,6 +20,9 @@
 #include "io/heightmap_raster.hpp"
 
 namespace sandtin {
+
+/// The no-data value of a grid whose header does not give one (ESRI's ASCII raster format).
+inline constexpr double kEsriDefaultNodata = -9999.0;
 
 /// Parses an ESRI ASCII grid. Heights are metres as written; NaN or infinite values are
 /// errors unless `nonfinite_as_nodata`. Throws std::runtime_error naming `name`.

@@ -344,6 +344,29 @@ TEST(HeightmapImport, AsciiGridReadsHeaderAndValues) {
     EXPECT_EQ(r.georeference.south, 2000.5);  // already a centre
 }
 
+// ESRI's format description makes NODATA_value optional with a default of -9999: a grid written
+// without the line still marks its holes that way. GDAL writes "nan" for a NaN no-data value.
+TEST(HeightmapImport, AsciiGridNoDataDefaultsToMinus9999AndMayBeNaN) {
+    const std::string header = "ncols 3\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+    const HeightRaster implicit =
+        decode_heightmap(bytes_of(header + "5 5 5\n5 -9999 5\n"), "g.asc");
+    EXPECT_EQ(implicit.nodata_count(), 1u);
+    EXPECT_FALSE(implicit.is_valid(implicit.index(1, 1)));
+    // A declared value replaces the default: -9999 is then a height like any other.
+    const HeightRaster declared =
+        decode_heightmap(bytes_of(header + "NODATA_value -1\n5 -1 5\n5 -9999 5\n"), "g.asc");
+    EXPECT_EQ(declared.nodata_count(), 1u);
+    EXPECT_EQ(declared.at(1, 1), -9999.0);
+    const HeightRaster nan =
+        decode_heightmap(bytes_of(header + "NODATA_value nan\n5 nan 5\n5 5 5\n"), "g.asc");
+    EXPECT_EQ(nan.nodata_count(), 1u);
+    EXPECT_FALSE(nan.is_valid(nan.index(1, 0)));
+    // Other header keys still need finite numbers.
+    expect_rejected(
+        bytes_of("ncols 3\nnrows 2\nxllcorner nan\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n"),
+        {"finite number"});
+}
+
 TEST(HeightmapImport, AsciiGridSavedWithAByteOrderMarkReadsLikeWithout) {
     // Notepad and Excel save UTF-8 text with EF BB BF in front; CRLF line ends come with it.
     const std::string text =
