@@ -1,11 +1,14 @@
 // sandtin export: a session to a mesh (OBJ, PLY, STL, glTF, GLB) or a map (height PNG/EXR,
 // normal or albedo PNG).
 
+#include <algorithm>
 #include <iostream>
+#include <optional>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/export_terrain.hpp"
+#include "io/import_grid.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "util/atomic_file.hpp"
@@ -19,16 +22,6 @@ constexpr const char* kUsage =
     "[--map height|normal|albedo] [--up y|z] [--units m|cm|mm|km|in|ft] "
     "[--base DEPTH | --skirt DEPTH] [--max-error E] [--cell-size m] [--size N] "
     "[--no-textures] [--faceted] [--json]";
-
-/// The cell size the terrain was imported with, if the session says.
-std::optional<double> imported_cell_size(const std::string& metadata) {
-    const nlohmann::json j = nlohmann::json::parse(metadata, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) return std::nullopt;
-    const auto ptr = nlohmann::json::json_pointer("/import/raster/cell_size");
-    if (!j.contains(ptr) || !j.at(ptr).is_number()) return std::nullopt;
-    const double cell = j.at(ptr).get<double>();
-    return cell > 0.0 ? std::optional<double>(cell) : std::nullopt;
-}
 
 }  // namespace
 
@@ -113,11 +106,23 @@ int run_export(const std::vector<std::string>& raw) {
     const Session session = load_session(args.positionals()[0]);
     // Height maps and simplification default to the grid the terrain was imported from, so
     // export followed by import reproduces it.
-    const bool cell_size_from_session = !options.cell_size && !args.has("--size");
-    if (cell_size_from_session) options.cell_size = imported_cell_size(session.metadata_json);
     TinOptions tin_options;
     tin_options.track_changes = false;
     const Tin tin = session_terrain(session, args.positionals()[0], tin_options);
+    // Maps and simplification sample the grid the terrain was imported on while it still lies
+    // on it, so that export followed by import gives the same samples; a finer one once edits
+    // put vertices between those samples.
+    std::optional<DefaultSampling> sampling;
+    if (!options.cell_size && !args.has("--size")) {
+        if (const std::optional<ImportGrid> grid = import_grid_of(session.metadata_json)) {
+            const Rect d = tin.domain();
+            sampling = default_sampling(tin, *grid,
+                                        std::max(d.width(), d.height()) / (options.map_size - 1));
+            options.cell_size = sampling->cell_size;
+            if (sampling->cell_height > 0.0) options.cell_height = sampling->cell_height;
+        }
+    }
+    const bool cell_size_from_session = sampling.has_value();
     ExportReport report;
     try {
         report = export_terrain(tin, out, format, options);
@@ -132,9 +137,25 @@ int run_export(const std::vector<std::string>& raw) {
         }
         throw UsageError(e.what());
     }
+    const bool sampled = report.map_width > 0 && report.vertices == 0;  // a map
+    const bool uses_sampling = sampling && (sampled || options.max_error);
     if (args.has("--json")) {
-        std::cout << to_json(report).dump(2) << "\n";
+        nlohmann::json j = to_json(report);
+        if (uses_sampling) {
+            j["default_sampling"] = {
+                {"cell_size", sampling->cell_size},
+                {"cell_height", sampling->cell_height},
+                {"grid", sampling->edited ? "finer than the import grid, which edits have left"
+                                          : "the import grid"}};
+        }
+        std::cout << j.dump(2) << "\n";
     } else {
+        if (uses_sampling && sampling->edited) {
+            std::cout << "note: edits put vertices between the samples of the grid this terrain "
+                         "was imported on; sampling every "
+                      << sampling->cell_size << " m instead, so that they are kept "
+                      << "(--cell-size or --size choose)\n";
+        }
         std::cout << "exported " << args.positionals()[0] << " as " << to_string(report.format);
         if (report.vertices > 0) {
             std::cout << ": " << report.vertices << " vertices, " << report.triangles

@@ -46,9 +46,13 @@ MapGrid corner_grid(const Rect& d, const ExportOptions& o) {
         throw std::invalid_argument("export: the map size must lie in 2.." +
                                     std::to_string(kMaxMapSide));
     }
+    if (o.cell_height && !(o.cell_size && std::isfinite(*o.cell_height) && *o.cell_height > 0.0)) {
+        throw std::invalid_argument(
+            "export: a row spacing needs a cell size, and both must be positive numbers of metres");
+    }
     const double cell = o.cell_size.value_or(std::max(d.width(), d.height()) / (o.map_size - 1));
-    return MapGrid(d, samples_along(d.width(), cell), samples_along(d.height(), cell),
-                   SampleAt::Corners);
+    return MapGrid(d, samples_along(d.width(), cell),
+                   samples_along(d.height(), o.cell_height.value_or(cell)), SampleAt::Corners);
 }
 
 /// Texels covering the domain, map_size along the longer side.

@@ -53,6 +53,8 @@ struct ExportOptions {
     std::optional<double> max_error;
     /// Metres between height-map samples (and simplification samples). Default: map_size.
     std::optional<double> cell_size;
+    /// Metres between rows of those samples when not `cell_size` (an oblong import grid).
+    std::optional<double> cell_height;
     /// Samples along the longer side of maps, textures and the simplification raster when no
     /// cell size is given.
     std::uint32_t map_size = 1024;

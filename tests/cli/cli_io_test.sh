@@ -93,6 +93,29 @@ scenario_export() {
     expect_ok plain export bay.sandtin -o p.obj --no-textures --up z || return
     grep -q "wrote p.obj" plain.out || fail "plain export output lacks the file"
     [[ -e p_albedo.png ]] && fail "--no-textures still wrote textures"
+    check_eq "unedited: the import grid" "$(json hpng.out /default_sampling/grid)" "the import grid"
+
+    # Edits between the import grid's samples: a 0.5 m pit on a flat 2 m grid. The default map
+    # and the default simplification raster must sample finely enough to keep it.
+    {
+        printf 'ncols 21\nnrows 21\nxllcorner 0\nyllcorner 0\ncellsize 2\n'
+        for _ in $(seq 21); do printf '5 %.0s' $(seq 21); printf '\n'; done
+    } >flat2m.asc
+    expect_ok imp_flat import flat2m.asc --max-error 0 -o flat2m.sandtin || return
+    printf '[{"op": "stamp", "tool": {"contour": "circle", "radius": 0.6, "profile": "flat"},
+      "at": [21, 19], "depth": 0.5}]\n' >pit.json
+    expect_ok pit run pit.json -i flat2m.sandtin -o pit.sandtin || return
+    expect_ok pit_png export pit.sandtin -o pit.png --json || return
+    check_eq "edited: a finer grid" "$(json pit_png.out /default_sampling/grid)" \
+        "finer than the import grid, which edits have left"
+    expect_ok pit_back import pit.png --max-error 0.01 -o pit_back.sandtin || return
+    expect_ok pit_info info pit_back.sandtin --json || return
+    holds "the pit survives export and import" "a < 4.6" "$(json pit_info.out /bbox/min/2)"
+    expect_ok pit_ply export pit.sandtin -o pit.ply --max-error 0.01 --json || return
+    holds "the simplified mesh keeps the pit" "a > 4" "$(json pit_ply.out /vertices)"
+    expect_ok pit_note export pit.sandtin -o pit2.png || return
+    grep -q "note: edits put vertices between the samples" pit_note.out ||
+        fail "no note on the finer sampling: $(cat pit_note.out)"
     return 0
 }
 

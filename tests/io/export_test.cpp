@@ -12,6 +12,7 @@
 
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
+#include "io/import_grid.hpp"
 #include "support/mesh_readers.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
@@ -436,6 +437,82 @@ TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
     o.cell_size = 0.25;
     run(tin, "square.png", o);
     EXPECT_EQ(read_heightmap(dir_ / "square.png").cell_height, 0.0);
+}
+
+// A terrain imported on 2 x 3 m cells and exported with both spacings re-imports onto the
+// same samples; with the column spacing alone its rows would be resampled (a 10 m spike came
+// back at 6.67 m).
+TEST_F(Export, AnOblongImportGridExportsOntoItsOwnSamples) {
+    HeightRaster raster;
+    raster.width = 5;
+    raster.height = 4;
+    raster.cell_size = 2.0;
+    raster.cell_height = 3.0;
+    for (std::uint32_t i = 0; i < raster.size(); ++i)
+        raster.heights.push_back(i == 7 ? 10.0 : 0.1 * static_cast<double>(i % 3));
+    const Tin tin = greedy_tin(raster, {0.0, 0}).tin;
+    const ImportGrid grid{2.0, 3.0};
+    ASSERT_TRUE(tin_lies_on_grid(tin, grid));
+    const DefaultSampling sampling = default_sampling(tin, grid, 0.01);
+    EXPECT_FALSE(sampling.edited);
+    ExportOptions o;
+    o.cell_size = sampling.cell_size;
+    o.cell_height = sampling.cell_height;
+    run(tin, "oblong.exr", o);
+    const HeightRaster back = read_heightmap(dir_ / "oblong.exr");
+    ASSERT_EQ(back.width, 5u);
+    ASSERT_EQ(back.height, 4u);
+    EXPECT_DOUBLE_EQ(back.cell_size, 2.0);
+    EXPECT_DOUBLE_EQ(back.row_spacing(), 3.0);
+    for (std::size_t i = 0; i < raster.size(); ++i)
+        EXPECT_NEAR(back.heights[i], raster.heights[i], 1e-6) << i;
+    // A row spacing without a cell size has nothing to be relative to.
+    ExportOptions rows_only;
+    rows_only.cell_height = 3.0;
+    EXPECT_THROW(run(tin, "bad.png", rows_only), std::invalid_argument);
+}
+
+// An edit that inserts a vertex between the import grid's samples makes the default sampling
+// finer, so the edit is not sampled away; heights changed on grid vertices keep the grid.
+TEST_F(Export, TheImportGridIsTheDefaultOnlyWhileTheTerrainLiesOnIt) {
+    HeightRaster raster;
+    raster.width = 11;
+    raster.height = 11;
+    raster.cell_size = 2.0;
+    raster.heights.assign(raster.size(), 5.0);
+    raster.heights[60] = 6.0;  // a bump, so the TIN keeps an inner vertex
+    Tin tin = greedy_tin(raster, {0.0, 0}).tin;
+    const std::optional<ImportGrid> grid = import_grid_of(
+        R"({"import": {"raster": {"cell_size": 2.0, "cell_height": 0.0}}, "scene": "x"})");
+    ASSERT_TRUE(grid.has_value());
+    EXPECT_EQ(grid->cell_size, 2.0);
+    EXPECT_EQ(grid->row_spacing(), 2.0);
+    EXPECT_TRUE(tin_lies_on_grid(tin, *grid));
+    VertexId bump = kInvalidVertex;
+    for (const VertexId v : test::live_ids(tin))
+        if (tin.position(v) == Vec2{10.0, 10.0}) bump = v;
+    ASSERT_NE(bump, kInvalidVertex);
+    tin.set_height(bump, 7.0);
+    EXPECT_TRUE(tin_lies_on_grid(tin, *grid)) << "a height change keeps the vertex on the grid";
+    // A 0.5 m pit between samples.
+    const VertexId pit = tin.insert_point(Vec2{13.0, 9.0}, 4.5);
+    ASSERT_TRUE(tin.is_alive(pit));
+    EXPECT_FALSE(tin_lies_on_grid(tin, *grid));
+    const DefaultSampling sampling = default_sampling(tin, *grid, 20.0 / 1023.0);
+    EXPECT_TRUE(sampling.edited);
+    EXPECT_DOUBLE_EQ(sampling.cell_size, 20.0 / 1023.0);
+    ExportOptions o;
+    o.cell_size = sampling.cell_size;
+    run(tin, "edited.png", o);
+    const HeightRaster back = read_heightmap(dir_ / "edited.png");
+    double lowest = 1e300;
+    for (const double h : back.heights)
+        lowest = std::min(lowest, h);
+    EXPECT_NEAR(lowest, 4.5, 0.01) << "the pit survives the export";
+    // No import record, or one with no positive spacing: no import grid.
+    EXPECT_FALSE(import_grid_of(R"({"scene": "x"})").has_value());
+    EXPECT_FALSE(import_grid_of(R"({"import": {"raster": {"cell_size": 0}}})").has_value());
+    EXPECT_FALSE(import_grid_of("not json").has_value());
 }
 
 TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
