@@ -2081,6 +2081,30 @@ double edge_bend(const Tin::Impl& m, Fh f, int i) {
                     std::abs(m.va.height[c] - plane_height_at(m, a, b, d, pc)));
 }
 
+/// A point inserted at `p` (height `hp`, on the surface) re-triangulates its cavity into a fan
+/// from p: edge (f, i) of the cavity, seen from p, gives way to a segment from p to the vertex
+/// of g = f->neighbor(i) across it. How far that moves the surface where the two cross: the
+/// vertical gap there between the edge and the segment. This differs from edge_bend, which sees
+/// the edge from f's own third vertex: after an edge split the faces are (a, p, c) and the
+/// flips that follow measure against p.
+double edge_bend_toward(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
+    const Fh g = f->neighbor(i);
+    const std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
+    const std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
+    const std::uint32_t d = g->vertex(g->index(f))->id;
+    const Vec2 pa = m.va.position[a];
+    const Vec2 e = m.va.position[b] - pa;
+    const Vec2 k = m.va.position[d] - p;
+    const double denom = cross(e, k);
+    if (denom == 0.0) return 0.0;  // p on the line through the edge: it splits that edge
+    const double t = cross(p - pa, k) / denom;
+    const double s = cross(p - pa, e) / denom;
+    if (!(t >= 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0)) return 0.0;
+    const double on_edge = (1.0 - t) * m.va.height[a] + t * m.va.height[b];
+    const double on_segment = (1.0 - s) * hp + s * m.va.height[d];
+    return std::abs(on_edge - on_segment);
+}
+
 }  // namespace
 
 std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
@@ -2091,6 +2115,9 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
     Impl& m = *impl_;
     if (m.cdt.dimension() != 2) return 0;
     std::vector<std::array<VertexId, 2>> bent;
+    // While walking a point's cavity: the point and its height on the surface.
+    const Vec2* from = nullptr;
+    double from_height = 0.0;
     auto consider = [&](Fh f, int i) {
         const Fh g = f->neighbor(i);
         if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g) || m.cdt.is_constrained({f, i})) return;
@@ -2098,7 +2125,10 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
         std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
         if (!(length_squared(m.va.position[b] - m.va.position[a]) > min_length * min_length))
             return;
-        if (!(edge_bend(m, f, i) > tolerance)) return;
+        if (!(edge_bend(m, f, i) > tolerance) &&
+            !(from != nullptr && edge_bend_toward(m, f, i, *from, from_height) > tolerance)) {
+            return;
+        }
         if (within != nullptr) {
             const std::uint32_t c = f->vertex(i)->id;
             const std::uint32_t d = g->vertex(g->index(f))->id;
@@ -2113,7 +2143,7 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
     // A point: the insertion removes the edges between faces in conflict with it. Walking
     // out from the face that holds it, a bent edge is fenced and not crossed, so faces beyond
     // it stay out of the cavity and their edges need no fence.
-    std::vector<Fh> zone, reached;
+    std::vector<Fh> zone, reached, far_side;
     for (const Vec2 p : points) {
         if (!is_finite(p) || !m.domain.contains(p)) continue;
         zone.clear();
@@ -2126,13 +2156,34 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
         // A point on an edge, or within the snap distance of one (rim samples are crossings
         // of edges), goes into that edge, and the flips after the split start on both sides.
         const double snap2 = m.snap_distance * m.snap_distance;
+        const Fh holder = zone.front();
+        from = &p;
+        from_height = plane_height_at(m, holder->vertex(0)->id, holder->vertex(1)->id,
+                                      holder->vertex(2)->id, p);
         for (int i = 0; i < 3; ++i) {
-            const Fh g = zone.front()->neighbor(i);
+            const Fh g = holder->neighbor(i);
             if (m.cdt.is_infinite(g)) continue;
-            if (near_line(m.va.position[zone.front()->vertex(CdtPlus::ccw(i))->id],
-                          m.va.position[zone.front()->vertex(CdtPlus::cw(i))->id], p, snap2)) {
-                consider(zone.front(), i);
+            if (near_line(m.va.position[holder->vertex(CdtPlus::ccw(i))->id],
+                          m.va.position[holder->vertex(CdtPlus::cw(i))->id], p, snap2)) {
+                consider(holder, i);
                 if (!in(reached, g)) reached.push_back(g);
+                // CGAL's conflict zone stops at a constrained edge, but a split of that edge
+                // flips faces on its far side too: their conflicts join the zone. (CGAL's
+                // get_conflicts would locate p again and start on this side.)
+                if (m.cdt.is_constrained({holder, i})) {
+                    far_side.assign(1, g);
+                    while (!far_side.empty()) {
+                        const Fh h = far_side.back();
+                        far_side.pop_back();
+                        if (m.cdt.is_infinite(h) || in(zone, h) ||
+                            !m.cdt.test_conflict(to_point(p), h)) {
+                            continue;
+                        }
+                        zone.push_back(h);
+                        for (int j = 0; j < 3; ++j)
+                            if (!m.cdt.is_constrained({h, j})) far_side.push_back(h->neighbor(j));
+                    }
+                }
             }
         }
         for (std::size_t next = 0; next < reached.size(); ++next) {
@@ -2146,6 +2197,7 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
             }
         }
     }
+    from = nullptr;
     // A segment: every edge of the faces it crosses (those it removes, and the rims of the
     // pockets it leaves, which the flips after it may take).
     for (const auto& s : segments) {

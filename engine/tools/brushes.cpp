@@ -55,9 +55,19 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
     if (!d.inflated(s.radius).contains(centre)) return report;
     const double ledger0 = tin.volume_ledger();
     const std::size_t before = tin.vertex_count();
+    const double spacing = s.refine_spacing > 0.0 ? s.refine_spacing : s.radius / 6.0;
     if (s.kind != BrushKind::PaintMaterial) {
-        const double spacing = s.refine_spacing > 0.0 ? s.refine_spacing : s.radius / 6.0;
-        refine_long_edges(tin, centre, s.radius, spacing, &context.hint, 8192);
+        // Refinement must not re-shape the surface outside the dab: its insertions are fenced
+        // (on a 2 m elevation grid, a 2 m dab moved the surface 0.28 m up to 5.5 m away).
+        const SurfaceFence fence =
+            dab_fence(s.radius, context.settings.simplify.tolerance, context.peek_generation());
+        report.edges_fenced =
+            refine_long_edges(tin, centre, s.radius, spacing, &context.hint, 8192, nullptr,
+                              context.settings.fence_coarse_edges &&
+                                      coarse_for_dab(tin, centre, s.radius, &context.hint)
+                                  ? &fence
+                                  : nullptr)
+                .fenced;
     }
     report.vertices_inserted = tin.vertex_count() - before;
 
@@ -123,7 +133,8 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
             ++report.vertices_changed;
         }
     }
-    context.simplifier.enqueue(disc);
+    context.simplifier.enqueue(
+        simplifiable_after_dab(tin, disc, centre, s.radius, spacing, report.edges_fenced > 0));
     if (context.settings.simplify_after_edit)
         context.simplifier.run(tin, context.settings.simplify);
     report.volume_change = tin.volume_ledger() - ledger0;

@@ -31,6 +31,9 @@ struct BrushSettings {
 struct BrushReport {
     std::size_t vertices_changed = 0;
     std::size_t vertices_inserted = 0;
+    /// Bent edges constrained so that refining the disc re-shapes nothing outside it
+    /// (tools/refine.hpp): 0 on sand, some on a coarse elevation model.
+    std::size_t edges_fenced = 0;
     double volume_change = 0.0;  ///< m³
 };
 

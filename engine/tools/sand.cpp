@@ -13,6 +13,7 @@ namespace {
 struct Kernel {
     std::vector<VertexId> vertices;
     std::vector<double> weight;
+    std::vector<VertexId> simplifiable;  ///< simplifiable_after_dab
 };
 
 /// Refines the disc and returns the vertices in it with their falloff weights.
@@ -25,14 +26,27 @@ Kernel prepare(Tin& tin, Vec2 centre, const PourSettings& s, SculptContext& cont
     if (!d.inflated(s.radius).contains(centre)) return {};
     const double spacing = s.refine_spacing > 0.0 ? s.refine_spacing : s.radius / 4.0;
     const std::size_t before = tin.vertex_count();
-    if (d.contains(centre)) tin.insert_point_on_surface(centre, &context.hint);
+    // The inserted points must not re-shape the surface outside the disc: they are fenced, as
+    // a brush's are (tools/refine.hpp).
+    const SurfaceFence fence =
+        dab_fence(s.radius, context.settings.simplify.tolerance, context.peek_generation());
+    const SurfaceFence* guard =
+        context.settings.fence_coarse_edges && coarse_for_dab(tin, centre, s.radius, &context.hint)
+            ? &fence
+            : nullptr;
+    if (d.contains(centre)) {
+        report.edges_fenced +=
+            insert_points_fenced(tin, std::span<const Vec2>(&centre, 1), guard, &context.hint);
+    }
     // A ring at half the radius gives the pour a round shape on a coarse terrain.
     std::vector<Vec2> ring;
     for (Vec2 p : circle_contour(0.5 * s.radius, 8)) {
         if (d.contains(centre + p)) ring.push_back(centre + p);
     }
-    tin.insert_points_on_surface(ring, &context.hint);
-    refine_long_edges(tin, centre, s.radius, spacing, &context.hint, 4096);
+    report.edges_fenced += insert_points_fenced(tin, ring, guard, &context.hint);
+    report.edges_fenced +=
+        refine_long_edges(tin, centre, s.radius, spacing, &context.hint, 4096, nullptr, guard)
+            .fenced;
     report.vertices_inserted = tin.vertex_count() - before;
 
     Kernel k;
@@ -45,6 +59,8 @@ Kernel prepare(Tin& tin, Vec2 centre, const PourSettings& s, SculptContext& cont
             k.weight.push_back(w);
         }
     }
+    k.simplifiable =
+        simplifiable_after_dab(tin, k.vertices, centre, s.radius, spacing, report.edges_fenced > 0);
     return k;
 }
 
@@ -70,7 +86,7 @@ PourReport pour_sand(Tin& tin, Vec2 centre, double volume, const PourSettings& s
     }
     report.volume = tin.volume_ledger() - ledger0;
     report.vertices_changed = k.vertices.size();
-    context.simplifier.enqueue(k.vertices);
+    context.simplifier.enqueue(k.simplifiable);
     return report;
 }
 
@@ -110,7 +126,7 @@ PourReport remove_sand(Tin& tin, Vec2 centre, double volume, const PourSettings&
     }
     report.volume = tin.volume_ledger() - ledger0;
     report.vertices_changed = k.vertices.size();
-    context.simplifier.enqueue(k.vertices);
+    context.simplifier.enqueue(k.simplifiable);
     return report;
 }
 

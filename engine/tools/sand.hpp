@@ -21,6 +21,9 @@ struct PourReport {
     double volume = 0.0;  ///< m³ actually added (positive) or removed (negative)
     std::size_t vertices_inserted = 0;
     std::size_t vertices_changed = 0;
+    /// Bent edges constrained so that refining the disc re-shapes nothing outside it
+    /// (tools/refine.hpp): 0 on sand, some on a coarse elevation model.
+    std::size_t edges_fenced = 0;
 };
 
 /// Adds `volume` m³ (>= 0) centred at `centre`.

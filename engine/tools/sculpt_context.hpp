@@ -26,7 +26,8 @@ struct SculptSettings {
     std::size_t min_bulk_clearing = 200;
     /// A stamp first constrains the bent edges, longer than the tool is wide, that inserting
     /// its rim would re-triangulate (Tin::fence_bent_edges), so on a coarse TIN it re-shapes
-    /// nothing beyond its outer contour. Off only to measure what that costs.
+    /// nothing beyond its outer contour; brush dabs and pours fence the points they refine
+    /// with (tools/refine.hpp). Off only to measure what that costs.
     bool fence_coarse_edges = true;
 };
 

@@ -119,7 +119,7 @@ TEST(Refine, NoLongEdgeLeftNearThePointAndVolumeConserved) {
         const double v0 = tin.volume();
         EditReport report;
         const std::size_t inserted =
-            refine_long_edges(tin, c, r, max_length, nullptr, 200000, &report);
+            refine_long_edges(tin, c, r, max_length, nullptr, 200000, &report).inserted;
         EXPECT_EQ(tin.vertex_count(), n + inserted);
         EXPECT_EQ(report.vertices_created, inserted);
         EXPECT_LE(longest_edge_near(tin, c, r), max_length * (1.0 + 1e-12));
@@ -136,14 +136,15 @@ TEST(Refine, NoLongEdgeLeftNearThePointAndVolumeConserved) {
 
 TEST(Refine, StopsAtTheInsertionLimit) {
     Tin tin = Tin::flat_rectangle(test::kUnitSquare, 0.1);
-    const std::size_t inserted = refine_long_edges(tin, {0.5, 0.5}, 0.3, 0.01, nullptr, 10);
+    const std::size_t inserted =
+        refine_long_edges(tin, {0.5, 0.5}, 0.3, 0.01, nullptr, 10).inserted;
     EXPECT_GT(inserted, 0u);
     EXPECT_LE(inserted, 10u);
     EXPECT_EQ(tin.vertex_count(), 4u + inserted);
     EXPECT_TRUE(mesh_is_sound(tin));
     // Degenerate arguments do nothing.
-    EXPECT_EQ(refine_long_edges(tin, {0.5, 0.5}, 0.3, 0.0), 0u);
-    EXPECT_EQ(refine_long_edges(tin, {0.5, 0.5}, 0.0, 0.01), 0u);
+    EXPECT_EQ(refine_long_edges(tin, {0.5, 0.5}, 0.3, 0.0).inserted, 0u);
+    EXPECT_EQ(refine_long_edges(tin, {0.5, 0.5}, 0.0, 0.01).inserted, 0u);
 }
 
 }  // namespace

@@ -334,6 +334,71 @@ TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
     EXPECT_GT(painted, 30u);
 }
 
+// How far the surface moved outside the disc (centre, reach), sampled on a grid around it.
+double worst_change_outside(const Tin& before, const Tin& after, Vec2 centre, double reach) {
+    double worst = 0.0;
+    LocateHint before_hint, after_hint;
+    const Vec2 half{3.0 * reach, 3.0 * reach};
+    for (Vec2 p : test::grid_points(Rect{centre - half, centre + half}, 181, 181)) {
+        if (!before.domain().contains(p) || distance(p, centre) <= reach) continue;
+        worst = std::max(
+            worst, std::abs(*after.height_at(p, &after_hint) - *before.height_at(p, &before_hint)));
+    }
+    return worst;
+}
+
+// On an imported elevation model (triangles tens of metres wide, far from flat), the points a
+// dab or a pour refines with used to re-triangulate faces well outside it by Delaunay's rule:
+// on a 2 m grid a 2 m raise dab moved the surface 0.28 m up to 5.5 m away. Now the bent edges
+// they would remove are fenced first. Oracle: the surface before the edit. Beyond the disc and
+// two refinement spacings it may move by no more than the fence's tolerance: the triangles of
+// the vertices the dab moves reach one spacing out, and the simplifier, removing a vertex one
+// spacing inside the disc, levels its volume change over its ring, whose triangles reach one
+// more.
+// The same edits without the fence show the premise.
+TEST(Brush, OnACoarseElevationModelDabsAndPoursChangeNothingBeyondTheirDisc) {
+    const Tin model = test::coarse_hills_model();
+    for (const double radius : {2.0, 20.0}) {
+        for (const Vec2 at : test::coarse_model_placements(model, true)) {
+            SCOPED_TRACE(std::to_string(radius) + " m at " + std::to_string(at.x) + ", " +
+                         std::to_string(at.y));
+            BrushSettings raise;
+            raise.kind = BrushKind::Raise;
+            raise.radius = radius;
+            raise.strength = 0.1 * radius;
+            PourSettings pour;
+            pour.radius = radius;
+            for (const bool fenced : {true, false}) {
+                Tin dabbed = Tin::from_snapshot(model.snapshot());
+                SculptContext dab_context(dabbed.domain());
+                dab_context.settings.fence_coarse_edges = fenced;
+                const BrushReport b = apply_brush(dabbed, at, raise, dab_context);
+                ASSERT_TRUE(mesh_is_sound(dabbed));
+                Tin poured = Tin::from_snapshot(model.snapshot());
+                SculptContext pour_context(poured.domain());
+                pour_context.settings.fence_coarse_edges = fenced;
+                const PourReport p = pour_sand(poured, at, radius * radius, pour, pour_context);
+                ASSERT_TRUE(mesh_is_sound(poured));
+                const double tolerance =
+                    std::min(0.01 * radius, dab_context.settings.simplify.tolerance);
+                const double dab_moved =
+                    worst_change_outside(model, dabbed, at, radius + 2.0 * radius / 6.0);
+                const double pour_moved =
+                    worst_change_outside(model, poured, at, radius + 2.0 * radius / 4.0);
+                if (fenced) {
+                    EXPECT_GT(b.edges_fenced, 0u) << "the premise: bent edges to fence";
+                    EXPECT_LE(dab_moved, tolerance) << "the dab re-shaped the surface outside it";
+                    EXPECT_LE(pour_moved, tolerance) << "the pour re-shaped the surface outside it";
+                } else {
+                    EXPECT_EQ(b.edges_fenced + p.edges_fenced, 0u);
+                    EXPECT_GT(std::max(dab_moved, pour_moved), 10.0 * tolerance)
+                        << "the premise: unfenced, the refinement re-shapes the surface";
+                }
+            }
+        }
+    }
+}
+
 TEST(Brush, BadSettingsThrow) {
     Tin tin = Tin::random_points(test::kUnitSquare, 100, 451);
     SculptContext context(tin.domain());
