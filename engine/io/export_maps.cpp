@@ -40,7 +40,11 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
                                             double cell_height) {
     const auto [lo, hi] = std::minmax_element(heights.values.begin(), heights.values.end());
     const double z_min = *lo;
-    const double range = *hi > *lo ? *hi - *lo : 1.0;  // a flat map still round-trips
+    // A flat map still round-trips, with range 1. So does one flat up to rounding (a sculpted
+    // floor at 4.999999999999998 and 5): stretching 1e-15 m of noise over 65535 grey levels
+    // would show as noise in any viewer, and re-import would follow it.
+    const double magnitude = std::max(std::abs(*lo), std::abs(*hi));
+    const double range = *hi - *lo > 1e-12 * magnitude ? *hi - *lo : 1.0;
     PngImage image;
     image.width = heights.width;
     image.height = heights.height;

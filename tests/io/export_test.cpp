@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 
+#include "formats/png_image.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/import_grid.hpp"
@@ -442,6 +443,27 @@ TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
 // A terrain imported on 2 x 3 m cells and exported with both spacings re-imports onto the
 // same samples; with the column spacing alone its rows would be resampled (a 10 m spike came
 // back at 6.67 m).
+// A terrain flat up to rounding exports as a flat map (every sample 0, range 1), not as noise
+// stretched over the 16-bit range; a real relief of a micrometre at 5 m still shows.
+TEST_F(Export, AHeightMapFlatUpToRoundingIsFlat) {
+    Tin tin = Tin::flat_rectangle(Rect::from_size(4.0, 4.0), 5.0);
+    const std::vector<VertexId> ids = test::live_ids(tin);
+    tin.set_height(ids[0], 5.0 - 2e-15);
+    ExportOptions o;
+    o.map_size = 9;
+    run(tin, "flat.png", o);
+    const PngImage flat = read_png(dir_ / "flat.png");
+    for (const std::uint16_t v : flat.samples)
+        ASSERT_EQ(v, 0u);
+    const HeightRaster back = read_heightmap(dir_ / "flat.png");
+    for (const double h : back.heights)
+        EXPECT_NEAR(h, 5.0, 1e-14);
+    tin.set_height(ids[0], 5.0 - 1e-6);
+    run(tin, "micro.png", o);
+    const PngImage micro = read_png(dir_ / "micro.png");
+    EXPECT_EQ(*std::max_element(micro.samples.begin(), micro.samples.end()), 65535u);
+}
+
 TEST_F(Export, AnOblongImportGridExportsOntoItsOwnSamples) {
     HeightRaster raster;
     raster.width = 5;
