@@ -40,6 +40,7 @@
 #include "io/autosave_writer.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
+#include "io/import_grid.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "layout_probe.hpp"

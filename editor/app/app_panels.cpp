@@ -126,8 +126,12 @@ void App::panel_file() {
     if (path_field("##export", "file to export to", export_buf_, sizeof(export_buf_), "Export")) {
         try {
             end_action();
+            // The defaults `sandtin export` takes from the session: the import grid while the
+            // terrain lies on it, and the georeference.
+            ExportOptions options;
+            apply_import_defaults(*doc_.tin, doc_.metadata_json, options);
             const ExportReport r =
-                export_terrain(*doc_.tin, export_buf_, export_format_for(export_buf_));
+                export_terrain(*doc_.tin, export_buf_, export_format_for(export_buf_), options);
             report("exported " + std::to_string(r.files.size()) + " file(s)");
         } catch (const std::exception& e) {
             report(std::string("export failed: ") + e.what());
@@ -459,7 +463,7 @@ void App::answer_recovery(bool recover) {
         if (recover) {
             const Session s = recover_autosave(*recovery_for_);
             doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
-                       materials_of(s));
+                       materials_of(s), s.metadata_json);
             mark_edited();
             document_replaced();
             report("recovered the autosave of " + recovery_for_->string());
@@ -494,7 +498,10 @@ void App::import_document() {
     try {
         ImportResult r = import_heightmap(import_buf_, ImportOptions{});
         keep_unsaved_edits();
-        doc_.adopt(std::move(r.tin), 1, {});
+        // The import record, as `sandtin import` writes it: exports read its grid and
+        // georeference.
+        doc_.adopt(std::move(r.tin), 1, {}, MaterialTable::presets(),
+                   nlohmann::json{{"import", to_json(r.report)}}.dump());
         document_replaced();
         frame_terrain();
         report("imported " + std::string(import_buf_));

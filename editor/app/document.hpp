@@ -22,13 +22,18 @@ struct Document {
     std::unique_ptr<Erosion> physics;  ///< CPU here; the app may switch it to the GPU
     std::unique_ptr<History> history;
     MaterialTable materials = MaterialTable::presets();
+    /// The metadata the terrain came with (an import record, another tool's keys); saves keep
+    /// it, with the materials replaced.
+    std::string metadata_json = "{}";
     bool dirty = false;
 
-    /// A new terrain with its material table (presets for a new or imported terrain).
+    /// A new terrain with its material table (presets for a new or imported terrain) and the
+    /// metadata it came with.
     void adopt(Tin t, Generation next_generation, const std::filesystem::path& p,
-               MaterialTable table = MaterialTable::presets()) {
+               MaterialTable table = MaterialTable::presets(), std::string metadata = "{}") {
         history.reset();
         materials = std::move(table);
+        metadata_json = std::move(metadata);
         physics.reset();
         tin = std::make_unique<Tin>(std::move(t));
         context = std::make_unique<SculptContext>(tin->domain());
@@ -42,7 +47,7 @@ struct Document {
         Session s;
         s.terrain = tin->snapshot();
         s.next_generation = context->peek_generation();
-        s.metadata_json = session_metadata(materials);
+        s.metadata_json = session_metadata(materials, metadata_json);
         return s;
     }
 };

@@ -6,8 +6,12 @@
 
 namespace sandtin::editor {
 
-std::string session_metadata(const MaterialTable& materials) {
-    return nlohmann::json{{"editor", "sandtin-editor"}, {"materials", materials.to_json()}}.dump();
+std::string session_metadata(const MaterialTable& materials, const std::string& base) {
+    nlohmann::json j = nlohmann::json::parse(base, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) j = nlohmann::json::object();
+    j["editor"] = "sandtin-editor";
+    j["materials"] = materials.to_json();
+    return j.dump();
 }
 
 std::optional<MaterialTable> materials_from_metadata(const std::string& metadata_json) {

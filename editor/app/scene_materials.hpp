@@ -11,8 +11,10 @@
 
 namespace sandtin::editor {
 
-/// The metadata object for a session holding `materials`.
-std::string session_metadata(const MaterialTable& materials);
+/// The metadata object for a session holding `materials`, keeping every other key of the
+/// metadata the scene was opened with (`base`, e.g. the import record with its georeference
+/// and grid, which exports use): an editor save must not drop what other tools wrote.
+std::string session_metadata(const MaterialTable& materials, const std::string& base = "{}");
 
 /// The material table stored in a session's metadata; nothing when the metadata has none
 /// (files written before the editor saved materials, or by other tools). Throws

@@ -112,16 +112,8 @@ int run_export(const std::vector<std::string>& raw) {
     // Maps and simplification sample the grid the terrain was imported on while it still lies
     // on it, so that export followed by import gives the same samples; a finer one once edits
     // put vertices between those samples.
-    std::optional<DefaultSampling> sampling;
-    if (!options.cell_size && !args.has("--size")) {
-        if (const std::optional<ImportGrid> grid = import_grid_of(session.metadata_json)) {
-            const Rect d = tin.domain();
-            sampling = default_sampling(tin, *grid,
-                                        std::max(d.width(), d.height()) / (options.map_size - 1));
-            options.cell_size = sampling->cell_size;
-            if (sampling->cell_height > 0.0) options.cell_height = sampling->cell_height;
-        }
-    }
+    const std::optional<DefaultSampling> sampling =
+        apply_import_defaults(tin, session.metadata_json, options, args.has("--size"));
     const bool cell_size_from_session = sampling.has_value();
     ExportReport report;
     try {

@@ -37,7 +37,7 @@ std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double
 }  // namespace
 
 std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
-                                            double cell_height) {
+                                            double cell_height, const Georeference& georeference) {
     const auto [lo, hi] = std::minmax_element(heights.values.begin(), heights.values.end());
     const double z_min = *lo;
     // A flat map still round-trips, with range 1. So does one flat up to rounding (a sculpted
@@ -61,12 +61,21 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
     if (cell_height > 0.0 && cell_height != cell_size) {
         image.text.emplace_back(kPngKeyCellHeight, exact(cell_height));
     }
+    if (georeference.known) {
+        image.text.emplace_back(kPngKeyWest, exact(georeference.west));
+        image.text.emplace_back(kPngKeySouth, exact(georeference.south));
+        if (!georeference.crs.empty()) image.text.emplace_back(kPngKeyCrs, georeference.crs);
+        if (!georeference.horizontal_unit.empty()) {
+            image.text.emplace_back(kPngKeyHorizontalUnit, georeference.horizontal_unit);
+        }
+    }
     return encode_png(image);
 }
 
 std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
-                                            double cell_height) {
+                                            double cell_height, const Georeference& georeference) {
     HeightRaster raster;
+    raster.georeference = georeference;
     raster.width = heights.width;
     raster.height = heights.height;
     raster.cell_size = cell_size;

@@ -3,7 +3,8 @@
 //
 //  - Height PNG: 16-bit gray, heights mapped linearly from [z_min, z_max] to [0, 65535], so
 //    the quantisation step is (z_max - z_min) / 65535. The tEXt chunks sandtin:z_offset,
-//    sandtin:z_range and sandtin:cell_size let `sandtin import` restore metres exactly.
+//    sandtin:z_range and sandtin:cell_size let `sandtin import` restore metres exactly, and
+//    sandtin:west, sandtin:south, sandtin:crs and sandtin:horizontal_unit the georeference.
 //  - Height EXR: 32-bit float metres (io/heightmap_exr.hpp).
 //  - Normal PNG: 8-bit RGB, (n + 1) / 2 per component (OpenGL convention, +Y = green = north).
 //  - Albedo PNG: 8-bit RGB.
@@ -11,16 +12,20 @@
 #include <cstdint>
 #include <vector>
 
+#include "io/heightmap_raster.hpp"
 #include "maps/map_grid.hpp"
 
 namespace sandtin {
 
 /// `heights` has one channel; `cell_size` (between columns) and, when the rows are spaced
-/// differently, `cell_height` (between rows), in metres, are stored for re-import.
+/// differently, `cell_height` (between rows), in metres, are stored for re-import, and so is
+/// a known `georeference` of the south-west sample.
 std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
-                                            double cell_height = 0.0);
+                                            double cell_height = 0.0,
+                                            const Georeference& georeference = {});
 std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
-                                            double cell_height = 0.0);
+                                            double cell_height = 0.0,
+                                            const Georeference& georeference = {});
 /// `normals` has three channels, unit vectors.
 std::vector<std::uint8_t> encode_normal_png(const MapImage& normals);
 /// `colours` has three channels in [0, 1].

@@ -178,9 +178,9 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                 const auto [lo, hi] =
                     std::minmax_element(heights.values.begin(), heights.values.end());
                 report.height_step = (*hi - *lo) / 65535.0;
-                write(out, encode_height_png(heights, cell, cell_height), report);
+                write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
             } else {
-                write(out, encode_height_exr(heights, cell, cell_height), report);
+                write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
             }
         } else if (format == ExportFormat::NormalPng) {
             write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode)), report);

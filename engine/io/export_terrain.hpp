@@ -55,6 +55,9 @@ struct ExportOptions {
     std::optional<double> cell_size;
     /// Metres between rows of those samples when not `cell_size` (an oblong import grid).
     std::optional<double> cell_height;
+    /// Height maps record it for re-import (where the terrain's south-west corner lies in
+    /// the coordinates of the file it was imported from); `known` false: none.
+    Georeference georeference;
     /// Samples along the longer side of maps, textures and the simplification raster when no
     /// cell size is given.
     std::uint32_t map_size = 1024;

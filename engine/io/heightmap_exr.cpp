@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/ImfTileDescription.h>
 #include <OpenEXR/ImfVersion.h>
 
@@ -20,6 +21,11 @@ namespace {
 
 constexpr const char* kCellSizeAttribute = "sandtin:cell_size";
 constexpr const char* kCellHeightAttribute = "sandtin:cell_height";  ///< when not cell_size
+// The georeference of the south-west sample (Georeference), as in sandtin's height PNGs.
+constexpr const char* kWestAttribute = "sandtin:west";
+constexpr const char* kSouthAttribute = "sandtin:south";
+constexpr const char* kCrsAttribute = "sandtin:crs";
+constexpr const char* kHorizontalUnitAttribute = "sandtin:horizontal_unit";
 
 /// Reads the header alone and checks its data window (and tile size) against the limits.
 /// OpenEXR's InputFile sizes its line and tile buffers from the header before a caller can
@@ -67,6 +73,16 @@ std::vector<std::uint8_t> encode_exr_heightmap(const HeightRaster& raster) {
     header.insert(kCellSizeAttribute, Imf::DoubleAttribute(raster.cell_size));
     if (raster.cell_height > 0.0 && raster.cell_height != raster.cell_size) {
         header.insert(kCellHeightAttribute, Imf::DoubleAttribute(raster.cell_height));
+    }
+    if (raster.georeference.known) {
+        header.insert(kWestAttribute, Imf::DoubleAttribute(raster.georeference.west));
+        header.insert(kSouthAttribute, Imf::DoubleAttribute(raster.georeference.south));
+        if (!raster.georeference.crs.empty())
+            header.insert(kCrsAttribute, Imf::StringAttribute(raster.georeference.crs));
+        if (!raster.georeference.horizontal_unit.empty()) {
+            header.insert(kHorizontalUnitAttribute,
+                          Imf::StringAttribute(raster.georeference.horizontal_unit));
+        }
     }
     Imf::StdOSStream stream;
     {
@@ -134,6 +150,29 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
                 file.header().findTypedAttribute<Imf::DoubleAttribute>(kCellHeightAttribute);
             ch != nullptr && std::isfinite(ch->value()) && ch->value() > 0.0) {
             r.cell_height = ch->value();
+        }
+        const auto* west = file.header().findTypedAttribute<Imf::DoubleAttribute>(kWestAttribute);
+        const auto* south = file.header().findTypedAttribute<Imf::DoubleAttribute>(kSouthAttribute);
+        if ((west == nullptr) != (south == nullptr)) {
+            throw std::runtime_error(name + ": the EXR gives '" +
+                                     (west ? kWestAttribute : kSouthAttribute) + "' without '" +
+                                     (west ? kSouthAttribute : kWestAttribute) + "'");
+        }
+        if (west != nullptr) {
+            if (!std::isfinite(west->value()) || !std::isfinite(south->value())) {
+                throw std::runtime_error(name + ": the EXR's georeference is not finite");
+            }
+            r.georeference.known = true;
+            r.georeference.west = west->value();
+            r.georeference.south = south->value();
+            if (const auto* crs =
+                    file.header().findTypedAttribute<Imf::StringAttribute>(kCrsAttribute)) {
+                r.georeference.crs = crs->value();
+            }
+            if (const auto* unit = file.header().findTypedAttribute<Imf::StringAttribute>(
+                    kHorizontalUnitAttribute)) {
+                r.georeference.horizontal_unit = unit->value();
+            }
         }
         r.heights.assign(pixels.begin(), pixels.end());
     } catch (const std::runtime_error&) {

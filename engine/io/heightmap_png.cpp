@@ -8,9 +8,10 @@ namespace sandtin {
 
 namespace {
 
-/// The number sandtin recorded under `key`. A key given twice with different values is an
+/// The text sandtin recorded under `key`. A key given twice with different values is an
 /// error: the file was edited by hand or by a tool that appended, and which value holds is a guess.
-std::optional<double> text_number(const PngImage& image, const char* key, const std::string& name) {
+std::optional<std::string> text_value(const PngImage& image, const char* key,
+                                      const std::string& name) {
     const std::string* value = nullptr;
     for (const auto& [k, v] : image.text) {
         if (k != key) continue;
@@ -22,6 +23,13 @@ std::optional<double> text_number(const PngImage& image, const char* key, const 
         value = &v;
     }
     if (value == nullptr) return std::nullopt;
+    return *value;
+}
+
+/// The number sandtin recorded under `key`.
+std::optional<double> text_number(const PngImage& image, const char* key, const std::string& name) {
+    const std::optional<std::string> value = text_value(image, key, name);
+    if (!value) return std::nullopt;
     double x = 0.0;
     const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), x);
     if (ec != std::errc() || end != value->data() + value->size() || !std::isfinite(x)) {
@@ -96,6 +104,21 @@ PngHeightmap decode_png_heightmap(std::span<const std::uint8_t> bytes, const std
     out.cell_size = text_number(image, kPngKeyCellSize, name);
     if (out.cell_size && !(*out.cell_size > 0.0)) {
         throw std::runtime_error(name + ": the PNG's cell size must be positive");
+    }
+    // Both coordinates or neither: one alone places nothing.
+    const std::optional<double> west = text_number(image, kPngKeyWest, name);
+    const std::optional<double> south = text_number(image, kPngKeySouth, name);
+    if (west.has_value() != south.has_value()) {
+        throw std::runtime_error(name + ": the PNG gives '" + (west ? kPngKeyWest : kPngKeySouth) +
+                                 "' without '" + (west ? kPngKeySouth : kPngKeyWest) + "'");
+    }
+    if (west) {
+        r.georeference.known = true;
+        r.georeference.west = *west;
+        r.georeference.south = *south;
+        r.georeference.crs = text_value(image, kPngKeyCrs, name).value_or("");
+        r.georeference.horizontal_unit =
+            text_value(image, kPngKeyHorizontalUnit, name).value_or("");
     }
     out.cell_height = text_number(image, kPngKeyCellHeight, name);
     if (out.cell_height && !(*out.cell_height > 0.0)) {

@@ -31,6 +31,12 @@ inline constexpr const char* kPngKeyZRange = "sandtin:z_range";
 inline constexpr const char* kPngKeyCellSize = "sandtin:cell_size";
 /// Between rows, when it differs from the cell size (between columns).
 inline constexpr const char* kPngKeyCellHeight = "sandtin:cell_height";
+/// Where the map's south-west sample lies in the source's coordinates, and in which system
+/// (Georeference), when the terrain was imported from a georeferenced file.
+inline constexpr const char* kPngKeyWest = "sandtin:west";
+inline constexpr const char* kPngKeySouth = "sandtin:south";
+inline constexpr const char* kPngKeyCrs = "sandtin:crs";
+inline constexpr const char* kPngKeyHorizontalUnit = "sandtin:horizontal_unit";
 
 /// A decoded PNG heightmap. Heights are raw: metres for Terrain-RGB, [0, 1] for grayscale.
 /// A grayscale PNG that sandtin exported also carries its scale (height = z_offset + raw *

@@ -35,6 +35,33 @@ std::optional<ImportGrid> import_grid_of(const std::string& metadata_json) {
     return grid;
 }
 
+Georeference import_georeference_of(const std::string& metadata_json) {
+    Georeference g;
+    const nlohmann::json j = nlohmann::json::parse(metadata_json, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return g;
+    const nlohmann::json::json_pointer at("/import/georeference");
+    if (!j.contains(at) || !j.at(at).is_object()) return g;
+    const nlohmann::json& r = j.at(at);
+    const auto number = [&](const char* key) -> std::optional<double> {
+        if (!r.contains(key) || !r.at(key).is_number()) return std::nullopt;
+        const double v = r.at(key).get<double>();
+        return std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+    };
+    const auto text = [&](const char* key) {
+        return r.contains(key) && r.at(key).is_string() ? r.at(key).get<std::string>()
+                                                        : std::string();
+    };
+    const std::optional<double> west = number("west");
+    const std::optional<double> south = number("south");
+    if (!west || !south) return g;
+    g.known = true;
+    g.west = *west;
+    g.south = *south;
+    g.crs = text("crs");
+    g.horizontal_unit = text("horizontal_unit");
+    return g;
+}
+
 bool tin_lies_on_grid(const Tin& tin, const ImportGrid& grid) {
     const Vec2 origin = tin.domain().min;
     const VertexArrays& va = tin.vertices();
@@ -53,6 +80,21 @@ DefaultSampling default_sampling(const Tin& tin, const ImportGrid& grid, double 
     if (tin_lies_on_grid(tin, grid)) return {grid.cell_size, grid.cell_height, false};
     const double finest = std::min({grid.cell_size, grid.row_spacing(), fallback_cell});
     return {finest, 0.0, true};
+}
+
+std::optional<DefaultSampling> apply_import_defaults(const Tin& tin,
+                                                     const std::string& metadata_json,
+                                                     ExportOptions& options, bool size_given) {
+    options.georeference = import_georeference_of(metadata_json);
+    if (options.cell_size || size_given) return std::nullopt;
+    const std::optional<ImportGrid> grid = import_grid_of(metadata_json);
+    if (!grid || options.map_size < 2) return std::nullopt;
+    const Rect d = tin.domain();
+    const DefaultSampling sampling =
+        default_sampling(tin, *grid, std::max(d.width(), d.height()) / (options.map_size - 1));
+    options.cell_size = sampling.cell_size;
+    if (sampling.cell_height > 0.0) options.cell_height = sampling.cell_height;
+    return sampling;
 }
 
 }  // namespace sandtin

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "io/export_terrain.hpp"
+#include "io/heightmap_raster.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -22,6 +24,11 @@ struct ImportGrid {
 /// imported, or the metadata is not JSON or holds no positive, finite spacing.
 std::optional<ImportGrid> import_grid_of(const std::string& metadata_json);
 
+/// The georeference under "/import/georeference" of a session's metadata (where the terrain's
+/// south-west corner lies in the imported file's coordinates); `known` false when there is
+/// none or it is not a pair of finite numbers.
+Georeference import_georeference_of(const std::string& metadata_json);
+
 /// Whether every live vertex of `tin` lies on a sample of `grid`, to a millionth of a cell.
 /// True for a fresh import; false once an edit has inserted a vertex between samples.
 bool tin_lies_on_grid(const Tin& tin, const ImportGrid& grid);
@@ -36,5 +43,14 @@ struct DefaultSampling {
 /// The import grid while `tin` lies on it. Otherwise square cells of the smallest of the
 /// import spacings and `fallback_cell` (the default map size's spacing).
 DefaultSampling default_sampling(const Tin& tin, const ImportGrid& grid, double fallback_cell);
+
+/// What an export of an imported terrain takes from its session's metadata, as defaults: the
+/// sampling (default_sampling, against the spacing of `options.map_size`) unless
+/// `options.cell_size` is set or `size_given`, and the georeference. Returns the sampling it
+/// chose, if any.
+std::optional<DefaultSampling> apply_import_defaults(const Tin& tin,
+                                                     const std::string& metadata_json,
+                                                     ExportOptions& options,
+                                                     bool size_given = false);
 
 }  // namespace sandtin

@@ -113,6 +113,15 @@ scenario_export() {
     holds "the pit survives export and import" "a < 4.6" "$(json pit_info.out /bbox/min/2)"
     expect_ok pit_ply export pit.sandtin -o pit.ply --max-error 0.01 --json || return
     holds "the simplified mesh keeps the pit" "a > 4" "$(json pit_ply.out /vertices)"
+    # The georeference survives export and re-import, of a height PNG and of an EXR.
+    printf 'ncols 3\nnrows 3\nxllcorner 1000\nyllcorner 2000\ncellsize 2\n1 2 3\n2 3 4\n3 4 5\n' >geo.asc
+    expect_ok geo_imp import geo.asc --max-error 0 -o geo.sandtin || return
+    for ext in png exr; do
+        expect_ok "geo_$ext" export geo.sandtin -o "geo.$ext" || return
+        expect_ok "geo_back_$ext" import "geo.$ext" --max-error 0 -o "geo_$ext.sandtin" --json || return
+        check_eq "$ext georeference" \
+            "$(json "geo_back_$ext.out" /georeference/west /georeference/south | tr '\n' ' ')" "1001.0 2001.0 "
+    done
     expect_ok pit_note export pit.sandtin -o pit2.png || return
     grep -q "note: edits put vertices between the samples" pit_note.out ||
         fail "no note on the finer sampling: $(cat pit_note.out)"

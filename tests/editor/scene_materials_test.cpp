@@ -48,6 +48,20 @@ TEST(SceneMaterials, RoundTripKeepsAnEditedTable) {
     expect_same(*back, edited);
 }
 
+// A scene imported by `sandtin import` carries its import record (grid, georeference) in the
+// metadata; an editor save replaces the materials and keeps the rest.
+TEST(SceneMaterials, SavingKeepsTheOtherKeysOfTheMetadata) {
+    const std::string opened =
+        R"({"import": {"georeference": {"west": 1005.0}}, "materials": [], "editor": "x"})";
+    const nlohmann::json saved =
+        nlohmann::json::parse(session_metadata(MaterialTable::presets(), opened));
+    EXPECT_EQ(saved.at("/import/georeference/west"_json_pointer), 1005.0);
+    EXPECT_EQ(saved.at("editor"), "sandtin-editor");
+    EXPECT_EQ(saved.at("materials").size(), MaterialTable::presets().all().size());
+    // Metadata that is not an object gives way to a fresh one.
+    EXPECT_EQ(nlohmann::json::parse(session_metadata(MaterialTable::presets(), "[1]")).size(), 2u);
+}
+
 TEST(SceneMaterials, AgreesWithTheEngineReaderOnThePresetsFile) {
     const std::filesystem::path presets =
         std::filesystem::path(SANDTIN_SOURCE_DIR) / "assets" / "materials" / "presets.json";

@@ -445,6 +445,39 @@ TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
 // back at 6.67 m).
 // A terrain flat up to rounding exports as a flat map (every sample 0, range 1), not as noise
 // stretched over the 16-bit range; a real relief of a micrometre at 5 m still shows.
+// An imported terrain's georeference (the source coordinates of its south-west sample, its
+// CRS and unit) travels in sandtin's height maps, so export followed by import keeps it.
+TEST_F(Export, HeightMapsCarryTheGeoreference) {
+    const Tin tin = Tin::random_points(Rect::from_size(30.0, 20.0), 100, 3, hills);
+    ExportOptions o;
+    o.cell_size = 2.0;
+    o.georeference.known = true;
+    o.georeference.west = 500015.25;
+    o.georeference.south = 3999955.5;
+    o.georeference.crs = "PROJCS[\"WGS 84 / UTM zone 33N\"]";
+    o.georeference.horizontal_unit = "metre";
+    for (const char* file : {"geo.png", "geo.exr"}) {
+        run(tin, file, o);
+        const HeightRaster back = read_heightmap(dir_ / file);
+        EXPECT_TRUE(back.georeference.known) << file;
+        EXPECT_EQ(back.georeference.west, 500015.25) << file;
+        EXPECT_EQ(back.georeference.south, 3999955.5) << file;
+        EXPECT_EQ(back.georeference.crs, o.georeference.crs) << file;
+        EXPECT_EQ(back.georeference.horizontal_unit, "metre") << file;
+    }
+    // Without one, none is invented.
+    run(tin, "plain.png", {});
+    EXPECT_FALSE(read_heightmap(dir_ / "plain.png").georeference.known);
+    // The session's metadata is where the CLI and the editor take it from.
+    const Georeference g = import_georeference_of(
+        R"({"import": {"georeference": {"west": 1005.0, "south": 2000.5, "crs": "",
+            "horizontal_unit": "", "vertical_unit": ""}}})");
+    EXPECT_TRUE(g.known);
+    EXPECT_EQ(g.west, 1005.0);
+    EXPECT_EQ(g.south, 2000.5);
+    EXPECT_FALSE(import_georeference_of(R"({"import": {"georeference": {"west": 1}}})").known);
+}
+
 TEST_F(Export, AHeightMapFlatUpToRoundingIsFlat) {
     Tin tin = Tin::flat_rectangle(Rect::from_size(4.0, 4.0), 5.0);
     const std::vector<VertexId> ids = test::live_ids(tin);

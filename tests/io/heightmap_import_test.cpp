@@ -810,6 +810,9 @@ TEST_F(HeightmapFiles, HeightmapExportImportRoundTripsWithinTheQuantisation) {
     EXPECT_DOUBLE_EQ(decode_heightmap(encode_png(image), "t.png", offset).at(0, 0), 201.0);
     image.text = {{kPngKeyZOffset, "3"}};
     expect_rejected(encode_png(image), {"without 'sandtin:z_range'", "--z-scale"});
+    // A georeference needs both coordinates.
+    image.text = {{kPngKeyWest, "1000"}};
+    expect_rejected(encode_png(image), {"'sandtin:west' without 'sandtin:south'"});
 }
 
 }  // namespace
