@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -87,10 +88,11 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
     if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
     Cursor in(bytes, name);
     static const std::map<std::string, std::string> kKeys = {
-        {"ncols", "ncols"},         {"nrows", "nrows"},  {"xllcorner", "x"},
-        {"xllcenter", "x"},         {"xllcentre", "x"},  {"yllcorner", "y"},
-        {"yllcenter", "y"},         {"yllcentre", "y"},  {"cellsize", "cellsize"},
-        {"nodata_value", "nodata"}, {"nodata", "nodata"}};
+        {"ncols", "ncols"},  {"nrows", "nrows"}, {"xllcorner", "x"},
+        {"xllcenter", "x"},  {"xllcentre", "x"}, {"yllcorner", "y"},
+        {"yllcenter", "y"},  {"yllcentre", "y"}, {"cellsize", "cellsize"},
+        {"dx", "dx"},        {"dy", "dy"},       {"nodata_value", "nodata"},
+        {"nodata", "nodata"}};
     std::map<std::string, double> values;
     bool x_centre = false;
     bool y_centre = false;
@@ -98,9 +100,10 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
         const std::string key = lower(in.token());
         const auto it = kKeys.find(key);
         if (it == kKeys.end()) {
-            in.fail("'" + key +
-                    "' is not an ESRI ASCII grid header key (expected ncols, nrows, "
-                    "xllcorner/xllcenter, yllcorner/yllcenter, cellsize, NODATA_value)");
+            in.fail(
+                "'" + key +
+                "' is not an ESRI ASCII grid header key (expected ncols, nrows, "
+                "xllcorner/xllcenter, yllcorner/yllcenter, cellsize or dx and dy, NODATA_value)");
         }
         if (values.count(it->second) != 0) in.fail("header key '" + key + "' is given twice");
         const std::string_view value_text = in.token();
@@ -115,6 +118,16 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
         if (it->second == "x") x_centre = key.find("cent") != std::string::npos;
         if (it->second == "y") y_centre = key.find("cent") != std::string::npos;
     }
+    // GDAL writes a grid of oblong cells with dx and dy (column and row spacing) in place of
+    // cellsize.
+    const bool oblong = values.count("dx") != 0 || values.count("dy") != 0;
+    if (oblong &&
+        (values.count("cellsize") != 0 || values.count("dx") == 0 || values.count("dy") == 0)) {
+        throw std::runtime_error(name +
+                                 ": not an ESRI ASCII grid: give either 'cellsize' or both 'dx' "
+                                 "and 'dy'");
+    }
+    if (oblong) values["cellsize"] = values["dx"];
     for (const char* required : {"ncols", "nrows", "x", "y", "cellsize"}) {
         if (values.count(required) == 0) {
             const std::string what = std::string(required) == "x"   ? "xllcorner or xllcenter"
@@ -135,9 +148,13 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
     const auto rows = static_cast<std::uint64_t>(values["nrows"]);
     check_raster_size(cols, rows, name, limits);
     const double cellsize = values["cellsize"];
-    if (!(cellsize > 0.0)) {
-        throw std::runtime_error(name + ": header key 'cellsize' must be positive, not " +
-                                 std::to_string(cellsize));
+    const double row_spacing = oblong ? values["dy"] : cellsize;
+    if (!(cellsize > 0.0) || !(row_spacing > 0.0)) {
+        std::ostringstream what;
+        what << name << ": header key '" << (oblong ? "dx' and 'dy" : "cellsize")
+             << "' must be positive, not " << cellsize;
+        if (oblong) what << " and " << row_spacing;
+        throw std::runtime_error(what.str());
     }
     // Without the key, ESRI's documented default of -9999 holds: files written without it
     // still mark missing cells that way. A plain value: GCC 12 misreads an optional here
@@ -149,10 +166,11 @@ HeightRaster parse_esri_ascii_grid(std::span<const std::uint8_t> bytes, const st
     r.width = static_cast<std::uint32_t>(cols);
     r.height = static_cast<std::uint32_t>(rows);
     r.cell_size = cellsize;
+    if (row_spacing != cellsize) r.cell_height = row_spacing;
     r.source_format = "esri-ascii";
     r.georeference.known = true;
     r.georeference.west = values["x"] + (x_centre ? 0.0 : 0.5 * cellsize);
-    r.georeference.south = values["y"] + (y_centre ? 0.0 : 0.5 * cellsize);
+    r.georeference.south = values["y"] + (y_centre ? 0.0 : 0.5 * row_spacing);
     // Each height takes a character and a separator: a file too short to hold them all is
     // refused before the raster is allocated (a 60-byte header could ask for 2 GB).
     if (in.remaining() + 1 < 2 * r.size()) {

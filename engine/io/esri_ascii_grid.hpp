@@ -5,7 +5,8 @@
 //   nrows 3            number of rows (> 0)
 //   xllcorner 100.0    or xllcenter: west edge (or first column centre) in source units
 //   yllcorner 200.0    or yllcenter: south edge (or last row centre)
-//   cellsize 5.0       square cells (> 0)
+//   cellsize 5.0       square cells (> 0); or dx and dy, column and row spacing, as GDAL
+//                      writes oblong cells
 //   NODATA_value -9999 optional; ESRI's default is -9999 (kEsriDefaultNodata); "nan" makes NaN
 //                      samples no-data
 //   then nrows lines of ncols heights, north row first.

@@ -101,6 +101,7 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
                                   const RasterLimits& limits, bool nonfinite_as_nodata) {
     if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
     HeightRaster r;
+    std::vector<float> alpha;  ///< empty: no alpha channel
     try {
         check_header_sizes(bytes, name, limits);
         Imf::StdISStream stream;
@@ -139,6 +140,16 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
                          static_cast<std::ptrdiff_t>(sizeof(float));
         fb.insert(channel, Imf::Slice(Imf::FLOAT, base, sizeof(float),
                                       sizeof(float) * static_cast<std::size_t>(w)));
+        // An alpha channel beside the heights marks no-data where it is 0, as in PNG.
+        if (channel != "A" && channels.findChannel("A") != nullptr) {
+            alpha.assign(r.size(), 1.0f);
+            char* alpha_base = reinterpret_cast<char*>(alpha.data()) -
+                               (static_cast<std::ptrdiff_t>(window.min.x) +
+                                static_cast<std::ptrdiff_t>(window.min.y) * w) *
+                                   static_cast<std::ptrdiff_t>(sizeof(float));
+            fb.insert("A", Imf::Slice(Imf::FLOAT, alpha_base, sizeof(float),
+                                      sizeof(float) * static_cast<std::size_t>(w)));
+        }
         file.setFrameBuffer(fb);
         file.readPixels(window.min.y, window.max.y);
         if (const auto* cs =
@@ -184,6 +195,12 @@ HeightRaster decode_exr_heightmap(std::span<const std::uint8_t> bytes, const std
     std::vector<std::uint8_t> valid(r.size(), 1);
     bool any_nodata = false;
     for (std::size_t i = 0; i < r.size(); ++i) {
+        if (!alpha.empty() && alpha[i] == 0.0f) {
+            valid[i] = 0;
+            any_nodata = true;
+            r.heights[i] = 0.0;
+            continue;
+        }
         if (std::isfinite(r.heights[i])) continue;
         if (!nonfinite_as_nodata) {
             throw std::runtime_error(name + ": the sample at row " + std::to_string(i / r.width) +

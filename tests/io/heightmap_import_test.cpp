@@ -1,6 +1,11 @@
 // Heightmap readers: every format decodes what it should, and every kind of bad input is
 // rejected with a message that names the problem, never a crash.
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <cpl_conv.h>
 #include <gdal.h>
 #include <gtest/gtest.h>
@@ -365,6 +370,53 @@ TEST(HeightmapImport, AsciiGridNoDataDefaultsToMinus9999AndMayBeNaN) {
     expect_rejected(
         bytes_of("ncols 3\nnrows 2\nxllcorner nan\nyllcorner 0\ncellsize 1\n1 2 3\n4 5 6\n"),
         {"finite number"});
+}
+
+// GDAL's AAIGrid writer gives oblong cells as dx and dy instead of cellsize.
+// An EXR with an alpha channel beside its heights: alpha 0 is no-data, as in a PNG. Written
+// through OpenEXR itself.
+TEST(HeightmapImport, ExrAlphaZeroIsNoData) {
+    const int w = 3, h = 2;
+    std::vector<float> heights = {1, 2, 3, 4, 5, 6};
+    std::vector<float> alpha = {1, 1, 0, 1, 0.5f, 1};
+    Imf::Header header(w, h);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("A", Imf::Channel(Imf::FLOAT));
+    Imf::StdOSStream stream;
+    {
+        Imf::OutputFile file(stream, header);
+        Imf::FrameBuffer fb;
+        fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(heights.data()),
+                                  sizeof(float), sizeof(float) * w));
+        fb.insert("A", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(alpha.data()), sizeof(float),
+                                  sizeof(float) * w));
+        file.setFrameBuffer(fb);
+        file.writePixels(h);
+    }
+    const std::string text = stream.str();
+    const HeightRaster r =
+        decode_heightmap(std::vector<std::uint8_t>(text.begin(), text.end()), "a.exr");
+    EXPECT_EQ(r.nodata_count(), 1u);
+    EXPECT_FALSE(r.is_valid(2));
+    EXPECT_EQ(r.at(1, 1), 5.0);  // alpha 0.5 is data
+}
+
+TEST(HeightmapImport, AsciiGridWithDxAndDyKeepsBothSpacings) {
+    const HeightRaster r = decode_heightmap(
+        bytes_of("ncols 3\nnrows 2\nxllcorner 100\nyllcorner 200\ndx 2\ndy 3\n1 2 3\n4 5 6\n"),
+        "o.asc");
+    EXPECT_EQ(r.cell_size, 2.0);
+    EXPECT_EQ(r.row_spacing(), 3.0);
+    EXPECT_EQ(r.domain().width(), 4.0);
+    EXPECT_EQ(r.domain().height(), 3.0);
+    EXPECT_EQ(r.georeference.west, 101.0);   // half a column
+    EXPECT_EQ(r.georeference.south, 201.5);  // half a row
+    EXPECT_EQ(r.at(2, 1), 6.0);
+    const std::string grid = "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\n";
+    expect_rejected(bytes_of(grid + "dx 2\n1 2\n3 4\n"), {"both 'dx' and 'dy'"});
+    expect_rejected(bytes_of(grid + "cellsize 1\ndx 2\ndy 2\n1 2\n3 4\n"),
+                    {"either 'cellsize' or both"});
+    expect_rejected(bytes_of(grid + "dx 2\ndy 0\n1 2\n3 4\n"), {"must be positive"});
 }
 
 TEST(HeightmapImport, AsciiGridSavedWithAByteOrderMarkReadsLikeWithout) {
