@@ -78,6 +78,12 @@ int run_import(const std::vector<std::string>& raw) {
     }
 
     const ImportResult result = import_heightmap(args.positionals()[0], options);
+    if (result.report.source_bands > 1) {
+        std::cerr << "sandtin import: warning: " << args.positionals()[0] << " has "
+                  << result.report.source_bands
+                  << " bands; the heights are read from the first (is it imagery rather than "
+                     "an elevation model?)\n";
+    }
     Session session;
     session.terrain = result.tin.snapshot();
     nlohmann::json report = to_json(result.report);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "maps/vertex_normals.hpp"
@@ -138,6 +139,21 @@ ExportMesh build_export_mesh(const Tin& tin, const MeshExportOptions& options) {
 Vec3 triangle_normal(const ExportMesh& mesh, std::size_t k) {
     const auto& t = mesh.triangles[k];
     return face_normal(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+}
+
+std::string georeference_comment(const ExportMesh& mesh) {
+    const Georeference& g = mesh.georeference;
+    if (!g.known) return {};
+    std::ostringstream text;
+    text.precision(17);
+    text << "georeference: the terrain point (" << mesh.domain.min.x << ", " << mesh.domain.min.y
+         << ") m lies at west " << g.west << ", south " << g.south;
+    if (!g.horizontal_unit.empty()) text << " (" << g.horizontal_unit << ")";
+    if (!g.crs.empty()) text << " in " << g.crs;
+    std::string line = text.str();
+    std::replace_if(
+        line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+    return line;
 }
 
 }  // namespace sandtin

@@ -16,6 +16,7 @@
 
 #include "geom/rect.hpp"
 #include "geom/vec3.hpp"
+#include "io/heightmap_raster.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -51,7 +52,13 @@ struct ExportMesh {
     double bottom = 0.0;  ///< metres, height of the base's bottom (when there is a base)
     UpAxis up = UpAxis::Z;
     double unit_scale = 1.0;
+    /// Where `domain.min` lies in the coordinates of the file the terrain was imported from;
+    /// OBJ and PLY headers name it in a comment (their vertices stay in the terrain frame).
+    Georeference georeference;
 };
+
+/// The comment text naming a known georeference, one line, or "" when it is not known.
+std::string georeference_comment(const ExportMesh& mesh);
 
 /// Throws std::invalid_argument for a non-positive or non-finite unit scale or base depth.
 ExportMesh build_export_mesh(const Tin& tin, const MeshExportOptions& options);

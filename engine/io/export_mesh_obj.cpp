@@ -32,6 +32,7 @@ std::string encode_obj(const ExportMesh& mesh, const std::string& mtl_name) {
     out += mesh.up == UpAxis::Y ? " triangles, Y up, " : " triangles, Z up, ";
     put(out, mesh.unit_scale);
     out += " units per metre\n";
+    if (const std::string g = georeference_comment(mesh); !g.empty()) out += "# " + g + "\n";
     if (!mtl_name.empty()) out += "mtllib " + mtl_name + "\n";
     out += "o terrain\n";
     for (const Vec3& p : mesh.positions) {

@@ -10,8 +10,10 @@ std::vector<std::uint8_t> encode_ply(const ExportMesh& mesh) {
     const std::string header =
         "ply\nformat binary_little_endian 1.0\ncomment sandtin terrain, " +
         std::string(mesh.up == UpAxis::Y ? "Y up" : "Z up") + ", " +
-        std::to_string(mesh.unit_scale) + " units per metre\nelement vertex " +
-        std::to_string(mesh.positions.size()) +
+        std::to_string(mesh.unit_scale) + " units per metre\n" +
+        (georeference_comment(mesh).empty() ? std::string()
+                                            : "comment " + georeference_comment(mesh) + "\n") +
+        "element vertex " + std::to_string(mesh.positions.size()) +
         "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty "
         "float ny\nproperty float nz\nproperty float s\nproperty float t\nelement face " +
         std::to_string(mesh.triangles.size()) +

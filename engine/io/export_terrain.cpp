@@ -209,7 +209,8 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         simplified = simplify(tin, corner_grid(d, o), *o.max_error);
         report.simplified = simplified->stats;
     }
-    const ExportMesh mesh = build_export_mesh(simplified ? simplified->tin : tin, mesh_options);
+    ExportMesh mesh = build_export_mesh(simplified ? simplified->tin : tin, mesh_options);
+    mesh.georeference = o.georeference;
     report.vertices = mesh.positions.size();
     report.triangles = mesh.triangles.size();
     report.min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),

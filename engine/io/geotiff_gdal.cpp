@@ -120,6 +120,7 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
     r.width = static_cast<std::uint32_t>(width);
     r.height = static_cast<std::uint32_t>(height);
     r.source_format = "geotiff";
+    r.source_bands = static_cast<std::uint32_t>(GDALGetRasterCount(ds));
     std::array<double, 6> gt{};
     // A raster whose first row is its southern one (gt[5] > 0), or whose columns run west
     // (gt[1] < 0), is read in file order and then mirrored: sandtin's rasters are north-up.

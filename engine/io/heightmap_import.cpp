@@ -146,6 +146,7 @@ ImportResult import_heightmap(const std::filesystem::path& path, const ImportOpt
     report.cell_size = raster.cell_size;
     report.cell_height = raster.row_spacing();
     report.georeference = raster.georeference;
+    report.source_bands = raster.source_bands;
     report.nodata_samples = fill_nodata(raster);
     report.read_ms = elapsed_ms(start);
     report.greedy = options.greedy;
@@ -173,6 +174,7 @@ nlohmann::json to_json(const ImportReport& r) {
                    {"cell_size", r.cell_size},
                    {"cell_height", r.cell_height},
                    {"nodata_samples", r.nodata_samples},
+                   {"bands", r.source_bands},
                    {"nodata_policy", "filled from the nearest valid sample; not measured"}};
     if (r.georeference.known) {
         j["georeference"] = {{"west", r.georeference.west},

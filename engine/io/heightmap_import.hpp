@@ -53,6 +53,7 @@ struct ImportReport {
     double cell_size = 0.0;          ///< metres between columns
     double cell_height = 0.0;        ///< metres between rows (the cell size for square cells)
     std::size_t nodata_samples = 0;  ///< filled from their nearest valid sample, not measured
+    std::uint32_t source_bands = 1;  ///< bands in the file; heights come from the first
     Georeference georeference;
     GreedyOptions greedy;
     GreedyStats stats;

@@ -54,6 +54,9 @@ struct HeightRaster {
     std::vector<std::uint8_t> valid;  ///< empty: all valid; else 1 = sample has data
     Georeference georeference;
     std::string source_format;  ///< e.g. "png-gray16", "terrain-rgb", "esri-ascii"
+    /// Bands (channels of data) the source file holds; heights come from the first. More than
+    /// one is worth a warning: a GeoTIFF of imagery is not an elevation model.
+    std::uint32_t source_bands = 1;
 
     std::size_t size() const { return static_cast<std::size_t>(width) * height; }
     std::size_t index(std::uint32_t col, std::uint32_t row) const {

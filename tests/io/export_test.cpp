@@ -465,6 +465,15 @@ TEST_F(Export, HeightMapsCarryTheGeoreference) {
         EXPECT_EQ(back.georeference.crs, o.georeference.crs) << file;
         EXPECT_EQ(back.georeference.horizontal_unit, "metre") << file;
     }
+    // Meshes keep their vertices in the terrain frame and name the georeference in a comment.
+    for (const char* file : {"geo.obj", "geo.ply"}) {
+        const std::string header = text(run(tin, file, o)).substr(0, 400);
+        EXPECT_NE(header.find("georeference: the terrain point (0, 0) m lies at west 500015.25, "
+                              "south 3999955.5 (metre) in PROJCS"),
+                  std::string::npos)
+            << file << ": " << header;
+    }
+    EXPECT_EQ(text(run(tin, "plain.obj", {})).find("georeference"), std::string::npos);
     // Without one, none is invented.
     run(tin, "plain.png", {});
     EXPECT_FALSE(read_heightmap(dir_ / "plain.png").georeference.known);

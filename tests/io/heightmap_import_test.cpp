@@ -484,6 +484,30 @@ TEST_F(HeightmapFiles, GeoTiffStoredSouthFirstOrEastFirstImportsNorthUp) {
 }
 
 // A DEM stored as Int16 centimetres above a datum: height = count * scale + offset.
+// A GeoTIFF of several bands (imagery, or a DEM with a quality band): heights come from the
+// first, and the report says how many there were, so the CLI can warn.
+TEST_F(HeightmapFiles, GeoTiffWithSeveralBandsReadsTheFirstAndSaysHowMany) {
+    const fs::path path = dir_ / "rgb.tif";
+    GDALAllRegister();
+    GDALDatasetH ds =
+        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 2, 2, 3, GDT_Float32, nullptr);
+    ASSERT_NE(ds, nullptr);
+    std::array<double, 6> transform = {500000, 10, 0, 4000000, 0, -10};
+    GDALSetGeoTransform(ds, transform.data());
+    GDALSetProjection(ds, kUtm33);
+    for (int b = 1; b <= 3; ++b) {
+        std::vector<float> v(4, static_cast<float>(100 * b));
+        v[0] += 1.0f;
+        ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b), GF_Write, 0, 0, 2, 2, v.data(), 2, 2,
+                               GDT_Float32, 0, 0),
+                  CE_None);
+    }
+    GDALClose(ds);
+    const HeightRaster r = decode_heightmap(read_file(path), "rgb.tif");
+    EXPECT_EQ(r.source_bands, 3u);
+    EXPECT_EQ(r.heights, (std::vector<double>{101, 100, 100, 100}));
+}
+
 TEST_F(HeightmapFiles, GeoTiffBandScaleAndOffsetTurnCountsIntoHeights) {
     const fs::path path = dir_ / "scaled.tif";
     GDALAllRegister();
