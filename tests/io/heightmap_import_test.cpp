@@ -179,6 +179,19 @@ constexpr const char* kCaliforniaFeet =
 constexpr const char* kWgs84 =
     R"(GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]])";
 
+/// A 2 x 2 GeoTIFF of `bands` bands of `type` at 10 m in UTM zone 33N, open for writing
+/// through GDAL; the caller writes the bands and closes it.
+GDALDatasetH create_utm_geotiff(const fs::path& path, int bands, GDALDataType type) {
+    GDALAllRegister();
+    GDALDatasetH ds =
+        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 2, 2, bands, type, nullptr);
+    if (ds == nullptr) return ds;
+    std::array<double, 6> transform = {500000, 10, 0, 4000000, 0, -10};
+    GDALSetGeoTransform(ds, transform.data());
+    GDALSetProjection(ds, kUtm33);
+    return ds;
+}
+
 // ---- What each format decodes ----------------------------------------------------------------
 
 TEST(HeightmapImport, TerrainRgbFollowsTheMapboxFormula) {
@@ -483,18 +496,12 @@ TEST_F(HeightmapFiles, GeoTiffStoredSouthFirstOrEastFirstImportsNorthUp) {
     EXPECT_EQ(both.nodata_count(), 1u);
 }
 
-// A DEM stored as Int16 centimetres above a datum: height = count * scale + offset.
 // A GeoTIFF of several bands (imagery, or a DEM with a quality band): heights come from the
 // first, and the report says how many there were, so the CLI can warn.
 TEST_F(HeightmapFiles, GeoTiffWithSeveralBandsReadsTheFirstAndSaysHowMany) {
     const fs::path path = dir_ / "rgb.tif";
-    GDALAllRegister();
-    GDALDatasetH ds =
-        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 2, 2, 3, GDT_Float32, nullptr);
+    GDALDatasetH ds = create_utm_geotiff(path, 3, GDT_Float32);
     ASSERT_NE(ds, nullptr);
-    std::array<double, 6> transform = {500000, 10, 0, 4000000, 0, -10};
-    GDALSetGeoTransform(ds, transform.data());
-    GDALSetProjection(ds, kUtm33);
     for (int b = 1; b <= 3; ++b) {
         std::vector<float> v(4, static_cast<float>(100 * b));
         v[0] += 1.0f;
@@ -508,15 +515,11 @@ TEST_F(HeightmapFiles, GeoTiffWithSeveralBandsReadsTheFirstAndSaysHowMany) {
     EXPECT_EQ(r.heights, (std::vector<double>{101, 100, 100, 100}));
 }
 
+// A DEM stored as Int16 centimetres above a datum: height = count * scale + offset.
 TEST_F(HeightmapFiles, GeoTiffBandScaleAndOffsetTurnCountsIntoHeights) {
     const fs::path path = dir_ / "scaled.tif";
-    GDALAllRegister();
-    GDALDatasetH ds =
-        GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 2, 2, 1, GDT_Int16, nullptr);
+    GDALDatasetH ds = create_utm_geotiff(path, 1, GDT_Int16);
     ASSERT_NE(ds, nullptr);
-    std::array<double, 6> transform = {500000, 10, 0, 4000000, 0, -10};
-    GDALSetGeoTransform(ds, transform.data());
-    GDALSetProjection(ds, kUtm33);
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
     GDALSetRasterScale(band, 0.01);
     GDALSetRasterOffset(band, 100.0);
