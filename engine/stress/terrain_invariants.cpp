@@ -32,10 +32,13 @@ std::optional<InvariantViolation> check_terrain_invariants(const Tin& tin,
     }
     if (const ValidationReport v = tin.check_valid(); !v.ok())
         return InvariantViolation{"valid", v.summary()};
-    for (const ConstraintInfo& c : tin.constraints()) {
-        // Generation 0 is the terrain before the first stamp: the first stamp's fences
-        // (Tin::fence_bent_edges) guard it, one generation older than the stamp.
-        if (c.generation >= next_generation) {
+    // Generation 0 is the terrain before the first stamp: the first stamp's fences
+    // (Tin::fence_bent_edges) guard it, one generation older than the stamp. The newest
+    // generation alone decides; the constraint is looked up only to name it.
+    if (const auto newest = tin.newest_constraint_generation();
+        newest && *newest >= next_generation) {
+        for (const ConstraintInfo& c : tin.constraints()) {
+            if (c.generation < next_generation) continue;
             return InvariantViolation{
                 "generations", "constraint " + std::to_string(c.id.value) + " has generation " +
                                    std::to_string(c.generation) + ", but only 0.." +

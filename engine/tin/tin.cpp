@@ -1338,6 +1338,14 @@ std::vector<std::array<Vec2, 2>> Tin::constrained_segments(const Rect& box,
     return out;
 }
 
+std::optional<Generation> Tin::newest_constraint_generation() const {
+    std::optional<Generation> newest;
+    for (const detail::ConstraintEntry& e : impl_->constraints) {
+        if (e.alive && (!newest || e.generation > *newest)) newest = e.generation;
+    }
+    return newest;
+}
+
 std::vector<ConstraintInfo> Tin::constraints() const {
     std::vector<ConstraintInfo> out;
     for (std::uint32_t i = 0; i < impl_->constraints.size(); ++i) {

@@ -257,6 +257,9 @@ class Tin {
                                                            LocateHint* hint = nullptr) const;
 
     std::vector<ConstraintInfo> constraints() const;
+    /// The newest generation among the live constraints (nullopt: none). Cheaper than
+    /// constraints(), which lists every constraint's vertices.
+    std::optional<Generation> newest_constraint_generation() const;
     /// The pieces (consecutive vertex pairs) of constraints older than `older_than` whose
     /// bounding boxes meet `box`, as segments in metres.
     std::vector<std::array<Vec2, 2>> constrained_segments(const Rect& box,

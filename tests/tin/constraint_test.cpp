@@ -94,10 +94,12 @@ TEST(Constraints, SegmentBecomesAConstrainedEdge) {
     const VertexId a = tin.insert_point({2.0, 2.0}, 1.0);
     const VertexId b = tin.insert_point({7.0, 3.5}, 3.0);
     EXPECT_FALSE(tin.is_constrained_edge(a, b));
+    EXPECT_FALSE(tin.newest_constraint_generation().has_value());
     const double v0 = tin.volume();
     const std::size_t n = tin.vertex_count();
     const ConstraintId id = tin.insert_constraint(a, b, 5);
     ASSERT_TRUE(id.valid());
+    EXPECT_EQ(tin.newest_constraint_generation(), std::optional<Generation>(5));
     EXPECT_EQ(tin.vertex_count(), n);
     expect_constrained_edges(tin, {edge(a, b)});
     EXPECT_TRUE(tin.is_on_constraint(a));
