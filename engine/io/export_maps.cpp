@@ -36,15 +36,19 @@ std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
-                                            double cell_height, const Georeference& georeference) {
+double height_png_range(const MapImage& heights) {
     const auto [lo, hi] = std::minmax_element(heights.values.begin(), heights.values.end());
-    const double z_min = *lo;
     // A flat map still round-trips, with range 1. So does one flat up to rounding (a sculpted
     // floor at 4.999999999999998 and 5): stretching 1e-15 m of noise over 65535 grey levels
     // would show as noise in any viewer, and re-import would follow it.
     const double magnitude = std::max(std::abs(*lo), std::abs(*hi));
-    const double range = *hi - *lo > 1e-12 * magnitude ? *hi - *lo : 1.0;
+    return *hi - *lo > 1e-12 * magnitude ? *hi - *lo : 1.0;
+}
+
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
+                                            double cell_height, const Georeference& georeference) {
+    const double z_min = *std::min_element(heights.values.begin(), heights.values.end());
+    const double range = height_png_range(heights);
     PngImage image;
     image.width = heights.width;
     image.height = heights.height;

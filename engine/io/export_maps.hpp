@@ -17,6 +17,10 @@
 
 namespace sandtin {
 
+/// The metres a height PNG of `heights` spans from black to white: z_max - z_min, or 1 for a
+/// map flat up to rounding (1e-12 of its magnitude). Its 16-bit step is this / 65535.
+double height_png_range(const MapImage& heights);
+
 /// `heights` has one channel; `cell_size` (between columns) and, when the rows are spaced
 /// differently, `cell_height` (between rows), in metres, are stored for re-import, and so is
 /// a known `georeference` of the south-west sample.

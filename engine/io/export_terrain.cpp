@@ -175,9 +175,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
             const double cell = column_spacing(grid);
             const double cell_height = row_spacing(grid);
             if (format == ExportFormat::HeightPng) {
-                const auto [lo, hi] =
-                    std::minmax_element(heights.values.begin(), heights.values.end());
-                report.height_step = (*hi - *lo) / 65535.0;
+                report.height_step = height_png_range(heights) / 65535.0;
                 write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
             } else {
                 write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);

@@ -2063,39 +2063,10 @@ double plane_height_at(const Tin::Impl& m, std::uint32_t a, std::uint32_t b, std
            gamma * (m.va.height[c] - m.va.height[a]);
 }
 
-/// How far the surface over the quadrilateral of edge (f, i) moves if the edge gives way to
-/// the other diagonal: the vertical gap between the two diagonals where they cross. A
-/// non-convex quadrilateral cannot flip, but a re-triangulation can still remove its edge:
-/// there, how far each far corner stands off the plane of the other face. 0 for coplanar
-/// faces either way.
-double edge_bend(const Tin::Impl& m, Fh f, int i) {
-    const Fh g = f->neighbor(i);
-    const std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
-    const std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
-    const std::uint32_t c = f->vertex(i)->id;
-    const std::uint32_t d = g->vertex(g->index(f))->id;
-    const Vec2 pa = m.va.position[a], pc = m.va.position[c];
-    const Vec2 e = m.va.position[b] - pa;
-    const Vec2 k = m.va.position[d] - pc;
-    const double denom = cross(e, k);
-    const double t = cross(pc - pa, k) / denom;
-    const double s = cross(pc - pa, e) / denom;
-    if (t >= 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0) {
-        const double on_edge = (1.0 - t) * m.va.height[a] + t * m.va.height[b];
-        const double on_diagonal = (1.0 - s) * m.va.height[c] + s * m.va.height[d];
-        return std::abs(on_edge - on_diagonal);
-    }
-    return std::max(std::abs(m.va.height[d] - plane_height_at(m, a, b, c, m.va.position[d])),
-                    std::abs(m.va.height[c] - plane_height_at(m, a, b, d, pc)));
-}
-
-/// A point inserted at `p` (height `hp`, on the surface) re-triangulates its cavity into a fan
-/// from p: edge (f, i) of the cavity, seen from p, gives way to a segment from p to the vertex
-/// of g = f->neighbor(i) across it. How far that moves the surface where the two cross: the
-/// vertical gap there between the edge and the segment. This differs from edge_bend, which sees
-/// the edge from f's own third vertex: after an edge split the faces are (a, p, c) and the
-/// flips that follow measure against p.
-double edge_bend_toward(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
+/// Where the segment from `p` (height `hp`) to the vertex across edge (f, i) crosses that edge:
+/// the vertical gap there between the edge and the segment; nullopt when they do not cross
+/// (or p lies on the line through the edge).
+std::optional<double> gap_at_crossing(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
     const Fh g = f->neighbor(i);
     const std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
     const std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
@@ -2104,13 +2075,38 @@ double edge_bend_toward(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
     const Vec2 e = m.va.position[b] - pa;
     const Vec2 k = m.va.position[d] - p;
     const double denom = cross(e, k);
-    if (denom == 0.0) return 0.0;  // p on the line through the edge: it splits that edge
     const double t = cross(p - pa, k) / denom;
     const double s = cross(p - pa, e) / denom;
-    if (!(t >= 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0)) return 0.0;
+    if (!(t >= 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0)) return std::nullopt;  // NaN too
     const double on_edge = (1.0 - t) * m.va.height[a] + t * m.va.height[b];
     const double on_segment = (1.0 - s) * hp + s * m.va.height[d];
     return std::abs(on_edge - on_segment);
+}
+
+/// How far the surface over the quadrilateral of edge (f, i) moves if the edge gives way to
+/// the other diagonal: the vertical gap between the two diagonals where they cross. A
+/// non-convex quadrilateral cannot flip, but a re-triangulation can still remove its edge:
+/// there, how far each far corner stands off the plane of the other face. 0 for coplanar
+/// faces either way.
+double edge_bend(const Tin::Impl& m, Fh f, int i) {
+    const std::uint32_t c = f->vertex(i)->id;
+    if (const auto gap = gap_at_crossing(m, f, i, m.va.position[c], m.va.height[c])) return *gap;
+    const std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
+    const std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
+    const Fh g = f->neighbor(i);
+    const std::uint32_t d = g->vertex(g->index(f))->id;
+    return std::max(std::abs(m.va.height[d] - plane_height_at(m, a, b, c, m.va.position[d])),
+                    std::abs(m.va.height[c] - plane_height_at(m, a, b, d, m.va.position[c])));
+}
+
+/// A point inserted at `p` (height `hp`, on the surface) re-triangulates its cavity into a fan
+/// from p: edge (f, i) of the cavity, seen from p, gives way to a segment from p to the vertex
+/// of g = f->neighbor(i) across it, and the surface moves by the gap where the two cross (0
+/// when they do not). This differs from edge_bend, which sees the edge from f's own third
+/// vertex: after an edge split the faces are (a, p, c) and the flips that follow measure
+/// against p.
+double edge_bend_toward(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
+    return gap_at_crossing(m, f, i, p, hp).value_or(0.0);
 }
 
 }  // namespace

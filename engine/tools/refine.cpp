@@ -7,7 +7,6 @@ namespace sandtin {
 SurfaceFence dab_fence(double radius, double simplify_tolerance, Generation next_generation) {
     SurfaceFence fence;
     fence.tolerance = std::min(0.01 * radius, simplify_tolerance);
-    fence.min_length = 0.0;
     fence.generation = next_generation > 0 ? next_generation - 1 : 0;
     return fence;
 }
@@ -16,13 +15,21 @@ bool coarse_for_dab(const Tin& tin, Vec2 centre, double radius, LocateHint* hint
     return tin.vertices_in_disc(centre, radius, hint).size() < 16;
 }
 
+namespace {
+
+/// Fences the bent edges inserting `points` would remove; edges of any length (see dab_fence).
+std::size_t fence_for(Tin& tin, std::span<const Vec2> points, const SurfaceFence& fence,
+                      LocateHint* hint, EditReport* report = nullptr) {
+    return tin.fence_bent_edges(points, {}, fence.tolerance, 0.0, fence.generation, nullptr, hint,
+                                report);
+}
+
+}  // namespace
+
 std::size_t insert_points_fenced(Tin& tin, std::span<const Vec2> points, const SurfaceFence* fence,
                                  LocateHint* hint) {
-    std::size_t fenced = 0;
-    if (fence != nullptr && !points.empty()) {
-        fenced = tin.fence_bent_edges(points, {}, fence->tolerance, fence->min_length,
-                                      fence->generation, nullptr, hint);
-    }
+    const std::size_t fenced =
+        fence != nullptr && !points.empty() ? fence_for(tin, points, *fence, hint) : 0;
     tin.insert_points_on_surface(points, hint);
     return fenced;
 }
@@ -56,9 +63,7 @@ RefineResult refine_long_edges(Tin& tin, Vec2 centre, double radius, double max_
         if (fence != nullptr) {
             for (const EdgeSplit& s : midpoints) {
                 const Vec2 p = lerp(tin.position(s.a), tin.position(s.b), s.t);
-                result.fenced += tin.fence_bent_edges(std::span<const Vec2>(&p, 1), {},
-                                                      fence->tolerance, fence->min_length,
-                                                      fence->generation, nullptr, hint, report);
+                result.fenced += fence_for(tin, std::span<const Vec2>(&p, 1), *fence, hint, report);
                 tin.split_edges(std::span<const EdgeSplit>(&s, 1), VolumePolicy::Conserve, report);
             }
         } else {

@@ -16,8 +16,7 @@ namespace sandtin {
 /// model) that bends the surface metres away. Before each insertion the bent edges it would
 /// remove are constrained (Tin::fence_bent_edges), so it only subdivides them.
 struct SurfaceFence {
-    double tolerance = 0.0;     ///< metres of bend above which an edge is fenced
-    double min_length = 0.0;    ///< metres; shorter edges are left free
+    double tolerance = 0.0;     ///< metres of bend above which an edge is fenced, any length
     Generation generation = 0;  ///< of the fences, so later footprints and expiry free them
 };
 

@@ -494,6 +494,7 @@ TEST_F(Export, AHeightMapFlatUpToRoundingIsFlat) {
     ExportOptions o;
     o.map_size = 9;
     run(tin, "flat.png", o);
+    EXPECT_EQ(report_.height_step, 1.0 / 65535.0);  // the step the map was written with
     const PngImage flat = read_png(dir_ / "flat.png");
     for (const std::uint16_t v : flat.samples)
         ASSERT_EQ(v, 0u);
