@@ -1,7 +1,6 @@
 // sandtin export: a session to a mesh (OBJ, PLY, STL, glTF, GLB) or a map (height PNG/EXR,
 // normal or albedo PNG).
 
-#include <algorithm>
 #include <iostream>
 #include <optional>
 
@@ -104,8 +103,6 @@ int run_export(const std::vector<std::string>& raw) {
         refuse("--faceted", "normal maps, and the textures of .obj, .gltf and .glb");
 
     const Session session = load_session(args.positionals()[0]);
-    // Height maps and simplification default to the grid the terrain was imported from, so
-    // export followed by import reproduces it.
     TinOptions tin_options;
     tin_options.track_changes = false;
     const Tin tin = session_terrain(session, args.positionals()[0], tin_options);
@@ -114,14 +111,13 @@ int run_export(const std::vector<std::string>& raw) {
     // put vertices between those samples.
     const std::optional<DefaultSampling> sampling =
         apply_import_defaults(tin, session.metadata_json, options, args.has("--size"));
-    const bool cell_size_from_session = sampling.has_value();
     ExportReport report;
     try {
         report = export_terrain(tin, out, format, options);
     } catch (const std::invalid_argument& e) {
         // An option the user gave is a usage error (exit 2); a default the session file supplied
         // is bad data in that file (exit 1).
-        if (cell_size_from_session && options.cell_size) {
+        if (sampling) {
             throw std::runtime_error(args.positionals()[0] +
                                      ": the import cell size in the session's metadata cannot be "
                                      "used (" +
