@@ -2113,9 +2113,8 @@ double edge_bend_toward(const Tin::Impl& m, Fh f, int i, Vec2 p, double hp) {
 
 std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
                                   std::span<const std::array<Vec2, 2>> segments, double tolerance,
-                                  double min_length, Generation generation,
-                                  const PolygonInclusion* within, LocateHint* hint,
-                                  EditReport* report) {
+                                  Generation generation, const PolygonInclusion* within,
+                                  LocateHint* hint, EditReport* report) {
     Impl& m = *impl_;
     if (m.cdt.dimension() != 2) return 0;
     std::vector<std::array<VertexId, 2>> bent;
@@ -2127,8 +2126,6 @@ std::size_t Tin::fence_bent_edges(std::span<const Vec2> points,
         if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g) || m.cdt.is_constrained({f, i})) return;
         std::uint32_t a = f->vertex(CdtPlus::ccw(i))->id;
         std::uint32_t b = f->vertex(CdtPlus::cw(i))->id;
-        if (!(length_squared(m.va.position[b] - m.va.position[a]) > min_length * min_length))
-            return;
         if (!(edge_bend(m, f, i) > tolerance) &&
             !(from != nullptr && edge_bend_toward(m, f, i, *from, from_height) > tolerance)) {
             return;

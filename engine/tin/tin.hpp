@@ -351,17 +351,14 @@ class Tin {
     /// bent against each other by more than `tolerance` metres (the vertical gap between the
     /// edge and the other diagonal of its quadrilateral where they cross): the insertions then
     /// only subdivide those faces, and crossings of the segments with them get the edge's own
-    /// height. Left free: edges bent by less; edges no longer than `min_length` metres
-    /// (re-shaping them stays within their length of the edit: dense sand, whose re-triangulation
-    /// beside a tool is the tool's own detail, keeps its Delaunay triangulation); and, with
-    /// `within`, an edge whose quadrilateral lies wholly inside that region (re-shaping it cannot
-    /// reach past it: a footprint). The new constraints carry `generation`, so later footprints
-    /// release them and they expire where releasing re-triangulates nothing. Points and
-    /// segments outside the domain are ignored. Returns how many edges were constrained.
+    /// height. Left free: edges bent by less, and, with `within`, an edge whose quadrilateral lies
+    /// wholly inside that region (re-shaping it cannot reach past it: a footprint). The new
+    /// constraints carry `generation`, so later footprints release them and they expire where
+    /// releasing re-triangulates nothing. Points and segments outside the domain are ignored.
+    /// Returns how many edges were constrained.
     std::size_t fence_bent_edges(std::span<const Vec2> points,
                                  std::span<const std::array<Vec2, 2>> segments, double tolerance,
-                                 double min_length, Generation generation,
-                                 const PolygonInclusion* within = nullptr,
+                                 Generation generation, const PolygonInclusion* within = nullptr,
                                  LocateHint* hint = nullptr, EditReport* report = nullptr);
     /// Unconstrains every constraint that matches the filter; Delaunay flips follow. Returns how
     /// many constraints were released; their vertices are appended to `released_vertices`.

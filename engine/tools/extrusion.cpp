@@ -98,8 +98,8 @@ void enclose_band(Tin& tin, std::span<const Vec2> outer, double width, const Rid
     std::vector<std::array<Vec2, 2>> sides;
     for (std::size_t k = 0; k < edge.size(); ++k)
         sides.push_back({edge[k], edge[(k + 1) % edge.size()]});
-    report.edges_fenced += tin.fence_bent_edges(edge, sides, fence.tolerance, fence.min_length,
-                                                fence.generation, nullptr, hint);
+    report.edges_fenced +=
+        tin.fence_bent_edges(edge, sides, fence.tolerance, fence.generation, nullptr, hint);
     const std::vector<VertexId> ids =
         tin.insert_points_on_surface(edge, hint, VolumePolicy::Report);
     std::vector<std::array<VertexId, 2>> segments;

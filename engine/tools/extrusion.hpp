@@ -31,7 +31,6 @@ struct RidgeReport {
 /// around it are fenced (Tin::fence_bent_edges), so the ridge changes nothing past it.
 struct RidgeFence {
     double tolerance = 0.0;     ///< m of bend above which an edge is fenced
-    double min_length = 0.0;    ///< m; shorter edges stay free
     Generation generation = 0;  ///< of the fences and the band's edge
 };
 

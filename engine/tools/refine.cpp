@@ -20,7 +20,7 @@ namespace {
 /// Fences the bent edges inserting `points` would remove; edges of any length (see dab_fence).
 std::size_t fence_for(Tin& tin, std::span<const Vec2> points, const SurfaceFence& fence,
                       LocateHint* hint, EditReport* report = nullptr) {
-    return tin.fence_bent_edges(points, {}, fence.tolerance, 0.0, fence.generation, nullptr, hint,
+    return tin.fence_bent_edges(points, {}, fence.tolerance, fence.generation, nullptr, hint,
                                 report);
 }
 

@@ -305,26 +305,27 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // constrained (Tin::fence_bent_edges), so the surface outside O stays as it was, and where
     // O crosses them it takes the terrain's own height there (after the bulk clearing below, an
     // edge across the cleared sand would give it the cleared surface's height).
-    // - Only edges longer than the tool is wide: an elevation model's triangles are far wider
-    //   than a tool, while sand the tools sculpted has no longer ones but flat floors (fencing
-    //   its shorter edges too left a long stroke's constraints unbounded).
-    // - Only where O crosses edges less than 8 times per fence length: denser sand has none to
-    //   find, and looking cost a stamp 9 % at 10^6 points.
+    // - Only where O crosses edges less than 8 times per tool width: sand sculpted at the
+    //   tool's scale has its re-triangulation's detail already, and looking cost a stamp 9 % at
+    //   10^6 points.
+    // - Every bent edge, however short: a tool as wide as the terrain's triangles re-shapes
+    //   them too (fencing only edges longer than the tool left a 20 m tool on 25 m triangles
+    //   moving the surface 2.9 m outside O).
     // - One generation older than the stamp: the release after O is constrained frees them
     //   inside O; outside they stay until a later footprint or their expiry frees them.
     // - A fenced terrain gets all of O constrained, not only the parts next to an active I: the
     //   release's flips inside O must not leave through an unconstrained stretch of it.
     const PolygonInclusion in_outer(outer, at.centre);
     const double perimeter = polygon_perimeter(outer);
-    const double fence_above = 2.0 * tool.shape().bounding_radius;
-    const bool coarse = 8.0 * perimeter > fence_above * static_cast<double>(rim_crossings);
+    const double tool_width = 2.0 * tool.shape().bounding_radius;
+    const bool coarse = 8.0 * perimeter > tool_width * static_cast<double>(rim_crossings);
     const bool fenced_terrain = context.settings.fence_coarse_edges && coarse;
     if (fenced_terrain) {
         std::vector<std::array<Vec2, 2>> spans;
         for (std::size_t k = 0; k < rim.size(); ++k)
             spans.push_back({rim[k], rim[(k + 1) % rim.size()]});
-        report.edges_fenced = tin.fence_bent_edges(rim, spans, tol, fence_above, generation - 1,
-                                                   &in_outer, hint, &edit);
+        report.edges_fenced =
+            tin.fence_bent_edges(rim, spans, tol, generation - 1, &in_outer, hint, &edit);
         if (report.edges_fenced > 0) std::fill(rim_active.begin(), rim_active.end(), 1);
     }
     // Inserts the endpoints of the active segments of a closed contour and constrains them,
@@ -605,7 +606,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         }
         std::vector<VertexId> ridge;
         // On a terrain the rim was fenced on, the ridge's band is enclosed too.
-        const RidgeFence ridge_fence{tol, fence_above, generation - 1};
+        const RidgeFence ridge_fence{tol, generation - 1};
         const RidgeReport ridge_report =
             deposit_ridge(tin, rim, cut, motion, tool.extrusion_width(), to_deposit, hint, &ridge,
                           fenced_terrain ? &ridge_fence : nullptr);

@@ -898,11 +898,13 @@ TEST(Stamp, ALambdaCutIntoPiecesByEachSideKeepsThePlaneOutsideItsOuterContour) {
 // around the rim are now constrained first (Tin::fence_bent_edges). Oracle: the surface before
 // the stamp, sampled on a grid around the tool. Outside O it may move by no more than the rim
 // tolerance (the rim follows the terrain that closely, and the wall leans on it); placements in
-// a triangle, on a vertex, next to one and on an edge, for a small and a large tool.
+// a triangle, on a vertex, next to one and on an edge, for a small and a large tool, and for one
+// as wide as the model's triangles, whose rim re-shapes edges shorter than itself (2.9 m outside
+// O while only edges longer than the tool were fenced).
 TEST(Stamp, OnACoarseElevationModelTheSurfaceOutsideOHoldsWithinTheRimTolerance) {
     const Tin model = test::coarse_hills_model();
     const std::vector<Vec2> places = test::coarse_model_placements(model, true);
-    for (const double radius : {0.5, 5.0}) {
+    for (const double radius : {0.5, 5.0, 20.0}) {
         const Tool tool = circle_tool(radius, 12);
         for (const Vec2 at : places) {
             SCOPED_TRACE(std::to_string(radius) + " m tool at " + std::to_string(at.x) + ", " +
@@ -918,8 +920,10 @@ TEST(Stamp, OnACoarseElevationModelTheSurfaceOutsideOHoldsWithinTheRimTolerance)
             Vec2 worst_at;
             std::size_t compared = 0;
             LocateHint before_hint, after_hint;
-            for (Vec2 p :
-                 test::grid_points(Rect{at - Vec2{60.0, 60.0}, at + Vec2{60.0, 60.0}}, 241, 241)) {
+            // Far enough out for the reach the unfenced edges had (up to three radii beyond O).
+            const double reach = 60.0 + 3.0 * radius;
+            for (Vec2 p : test::grid_points(Rect{at - Vec2{reach, reach}, at + Vec2{reach, reach}},
+                                            241, 241)) {
                 if (!model.domain().contains(p) || !outside_by(p, outer, 1e-3)) continue;
                 ++compared;
                 const double d =
