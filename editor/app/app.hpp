@@ -185,6 +185,10 @@ class App {
         undo_log_.clear();
         if (mesh_) mesh_->set_materials(doc_.materials);
         attach_physics(false);
+        // An opened scene was never relaxed by this physics (it may have been saved mid-slide,
+        // or imported steeper than repose): all of it is a candidate, as after a switch of
+        // solver. What is at rest leaves the active set after a few quiet iterations.
+        doc_.physics->activate_all();
         mesh_stale_ = true;
         contrast_stale_ = true;
         active_.clear();

@@ -468,7 +468,13 @@ ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& contex
         backend_.run_to_rest = [p](int n, std::vector<VertexId>* c) {
             return p->run_to_rest(n, c);
         };
+        backend_.activate_all = [p] { p->activate_all(); };
     }
+    // The terrain the script starts from (a loaded session, an imported elevation model) was
+    // never relaxed by this physics: all of it is a candidate, or an `erode` would find nothing
+    // active and report rest on walls far steeper than repose. Vertices already at rest leave
+    // the active set after a few quiet iterations.
+    if (backend_.activate_all) backend_.activate_all();
 }
 
 ScriptRunner::~ScriptRunner() = default;

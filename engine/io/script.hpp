@@ -155,6 +155,9 @@ struct PhysicsBackend {
     std::function<PhysicsStepReport(int iterations, std::vector<VertexId>* changed)> step;
     std::function<PhysicsStepReport(int max_iterations, std::vector<VertexId>* changed)>
         run_to_rest;
+    /// Makes every vertex a candidate for the next step (the physics otherwise only looks at
+    /// what changed since it was created).
+    std::function<void()> activate_all;
 };
 /// Creates a backend that follows `tin` from now on, with the script's settings.
 using PhysicsBackendFactory =

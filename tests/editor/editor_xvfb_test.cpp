@@ -359,8 +359,11 @@ TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarde
     ASSERT_TRUE(find_autosave(scene).has_value());
     ASSERT_TRUE(find_autosave(scene)->offer_recovery());
 
+    // Erosion paused: a raised vertex is far steeper than repose, and an opened document's
+    // sand slides when the erosion runs (AnOpenedSceneSteeperThanReposeSlides).
     const fs::path recovered = kWork / "recovered.sandtin";
-    const EditorRun r = run_editor("recover", R"([{"op": "recovery", "choice": "recover"}])",
+    const EditorRun r = run_editor("recover", R"([{"op": "set", "erosion": false},
+                                                 {"op": "recovery", "choice": "recover"}])",
                                    scene.string() + " --save-after " + recovered.string());
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const Session got = load_session(recovered);
@@ -848,6 +851,37 @@ TEST_F(EditorXvfb, ErodedGroundIsSimplifiedOnceTheSandRests) {
         << added(edited) << " vertices added in the editor, " << added(scripted)
         << " by the script";
     EXPECT_NEAR(va.height[apex], *scripted.height_at(at), 0.03 * va.height[apex]);
+}
+
+// An opened scene steeper than repose slides once the erosion runs: the physics used to start
+// with nothing active on an opened document, so the slope stood (and the Stats panel said the
+// sand rested) until a tool touched it. Oracles: the physics' own bound on every edge once at
+// rest, and the volume.
+TEST_F(EditorXvfb, AnOpenedSceneSteeperThanReposeSlides) {
+    // A cone 3 cm high and 3 cm across its foot (45 degrees, against a repose of 32), with
+    // points enough on its flanks.
+    std::vector<Vec2> points = unit_square_points(3000, 778);
+    const Vec2 centre{0.5, 0.5};
+    for (const Vec2 p : unit_square_points(300, 779))
+        points.push_back(centre + 0.06 * (p - Vec2{0.5, 0.5}));
+    std::vector<double> heights;
+    for (const Vec2 p : points)
+        heights.push_back(std::max(0.0, 0.03 - distance(p, centre)));
+    const fs::path scene = kWork / "steep-open.sandtin";
+    const fs::path after = kWork / "steep-open-after.sandtin";
+    Session session;
+    session.terrain = Tin::from_points(Rect::from_size(1.0, 1.0), points, heights).snapshot();
+    save_session(scene, session);
+    const Tin before = Tin::from_snapshot(session.terrain);
+    const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+    ASSERT_GT(test::steepest_edge_ratio(before, tan_alpha), 1.05);
+    const EditorRun r = run_editor("steep-open", R"([{"op": "erode", "frames": 400}])",
+                                   scene.string() + " --save-after " + after.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    const Tin eroded = Tin::from_snapshot(load_session(after).terrain);
+    ASSERT_TRUE(eroded.check_valid().ok()) << eroded.check_valid().summary();
+    EXPECT_NEAR(eroded.volume(), before.volume(), 1e-9 * before.volume());
+    EXPECT_LE(test::steepest_edge_ratio(eroded, tan_alpha), 1.0 + 1e-3);
 }
 
 /// Heights by position of the vertices two terrains share (positions are exact in a session).

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "io/script.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics_oracles.hpp"
@@ -77,6 +79,33 @@ TEST(ErodeScript, OpAndStrokeFlagRelaxToRest) {
         parse_script(R"({"operations": [{"op": "erode", "iterations": 5, "schedule": "magic"}]})",
                      "bad", "."),
         JsonInputError);
+}
+
+// A terrain the script starts from (a loaded session, an imported elevation model) was never
+// relaxed: `erode` must look at all of it. It used to start with nothing active, so on a slope
+// far steeper than repose it ran 0 iterations and reported rest. Oracle: the physics' own bound
+// on every edge once at rest, and the volume.
+TEST(ErodeScript, ErodesTheSlopesOfTheTerrainItStartsFrom) {
+    for (const char* schedule : {"sequential", "jacobi"}) {
+        SCOPED_TRACE(schedule);
+        // 45 degrees, against a repose of 32.
+        Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 3000, 3,
+                                     [](Vec2 p) { return 1.0 + std::min(p.x, 0.6); });
+        const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);
+        ASSERT_GT(test::steepest_edge_ratio(tin, tan_alpha), 1.4);
+        const Script script = parse_script(
+            std::string(R"({"operations": [{"op": "erode", "until_rest": true, "schedule": ")") +
+                schedule + R"("}]})",
+            "erode-only", ".");
+        SculptContext context(tin.domain());
+        ScriptRunner runner(script, tin, context);
+        const double before = tin.volume();
+        const nlohmann::json erode = runner.run(script.steps.at(0));
+        EXPECT_GT(erode.at("iterations").get<int>(), 0);
+        EXPECT_TRUE(erode.at("at_rest").get<bool>());
+        EXPECT_NEAR(tin.volume(), before, 1e-12);
+        EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
+    }
 }
 
 /// Runs a dig script (a stroke, then an `erode` with `until_rest`) on `tin` and checks what
