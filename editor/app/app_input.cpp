@@ -57,6 +57,7 @@ void App::tool_at(Vec3 p) {
             b.strength = height_brush ? settings_.brush_strength : settings_.brush_blend;
             b.falloff = falloff_named(settings_.brush_falloff).value_or(Falloff::Smooth);
             b.material = static_cast<std::uint16_t>(settings_.material);
+            b.moisture = doc_.materials.at(b.material).default_moisture;
             if (t.brush == BrushKind::Flatten) b.flatten_to = flatten_level_;
             apply_brush(*doc_.tin, xy, b, *doc_.context);
             last_dab_ = xy;

@@ -8,8 +8,8 @@
 
 #include "erosion.hpp"
 #include "history/history.hpp"
+#include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
-#include "scene_materials.hpp"
 #include "tools/sculpt_context.hpp"
 
 namespace sandtin::editor {

@@ -72,9 +72,8 @@ int run_run(const std::vector<std::string>& raw) {
             throw std::runtime_error(std::string("--physics gpu: no Vulkan device (") + e.what() +
                                      "); use --physics cpu");
         }
-        backend = [&gpu_context](Tin& t, const TalusSettings& s) {
-            auto p =
-                std::make_shared<gpu::GpuSandPhysics>(t, *gpu_context, MaterialTable::presets(), s);
+        backend = [&gpu_context](Tin& t, const TalusSettings& s, const MaterialTable& materials) {
+            auto p = std::make_shared<gpu::GpuSandPhysics>(t, *gpu_context, materials, s);
             PhysicsBackend b;
             b.settings = [p]() -> TalusSettings& { return p->settings(); };
             b.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };

@@ -10,6 +10,7 @@
 #include <span>
 #include <sstream>
 
+#include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "tools/falloff.hpp"
@@ -284,6 +285,10 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
             f.fail_field("height", "applies to the flatten brush, not to " + kind);
         if (f.has("strength") && b.settings.kind == BrushKind::PaintMaterial)
             f.fail_field("strength", "does not apply to the paint brush");
+        if (f.has("moisture") && b.settings.kind != BrushKind::PaintMaterial)
+            f.fail_field("moisture", "applies to the paint brush, not to " + kind);
+        if (f.has("moisture"))
+            b.moisture = static_cast<float>(f.in_range("moisture", 0.0, 0.0, 1.0));
         b.settings.material = static_cast<std::uint16_t>(f.integer("material", 0, 0, 65535));
         if (f.has("height")) b.settings.flatten_to = height_field(f, "height", 0.0);
         b.points = parse_points(f, 0.25 * b.settings.radius);
@@ -452,16 +457,24 @@ void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
 }  // namespace
 
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
-                           bool with_physics, const PhysicsBackendFactory& backend)
-    : tin_(tin), context_(context) {
+                           bool with_physics, const PhysicsBackendFactory& backend,
+                           const Session* carried)
+    : tin_(tin), context_(context), materials_(MaterialTable::presets()) {
+    if (carried != nullptr) {
+        carried_.metadata_json = carried->metadata_json;
+        carried_.unknown_chunks = carried->unknown_chunks;
+        // A scene from the editor erodes with the materials it was sculpted with.
+        if (auto table = materials_from_metadata(carried->metadata_json))
+            materials_ = std::move(*table);
+    }
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
     // The physics follows the TIN from the start, so it sees every change the script makes.
     if ((script.uses_physics || with_physics) && backend) {
-        backend_ = backend(tin, script.physics);
+        backend_ = backend(tin, script.physics, materials_);
     } else if (script.uses_physics || with_physics) {
-        physics_ = std::make_unique<SandPhysics>(tin, MaterialTable::presets(), script.physics);
+        physics_ = std::make_unique<SandPhysics>(tin, materials_, script.physics);
         SandPhysics* p = physics_.get();
         backend_.settings = [p]() -> TalusSettings& { return p->settings(); };
         backend_.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
@@ -478,11 +491,6 @@ ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& contex
 }
 
 ScriptRunner::~ScriptRunner() = default;
-
-void ScriptRunner::carry_into_saves(const Session& session) {
-    carried_.metadata_json = session.metadata_json;
-    carried_.unknown_chunks = session.unknown_chunks;
-}
 
 nlohmann::json ScriptRunner::run(const ScriptStep& step) {
     Tin& tin = tin_;
@@ -576,10 +584,24 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                 warn_if_short(j, op.remove, op.volume, moved);
                 return j;
             } else if constexpr (std::is_same_v<T, BrushOp>) {
+                BrushSettings settings = op.settings;
+                if (settings.kind == BrushKind::PaintMaterial) {
+                    if (settings.material >= materials_.size()) {
+                        std::string names;
+                        for (std::size_t m = 0; m < materials_.size(); ++m)
+                            names += (m ? ", " : "") + std::to_string(m) + " " +
+                                     materials_.all()[m].name;
+                        throw std::invalid_argument(
+                            "material " + std::to_string(settings.material) + ": the scene has " +
+                            std::to_string(materials_.size()) + " materials (" + names + ")");
+                    }
+                    settings.moisture =
+                        op.moisture.value_or(materials_.at(settings.material).default_moisture);
+                }
                 std::size_t changed = 0;
                 double dv = 0.0;
                 for (Vec2 p : op.points) {
-                    const BrushReport br = apply_brush(tin, p, op.settings, context);
+                    const BrushReport br = apply_brush(tin, p, settings, context);
                     changed += br.vertices_changed;
                     dv += br.volume_change;
                 }
@@ -629,8 +651,7 @@ Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
 
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
                           const PhysicsBackendFactory& backend, const Session* carried) {
-    ScriptRunner runner(script, tin, context, false, backend);
-    if (carried != nullptr) runner.carry_into_saves(*carried);
+    ScriptRunner runner(script, tin, context, false, backend, carried);
     nlohmann::json reports = nlohmann::json::array();
     const auto where = [&](std::size_t line) {
         return script.name.empty() ? "line " + std::to_string(line)

@@ -69,6 +69,8 @@ struct PourOp {
 struct BrushOp {
     std::vector<Vec2> points;  ///< dab centres
     BrushSettings settings;
+    /// Paint: the saturation painted, in [0, 1]; by default the material's default_moisture.
+    std::optional<float> moisture;
 };
 
 /// Sand relaxation: a number of iterations, or until the sand is at rest.
@@ -159,9 +161,10 @@ struct PhysicsBackend {
     /// what changed since it was created).
     std::function<void()> activate_all;
 };
-/// Creates a backend that follows `tin` from now on, with the script's settings.
-using PhysicsBackendFactory =
-    std::function<PhysicsBackend(Tin& tin, const TalusSettings& settings)>;
+/// Creates a backend that follows `tin` from now on, with the script's settings and the scene's
+/// materials.
+using PhysicsBackendFactory = std::function<PhysicsBackend(Tin& tin, const TalusSettings& settings,
+                                                           const MaterialTable& materials)>;
 
 /// Runs the steps of a script one at a time against a terrain, keeping the sand physics (which
 /// follows every change to the TIN) alive between steps. run_script is a loop over it; the
@@ -170,9 +173,14 @@ class ScriptRunner {
   public:
     /// Applies the script's settings to the context. The physics is created now, so it sees
     /// every change, when the script uses it or `with_physics` is set.
-    /// `backend` replaces the CPU physics when given.
+    /// `backend` replaces the CPU physics when given. `carried`, when given, is the session the
+    /// terrain came from: its material table (io/scene_materials.hpp) is the one the physics
+    /// and the paint brush use (the presets otherwise), and `save` checkpoints carry its
+    /// metadata (scene name, tool settings, import report) and its chunks from newer versions,
+    /// as the final output does; its terrain is not used. Throws JsonInputError for a material
+    /// table in its metadata that is not valid.
     ScriptRunner(const Script& script, Tin& tin, SculptContext& context, bool with_physics = false,
-                 const PhysicsBackendFactory& backend = {});
+                 const PhysicsBackendFactory& backend = {}, const Session* carried = nullptr);
     ~ScriptRunner();
     ScriptRunner(const ScriptRunner&) = delete;
     ScriptRunner& operator=(const ScriptRunner&) = delete;
@@ -182,16 +190,13 @@ class ScriptRunner {
     nlohmann::json run(const ScriptStep& step);
 
     SandPhysics* physics() { return physics_.get(); }  ///< null with another backend
-
-    /// `save` checkpoints carry this session's metadata (scene name, tool settings, import
-    /// report) and its chunks from newer versions, as the final output does; its terrain is
-    /// not used. Without it a checkpoint holds the terrain alone.
-    void carry_into_saves(const Session& session);
+    const MaterialTable& materials() const { return materials_; }
 
   private:
     Tin& tin_;
     SculptContext& context_;
     Session carried_;  ///< metadata and unknown chunks only; the terrain stays empty
+    MaterialTable materials_;
     std::unique_ptr<SandPhysics> physics_;
     PhysicsBackend backend_;
 };
@@ -199,8 +204,7 @@ class ScriptRunner {
 /// Applies the script's settings to the context and runs every step; returns one JSON report
 /// per step; a step that did something the artist should hear of (extrusion that lost sand
 /// over the terrain's edge) has a "warning" string naming its line and operation. `carried`,
-/// when given, is the session the terrain came from (see
-/// ScriptRunner::carry_into_saves).
+/// when given, is the session the terrain came from (see ScriptRunner's constructor).
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
                           const PhysicsBackendFactory& backend = {},
                           const Session* carried = nullptr);

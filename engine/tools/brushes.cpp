@@ -119,11 +119,17 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
             break;
         }
         case BrushKind::PaintMaterial:
+            if (!(s.moisture >= 0.0f && s.moisture <= 1.0f))
+                throw std::invalid_argument("brush: paint moisture must lie in [0, 1]");
             for (std::size_t i = 0; i < disc.size(); ++i) {
-                if (weight[i] > 0.0 && va.material[disc[i].value] != s.material) {
-                    tin.set_material(disc[i], s.material);
-                    ++report.vertices_changed;
+                const std::uint32_t v = disc[i].value;
+                if (!(weight[i] > 0.0) ||
+                    (va.material[v] == s.material && va.moisture[v] == s.moisture)) {
+                    continue;
                 }
+                tin.set_material(disc[i], s.material);
+                tin.set_moisture(disc[i], s.moisture);
+                ++report.vertices_changed;
             }
             return report;
     }

@@ -24,6 +24,10 @@ struct BrushSettings {
     /// Longest edge inside the disc before the dab (m); 0 = radius / 6.
     double refine_spacing = 0.0;
     std::uint16_t material = 0;  ///< PaintMaterial
+    /// PaintMaterial: the saturation in [0, 1] painted with the material. Callers pass the
+    /// material's default_moisture (physics/material.hpp), so painted moist sand holds the
+    /// steeper slopes its moisture gives.
+    float moisture = 0.0f;
     std::optional<double>
         flatten_to;  ///< Flatten target height (m); default: surface at the centre
 };

@@ -24,11 +24,11 @@
 #include "formats/png_image.hpp"
 #include "frame_policy.hpp"
 #include "io/autosave.hpp"
+#include "io/scene_materials.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
 #include "physics/physics_oracles.hpp"
 #include "physics/sand_physics.hpp"
-#include "scene_materials.hpp"
 #include "tin/tin.hpp"
 #include "tin/tin_snapshot.hpp"
 #include "tool_palette.hpp"
@@ -662,7 +662,7 @@ TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
     const EditorRun r = run_editor("materials", ops);
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const auto table = [](const fs::path& p) {
-        const auto t = editor::materials_from_metadata(load_session(p).metadata_json);
+        const auto t = materials_from_metadata(load_session(p).metadata_json);
         EXPECT_TRUE(t.has_value()) << p;
         return t.value_or(MaterialTable{});
     };

@@ -313,6 +313,7 @@ TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
     b.kind = BrushKind::PaintMaterial;
     b.radius = 0.06;
     b.material = 7;
+    b.moisture = 0.25f;
     const Vec2 c{0.5, 0.5};
     const std::size_t n = tin.vertex_count();
     const double v0 = tin.volume();
@@ -325,13 +326,21 @@ TEST(Brush, PaintSetsMaterialWithinTheRadiusOnly) {
         const double d = distance(tin.position(v), c);
         if (d < b.radius * (1.0 - 1e-12)) {
             EXPECT_EQ(va.material[v.index()], 7) << "d = " << d;
+            EXPECT_EQ(va.moisture[v.index()], 0.25f) << "d = " << d;
             ++painted;
         } else if (d > b.radius * (1.0 + 1e-12)) {
             EXPECT_EQ(va.material[v.index()], 0) << "d = " << d;
+            EXPECT_EQ(va.moisture[v.index()], 0.0f) << "d = " << d;
         }
     }
     EXPECT_EQ(r.vertices_changed, painted);
     EXPECT_GT(painted, 30u);
+    // The same material at another moisture is a change too (the editor's Paint moisture).
+    b.moisture = 0.5f;
+    EXPECT_EQ(apply_brush(tin, c, b, context).vertices_changed, painted);
+    EXPECT_EQ(apply_brush(tin, c, b, context).vertices_changed, 0u);
+    b.moisture = 1.5f;
+    EXPECT_THROW(apply_brush(tin, c, b, context), std::invalid_argument);
 }
 
 // How far the surface moved outside the disc (centre, reach), sampled on a grid around it.

@@ -6,13 +6,16 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <variant>
 #include <vector>
 
+#include "io/scene_materials.hpp"
 #include "io/script.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
@@ -279,6 +282,110 @@ TEST(Script, ACheckpointKeepsTheSessionsMetadataAndUnknownChunks) {
     EXPECT_EQ(Tin::from_snapshot(saved.terrain).vertex_count(), tin.vertex_count());
     EXPECT_DOUBLE_EQ(Tin::from_snapshot(saved.terrain).volume(), tin.volume());
     std::filesystem::remove_all(dir);
+}
+
+// Painting moist sand paints its moisture too (the preset's default_moisture, 0.25, which the
+// materials table documents as what the paint tool applies): a 40-degree slope painted moist
+// stands (moist sand at 0.25 holds about 44 degrees), the same slope left dry slides to 32.
+TEST(Script, PaintedMoistSandHoldsTheSlopeItsMoistureGives) {
+    const MaterialTable presets = MaterialTable::presets();
+    const double tan40 = std::tan(40.0 * std::numbers::pi / 180.0);
+    ASSERT_GT(presets.at(1).talus_slope(presets.at(1).default_moisture), tan40 * 1.05);
+    ASSERT_LT(presets.at(0).talus_slope(0.0), tan40);
+    for (const bool paint : {true, false}) {
+        SCOPED_TRACE(paint ? "painted moist" : "left dry");
+        Tin tin = Tin::random_points(Rect::from_size(1, 1), 2000, 17,
+                                     [&](Vec2 p) { return 0.5 + tan40 * std::min(p.x, 0.5); });
+        const std::vector<double> before(tin.vertices().height.begin(),
+                                         tin.vertices().height.end());
+        const std::string painting =
+            paint ? R"({"op": "brush", "kind": "paint", "material": 1, "radius": 0.15, "path": )"
+                    R"([[0.05, 0.05], [0.05, 0.95], [0.25, 0.95], [0.25, 0.05], [0.45, 0.05],)"
+                    R"( [0.45, 0.95], [0.65, 0.95], [0.65, 0.05], [0.85, 0.05], [0.85, 0.95],)"
+                    R"( [1, 0.95], [1, 0.05]], "spacing": 0.02},)"
+                  : "";
+        const Script s = parse("[" + painting + R"({"op": "erode", "until_rest": true}])");
+        SculptContext context(tin.domain());
+        run_script(s, tin, context);
+        const VertexArrays& va = tin.vertices();
+        double moved = 0.0;
+        std::size_t moist = 0;
+        for (VertexId v : test::live_ids(tin)) {
+            moved = std::max(moved, std::abs(va.height[v.index()] - before[v.index()]));
+            if (va.material[v.index()] == 1 && va.moisture[v.index()] == 0.25f) ++moist;
+        }
+        if (paint) {
+            EXPECT_EQ(moist, tin.vertex_count()) << "every vertex painted, with its moisture";
+            EXPECT_EQ(moved, 0.0);
+        } else {
+            EXPECT_GT(moved, 0.01);
+        }
+    }
+    // An explicit moisture replaces the material's; a material the scene lacks is an error
+    // naming the line and the materials there are.
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 500, 18);
+    SculptContext context(tin.domain());
+    run_script(parse(R"([{"op": "brush", "kind": "paint", "material": 2, "moisture": 0.6,
+                          "at": [0.5, 0.5], "radius": 0.2}])"),
+               tin, context);
+    const VertexId centre{tin.locate({0.5, 0.5}).corners[0]};
+    EXPECT_EQ(tin.vertices().moisture[centre.index()], 0.6f);
+    try {
+        run_script(parse(R"([{"op": "brush", "kind": "paint", "material": 3, "at": [0.5, 0.5]}])"),
+                   tin, context);
+        ADD_FAILURE() << "material 3 was painted on a scene of three materials";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("script.json:1"), std::string::npos) << what;
+        EXPECT_NE(what.find("material 3: the scene has 3 materials (0 dry_sand, 1 moist_sand, "
+                            "2 gravel)"),
+                  std::string::npos)
+            << what;
+    }
+    EXPECT_NE(error_of(R"([{"op": "brush", "kind": "raise", "moisture": 0.5, "at": [0, 0]}])")
+                  .find("moisture"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"([{"op": "brush", "kind": "paint", "moisture": 2, "at": [0, 0]}])")
+                  .find("moisture"),
+              std::string::npos);
+}
+
+// A scene from the editor keeps its material table in its metadata, and a script run on it
+// erodes with that table: dry sand edited to a 40-degree repose holds a 36-degree slope, which
+// the presets (32 degrees) let slide.
+TEST(Script, ErodesWithTheMaterialsOfTheSessionItRunsOn) {
+    MaterialTable presets = MaterialTable::presets();
+    std::vector<Material> edited = presets.all();
+    edited[0].repose_dry = 40.0 * std::numbers::pi / 180.0;
+    const double tan36 = std::tan(36.0 * std::numbers::pi / 180.0);
+    for (const bool with_table : {true, false}) {
+        SCOPED_TRACE(with_table ? "the session's table" : "no table: the presets");
+        Tin tin = Tin::random_points(Rect::from_size(1, 1), 2000, 19,
+                                     [&](Vec2 p) { return 0.5 + tan36 * std::min(p.x, 0.5); });
+        const std::vector<double> before(tin.vertices().height.begin(),
+                                         tin.vertices().height.end());
+        Session opened;
+        opened.metadata_json =
+            with_table ? session_metadata(MaterialTable(edited), R"({"scene": "dunes"})") : "{}";
+        SculptContext context(tin.domain());
+        run_script(parse(R"([{"op": "erode", "until_rest": true}])"), tin, context, {}, &opened);
+        double moved = 0.0;
+        for (VertexId v : test::live_ids(tin))
+            moved = std::max(moved, std::abs(tin.height(v) - before[v.index()]));
+        if (with_table) {
+            EXPECT_EQ(moved, 0.0);
+        } else {
+            EXPECT_GT(moved, 0.01);
+        }
+    }
+    // A table in the metadata that is not valid is an error naming it.
+    Tin tin = Tin::random_points(Rect::from_size(1, 1), 200, 20);
+    Session broken;
+    broken.metadata_json = R"({"materials": [{"name": "x", "repose_dry_deg": 95}]})";
+    SculptContext context(tin.domain());
+    EXPECT_THROW(
+        run_script(parse(R"([{"op": "erode", "iterations": 1}])"), tin, context, {}, &broken),
+        JsonInputError);
 }
 
 TEST(Script, ErrorsNameTheLineAndTheField) {

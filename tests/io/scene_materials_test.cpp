@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene_materials.hpp"
+#include "io/scene_materials.hpp"
 #include "util/json_fields.hpp"
 
-namespace sandtin::editor {
+namespace sandtin {
 namespace {
 
 void expect_same(const MaterialTable& a, const MaterialTable& b) {
@@ -89,4 +89,4 @@ TEST(SceneMaterials, NoTableIsNothingAndBadEntriesNameTheField) {
 }
 
 }  // namespace
-}  // namespace sandtin::editor
+}  // namespace sandtin

@@ -1,10 +1,10 @@
-#include "scene_materials.hpp"
+#include "io/scene_materials.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "util/json_fields.hpp"
 
-namespace sandtin::editor {
+namespace sandtin {
 
 std::string session_metadata(const MaterialTable& materials, const std::string& base) {
     nlohmann::json j = nlohmann::json::parse(base, nullptr, false);
@@ -28,4 +28,4 @@ std::optional<MaterialTable> materials_from_metadata(const std::string& metadata
     return MaterialTable::from_json(list, "session metadata");
 }
 
-}  // namespace sandtin::editor
+}  // namespace sandtin

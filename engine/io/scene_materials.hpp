@@ -2,14 +2,15 @@
 // The scene's material table travels in the session file's metadata (Session::metadata_json),
 // as {"editor": "sandtin-editor", "materials": [...]} with the entries in the format of
 // assets/materials/presets.json (angles in degrees), so a scene reopens with the materials it
-// was sculpted with, including the artist's edits in the Materials panel.
+// was sculpted with, including the artist's edits in the Materials panel, and `sandtin run`
+// erodes and paints it with them.
 
 #include <optional>
 #include <string>
 
 #include "physics/material.hpp"
 
-namespace sandtin::editor {
+namespace sandtin {
 
 /// The metadata object for a session holding `materials`, keeping every other key of the
 /// metadata the scene was opened with (`base`, e.g. the import record with its georeference
@@ -21,4 +22,4 @@ std::string session_metadata(const MaterialTable& materials, const std::string& 
 /// JsonInputError naming the entry and field for invalid metadata.
 std::optional<MaterialTable> materials_from_metadata(const std::string& metadata_json);
 
-}  // namespace sandtin::editor
+}  // namespace sandtin
