@@ -360,29 +360,10 @@ class EditFinisher {
         double net_change = local.volume_change;
 
         if (policy == VolumePolicy::Conserve && local.volume_change != 0.0) {
-            double absorb_area = 0.0;
-            for (std::uint32_t id : absorb) {
-                if (va.alive[id]) absorb_area += va.lumped_area[id];
-            }
-            auto shift = [&](std::uint32_t id, double dh) {
-                const double before = va.height[id];
-                va.height[id] += dh;
-                if (va.height[id] == before) return;  // below half an ulp: nothing changed
-                clamp_bedrock(id);
-                mark_vertex(id);
-                net_change += va.lumped_area[id] * (va.height[id] - before);
-            };
-            if (absorb_area > 0.0) {
-                const double dh = -local.volume_change / absorb_area;
-                for (std::uint32_t id : absorb) {
-                    if (va.alive[id]) shift(id, dh);
-                }
-            } else if (affected_area > 0.0) {
-                const double dh = -local.volume_change / affected_area;
-                for (std::uint32_t id : affected_.ids()) {
-                    if (va.alive[id]) shift(id, dh);
-                }
-            }
+            // The new vertices absorb the change when there are any, else all re-triangulated
+            // ones; what the first cannot take (they lie on the bedrock) falls to the second.
+            const double owed = shift_to_conserve(absorb, -local.volume_change, net_change);
+            if (owed != 0.0) shift_to_conserve(affected_.ids(), owed, net_change);
         }
         // Vertices a rounding error apart (CGAL's crossings of nearly coincident constraints)
         // cannot be merged, so they must share one height, or the sliver between them is a
@@ -442,6 +423,46 @@ class EditFinisher {
     }
 
   private:
+    /// Adds `volume` m³ to the live vertices of `ids` by a uniform height shift. The bedrock is
+    /// not erodible: a vertex a negative shift would take below its bedrock stops on it, and
+    /// the others share what it could not give, round after round (a vertex without bedrock
+    /// takes any shift). Adds the volume moved to `net_change`; returns what is still owed.
+    double shift_to_conserve(std::span<const std::uint32_t> ids, double volume,
+                             double& net_change) {
+        VertexArrays& va = impl_.va;
+        shift_floor_.assign(ids.size(), 0);
+        for (int round = 0; round < 16 && volume != 0.0; ++round) {
+            double area = 0.0;
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                if (va.alive[ids[k]] && !shift_floor_[k]) area += va.lumped_area[ids[k]];
+            }
+            if (!(area > 0.0)) break;
+            const double dh = volume / area;
+            bool floored = false;
+            for (std::size_t k = 0; k < ids.size(); ++k) {
+                const std::uint32_t id = ids[k];
+                if (!va.alive[id] || shift_floor_[k]) continue;
+                const double before = va.height[id];
+                double after = before + dh;
+                if (dh < 0.0 && after <= va.bedrock[id]) {
+                    after = std::min(before, va.bedrock[id]);
+                    shift_floor_[k] = 1;
+                    floored = true;
+                }
+                if (after == before) continue;  // below half an ulp, or on the bedrock already
+                va.height[id] = after;
+                mark_vertex(id);
+                const double moved = va.lumped_area[id] * (after - before);
+                net_change += moved;
+                volume -= moved;
+            }
+            // Without a vertex stopped by its bedrock the shift was the uniform one, and what
+            // is left is rounding.
+            if (!floored) return 0.0;
+        }
+        return volume;
+    }
+
     void clamp_bedrock(std::uint32_t id) {
         VertexArrays& va = impl_.va;
         if (va.bedrock[id] > va.height[id]) va.bedrock[id] = va.height[id];
@@ -470,10 +491,12 @@ class EditFinisher {
     std::size_t prepared_born_ = 0;  ///< born_vertices[0, prepared_born_) are initialised
     static thread_local DirtySet affected_;
     static thread_local std::vector<std::uint32_t> near_snapped_;
+    static thread_local std::vector<std::uint8_t> shift_floor_;  ///< shift_to_conserve's
 };
 
 thread_local DirtySet EditFinisher::affected_;
 thread_local std::vector<std::uint32_t> EditFinisher::near_snapped_;
+thread_local std::vector<std::uint8_t> EditFinisher::shift_floor_;
 
 Fh jump_start_face(const Tin::Impl& m, Vec2 p) {
     // Mücke et al.'s jump-and-walk: start from the closest of ~n^(1/3) sampled vertices.

@@ -70,7 +70,10 @@ struct LocateHint {
 /// What a topology change does to the volume under the surface. Delaunay flips, vertex removal
 /// and constraint changes re-triangulate the surface, which changes its volume slightly.
 enum class VolumePolicy : std::uint8_t {
-    /// Shift the heights of the re-triangulated vertices so the total volume is unchanged.
+    /// Shift the heights of the re-triangulated vertices so the total volume is unchanged. The
+    /// bedrock is not erodible: a vertex stops on it and the others take its share; only when
+    /// every re-triangulated vertex lies on its bedrock does some of the change remain (it is
+    /// in the volume ledger, Tin::volume_ledger()).
     Conserve,
     /// Leave heights alone; only report the change.
     Report,

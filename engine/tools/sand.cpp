@@ -72,14 +72,19 @@ PourReport pour_sand(Tin& tin, Vec2 centre, double volume, const PourSettings& s
         throw std::invalid_argument("pour: volume must be zero or positive");
     PourReport report;
     if (volume == 0.0) return report;
+    // From before the refinement: where the sand around it lies on the bedrock, its volume
+    // compensation cannot take all of what re-triangulating moved (Tin::split_edges).
+    const double ledger0 = tin.volume_ledger();
     const Kernel k = prepare(tin, centre, settings, context, report);
     const VertexArrays& va = tin.vertices();
     double denominator = 0.0;
     for (std::size_t i = 0; i < k.vertices.size(); ++i)
         denominator += va.lumped_area[k.vertices[i].value] * k.weight[i];
-    if (!(denominator > 0.0)) return report;
+    if (!(denominator > 0.0)) {
+        report.volume = tin.volume_ledger() - ledger0;
+        return report;
+    }
     const double scale = volume / denominator;
-    const double ledger0 = tin.volume_ledger();
     for (std::size_t i = 0; i < k.vertices.size(); ++i) {
         const VertexId v = k.vertices[i];
         tin.set_height(v, va.height[v.value] + scale * k.weight[i]);
@@ -96,9 +101,9 @@ PourReport remove_sand(Tin& tin, Vec2 centre, double volume, const PourSettings&
         throw std::invalid_argument("remove: volume must be zero or positive");
     PourReport report;
     if (volume == 0.0) return report;
+    const double ledger0 = tin.volume_ledger();  // as pour_sand's
     const Kernel k = prepare(tin, centre, settings, context, report);
     const VertexArrays& va = tin.vertices();
-    const double ledger0 = tin.volume_ledger();
     // Take the volume in rounds: vertices that run out of sand drop out and the rest share
     // what is still owed.
     std::vector<std::uint8_t> exhausted(k.vertices.size(), 0);

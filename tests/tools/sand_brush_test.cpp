@@ -161,6 +161,43 @@ TEST(Sand, RemoveNeverGoesBelowBedrockAndReportsWhatItTook) {
     EXPECT_NEAR(r.volume, tin.volume() - v0, 1e-15);
 }
 
+// The bedrock is not erodible: a removal along a path, whose dabs refine and simplify sand the
+// earlier dabs dug down to it, must leave every vertex on or above it, and the bedrock where it
+// was. The volume compensation of those refinements lowered vertices (and the bedrock with
+// them) 4.4 mm below a flat bedrock. Oracle: the flat bedrock plane, 2 cm up.
+TEST(Sand, RemoveAlongAPathNeverDigsBelowAFlatBedrock) {
+    for (const bool simplify : {true, false}) {
+        SCOPED_TRACE(simplify ? "with simplification" : "without simplification");
+        Tin tin = Tin::random_points(test::kUnitSquare, 20000, 403, [](Vec2 p) {
+            return 0.03 + 0.008 * std::sin(7.0 * p.x) * std::cos(5.0 * p.y);
+        });
+        for (VertexId v : live_ids(tin))
+            tin.set_bedrock(v, 0.02);
+        SculptContext context(tin.domain());
+        context.settings.simplify_after_edit = simplify;
+        PourSettings s;
+        s.radius = 0.03;
+        const double v0 = tin.volume();
+        double reported = 0.0;
+        for (int k = 0; k <= 20; ++k) {  // the script's path 0.5 -> 0.6 at radius / 2 spacing
+            const Vec2 at{0.5 + 0.005 * k, 0.6};
+            reported += remove_sand(tin, at, 0.01 / 21.0, s, context).volume;
+            if (simplify) context.simplifier.run(tin, context.settings.simplify);
+        }
+        const VertexArrays& va = tin.vertices();
+        double lowest = 1.0, lowest_bedrock = 1.0;
+        for (VertexId v : live_ids(tin)) {
+            lowest = std::min(lowest, va.height[v.index()]);
+            lowest_bedrock = std::min(lowest_bedrock, va.bedrock[v.index()]);
+        }
+        EXPECT_GE(lowest, 0.02 - 1e-15);
+        EXPECT_GE(lowest_bedrock, 0.02 - 1e-15);
+        EXPECT_LT(lowest, 0.02 + 1e-12) << "the premise: the path digs down to the bedrock";
+        EXPECT_NEAR(tin.volume() - v0, reported, 1e-12);
+        EXPECT_TRUE(mesh_is_sound(tin));
+    }
+}
+
 // ---- 11. Brushes -----------------------------------------------------------------------------
 
 double smooth_falloff(double t) {
