@@ -18,7 +18,7 @@ std::vector<StrokeSample> StrokeSampler::add_point(Vec2 p) {
     if (!last_) {
         last_ = p;
         start_pending_ = true;
-        next_at_ = spacing_;
+        next_index_ = 1;
         return out;
     }
     const Vec2 a = *last_;
@@ -29,13 +29,17 @@ std::vector<StrokeSample> StrokeSampler::add_point(Vec2 p) {
         out.push_back({a, dir, 0.0});
         start_pending_ = false;
     }
-    // Samples at arc lengths next_at_, next_at_ + spacing, ... within this segment. Positions
-    // are computed from the segment start and the arc length, so splitting a straight segment
-    // into pieces gives the same samples.
-    while (next_at_ <= travelled_ + len) {
-        const double t = (next_at_ - travelled_) / len;
-        out.push_back({lerp(a, p, t), dir, next_at_});
-        next_at_ += spacing_;
+    // Samples at arc lengths k * spacing within this segment. Positions are computed from the
+    // segment start and the arc length, so splitting a straight segment into pieces gives the
+    // same samples. A sample within rounding of the segment's end belongs to it: whether a path
+    // whose length is a whole number of spacings (0.2 -> 0.5 at 0.1) gets its end stamped must
+    // not depend on the last bit of length / spacing, nor on the scale of the scene.
+    const double end = travelled_ + len;
+    const double slack = 1e-9 * std::max(end, spacing_);
+    for (double at = static_cast<double>(next_index_) * spacing_; at <= end + slack;
+         at = static_cast<double>(++next_index_) * spacing_) {
+        const double t = std::min((at - travelled_) / len, 1.0);
+        out.push_back({lerp(a, p, t), dir, at});
     }
     travelled_ += len;
     last_ = p;

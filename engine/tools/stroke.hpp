@@ -2,6 +2,7 @@
 // Strokes: a tool dragged along a path is a sequence of stamps spaced by arc length (metres),
 // never per frame, so the terrain does not depend on how often the path was sampled.
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <span>
@@ -36,7 +37,7 @@ class StrokeSampler {
     bool start_pending_ = false;
     Vec2 last_direction_{1.0, 0.0};
     double travelled_ = 0.0;
-    double next_at_ = 0.0;  ///< arc length of the next sample
+    std::uint64_t next_index_ = 1;  ///< the next sample lies at next_index_ * spacing_ metres
 };
 
 /// Densifies control points into a Catmull-Rom curve through them (centripetal

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include "support/slivers.hpp"
@@ -118,6 +119,35 @@ TEST(Stroke, SamplerIsIndependentOfHowThePathArrived) {
             EXPECT_NEAR(s[k].arc_length, coarse[k].arc_length, 1e-12);
         }
     }
+}
+
+// A path a whole number of spacings long ends on a sample, whatever the last bit of
+// length / spacing: 0.2 -> 0.5 at 0.1 (2.9999999999999996 spacings in doubles) used to stop
+// at 0.4, while 0.1 -> 0.4 (3.0000000000000004) reached 0.4, and the same scene got 49 stamps
+// at 1 m and 48 at 1 cm. Oracle: the exact count, k + 1 samples over k spacings, with the last
+// one on the end, at every scale.
+TEST(Stroke, APathAWholeNumberOfSpacingsLongEndsOnASampleAtEveryScale) {
+    for (const double scale : {0.01, 1.0, 1000.0, 1e5}) {
+        for (const auto& [from, to, spacing, spacings] :
+             std::vector<std::tuple<double, double, double, int>>{{0.2, 0.5, 0.1, 3},
+                                                                  {0.1, 0.4, 0.1, 3},
+                                                                  {0.25, 0.75, 0.125, 4},
+                                                                  {0.3, 0.9, 0.01, 60},
+                                                                  {0.0, 0.7, 0.1, 7}}) {
+            SCOPED_TRACE(std::to_string(scale) + " m: " + std::to_string(from) + " -> " +
+                         std::to_string(to) + " at " + std::to_string(spacing));
+            const std::vector<Vec2> path = {{from * scale, 0.6 * scale}, {to * scale, 0.6 * scale}};
+            const std::vector<StrokeSample> s = sample_path(path, spacing * scale);
+            ASSERT_EQ(s.size(), static_cast<std::size_t>(spacings + 1));
+            EXPECT_NEAR(s.back().position.x, to * scale, 1e-12 * scale);
+            EXPECT_LE(s.back().position.x, to * scale) << "a sample beyond the path's end";
+        }
+    }
+    // Short of a whole spacing the end is not stamped: samples stay a spacing apart.
+    const std::vector<Vec2> short_path = {{0.2, 0.6}, {0.49, 0.6}};
+    const std::vector<StrokeSample> s = sample_path(short_path, 0.1);
+    ASSERT_EQ(s.size(), 3u);
+    EXPECT_NEAR(s.back().position.x, 0.4, 1e-15);
 }
 
 TEST(Stroke, SingleClickGivesOneSample) {
