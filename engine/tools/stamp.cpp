@@ -460,11 +460,17 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // 4. Inner contour at the profile's heights.
     enforce(inner, inner_h, inner_active, edit);
 
-    // 5. Every vertex inside I follows the profile.
+    // 5. Every vertex inside I follows the profile, and so does one of the terrain that lay
+    //    on I already (I's own points went in at the profile's height): a grid terrain under
+    //    a tool at round coordinates has them on its edges and corners, and a level stamp
+    //    left their triangles as wedges off the level inside the footprint.
     std::vector<VertexId> region = tin.vertices_in_region(interior_seeds(inner), inner, hint);
     for (VertexId v : region) {
         const Vec2 p = va.position[v.value];
-        if (!in_inner.contains(p)) continue;
+        if (!in_inner.contains(p) &&
+            !(tin.is_on_constraint(v) && nearest_edge(p, inner).distance <= tin.snap_distance())) {
+            continue;
+        }
         const double h = imprint(p, va.height[v.value]);
         if (h != va.height[v.value]) tin.set_height(v, h);
     }

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geom/polygon.hpp"
 #include "support/tin_oracles.hpp"
 #include "support/tool_oracles.hpp"
 #include "tin/tin.hpp"
@@ -154,6 +155,63 @@ TEST(Stamp, LevelModeSetsTheFootprintExactlyEvenAboveTheTerrain) {
     }
     EXPECT_GE(checked, 3u);
     EXPECT_GT(tin.volume(), before) << "a level tool above the sand fills";
+}
+
+// A vertex of the terrain exactly on the inner contour (a grid terrain under a tool at round
+// coordinates: on its edges and at its corners) is part of the footprint too. In level mode it
+// kept its height, and its triangles left a wedge 12.5 mm off the level inside the footprint.
+// Oracle: the level, at every vertex on or inside I and at samples inside I.
+TEST(Stamp, LevelModeLevelsVerticesLyingExactlyOnTheInnerContour) {
+    std::vector<Vec2> grid;
+    std::vector<double> heights;
+    for (int i = 0; i <= 100; ++i) {
+        for (int j = 0; j <= 100; ++j) {
+            grid.push_back({0.01 * i, 0.01 * j});
+            heights.push_back(rolling_sand(grid.back()));
+        }
+    }
+    for (const ImprintMode mode : {ImprintMode::Level, ImprintMode::Dig}) {
+        SCOPED_TRACE(mode == ImprintMode::Level ? "level" : "dig");
+        Tin tin = Tin::from_points(test::kUnitSquare, grid, heights);
+        SculptContext context(tin.domain());
+        ToolSpec spec;
+        spec.contour = ContourKind::Rectangle;
+        spec.length = 0.1;
+        spec.width = 0.06;
+        spec.mode = mode;
+        const Tool tool = Tool::build(spec);
+        const Vec2 centre{0.3, 0.6};
+        const double level = *tin.height_at(centre) - 0.02;
+        const ToolPlacement at{centre, 0.0, level};
+        const std::vector<Vec2> inner = world(at, tool.shape().inner);
+        std::size_t on_contour = 0;
+        for (VertexId v : live_ids(tin)) {
+            if (nearest_edge(tin.position(v), inner).distance < 1e-12) ++on_contour;
+        }
+        ASSERT_GE(on_contour, 6u) << "the premise: grid vertices lie on I's edges";
+        ASSERT_TRUE(stamp(tin, tool, at, context).applied);
+        ASSERT_TRUE(mesh_is_sound(tin));
+        for (VertexId v : live_ids(tin)) {
+            const Vec2 p = tin.position(v);
+            if (inside_polygon(p, inner) || nearest_edge(p, inner).distance < 1e-12) {
+                if (mode == ImprintMode::Level) {
+                    EXPECT_NEAR(tin.height(v), level, 1e-12) << p.x << ", " << p.y;
+                } else {
+                    EXPECT_LE(tin.height(v), level + 1e-12) << p.x << ", " << p.y;
+                }
+            }
+        }
+        LocateHint hint;
+        for (Vec2 p : test::grid_points(Rect{centre - Vec2{0.05, 0.03}, centre + Vec2{0.05, 0.03}},
+                                        61, 41)) {
+            if (!inside_by(p, inner, 1e-4)) continue;
+            if (mode == ImprintMode::Level) {
+                EXPECT_NEAR(*tin.height_at(p, &hint), level, 1e-12) << p.x << ", " << p.y;
+            } else {
+                EXPECT_LE(*tin.height_at(p, &hint), level + 1e-12) << p.x << ", " << p.y;
+            }
+        }
+    }
 }
 
 TEST(Stamp, DigLowersToTheToolAndNeverRaises) {
