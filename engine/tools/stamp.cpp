@@ -259,7 +259,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const double lateral = tool.shape().gap;
     const ImprintActivity activity =
         inner_contour_activity(tin, inner, imprint, tol, lateral, hint);
-    const std::vector<std::uint8_t>& inner_active = activity.inner_active;
+    std::vector<std::uint8_t> inner_active = activity.inner_active;
     bool acts = activity.any_segment;
     // A curved profile also acts inside I: its interior samples decide too.
     for (std::size_t k = 0; k < lattice.size() && !acts; ++k)
@@ -270,6 +270,11 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
         report.enforce_ms = elapsed_ms(t0);
         return report;
     }
+    // A tool that cuts only inside I (a wide tool pressed into a hilltop) still needs its
+    // footprint: without its contours, the triangles from the lowered sand inside I reached
+    // past O and tilted the surface there (1.9 mm, 7.7 cm beyond O). Its I and O are
+    // enforced whole, I at the sand's own height where the tool stands above it.
+    if (!activity.any_segment) std::fill(inner_active.begin(), inner_active.end(), 1);
     std::vector<std::uint8_t> rim_active(rim.size(), 0);
     const double reach = tool.shape().gap + spacing;
     for (std::size_t k = 0; k < rim.size(); ++k) {
@@ -517,8 +522,18 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             // the terrain the rim follows, which may stand off the chord between rim samples
             // by up to the rim tolerance.
             if (d_outer <= tin.snap_distance()) continue;
-            const double wall = (d_outer * std::min(profile, rim_height) + d_inner * rim_height) /
-                                (d_inner + d_outer);
+            // Where I is enforced next to the vertex, the wall is the new surface: the ramp
+            // from I's constrained heights to the rim. Elsewhere nothing re-forms the surface,
+            // and only sand above the tool's own wall (its edge at I, sloping to the rim) is
+            // pushed down. Taking the lower of the tool and the rim at I everywhere cut a
+            // hilltop stamp's untouched sand between the contours, below the tool, by 2 mm.
+            const NearestEdge& to_inner = band.to_inner;
+            const std::size_t next = (to_inner.index + 1) % inner.size();
+            const double inner_end =
+                inner_active[to_inner.index]
+                    ? (1.0 - to_inner.t) * inner_h[to_inner.index] + to_inner.t * inner_h[next]
+                    : profile;
+            const double wall = (d_outer * inner_end + d_inner * rim_height) / (d_inner + d_outer);
             if (va.height[v.value] > wall) tin.set_height(v, wall);
         }
         for (VertexId v : band_junk)

@@ -214,6 +214,52 @@ TEST(Stamp, LevelModeLevelsVerticesLyingExactlyOnTheInnerContour) {
     }
 }
 
+// A wide tool pressed into a hilltop cuts only inside I: the sand at I and O lies below it.
+// It enforced no contour, so the triangles from the lowered cap reached past O and tilted the
+// surface there (1.9 mm, 7.7 cm beyond O), it cut the untouched sand between the contours
+// down to the rim's height (2 mm, below the tool), and it reported no triangle touched.
+// Oracles: the hill before the stamp everywhere outside I, within the rim tolerance (2.2 mm
+// against 2 mm before); the cap inside I at the tool.
+TEST(Stamp, AToolCuttingOnlyInsideItsInnerContourKeepsItsFootprint) {
+    const Vec2 top{0.5, 0.5};
+    auto hill = [&](Vec2 p) { return 0.08 - 0.5 * length_squared(p - top); };
+    Tin tin = Tin::random_points(test::kUnitSquare, 20000, 31, hill);
+    const Tin before = Tin::from_snapshot(tin.snapshot());
+    SculptContext context(tin.domain());
+    context.settings.simplify_after_edit = false;  // heights exactly as imprinted
+    const Tool tool = circle_tool(0.2, 12);
+    const ToolPlacement at{top, 0.0, 0.07};  // the cap above 7 cm: 14 cm across, inside I
+    const std::vector<Vec2> inner = world(at, tool.shape().inner);
+    const std::vector<Vec2> outer = world(at, tool.shape().outer);
+    const StampReport r = stamp(tin, tool, at, context);
+    ASSERT_TRUE(r.applied);
+    ASSERT_TRUE(mesh_is_sound(tin));
+    EXPECT_GT(r.triangles_touched, 0u);
+    EXPECT_GT(r.displaced_volume, 0.0);
+    // Outside I the sand lay below the tool: the surface there keeps its shape, the ramp
+    // between the contours following it within the rim tolerance too.
+    double worst = 0.0, worst_outside = 0.0;
+    LocateHint before_hint, after_hint;
+    std::size_t compared = 0;
+    for (Vec2 p : test::grid_points(Rect{{0.2, 0.2}, {0.8, 0.8}}, 241, 241)) {
+        if (!outside_by(p, inner, 1e-6)) continue;
+        ++compared;
+        const double d =
+            std::abs(*tin.height_at(p, &after_hint) - *before.height_at(p, &before_hint));
+        worst = std::max(worst, d);
+        if (outside_by(p, outer, 1e-6)) worst_outside = std::max(worst_outside, d);
+    }
+    RecordProperty("worst_outside_inner_um", static_cast<int>(worst * 1e6));
+    RecordProperty("worst_outside_outer_um", static_cast<int>(worst_outside * 1e6));
+    EXPECT_GT(compared, 20000u);
+    EXPECT_LE(worst, tool.rim_tolerance());
+    for (Vec2 p : test::grid_points(Rect{top - Vec2{0.07, 0.07}, top + Vec2{0.07, 0.07}}, 29, 29)) {
+        if (hill(p) > 0.0705) {
+            EXPECT_NEAR(*tin.height_at(p, &after_hint), 0.07, 1e-12);
+        }
+    }
+}
+
 TEST(Stamp, DigLowersToTheToolAndNeverRaises) {
     // The floor cuts through a wavy surface: part of the footprint lies below it already.
     Tin tin = Tin::random_points(test::kUnitSquare, 10000, 13, test::wavy_sand);
