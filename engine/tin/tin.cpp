@@ -335,7 +335,6 @@ class EditFinisher {
             mark_vertex(id);
             ++local.vertices_created;
         }
-        double affected_area = 0.0;
         const double snap2 = m.snap_distance * m.snap_distance;
         // Only a compensation shift (VolumePolicy::Conserve) levels the re-triangulated
         // vertices' slivers below, so only then are their near neighbours looked for.
@@ -354,7 +353,6 @@ class EditFinisher {
                 va.lumped_area[id] = a_new;
                 mark_vertex(id);
             }
-            affected_area += a_new;
         }
         local.volume_change = dv.value();
         double net_change = local.volume_change;
