@@ -190,7 +190,6 @@ class ScriptRunner {
     nlohmann::json run(const ScriptStep& step);
 
     SandPhysics* physics() { return physics_.get(); }  ///< null with another backend
-    const MaterialTable& materials() const { return materials_; }
 
   private:
     Tin& tin_;
