@@ -35,7 +35,8 @@ fi
 # fuzzers share one compile of the engine (a separate GCC ASan tree cost CI eight minutes).
 # GPU, editor and CLI tests stay in the release pass: their drivers (lavapipe, the X server)
 # are not ours to sanitize. Long sessions are the release pass's job too; here the short tests
-# cover the same code.
+# cover the same code (the half and quarter cones and the two-triangle pile, 59 s and 33 s under
+# ASan, run the relaxation and the r_S splits that the Jacobi two-triangle pile runs in 4 s).
 engine_tests=(sandtin_tin_tests sandtin_io_tests sandtin_geom_tests sandtin_tools_tests
   sandtin_terrain_io_tests sandtin_physics_tests sandtin_stress_tests sandtin_haptics_core_tests
   sandtin_history_tests)
@@ -52,7 +53,7 @@ if has_pass asan || has_pass fuzz; then
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-clang-asan --output-on-failure -j"$jobs" \
       -L '^(tin|io|geom|tools|terrain_io|physics|stress|tsan|history)$' \
-      -E '^(stress\.session_seed_|LongStroke\.|Conservation\.)'
+      -E '^(stress\.session_seed_|LongStroke\.|Conservation\.|AnalyticPile\.(AgainstAWall|TwoTriangleFlatTerrainGrows))'
   fi
   if has_pass fuzz; then
     ctest --test-dir build-clang-asan --output-on-failure -j"$jobs" -L '^fuzz$'
