@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "maps/vertex_normals.hpp"
+
 namespace sandtin {
 
 namespace {
@@ -64,14 +66,6 @@ int add_texture(tinygltf::Model& model, const std::vector<std::uint8_t>& png,
     return static_cast<int>(model.textures.size() - 1);
 }
 
-/// The surface's tangent: east, made perpendicular to the normal. Bitangent = N x T points
-/// north, which is up the normal-map image, as glTF's normal textures expect.
-Vec3 tangent_for(Vec3 n) {
-    const Vec3 east{1.0, 0.0, 0.0};
-    const Vec3 t = east - n * dot(n, east);
-    return normalised(t, normalised(cross(n, Vec3{0.0, 1.0, 0.0}), {1.0, 0.0, 0.0}));
-}
-
 }  // namespace
 
 std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures& textures,
@@ -85,7 +79,7 @@ std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures
     std::vector<float> uvs;
     std::vector<std::uint32_t> indices;
     auto emit = [&](Vec3 p, Vec3 n, const std::array<double, 2>& uv) {
-        const Vec3 t = tangent_for(n);
+        const Vec3 t = surface_tangent(n, {0.0, 1.0, 0.0});  // the map's frame
         for (double v : {p.x, p.y, p.z})
             positions.push_back(static_cast<float>(v));
         for (double v : {n.x, n.y, n.z})

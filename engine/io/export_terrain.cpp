@@ -15,6 +15,7 @@
 #include "io/export_mesh_stl.hpp"
 #include "io/heightmap_raster.hpp"
 #include "maps/height_map.hpp"
+#include "maps/tangent_normal_map.hpp"
 #include "util/atomic_file.hpp"
 #include "util/lower_extension.hpp"
 
@@ -242,7 +243,10 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         report.map_width = grid.width;
         report.map_height = grid.height;
         textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette));
-        textures.normal_png = encode_normal_png(bake_normal_map(tin, grid, o.normal_mode));
+        // In the mesh's own tangent frame, as glTF's normalTexture (and OBJ importers reading
+        // map_Bump) expect: the terrain's normals relative to the exported mesh's.
+        textures.normal_png = encode_normal_png(bake_tangent_normal_map(
+            simplified ? simplified->tin : tin, bake_normal_map(tin, grid, o.normal_mode), grid));
     }
 
     switch (format) {

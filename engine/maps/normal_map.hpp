@@ -3,9 +3,9 @@
 // renormalised, so long TIN edges shade smoothly (the seeds' main visual weakness). Faceted:
 // the normal of the containing triangle.
 //
-// The normals are in the terrain's frame (x east, y north, z up). For a mesh textured with
-// u = east and v = down the image (row 0 north), that is exactly an OpenGL-convention
-// (+Y = green = up the image) tangent-space normal map, which is what glTF expects.
+// The normals are in the terrain's frame (x east, y north, z up): an object-space map, green =
+// north = up the image. A mesh export needs them in each triangle's own frame instead
+// (tangent_normal_map.hpp).
 
 #include <cstdint>
 

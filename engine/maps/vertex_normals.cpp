@@ -25,4 +25,9 @@ Vec3 face_normal(Vec3 a, Vec3 b, Vec3 c) {
     return normalised(cross(b - a, c - a));
 }
 
+Vec3 surface_tangent(Vec3 n, Vec3 up) {
+    const Vec3 east{1.0, 0.0, 0.0};
+    return normalised(east - n * dot(n, east), normalised(cross(n, up), east));
+}
+
 }  // namespace sandtin

@@ -16,4 +16,11 @@ std::vector<Vec3> vertex_normals(const Tin& tin, double z_scale = 1.0);
 /// Unit normal of the triangle (a, b, c), counter-clockwise seen from above.
 Vec3 face_normal(Vec3 a, Vec3 b, Vec3 c);
 
+/// The tangent the mesh exports give a vertex with unit normal `n`: east (1, 0, 0) made
+/// perpendicular to n, or n x up where n faces due east or west. With the bitangent N x T
+/// (north on level ground) it is the frame a tangent-space normal map is read in. `up` is the
+/// up axis of n's frame: (0, 0, 1) in the terrain's, (0, 1, 0) in a Y-up export's (whose x is
+/// still east), so both give the same tangent.
+Vec3 surface_tangent(Vec3 n, Vec3 up);
+
 }  // namespace sandtin

@@ -9,11 +9,14 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
+#include <optional>
 
 #include "formats/png_image.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/import_grid.hpp"
+#include "maps/normal_map.hpp"
 #include "support/mesh_readers.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
@@ -180,6 +183,7 @@ TEST_F(Export, StlRoundTrip) {
 struct LoadedGltf {
     tinygltf::Model model;
     test::SimpleMesh mesh;
+    std::vector<std::array<double, 4>> tangents;  ///< per vertex (xyz, handedness w)
 };
 
 LoadedGltf load_gltf(const std::vector<std::uint8_t>& bytes, bool binary) {
@@ -209,6 +213,11 @@ LoadedGltf load_gltf(const std::vector<std::uint8_t>& bytes, bool binary) {
     const std::vector<float> p = floats(prim.attributes.at("POSITION"), 3);
     const std::vector<float> n = floats(prim.attributes.at("NORMAL"), 3);
     const std::vector<float> uv = floats(prim.attributes.at("TEXCOORD_0"), 2);
+    const std::vector<float> t = prim.attributes.count("TANGENT")
+                                     ? floats(prim.attributes.at("TANGENT"), 4)
+                                     : std::vector<float>{};
+    for (std::size_t i = 0; i < t.size() / 4; ++i)
+        out.tangents.push_back({t[4 * i], t[4 * i + 1], t[4 * i + 2], t[4 * i + 3]});
     for (std::size_t i = 0; i < p.size() / 3; ++i) {
         out.mesh.vertices.push_back({p[3 * i], p[3 * i + 1], p[3 * i + 2]});
         out.mesh.normals.push_back({n[3 * i], n[3 * i + 1], n[3 * i + 2]});
@@ -257,6 +266,117 @@ TEST_F(Export, GlbRoundTripThroughTinygltf) {
         const auto& v = g.mesh.vertices[i];
         EXPECT_NEAR(g.mesh.uvs[i][0], v[0] / 12.0, 1e-6);
         EXPECT_NEAR(g.mesh.uvs[i][1], (8.0 + v[2]) / 8.0, 1e-6);
+    }
+}
+
+/// What a glTF viewer shades at the centre of every `step`-th texel of the material's normal
+/// texture, in the terrain's frame (x east, y north, z up), with the texel's (col, row). The
+/// glTF 2.0 rule, written here from the specification and not from the exporter: find the
+/// triangle under the texture coordinate, interpolate the vertex NORMAL and TANGENT there and
+/// normalise them, B = (N x T) w, decode the texel t = 2 rgb / 255 - 1, and shade
+/// normalise(T t.x + B t.y + N t.z).
+struct ShadedTexel {
+    std::uint32_t col, row;
+    Vec3 shaded;
+    Vec3 texel;  ///< the decoded tangent-space vector
+};
+
+std::vector<ShadedTexel> shade_normal_texture(const LoadedGltf& g, std::uint32_t step) {
+    const tinygltf::Material& mat = g.model.materials.at(0);
+    const tinygltf::Texture& tex =
+        g.model.textures.at(static_cast<std::size_t>(mat.normalTexture.index));
+    const tinygltf::Image& image = g.model.images.at(static_cast<std::size_t>(tex.source));
+    EXPECT_EQ(image.bits, 8);
+    const auto w = static_cast<std::uint32_t>(image.width);
+    const auto h = static_cast<std::uint32_t>(image.height);
+    const auto comp = static_cast<std::size_t>(image.component);
+    const test::SimpleMesh& m = g.mesh;
+    const auto v3 = [](const std::array<double, 3>& a) { return Vec3{a[0], a[1], a[2]}; };
+    std::vector<ShadedTexel> out;
+    for (std::uint32_t row = step / 2; row < h; row += step) {
+        for (std::uint32_t col = step / 2; col < w; col += step) {
+            const double u = (col + 0.5) / w;
+            const double v = (row + 0.5) / h;
+            for (const auto& tri : m.triangles) {
+                const auto& a = m.uvs[tri[0]];
+                const auto& b = m.uvs[tri[1]];
+                const auto& c = m.uvs[tri[2]];
+                const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+                if (area == 0.0) continue;
+                const double wa = ((b[0] - u) * (c[1] - v) - (b[1] - v) * (c[0] - u)) / area;
+                const double wb = ((c[0] - u) * (a[1] - v) - (c[1] - v) * (a[0] - u)) / area;
+                const double wc = 1.0 - wa - wb;
+                if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+                Vec3 n{};
+                Vec3 t{};
+                for (const auto& [k, weight] :
+                     {std::pair{tri[0], wa}, std::pair{tri[1], wb}, std::pair{tri[2], wc}}) {
+                    n += v3(m.normals[k]) * weight;
+                    const auto& tk = g.tangents[k];
+                    t += Vec3{tk[0], tk[1], tk[2]} * weight;
+                }
+                n = normalised(n);
+                t = normalised(t);
+                const Vec3 bitangent = cross(n, t) * g.tangents[tri[0]][3];
+                const std::size_t px = (static_cast<std::size_t>(row) * w + col) * comp;
+                const Vec3 texel{image.image[px] / 255.0 * 2.0 - 1.0,
+                                 image.image[px + 1] / 255.0 * 2.0 - 1.0,
+                                 image.image[px + 2] / 255.0 * 2.0 - 1.0};
+                const Vec3 s = normalised(t * texel.x + bitangent * texel.y + n * texel.z);
+                out.push_back({col, row, Vec3{s.x, -s.z, s.y}, texel});  // Y-up to terrain frame
+                break;
+            }
+        }
+    }
+    return out;
+}
+
+double degrees_between(Vec3 a, Vec3 b) {
+    return std::acos(std::clamp(dot(normalised(a), normalised(b)), -1.0, 1.0)) * 180.0 /
+           std::numbers::pi;
+}
+
+// glTF's normalTexture is a tangent-space map. The oracle is the viewer's rule above: what it
+// shades must be the terrain's own normals, baked in the terrain's frame (bake_normal_map), on
+// the full mesh, on a coarse re-mesh whose map must carry the lost detail, and faceted. An
+// object-space map shaded by that rule tilts each slope twice (this terrain's slopes reach
+// 40 degrees).
+TEST_F(Export, GlbNormalTextureShadesTheTerrainsNormalsThroughTheMeshsTangentFrame) {
+    const Tin tin = test_tin();
+    struct Case {
+        const char* name;
+        std::optional<double> max_error;
+        NormalMode mode;
+    };
+    for (const Case& c : {Case{"full mesh", std::nullopt, NormalMode::Smooth},
+                          Case{"re-mesh", 0.05, NormalMode::Smooth},
+                          Case{"faceted", std::nullopt, NormalMode::Faceted}}) {
+        SCOPED_TRACE(c.name);
+        ExportOptions o;
+        o.max_error = c.max_error;
+        o.normal_mode = c.mode;
+        o.map_size = 256;
+        const LoadedGltf g = load_gltf(run(tin, "n.glb", o), true);
+        ASSERT_EQ(g.tangents.size(), g.mesh.vertices.size());
+        const std::vector<ShadedTexel> texels = shade_normal_texture(g, 3);
+        ASSERT_GT(texels.size(), 4000u);  // 256 x 171 texels, every third
+        const MapGrid grid(tin.domain(), report_.map_width, report_.map_height, SampleAt::Centres);
+        const MapImage world = bake_normal_map(tin, grid, c.mode);
+        double worst = 0.0;
+        double largest_tilt = 0.0;  // how far the texels lean off (0, 0, 1)
+        for (const ShadedTexel& t : texels) {
+            const Vec3 want{world.at(t.col, t.row, 0), world.at(t.col, t.row, 1),
+                            world.at(t.col, t.row, 2)};
+            worst = std::max(worst, degrees_between(t.shaded, want));
+            largest_tilt = std::max(largest_tilt, degrees_between(t.texel, {0.0, 0.0, 1.0}));
+        }
+        EXPECT_LT(worst, 1.0) << "8-bit texels resolve about half a degree";
+        if (c.max_error || c.mode == NormalMode::Faceted) {
+            EXPECT_GT(largest_tilt, 5.0) << "the map carries what the mesh lacks";
+        } else {
+            // The full mesh already carries every normal: the map is flat.
+            EXPECT_LT(largest_tilt, 1.0);
+        }
     }
 }
 
