@@ -72,6 +72,7 @@ int run_export(const std::vector<std::string>& raw) {
     if (args.has("--cell-size")) {
         options.cell_size = args.number("--cell-size");
         if (!(*options.cell_size > 0.0)) throw UsageError("--cell-size must be positive");
+        options.texel_size = options.cell_size;  // normal and albedo maps, mesh textures
     }
     if (args.has("--size")) {
         const auto n = args.count("--size");
@@ -132,7 +133,8 @@ int run_export(const std::vector<std::string>& raw) {
         if (uses_sampling) {
             j["default_sampling"] = {
                 {"cell_size", sampling->cell_size},
-                {"cell_height", sampling->cell_height},
+                {"cell_height",
+                 sampling->cell_height > 0.0 ? sampling->cell_height : sampling->cell_size},
                 {"grid", sampling->edited ? "finer than the import grid, which edits have left"
                                           : "the import grid"}};
         }

@@ -58,6 +58,24 @@ MapGrid corner_grid(const Rect& d, const ExportOptions& o) {
 
 /// Texels covering the domain, map_size along the longer side.
 MapGrid texture_grid(const Rect& d, const ExportOptions& o) {
+    if (o.texel_size) {
+        const double texel = *o.texel_size;
+        if (!(std::isfinite(texel) && texel > 0.0)) {
+            throw std::invalid_argument(
+                "export: the cell size must be a positive number of metres");
+        }
+        const auto along = [&](double side) {
+            const double n = std::max(1.0, std::round(side / texel));
+            if (!(n <= kMaxMapSide)) {
+                std::ostringstream what;
+                what << "export: a cell size of " << texel << " m gives more than " << kMaxMapSide
+                     << " texels along a " << side << " m side";
+                throw std::invalid_argument(what.str());
+            }
+            return static_cast<std::uint32_t>(n);
+        };
+        return MapGrid(d, along(d.width()), along(d.height()), SampleAt::Centres);
+    }
     if (o.map_size < 1 || o.map_size > kMaxMapSide) {
         throw std::invalid_argument("export: the map size must lie in 1.." +
                                     std::to_string(kMaxMapSide));
@@ -70,20 +88,13 @@ MapGrid texture_grid(const Rect& d, const ExportOptions& o) {
     return MapGrid(d, along(d.width()), along(d.height()), SampleAt::Centres);
 }
 
-double column_spacing(const MapGrid& g) {
-    return g.domain.width() / (g.width - 1);
-}
-double row_spacing(const MapGrid& g) {
-    return g.domain.height() / (g.height - 1);
-}
-
 /// The terrain re-meshed by greedy insertion within max_error of its samples on `grid`.
 GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
     HeightRaster raster;
     raster.width = grid.width;
     raster.height = grid.height;
-    raster.cell_size = column_spacing(grid);
-    const double dy = row_spacing(grid);
+    raster.cell_size = grid.spacing().x;
+    const double dy = grid.spacing().y;
     if (dy != raster.cell_size) raster.cell_height = dy;
     raster.origin = grid.domain.min;
     raster.heights = bake_height_map(tin, grid).values;
@@ -168,13 +179,14 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
         report.map_width = grid.width;
         report.map_height = grid.height;
+        report.map_spacing = grid.spacing();
         if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
             const MapImage heights = bake_height_map(tin, grid);
             // Both spacings: rounding a side to whole cells spaces the rows differently from
             // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
             // one spacing would stretch the terrain.
-            const double cell = column_spacing(grid);
-            const double cell_height = row_spacing(grid);
+            const double cell = grid.spacing().x;
+            const double cell_height = grid.spacing().y;
             if (format == ExportFormat::HeightPng) {
                 report.height_step = height_png_range(heights) / 65535.0;
                 write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
@@ -242,6 +254,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         const MapGrid grid = texture_grid(d, o);
         report.map_width = grid.width;
         report.map_height = grid.height;
+        report.map_spacing = grid.spacing();
         textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette));
         // In the mesh's own tangent frame, as glTF's normalTexture (and OBJ importers reading
         // map_Bump) expect: the terrain's normals relative to the exported mesh's.
@@ -312,7 +325,12 @@ nlohmann::json to_json(const ExportReport& r) {
         j["triangles"] = r.triangles;
         j["bbox"] = {{"min", {r.min.x, r.min.y, r.min.z}}, {"max", {r.max.x, r.max.y, r.max.z}}};
     }
-    if (r.map_width > 0) j["map"] = {{"width", r.map_width}, {"height", r.map_height}};
+    if (r.map_width > 0) {
+        j["map"] = {{"width", r.map_width},
+                    {"height", r.map_height},
+                    {"cell_size", r.map_spacing.x},
+                    {"cell_height", r.map_spacing.y}};
+    }
     if (r.height_step > 0.0) j["height_step"] = r.height_step;
     if (r.simplified) {
         j["simplified"] = {{"points", r.simplified->points},

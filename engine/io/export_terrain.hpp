@@ -61,6 +61,11 @@ struct ExportOptions {
     /// Samples along the longer side of maps, textures and the simplification raster when no
     /// cell size is given.
     std::uint32_t map_size = 1024;
+    /// Metres per texel of normal and albedo maps and of mesh textures: the user's cell size
+    /// (`--cell-size`), each side rounded to whole texels. Default: `map_size` texels along
+    /// the longer side. (Kept apart from cell_size, which the import grid's default fills for
+    /// height maps and re-meshes only.)
+    std::optional<double> texel_size;
     bool textures = true;  ///< OBJ and glTF: bake and embed/write albedo and normal maps
     NormalMode normal_mode = NormalMode::Smooth;
     MaterialColours palette = default_material_colours();
@@ -75,6 +80,7 @@ struct ExportReport {
     Vec3 max{};
     std::uint32_t map_width = 0;  ///< maps: samples; meshes: texture size
     std::uint32_t map_height = 0;
+    Vec2 map_spacing{};        ///< metres between those samples: (columns, rows)
     double height_step = 0.0;  ///< 16-bit PNG: metres per grey level
     std::optional<GreedyStats> simplified;
     double ms = 0.0;

@@ -73,6 +73,10 @@ std::vector<std::uint8_t> encode_exr_heightmap(const HeightRaster& raster) {
     header.insert(kCellSizeAttribute, Imf::DoubleAttribute(raster.cell_size));
     if (raster.cell_height > 0.0 && raster.cell_height != raster.cell_size) {
         header.insert(kCellHeightAttribute, Imf::DoubleAttribute(raster.cell_height));
+        // Oblong samples: generic viewers read the shape from the standard attribute (width /
+        // height of a pixel), which OpenEXR bounds to [1e-6, 1e6].
+        const double aspect = raster.cell_size / raster.cell_height;
+        if (aspect >= 1e-6 && aspect <= 1e6) header.pixelAspectRatio() = static_cast<float>(aspect);
     }
     if (raster.georeference.known) {
         header.insert(kWestAttribute, Imf::DoubleAttribute(raster.georeference.west));

@@ -44,4 +44,10 @@ Vec2 MapGrid::to_grid(Vec2 p) const {
             (domain.max.y - p.y) / domain.height() * height - 0.5};
 }
 
+Vec2 MapGrid::spacing() const {
+    const std::uint32_t gaps_x = at == SampleAt::Corners ? width - 1 : width;
+    const std::uint32_t gaps_y = at == SampleAt::Corners ? height - 1 : height;
+    return {domain.width() / gaps_x, domain.height() / gaps_y};
+}
+
 }  // namespace sandtin

@@ -31,6 +31,8 @@ struct MapGrid {
     Vec2 position(std::uint32_t col, std::uint32_t row) const;
     /// Continuous sample coordinates (col, row) of a point: the inverse of position().
     Vec2 to_grid(Vec2 p) const;
+    /// Metres between neighbouring samples: (between columns, between rows).
+    Vec2 spacing() const;
 };
 
 /// A baked map: `channels` doubles per sample, row-major, row 0 north.

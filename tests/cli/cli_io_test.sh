@@ -190,6 +190,13 @@ scenario_export_bad() {
     expect_error faceted_height "--faceted applies to" export s.sandtin -o a.png --faceted
     expect_ok cell_stl_simplified export s.sandtin -o b.stl --cell-size 1 --max-error 0.01 || return
     [[ -e a.png || -e a.stl || -e a.ply ]] && fail "a refused export wrote a file"
+    # --cell-size spaces the texels of normal and albedo maps too (10 m / 0.4 m = 25 texels).
+    for map in normal albedo; do
+        expect_ok "cell_$map" export s.sandtin -o "c_$map.png" --map "$map" --cell-size 0.4 --json ||
+            return
+        check_eq "$map map width at --cell-size 0.4" "$(json "cell_$map.out" /map/width)" 25
+        check_eq "$map map texel at --cell-size 0.4" "$(json "cell_$map.out" /map/cell_size)" 0.4
+    done
     # A tiny cell is named as given, not rounded to 0.000000.
     expect_error tiny_cell "cell size of 1e-07 m" export s.sandtin -o tiny.png --cell-size 1e-7
     # Its companions' names are bare words in the OBJ and MTL: a space would split them.

@@ -2,6 +2,8 @@
 // readers; tinygltf's loader for glTF) must match the TIN; winding and watertightness are
 // checked by edge counting; a height map re-imports within its quantisation.
 
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
@@ -544,6 +546,8 @@ TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
         const HeightRaster back = read_heightmap(dir_ / file);
         EXPECT_DOUBLE_EQ(back.cell_size, 1.0 / 3.0) << file;
         EXPECT_DOUBLE_EQ(back.row_spacing(), 0.25) << file;
+        EXPECT_DOUBLE_EQ(report_.map_spacing.x, 1.0 / 3.0) << file;
+        EXPECT_DOUBLE_EQ(report_.map_spacing.y, 0.25) << file;
         EXPECT_DOUBLE_EQ(back.domain().width(), 1.0) << file;
         EXPECT_DOUBLE_EQ(back.domain().height(), 0.5) << file;
         for (std::uint32_t row = 0; row < back.height; ++row) {
@@ -554,6 +558,10 @@ TEST_F(Export, AHeightMapWithRowsSpacedUnlikeColumnsReimportsUnstretched) {
             }
         }
     }
+    // Generic EXR readers take the samples' shape from the standard pixel aspect ratio
+    // (width / height of a pixel): 1/3 m by 0.25 m.
+    EXPECT_FLOAT_EQ(Imf::InputFile((dir_ / "rows.exr").c_str()).header().pixelAspectRatio(),
+                    4.0f / 3.0f);
     // A square grid writes no row spacing of its own.
     o.cell_size = 0.25;
     run(tin, "square.png", o);
@@ -724,6 +732,44 @@ TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
         return albedo.sample(col, row, 0) + albedo.sample(col, row, 1) + albedo.sample(col, row, 2);
     };
     EXPECT_LT(luminance(10, 5), luminance(10, 38));
+}
+
+// A texel size (the CLI's --cell-size) spaces the texels of normal and albedo maps and of mesh
+// textures, each side rounded to whole texels; the report gives the spacing the map got.
+TEST_F(Export, ATexelSizeSpacesNormalAndAlbedoMapsAndMeshTextures) {
+    const Tin tin = test_tin();  // 12 x 8 m
+    ExportOptions o;
+    o.texel_size = 0.5;
+    for (const char* map : {"normal", "albedo"}) {
+        const PngImage image = decode_png(run(tin, "t.png", o, map));
+        EXPECT_EQ(image.width, 24u) << map;
+        EXPECT_EQ(image.height, 16u) << map;
+        EXPECT_DOUBLE_EQ(report_.map_spacing.x, 0.5) << map;
+        EXPECT_DOUBLE_EQ(report_.map_spacing.y, 0.5) << map;
+    }
+    o.texel_size = 0.7;  // 17.1 and 11.4 texels: 17 x 11, spaced 12/17 and 8/11 m
+    run(tin, "t.png", o, "normal");
+    EXPECT_EQ(report_.map_width, 17u);
+    EXPECT_EQ(report_.map_height, 11u);
+    EXPECT_DOUBLE_EQ(report_.map_spacing.x, 12.0 / 17.0);
+    EXPECT_DOUBLE_EQ(report_.map_spacing.y, 8.0 / 11.0);
+    o.texel_size = 0.25;
+    const LoadedGltf g = load_gltf(run(tin, "t.glb", o), true);
+    ASSERT_EQ(g.model.images.size(), 2u);
+    for (const tinygltf::Image& image : g.model.images) {
+        EXPECT_EQ(image.width, 48);
+        EXPECT_EQ(image.height, 32);
+    }
+    // Height maps sample corners: 12 / 0.5 + 1 columns; their spacing is reported too.
+    ExportOptions h;
+    h.cell_size = 0.5;
+    run(tin, "h.png", h);
+    EXPECT_EQ(report_.map_width, 25u);
+    EXPECT_DOUBLE_EQ(report_.map_spacing.x, 0.5);
+    o.texel_size = 1e-4;  // 120 000 texels along 12 m
+    EXPECT_THROW(run(tin, "fine.png", o, "normal"), std::invalid_argument);
+    o.texel_size = -1.0;
+    EXPECT_THROW(run(tin, "neg.png", o, "albedo"), std::invalid_argument);
 }
 
 TEST_F(Export, BadExportRequests) {
