@@ -20,7 +20,17 @@ std::string exact(double v) {
     return {buf.data(), end};
 }
 
-std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double scale) {
+void add_georeference(PngImage& image, const Georeference& georeference) {
+    if (!georeference.known) return;
+    image.text.emplace_back(kPngKeyWest, exact(georeference.west));
+    image.text.emplace_back(kPngKeySouth, exact(georeference.south));
+    if (!georeference.crs.empty()) image.text.emplace_back(kPngKeyCrs, georeference.crs);
+    if (!georeference.horizontal_unit.empty())
+        image.text.emplace_back(kPngKeyHorizontalUnit, georeference.horizontal_unit);
+}
+
+std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double scale,
+                                      const TexelFrame& frame) {
     PngImage image;
     image.width = map.width;
     image.height = map.height;
@@ -31,6 +41,12 @@ std::vector<std::uint8_t> encode_rgb8(const MapImage& map, double offset, double
         const double v = std::clamp((map.values[i] + offset) * scale, 0.0, 1.0);
         image.samples[i] = static_cast<std::uint16_t>(std::lround(v * 255.0));
     }
+    if (frame.texel.x > 0.0) {
+        image.text.emplace_back(kPngKeyTexelSize, exact(frame.texel.x));
+        if (frame.texel.y > 0.0 && frame.texel.y != frame.texel.x)
+            image.text.emplace_back(kPngKeyTexelHeight, exact(frame.texel.y));
+    }
+    add_georeference(image, frame.georeference);
     return encode_png(image);
 }
 
@@ -65,14 +81,7 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
     if (cell_height > 0.0 && cell_height != cell_size) {
         image.text.emplace_back(kPngKeyCellHeight, exact(cell_height));
     }
-    if (georeference.known) {
-        image.text.emplace_back(kPngKeyWest, exact(georeference.west));
-        image.text.emplace_back(kPngKeySouth, exact(georeference.south));
-        if (!georeference.crs.empty()) image.text.emplace_back(kPngKeyCrs, georeference.crs);
-        if (!georeference.horizontal_unit.empty()) {
-            image.text.emplace_back(kPngKeyHorizontalUnit, georeference.horizontal_unit);
-        }
-    }
+    add_georeference(image, georeference);
     return encode_png(image);
 }
 
@@ -88,12 +97,12 @@ std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell
     return encode_exr_heightmap(raster);
 }
 
-std::vector<std::uint8_t> encode_normal_png(const MapImage& normals) {
-    return encode_rgb8(normals, 1.0, 0.5);
+std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const TexelFrame& frame) {
+    return encode_rgb8(normals, 1.0, 0.5, frame);
 }
 
-std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours) {
-    return encode_rgb8(colours, 0.0, 1.0);
+std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame) {
+    return encode_rgb8(colours, 0.0, 1.0, frame);
 }
 
 }  // namespace sandtin

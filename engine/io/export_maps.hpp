@@ -8,6 +8,7 @@
 //  - Height EXR: 32-bit float metres (io/heightmap_exr.hpp).
 //  - Normal PNG: 8-bit RGB, (n + 1) / 2 per component (OpenGL convention, +Y = green = north).
 //  - Albedo PNG: 8-bit RGB.
+//  Both carry their texel size and the georeference in tEXt chunks (TexelFrame).
 
 #include <cstdint>
 #include <vector>
@@ -30,9 +31,15 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
 std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
                                             double cell_height = 0.0,
                                             const Georeference& georeference = {});
+/// Where a normal or albedo map lies, written to its tEXt chunks (sandtin:texel_size,
+/// sandtin:texel_height, and the georeference as for height maps). Texel (0, 0): none.
+struct TexelFrame {
+    Vec2 texel{};  ///< metres per texel: across, down
+    Georeference georeference;
+};
 /// `normals` has three channels, unit vectors.
-std::vector<std::uint8_t> encode_normal_png(const MapImage& normals);
+std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const TexelFrame& frame = {});
 /// `colours` has three channels in [0, 1].
-std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours);
+std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame = {});
 
 }  // namespace sandtin

@@ -194,9 +194,11 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                 write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
             }
         } else if (format == ExportFormat::NormalPng) {
-            write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode)), report);
+            const TexelFrame frame{grid.spacing(), o.georeference};
+            write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode), frame), report);
         } else {
-            write(out, encode_albedo_png(bake_albedo_map(tin, grid, o.palette)), report);
+            const TexelFrame frame{grid.spacing(), o.georeference};
+            write(out, encode_albedo_png(bake_albedo_map(tin, grid, o.palette), frame), report);
         }
         report.ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -255,11 +257,14 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         report.map_width = grid.width;
         report.map_height = grid.height;
         report.map_spacing = grid.spacing();
-        textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette));
+        const TexelFrame frame{grid.spacing(), o.georeference};
+        textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette), frame);
         // In the mesh's own tangent frame, as glTF's normalTexture (and OBJ importers reading
         // map_Bump) expect: the terrain's normals relative to the exported mesh's.
-        textures.normal_png = encode_normal_png(bake_tangent_normal_map(
-            simplified ? simplified->tin : tin, bake_normal_map(tin, grid, o.normal_mode), grid));
+        textures.normal_png = encode_normal_png(
+            bake_tangent_normal_map(simplified ? simplified->tin : tin,
+                                    bake_normal_map(tin, grid, o.normal_mode), grid),
+            frame);
     }
 
     switch (format) {

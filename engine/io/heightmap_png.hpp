@@ -37,6 +37,11 @@ inline constexpr const char* kPngKeyWest = "sandtin:west";
 inline constexpr const char* kPngKeySouth = "sandtin:south";
 inline constexpr const char* kPngKeyCrs = "sandtin:crs";
 inline constexpr const char* kPngKeyHorizontalUnit = "sandtin:horizontal_unit";
+/// Normal and albedo maps: metres per texel across (texel_size) and, when different, down
+/// (texel_height). Their texels are centred in those cells, so these are not height-map sample
+/// spacings; sandtin:west and sandtin:south give the terrain's south-west corner as above.
+inline constexpr const char* kPngKeyTexelSize = "sandtin:texel_size";
+inline constexpr const char* kPngKeyTexelHeight = "sandtin:texel_height";
 
 /// A decoded PNG heightmap. Heights are raw: metres for Terrain-RGB, [0, 1] for grayscale.
 /// A grayscale PNG that sandtin exported also carries its scale (height = z_offset + raw *

@@ -732,6 +732,24 @@ TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
         return albedo.sample(col, row, 0) + albedo.sample(col, row, 1) + albedo.sample(col, row, 2);
     };
     EXPECT_LT(luminance(10, 5), luminance(10, 38));
+    // Both say how large a texel is (12 / 64 by 8 / 43 m) and, for an imported terrain, where
+    // the terrain's south-west corner lies.
+    o.georeference.known = true;
+    o.georeference.west = 500000.0;
+    o.georeference.south = 4000000.0;
+    for (const char* map : {"normal", "albedo"}) {
+        const PngImage image = decode_png(run(tin, "geo.png", o, map));
+        const auto text = [&](const std::string& key) {
+            for (const auto& [k, v] : image.text)
+                if (k == key) return std::stod(v);
+            ADD_FAILURE() << map << ": no " << key;
+            return 0.0;
+        };
+        EXPECT_DOUBLE_EQ(text("sandtin:texel_size"), 12.0 / 64.0) << map;
+        EXPECT_DOUBLE_EQ(text("sandtin:texel_height"), 8.0 / 43.0) << map;
+        EXPECT_DOUBLE_EQ(text("sandtin:west"), 500000.0) << map;
+        EXPECT_DOUBLE_EQ(text("sandtin:south"), 4000000.0) << map;
+    }
 }
 
 // A texel size (the CLI's --cell-size) spaces the texels of normal and albedo maps and of mesh
