@@ -79,6 +79,7 @@ int run_run(const std::vector<std::string>& raw) {
             b.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
             b.run_to_rest = [p](int n, std::vector<VertexId>* c) { return p->run_to_rest(n, c); };
             b.activate_all = [p] { p->activate_all(); };
+            b.exact_volume = false;  // float heights: each erosion reports its rounding drift
             return b;
         };
     }

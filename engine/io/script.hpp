@@ -160,6 +160,10 @@ struct PhysicsBackend {
     /// Makes every vertex a candidate for the next step (the physics otherwise only looks at
     /// what changed since it was created).
     std::function<void()> activate_all;
+    /// True when the relaxation conserves volume to double rounding (the CPU physics), so an
+    /// erosion reports a volume change of 0. False for float arithmetic (the GPU): each erosion
+    /// then measures the terrain's volume before and after and reports the drift.
+    bool exact_volume = true;
 };
 /// Creates a backend that follows `tin` from now on, with the script's settings and the scene's
 /// materials.
