@@ -30,8 +30,12 @@ int run_info(const std::vector<std::string>& raw) {
                   << "  triangles         " << j["triangles"] << "\n"
                   << "  constrained edges " << j["constrained_edges"] << "\n"
                   << "  volume            " << j["volume"] << " m^3 above z = 0\n"
-                  << "  bbox              " << j["bbox"].dump() << "\n"
-                  << "  valid             yes\n";
+                  << "  bbox              " << j["bbox"].dump() << "\n";
+        if (j.contains("sand")) {
+            std::cout << "  sand over bedrock " << j["sand"]["min_thickness"] << " to "
+                      << j["sand"]["max_thickness"] << " m thick\n";
+        }
+        std::cout << "  valid             yes\n";
     }
     return 0;
 }

@@ -8,6 +8,7 @@
 #include "io/session_file.hpp"
 #include "session_output.hpp"
 #include "terrain_report.hpp"
+#include "tin/flat_bedrock.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
 
@@ -16,6 +17,7 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin new (--flat W H | --grid W H NX NY) [--points N] [--seed S] [--height Z] "
+    "[--sand-depth D] "
     "-o scene.sandtin [--json]";
 }
 
@@ -25,6 +27,7 @@ int run_new(const std::vector<std::string>& raw) {
                                {"--points", 1},
                                {"--seed", 1},
                                {"--height", 1},
+                               {"--sand-depth", 1},
                                {"-o", 1},
                                {"--json", 0}});
     args.require_positionals(0, kUsage);
@@ -37,6 +40,14 @@ int run_new(const std::vector<std::string>& raw) {
     const double z = args.number_or("--height", 0.0);
     if (!(std::abs(z) <= kMaxHeight))
         throw UsageError("--height must lie within -1e9 and 1e9 m\nusage: " + std::string(kUsage));
+    std::optional<double> sand_depth;
+    if (args.has("--sand-depth")) {
+        sand_depth = args.number("--sand-depth");
+        if (!(*sand_depth >= 0.0 && *sand_depth <= kMaxHeight)) {
+            throw UsageError("--sand-depth must lie within 0 and 1e9 m\nusage: " +
+                             std::string(kUsage));
+        }
+    }
     const auto constant = [z](Vec2) { return z; };
     TinOptions options;
     options.track_changes = false;
@@ -68,6 +79,7 @@ int run_new(const std::vector<std::string>& raw) {
         return Tin::random_points(domain, n, args.count_or("--seed", 1), constant, options);
     }();
 
+    if (sand_depth) lay_flat_bedrock(tin, z - *sand_depth);
     Session session;
     session.terrain = tin.snapshot();
     save_session(out, session);

@@ -9,10 +9,19 @@ nlohmann::json describe_terrain(const Tin& tin, bool validate) {
     const VertexArrays& va = tin.vertices();
     double zmin = std::numeric_limits<double>::infinity();
     double zmax = -std::numeric_limits<double>::infinity();
+    // Sand over bedrock, at the vertices that have one (kNoBedrock: none).
+    double thinnest = std::numeric_limits<double>::infinity();
+    double thickest = 0.0;
+    std::size_t on_bedrock = 0;
     for (std::size_t i = 0; i < va.size(); ++i) {
         if (!va.alive[i]) continue;
         zmin = std::min(zmin, va.height[i]);
         zmax = std::max(zmax, va.height[i]);
+        if (va.bedrock[i] > kNoBedrock) {
+            ++on_bedrock;
+            thinnest = std::min(thinnest, va.height[i] - va.bedrock[i]);
+            thickest = std::max(thickest, va.height[i] - va.bedrock[i]);
+        }
     }
     const Rect d = tin.domain();
     nlohmann::json j;
@@ -22,6 +31,11 @@ nlohmann::json describe_terrain(const Tin& tin, bool validate) {
     j["constraints"] = tin.constraint_count();
     j["volume"] = tin.volume();
     j["bbox"] = {{"min", {d.min.x, d.min.y, zmin}}, {"max", {d.max.x, d.max.y, zmax}}};
+    if (on_bedrock > 0) {
+        j["sand"] = {{"vertices_over_bedrock", on_bedrock},
+                     {"min_thickness", thinnest},
+                     {"max_thickness", thickest}};
+    }
     if (validate) {
         const ValidationReport report = tin.check_valid();
         j["valid"] = report.ok();

@@ -13,6 +13,7 @@
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
+#include "tin/flat_bedrock.hpp"
 #include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
@@ -380,6 +381,7 @@ Script parse_script(std::string_view text, const std::string& name,
             st.points = static_cast<std::size_t>(t.integer("points", 0, 0, 50'000'000));
             st.seed = static_cast<std::uint64_t>(t.integer("seed", 1, 0, INT64_MAX));
             st.height = height_field(t, "height", 0.0);
+            if (t.has("sand_depth")) st.sand_depth = t.in_range("sand_depth", 0.0, 0.0, kMaxHeight);
             t.reject_unknown();
             script.terrain = st;
         }
@@ -656,9 +658,12 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
 
 Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
     const Rect domain = Rect::from_size(t.size.x, t.size.y);
-    if (t.points == 0) return Tin::flat_rectangle(domain, t.height, options);
-    return Tin::random_points(
-        domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
+    Tin tin = t.points == 0
+                  ? Tin::flat_rectangle(domain, t.height, options)
+                  : Tin::random_points(
+                        domain, t.points, t.seed, [&t](Vec2) { return t.height; }, options);
+    if (t.sand_depth) lay_flat_bedrock(tin, t.height - *t.sand_depth);
+    return tin;
 }
 
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,

@@ -113,6 +113,8 @@ struct ScriptTerrain {
     std::size_t points = 0;
     std::uint64_t seed = 1;
     double height = 0.0;
+    /// Metres of sand over a flat bedrock at height - sand_depth; none: no bedrock.
+    std::optional<double> sand_depth;
 };
 
 /// Builds the terrain a "terrain" object describes.

@@ -122,6 +122,20 @@ scenario_roundtrip() {
     abs_le "$(json grid2.out /volume)" 24 1e-12 "grid volume"
     check_eq "grid valid" "$(json grid2.out /valid)" true
 
+    # A sandbox over a flat bedrock: 2 cm of sand everywhere, and a removal bigger than the sand
+    # under it digs down to the bedrock and stops there.
+    expect_ok bed1 new --flat 1 1 --points 2000 --height 0.1 --sand-depth 0.02 -o bed.sandtin --json ||
+        return
+    check_eq "sand over bedrock" "$(json bed1.out /sand/vertices_over_bedrock)" 2004
+    abs_le "$(json bed1.out /sand/min_thickness)" 0.02 1e-15 "sand thickness (thinnest)"
+    abs_le "$(json bed1.out /sand/max_thickness)" 0.02 1e-15 "sand thickness (thickest)"
+    printf '[{"op": "remove", "at": [0.5, 0.5], "volume": 0.001, "radius": 0.05}]\n' >dig.json
+    expect_ok bed2 run dig.json -i bed.sandtin -o bed_dug.sandtin --json || return
+    abs_le "$(json bed2.out /terrain/sand/min_thickness)" 0 1e-12 "sand left in the pit"
+    abs_le "$(json bed2.out /terrain/bbox/min/2)" 0.08 1e-12 "the pit's floor is the bedrock"
+    expect_error bed3 "--sand-depth" new --flat 1 1 --sand-depth -1 -o bad.sandtin
+    [[ -e bad.sandtin ]] && fail "a refused new wrote bad.sandtin"
+
     # Zero points: just the rectangle.
     expect_ok rect1 new --flat 3 2 -o rect.sandtin || return
     expect_ok rect2 info rect.sandtin --json || return

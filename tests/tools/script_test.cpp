@@ -305,6 +305,46 @@ double largest_change(const Tin& tin, const std::vector<double>& before) {
 // Painting moist sand paints its moisture too (the preset's default_moisture, 0.25, which the
 // materials table documents as what the paint tool applies): a 40-degree slope painted moist
 // stands (moist sand at 0.25 holds about 44 degrees), the same slope left dry slides to 32.
+// "sand_depth" lays a flat bedrock under the script's terrain, so scripts (and `sandtin new
+// --sand-depth`) can build what the editor's default scene has. Oracle: the bedrock is where it
+// was asked for, a removal larger than the sand there digs down to it and no further, and the
+// erosion that follows never exposes it.
+TEST(Script, ATerrainsSandDepthLaysAFlatBedrockThatDiggingStopsAt) {
+    const Script s = parse(R"({"version": 1,
+        "terrain": {"size": [1, 1], "points": 3000, "seed": 4, "height": 0.1, "sand_depth": 0.02},
+        "operations": [
+          {"op": "remove", "at": [0.5, 0.5], "volume": 0.001, "radius": 0.05}]})");
+    ASSERT_TRUE(s.terrain.has_value());
+    Tin tin = make_script_terrain(*s.terrain);
+    for (VertexId v : test::live_ids(tin))
+        ASSERT_DOUBLE_EQ(tin.vertices().bedrock[v.index()], 0.08);
+    const double before = tin.volume();
+    SculptContext context(tin.domain());
+    const nlohmann::json reports = run_script(s, tin, context);
+    const VertexArrays& va = tin.vertices();
+    const auto lowest = [&] {
+        double z = 1e300;
+        for (VertexId v : test::live_ids(tin)) {
+            EXPECT_GE(va.height[v.index()], va.bedrock[v.index()]);
+            EXPECT_LE(va.bedrock[v.index()], 0.08);
+            z = std::min(z, va.height[v.index()]);
+        }
+        return z;
+    };
+    EXPECT_NEAR(lowest(), 0.08, 1e-9) << "the removal dug down to the bedrock";
+    // 0.001 m3 is more than the 0.02 m of sand under the dab: less came out, and it says so.
+    const double removed = before - tin.volume();
+    EXPECT_GT(removed, 1e-5);
+    EXPECT_LT(removed, 0.001);
+    EXPECT_NEAR(reports.at(0).at("volume_change").get<double>(), -removed, 1e-12);
+    // The pit's walls slide in, and the sand still never goes below the bedrock.
+    run_script(parse(R"([{"op": "erode", "until_rest": true}])"), tin, context);
+    EXPECT_GE(lowest(), 0.08);
+    // Without sand_depth there is no bedrock (the default), and a negative depth is an error.
+    EXPECT_THROW(parse(R"({"version": 1, "terrain": {"sand_depth": -1}, "operations": []})"),
+                 JsonInputError);
+}
+
 TEST(Script, PaintedMoistSandHoldsTheSlopeItsMoistureGives) {
     const MaterialTable presets = MaterialTable::presets();
     const double tan40 = std::tan(40.0 * std::numbers::pi / 180.0);
