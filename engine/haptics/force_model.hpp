@@ -27,6 +27,11 @@
 //  4. Gel minimum (seed 004 §5.3.3): in contact, a total force below 0.2 N is raised to 0.2 N
 //     (along the force, or straight up when it is zero).
 //  5. Zero out of contact: no control point and not the centre within δ of the surface.
+//     Where there is no terrain (outside the snapshot's `terrain`, the TIN's domain) there is
+//     no surface: a centre off the terrain gives no penetration force, and a direction whose
+//     control point or ray crossing is off the terrain gives no resistance (its m_i is 0, yet
+//     it still counts in N). A tool entirely off the terrain gets no force and no contact; one
+//     straddling the border feels only the part over the terrain.
 //  6. Clamp (seed 000 §7.4: Phantom Omni F_M = 10 N): |F| <= max_force, direction kept.
 //
 // Interpolation between geometry updates (seed 000 Eq. 7.15) and the stale-snapshot ramp are
@@ -57,9 +62,11 @@ struct ForceModelParams {
 };
 
 struct ForceSample {
-    Vec3 force;              ///< N, terrain frame
-    bool contact = false;    ///< some part of the tool is within δ of the surface
-    double immersion = 0.0;  ///< h_centre - z (m): positive when the tool is below the surface
+    Vec3 force;            ///< N, terrain frame
+    bool contact = false;  ///< some part of the tool is within δ of the surface
+    /// h_centre - z (m): positive when the tool is below the surface; -∞ when the centre is off
+    /// the terrain (no surface above or below it).
+    double immersion = 0.0;
 };
 
 /// What the force loop derives from a snapshot once, when it arrives: the unit direction from
@@ -69,6 +76,9 @@ struct PreparedSnapshot {
     HapticSnapshot snapshot;
     std::array<Vec2, kMaxControlPoints> direction{};  ///< unit u_i; zero for a point at the centre
     std::array<double, kMaxControlPoints> height_along{};  ///< H_i (m)
+    /// Whether direction i has terrain: its control point and its ray crossing both on it.
+    std::array<bool, kMaxControlPoints> on_terrain{};
+    bool centre_on_terrain = false;
 };
 PreparedSnapshot prepare_snapshot(const HapticSnapshot& snapshot);
 
@@ -85,7 +95,9 @@ ForceSample evaluate_force(const PreparedSnapshot& prepared, const Vec3& positio
 ForceSample evaluate_force(const HapticSnapshot& snapshot, const Vec3& position,
                            const Vec3& velocity, const ForceModelParams& params);
 
-/// |v| <= limit, direction kept (limit >= 0).
+/// |v| <= limit, direction kept (limit >= 0). |v| is measured without overflowing, so a huge
+/// vector (components beyond 1e154, where |v|² overflows) comes out at exactly `limit`; an
+/// infinite component gives `limit` along the infinite components.
 Vec3 clamp_magnitude(const Vec3& v, double limit);
 
 }  // namespace sandtin::haptics

@@ -12,7 +12,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
+#include "geom/rect.hpp"
 #include "geom/vec2.hpp"
 
 namespace sandtin::haptics {
@@ -26,13 +28,22 @@ struct HapticSnapshot {
     std::uint64_t sequence = 0;
     /// Monotonic-clock time of publication (ns); the loop measures staleness against it.
     std::int64_t published_ns = 0;
-    /// Tool centre when the snapshot was taken (m). Directions of the control-point ring are
-    /// measured from here (see force_model.hpp).
+    /// Where there is terrain (m): the domain of the TIN. Outside it there is nothing to touch:
+    /// a centre or a control point outside gives no force (force_model.hpp). The default, the
+    /// whole plane, is for snapshots made by hand.
+    Rect terrain{
+        {-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()},
+        {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}};
+    /// Tool centre when the snapshot was taken (m), where the device is, on the terrain or not.
+    /// Directions of the control-point ring are measured from here (see force_model.hpp).
     Vec2 centre;
-    /// Terrain height under the tool centre (m).
+    /// Terrain height under the tool centre (m). For a centre off the terrain, the height at
+    /// the nearest point of the terrain (so the value stays meaningful); the model ignores it.
     double centre_height = 0.0;
     /// Control points of the tool's outer contour, in order around the ring (m), and the
-    /// interpolated terrain heights under them (m).
+    /// interpolated terrain heights under them (m). A point off the terrain keeps its position
+    /// and carries the height at the nearest point of the terrain: the model gives it no force,
+    /// and uses that height only to interpolate ring crossings that lie on the terrain.
     std::uint32_t control_count = 0;
     std::array<Vec2, kMaxControlPoints> control{};
     std::array<double, kMaxControlPoints> control_height{};

@@ -80,9 +80,11 @@ EditResult LiveEditor::apply(const EditInput& input) {
         !std::isfinite(input.position.z)) {
         return result;  // a device glitch: ignore the sample
     }
+    // Strokes stay on the terrain; the tool itself is where the device is, so that off the
+    // terrain its snapshot has nothing to touch (force_model.hpp, rule 5).
     const Vec2 xy{std::clamp(input.position.x, d.min.x, d.max.x),
                   std::clamp(input.position.y, d.min.y, d.max.y)};
-    placement_.centre = xy;
+    placement_.centre = {input.position.x, input.position.y};
     placement_.bottom = input.position.z;
     const bool pressed = (input.buttons & settings_.button_mask) != 0;
     if (pressed) {

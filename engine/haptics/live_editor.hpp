@@ -61,7 +61,8 @@ class LiveEditor {
     LiveEditor(const LiveEditor&) = delete;
     LiveEditor& operator=(const LiveEditor&) = delete;
 
-    /// The tool moves to the input; with the button held, the path since the last input is
+    /// The tool moves to the input (off the terrain too: its snapshot then touches nothing);
+    /// with the button held, the path since the last input, clamped into the domain, is
     /// stamped; on release the stroke ends (a click without motion stamps once).
     EditResult apply(const EditInput& input);
 

@@ -14,8 +14,12 @@ HapticSnapshot build_snapshot(const Tin& tin, const Tool& tool, const ToolPlacem
                               const MaterialTable& materials, LocateHint* hint) {
     const Rect domain = tin.domain();
     HapticSnapshot s;
-    s.centre = clamp_to(domain, at.centre);
-    const Location loc = tin.locate(s.centre, hint);
+    s.terrain = domain;
+    // The centre and the control points stay where the tool is; the model gives no force where
+    // they are off the terrain. Heights and material are taken at the nearest point of the
+    // terrain, so every value in the snapshot stays finite and meaningful.
+    s.centre = at.centre;
+    const Location loc = tin.locate(clamp_to(domain, at.centre), hint);
     double centre_height = 0.0;
     std::uint16_t material = 0;
     if (loc.inside()) {
@@ -38,9 +42,9 @@ HapticSnapshot build_snapshot(const Tin& tin, const Tool& tool, const ToolPlacem
     const ToolFrame frame(tool, at);
     for (std::size_t i = 0; i < n; ++i) {
         const Vec2 local = ring[i * ring.size() / n];
-        const Vec2 p = clamp_to(domain, frame.to_world(local));
+        const Vec2 p = frame.to_world(local);
         s.control[i] = p;
-        s.control_height[i] = tin.height_at(p, hint).value_or(centre_height);
+        s.control_height[i] = tin.height_at(clamp_to(domain, p), hint).value_or(centre_height);
     }
     return s;
 }

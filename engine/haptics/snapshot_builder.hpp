@@ -12,8 +12,10 @@
 namespace sandtin::haptics {
 
 /// Control points: the outer contour of `tool` at `at` (centre and heading; bottom unused),
-/// subsampled evenly to kMaxControlPoints when denser. Points outside the domain are clamped
-/// into it. Material: the vertex of the triangle under the centre with the largest
+/// subsampled evenly to kMaxControlPoints when denser. `terrain` is the TIN's domain; the centre
+/// and the control points keep their positions when they lie outside it (the force model gives
+/// them no force), with the height at the nearest point of the domain. Material: the vertex of
+/// the triangle under the centre (or the nearest point of the domain) with the largest
 /// barycentric weight. `hint` speeds up the point locations (the caller's own; the sculpting
 /// context's hint is left alone so snapshots never influence edits). Sequence and time are
 /// left at 0: ForceLoop::publish sets them.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "geom/height_limit.hpp"
+
 namespace sandtin::haptics {
 
 namespace {
@@ -46,6 +48,12 @@ double get_f64(std::span<const std::uint8_t> b, std::size_t at) {
 bool finite(const Vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
+// A height the rest of the program accepts: beyond it a recording that kept the pose is
+// refused by the loader (haptic_recording.cpp). x and y may be anything finite: a probe off the
+// terrain touches nothing (force_model.hpp).
+bool in_range(const Vec3& v) {
+    return std::abs(v.z) <= kMaxHeight;
+}
 std::optional<Packet> failure(DecodeError e, DecodeError* out) {
     if (out != nullptr) *out = e;
     return std::nullopt;
@@ -69,6 +77,8 @@ std::string_view to_string(DecodeError error) {
             return "length does not match the packet type";
         case DecodeError::NonFinite:
             return "non-finite number";
+        case DecodeError::OutOfRange:
+            return "pose height beyond 1e9 m";
     }
     return "unknown error";
 }
@@ -136,6 +146,7 @@ std::optional<Packet> decode_packet(std::span<const std::uint8_t> b, DecodeError
         pose.position = {get_f64(b, h), get_f64(b, h + 8), get_f64(b, h + 16)};
         pose.buttons = get_u32(b, h + 24);
         if (!finite(pose.position)) return failure(DecodeError::NonFinite, error);
+        if (!in_range(pose.position)) return failure(DecodeError::OutOfRange, error);
         p.body = pose;
     } else if (type == static_cast<std::uint8_t>(PacketType::Force)) {
         ForcePacket force;

@@ -24,7 +24,9 @@
 //
 // A packet is malformed, and dropped, when it is shorter than the header, has another magic,
 // version or type, a length field that is not the type's size or does not match the datagram,
-// or a non-finite number. The receiver also drops packets whose sequence is not newer than
+// a non-finite number, or a pose height beyond kMaxHeight (geom/height_limit.hpp: 1e9 m, the
+// largest height a terrain, a script or a recording may hold; a session that recorded such a
+// pose could not be replayed). The receiver also drops packets whose sequence is not newer than
 // the last accepted one (late or duplicated datagrams); both are counted, neither stops the
 // loop.
 
@@ -81,8 +83,9 @@ enum class DecodeError : std::uint8_t {
     BadMagic,
     BadVersion,
     BadType,
-    BadLength,  ///< length field wrong for the type, or not the datagram's size
-    NonFinite,  ///< a NaN or infinite coordinate or force
+    BadLength,   ///< length field wrong for the type, or not the datagram's size
+    NonFinite,   ///< a NaN or infinite coordinate or force
+    OutOfRange,  ///< a pose height (z) whose magnitude exceeds kMaxHeight (1e9 m)
 };
 std::string_view to_string(DecodeError error);
 

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "geom/height_limit.hpp"
 #include "geom/rect.hpp"
 #include "geom/vec2.hpp"
 #include "tin/change_journal.hpp"
@@ -35,12 +36,6 @@
 #include "tin/vertex_arrays.hpp"
 
 namespace sandtin {
-
-/// The largest height magnitude a terrain holds (m): the domain's largest side. Beyond it,
-/// volumes and areas leave the range where they are computed exactly enough, and meshes the
-/// range of the 32-bit floats their files store. Inputs (scripts, options, imported
-/// heightmaps) are checked against it.
-inline constexpr double kMaxHeight = 1e9;
 
 class PolygonInclusion;
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <limits>
 #include <thread>
 
 #include "haptics/simulated_device.hpp"
@@ -111,6 +112,44 @@ TEST(UdpDevice, LoopbackRoundTripDropsMalformedAndLatePackets) {
     EXPECT_EQ(status, ReadStatus::Lost);
     EXPECT_TRUE(device.counters().bye);
     device.close();
+}
+
+TEST(UdpDevice, OutOfRangePosesAreDroppedAndCountedAsMalformed) {
+    // A driver glitch: a finite height beyond kMaxHeight (1e9 m). Dropped like a NaN: the
+    // device keeps the last good pose and counts the packet as malformed.
+    UdpDevice device;
+    device.open();
+    UdpSocket driver = UdpSocket::bind(0);
+    const UdpEndpoint to{0x7F000001u, device.port()};
+    ASSERT_TRUE(driver.send_to(encode_packet({1, PosePacket{{0.5, 0.5, 0.2}, 0}}), to));
+    ASSERT_TRUE(driver.send_to(encode_packet({2, PosePacket{{0.5, 0.5, -2e9}, 0}}), to));
+    ASSERT_TRUE(driver.send_to(encode_packet({3, PosePacket{{1e300, 1e300, -1e300}, 1}}), to));
+    ASSERT_TRUE(driver.send_to(
+        encode_packet({4, PosePacket{{0.5, std::numeric_limits<double>::quiet_NaN(), 0.2}, 0}}),
+        to));
+    DeviceState s;
+    for (int i = 0; i < 200 && device.counters().received < 4; ++i) {
+        ASSERT_EQ(device.read(s), ReadStatus::Ok);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    UdpDeviceCounters c = device.counters();
+    EXPECT_EQ(c.received, 4u);
+    EXPECT_EQ(c.poses, 1u);
+    EXPECT_EQ(c.malformed, 3u);
+    ASSERT_TRUE(s.valid);
+    EXPECT_EQ(s.position, (Vec3{0.5, 0.5, 0.2}));
+    EXPECT_EQ(s.sequence, 1u);
+    // The stream goes on: the next good pose is taken.
+    ASSERT_TRUE(driver.send_to(encode_packet({5, PosePacket{{0.4, 0.5, 0.1}, 1}}), to));
+    for (int i = 0; i < 200 && device.counters().poses < 2; ++i) {
+        ASSERT_EQ(device.read(s), ReadStatus::Ok);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    c = device.counters();
+    EXPECT_EQ(c.poses, 2u);
+    EXPECT_EQ(c.malformed, 3u);
+    EXPECT_EQ(s.position, (Vec3{0.4, 0.5, 0.1}));
+    EXPECT_EQ(s.sequence, 5u);
 }
 
 TEST(UdpDevice, ARestartedDriverStartsANewStream) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "haptics/force_model.hpp"
@@ -206,6 +207,88 @@ TEST(ForceModel, NonFiniteInputGivesZero) {
     const HapticSnapshot s = flat_ring(0.0);
     EXPECT_EQ(evaluate_force(s, {NAN, 0.5, -0.1}, {}, params()).force, (Vec3{}));
     EXPECT_EQ(evaluate_force(s, {0.5, 0.5, -0.1}, {INFINITY, 0, 0}, params()).force, (Vec3{}));
+}
+
+TEST(ForceModel, ClampOfAHugeVectorIsExactlyTheLimitAlongIt) {
+    // |v|² overflows beyond ~1e154. 3:0:-4 times 2^1000: scaled by its largest component the
+    // vector is (0.75, 0, -1), of length 1.25 exactly, so the clamp is exactly (6, 0, -8).
+    const double big = std::ldexp(1.0, 1000);
+    EXPECT_EQ(clamp_magnitude({3.0 * big, 0.0, -4.0 * big}, 10.0), (Vec3{6.0, 0.0, -8.0}));
+    // The audit's pose: (1e300, 1e300, -1e300) gives |F| = 10 along (1, 1, -1).
+    const Vec3 f = clamp_magnitude({1e300, 1e300, -1e300}, 10.0);
+    EXPECT_NEAR(length(f), 10.0, 1e-12);
+    EXPECT_NEAR(f.x, 10.0 / std::sqrt(3.0), 1e-12);
+    EXPECT_NEAR(f.y, 10.0 / std::sqrt(3.0), 1e-12);
+    EXPECT_NEAR(f.z, -10.0 / std::sqrt(3.0), 1e-12);
+    // Just past the overflow, and the largest double.
+    const double m = std::numeric_limits<double>::max();
+    EXPECT_EQ(clamp_magnitude({0.0, m, 0.0}, 10.0), (Vec3{0.0, 10.0, 0.0}));
+    EXPECT_EQ(clamp_magnitude({0.0, 0.0, -2e154}, 10.0), (Vec3{0.0, 0.0, -10.0}));
+    // Infinite components: the limit along them.
+    const double inf = std::numeric_limits<double>::infinity();
+    const Vec3 g = clamp_magnitude({inf, 1.0, -inf}, 10.0);
+    EXPECT_NEAR(g.x, 10.0 / std::sqrt(2.0), 1e-12);
+    EXPECT_EQ(g.y, 0.0);
+    EXPECT_NEAR(g.z, -10.0 / std::sqrt(2.0), 1e-12);
+    // Ordinary vectors are unchanged by the scaled path: within the limit, or scaled to it.
+    EXPECT_EQ(clamp_magnitude({3.0, 0.0, -4.0}, 10.0), (Vec3{3.0, 0.0, -4.0}));
+    EXPECT_EQ(clamp_magnitude({30.0, 0.0, -40.0}, 10.0), (Vec3{6.0, 0.0, -8.0}));
+}
+
+TEST(ForceModel, AHugeImmersionStillGivesTheClampedForceStraightUp) {
+    // k (immersion + δ) overflows for an immersion near the largest double.
+    HapticSnapshot s = flat_ring(0.0);
+    s.control_count = 0;
+    const ForceSample f =
+        evaluate_force(s, {0.5, 0.5, -std::numeric_limits<double>::max()}, {}, params());
+    EXPECT_TRUE(f.contact);
+    EXPECT_EQ(f.force, (Vec3{0.0, 0.0, 10.0}));
+}
+
+TEST(ForceModel, NothingToTouchOffTheTerrain) {
+    // The terrain is [0, 1] x [0, 1]; a ring of radius 4 cm whose centre is 1 mm past the
+    // border x = 0, 3 mm below the surface height h = 0.
+    const double depth = 0.003;
+    HapticSnapshot s = flat_ring(0.0);
+    s.terrain = Rect::from_size(1.0, 1.0);
+    const Vec2 centre{-0.001, 0.5};
+    s.centre = centre;
+    for (int i = 0; i < 12; ++i) {
+        const double a = 2.0 * std::numbers::pi * i / 12;
+        s.control[static_cast<std::size_t>(i)] = {centre.x + 0.04 * std::cos(a),
+                                                  centre.y + 0.04 * std::sin(a)};
+    }
+    // Oracle: no penetration (the centre is off the terrain); the resistance of the inside
+    // points only, at the angles 0, ±30° and ±60° (cos > 1/40), each pushing back along -u_i
+    // with m = depth + δ, averaged over all 12 points.
+    const double cos_sum = 1.0 + 2.0 * std::cos(std::numbers::pi / 6) + 2.0 * 0.5;
+    const double expected_x = -(kMu * kK / 12.0) * cos_sum * (depth + kDelta);
+    const ForceSample f = evaluate_force(s, {centre.x, centre.y, -depth}, {}, params());
+    EXPECT_TRUE(f.contact);
+    EXPECT_NEAR(f.force.x, expected_x, 1e-12);
+    EXPECT_NEAR(f.force.y, 0.0, 1e-12);
+    EXPECT_EQ(f.force.z, 0.0);
+    EXPECT_EQ(f.immersion, -std::numeric_limits<double>::infinity());
+    // No greater than fully inside: k (depth + δ) straight up.
+    HapticSnapshot inside = flat_ring(0.0);
+    inside.terrain = s.terrain;
+    const ForceSample g = evaluate_force(inside, {0.5, 0.5, -depth}, {}, params());
+    EXPECT_NEAR(g.force.z, kK * (depth + kDelta), 1e-12);
+    EXPECT_LE(length(f.force), length(g.force));
+
+    // The whole ring off the terrain: no force, no contact, however deep.
+    for (double x : {-0.05, -5.0, 49.0, 1e6}) {
+        HapticSnapshot out = flat_ring(0.0);
+        out.terrain = s.terrain;
+        out.centre = {x, 0.5};
+        for (std::uint32_t i = 0; i < out.control_count; ++i)
+            out.control[i] = out.control[i] + Vec2{x - 0.5, 0.0};
+        for (double z : {-0.001, -0.2, -1e6}) {
+            const ForceSample h = evaluate_force(out, {x, 0.5, z}, {0.1, 0.0, 0.0}, params());
+            EXPECT_FALSE(h.contact) << x << " " << z;
+            EXPECT_EQ(h.force, (Vec3{})) << x << " " << z;
+        }
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geom/height_limit.hpp"
 #include "haptics/sequence_filter.hpp"
 #include "haptics/udp_protocol.hpp"
 
@@ -82,6 +83,27 @@ TEST(UdpProtocol, MalformedPacketsAreRejectedWithTheReason) {
     EXPECT_FALSE(decode_with(b, DecodeError::NonFinite));
     // The error argument is optional.
     EXPECT_FALSE(decode_packet(std::vector<std::uint8_t>{1, 2, 3}).has_value());
+}
+
+TEST(UdpProtocol, PosesBeyondTheLargestTerrainHeightAreMalformed) {
+    // kMaxHeight (1e9 m) bounds every height a terrain, a script or a recording holds; a pose
+    // beyond it would make the session's recording unreplayable.
+    const double beyond = std::nextafter(kMaxHeight, 2.0 * kMaxHeight);
+    for (const Vec3& p : {Vec3{0.5, 0.5, -2e9}, Vec3{1e300, 1e300, -1e300}, Vec3{0.5, 0.5, beyond},
+                          Vec3{0.5, 0.5, -std::numeric_limits<double>::max()}}) {
+        EXPECT_FALSE(decode_with(encode_packet({1, PosePacket{p, 1}}), DecodeError::OutOfRange))
+            << p.x << " " << p.y << " " << p.z;
+    }
+    // The limit itself is accepted, as the recording loader accepts it; so is any finite x and y
+    // (terrains may lie up to 1e12 m out, and a probe off the terrain touches nothing).
+    for (const Vec3& p : {Vec3{kMaxHeight, -kMaxHeight, kMaxHeight}, Vec3{0.5, 0.5, -kMaxHeight},
+                          Vec3{beyond, -beyond, 0.0}, Vec3{1e300, -1e300, 0.2}}) {
+        const std::optional<Packet> q =
+            decode_with(encode_packet({1, PosePacket{p, 0}}), DecodeError::None);
+        ASSERT_TRUE(q.has_value());
+        EXPECT_EQ(std::get<PosePacket>(q->body).position, p);
+    }
+    EXPECT_NE(to_string(DecodeError::OutOfRange), to_string(DecodeError::NonFinite));
 }
 
 TEST(UdpProtocol, EveryTruncationAndByteFlipIsHandled) {

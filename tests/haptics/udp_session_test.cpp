@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -14,6 +16,9 @@
 #include "haptics/live_session.hpp"
 #include "haptics/recording_replay.hpp"
 #include "haptics/udp_device.hpp"
+#include "haptics/udp_protocol.hpp"
+#include "haptics/udp_session_server.hpp"
+#include "haptics/udp_socket.hpp"
 #include "test_support.hpp"
 #include "tools/tool_json.hpp"
 
@@ -140,6 +145,71 @@ TEST(UdpSession, ReplayProcessDrivesAHeadlessSessionOverLoopback) {
 
 TEST(UdpSession, WithABackupLoopThreadTheRoundTripIsAsExact) {
     check_replay_process_drives_a_headless_session(true);
+}
+
+// A driver glitch in the middle of a live session: finite poses far beyond the terrain (z =
+// -2e9 m, then 1e300 m). The session served in-process (what `sandtin haptics serve` runs) drops
+// them as malformed, so its recording loads and replays into the same terrain.
+TEST(UdpSession, AGlitchedPoseDoesNotMakeTheRecordingUnreplayable) {
+    const std::filesystem::path dir = test::scratch_dir("udp_glitch");
+    const ScriptTerrain terrain = test::test_terrain();
+    Tin live = make_recording_terrain(terrain, test::headless());
+    SculptContext context(live.domain());
+    UdpServeOptions options;
+    options.device.loss_timeout_ns = 5'000'000'000;  // a loaded machine may pause the driver
+    options.loop.try_realtime = false;
+    options.tool = test::circle_tool_json();
+    options.terrain = terrain;
+    options.max_seconds = 60.0;
+    std::atomic<std::uint16_t> port{0};
+    options.on_listening = [&](std::uint16_t p) { port.store(p); };
+
+    // Hover, a stroke 5 mm deep, the glitch (button up, as in the audit), the stroke again.
+    std::vector<PosePacket> poses;
+    for (int i = 0; i < 20; ++i)
+        poses.push_back({{0.3, 0.5, 0.2}, 0});
+    for (int i = 0; i < 40; ++i)
+        poses.push_back({{0.3 + 0.005 * i, 0.5, 0.045}, kMainButton});
+    const std::size_t glitch_begin = poses.size();
+    for (int i = 0; i < 24; ++i)
+        poses.push_back({i % 2 == 0 ? Vec3{0.5, 0.5, -2e9} : Vec3{1e300, 1e300, -1e300}, 0});
+    const std::size_t glitch_end = poses.size();
+    for (int i = 0; i < 40; ++i)
+        poses.push_back({{0.5 + 0.005 * i, 0.45, 0.045}, kMainButton});
+    for (int i = 0; i < 20; ++i)
+        poses.push_back({{0.7, 0.45, 0.2}, 0});
+
+    std::thread driver([&] {
+        for (int i = 0; i < 5000 && port.load() == 0; ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        UdpSocket socket = UdpSocket::bind(0);
+        const UdpEndpoint to{0x7F000001u, port.load()};
+        std::uint32_t sequence = 0;
+        for (const PosePacket& pose : poses) {
+            EXPECT_TRUE(socket.send_to(encode_packet({++sequence, pose}), to));
+            // Several simulation steps (500 Hz) per pose, so the glitch would be consumed.
+            std::this_thread::sleep_for(std::chrono::milliseconds(3));
+        }
+        EXPECT_TRUE(socket.send_to(encode_packet({++sequence, ByePacket{}}), to));
+    });
+    const UdpServeResult served = serve_udp_session(live, context, options);
+    driver.join();
+    EXPECT_TRUE(served.device.bye);
+    EXPECT_FALSE(served.time_limit_reached);
+    EXPECT_EQ(served.device.malformed, glitch_end - glitch_begin);
+    EXPECT_EQ(served.device.poses, poses.size() - (glitch_end - glitch_begin));
+    EXPECT_GT(served.stamps, 10u);
+    for (const EditInput& e : served.recording.edits)
+        EXPECT_LT(std::abs(e.position.z), 1.0) << "tick " << e.tick;
+
+    save_recording(dir / "session.haptic.json", served.recording);
+    HapticRecording rec;
+    ASSERT_NO_THROW(rec = load_recording(dir / "session.haptic.json"));
+    Tin replayed = make_recording_terrain(*rec.terrain, test::headless());
+    SculptContext replay_context(replayed.domain());
+    const nlohmann::json report = replay_recording(rec, replayed, replay_context, dir);
+    EXPECT_TRUE(report["result_matches_recording"].get<bool>());
+    test::expect_same_terrain(live, replayed);
 }
 
 }  // namespace
