@@ -61,6 +61,16 @@ std::optional<Packet> receive_packet(UdpSocket& socket) {
     return std::nullopt;
 }
 
+/// Reads the device until it has received `n` datagrams (about 200 ms at most): the state it
+/// read last goes to `s`, and its counters are returned.
+UdpDeviceCounters read_until_received(UdpDevice& device, DeviceState& s, std::uint64_t n) {
+    for (int i = 0; i < 200 && device.counters().received < n; ++i) {
+        EXPECT_EQ(device.read(s), ReadStatus::Ok);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return device.counters();
+}
+
 TEST(UdpDevice, LoopbackRoundTripDropsMalformedAndLatePackets) {
     UdpDevice device;
     device.open();
@@ -82,11 +92,7 @@ TEST(UdpDevice, LoopbackRoundTripDropsMalformedAndLatePackets) {
     std::vector<std::uint8_t> big(300, 0);
     ASSERT_TRUE(driver.send_to(big, to));  // oversized
     // Loopback delivery is immediate but not synchronous: read until all five arrived.
-    for (int i = 0; i < 200 && device.counters().received < 5; ++i) {
-        ASSERT_EQ(device.read(s), ReadStatus::Ok);
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    const UdpDeviceCounters c = device.counters();
+    const UdpDeviceCounters c = read_until_received(device, s, 5);
     EXPECT_EQ(c.received, 5u);
     EXPECT_EQ(c.poses, 1u);
     EXPECT_EQ(c.malformed, 3u);
@@ -128,11 +134,7 @@ TEST(UdpDevice, OutOfRangePosesAreDroppedAndCountedAsMalformed) {
         encode_packet({4, PosePacket{{0.5, std::numeric_limits<double>::quiet_NaN(), 0.2}, 0}}),
         to));
     DeviceState s;
-    for (int i = 0; i < 200 && device.counters().received < 4; ++i) {
-        ASSERT_EQ(device.read(s), ReadStatus::Ok);
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    UdpDeviceCounters c = device.counters();
+    UdpDeviceCounters c = read_until_received(device, s, 4);
     EXPECT_EQ(c.received, 4u);
     EXPECT_EQ(c.poses, 1u);
     EXPECT_EQ(c.malformed, 3u);
