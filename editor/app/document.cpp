@@ -4,6 +4,8 @@
 #include <random>
 #include <vector>
 
+#include "tin/flat_bedrock.hpp"
+
 namespace sandtin::editor {
 
 /// A new sandbox: 1 m x 1 m of sand 2 to 10 cm deep over a flat bedrock, with two crossing dune
@@ -36,11 +38,11 @@ Tin default_sandbox() {
     for (Vec2 p : points)
         heights.push_back(height(p));
     Tin tin = Tin::from_points(domain, points, heights);
+    lay_flat_bedrock(tin, 0.02);
     const VertexArrays& va = tin.vertices();
     for (std::uint32_t i = 0; i < va.size(); ++i) {
         if (!va.alive[i]) continue;
         const VertexId v{i};
-        tin.set_bedrock(v, 0.02);
         if (va.position[i].y < 0.18 + 0.04 * std::sin(9.0 * va.position[i].x)) {
             tin.set_material(v, 1);
             tin.set_moisture(v, 0.3f);

@@ -56,34 +56,27 @@ MapGrid corner_grid(const Rect& d, const ExportOptions& o) {
                    samples_along(d.height(), o.cell_height.value_or(cell)), SampleAt::Corners);
 }
 
-/// Texels covering the domain, map_size along the longer side.
+/// Texels covering the domain: texel_size metres each when given, each side rounded to whole
+/// texels; map_size along the longer side otherwise.
 MapGrid texture_grid(const Rect& d, const ExportOptions& o) {
-    if (o.texel_size) {
-        const double texel = *o.texel_size;
-        if (!(std::isfinite(texel) && texel > 0.0)) {
-            throw std::invalid_argument(
-                "export: the cell size must be a positive number of metres");
-        }
-        const auto along = [&](double side) {
-            const double n = std::max(1.0, std::round(side / texel));
-            if (!(n <= kMaxMapSide)) {
-                std::ostringstream what;
-                what << "export: a cell size of " << texel << " m gives more than " << kMaxMapSide
-                     << " texels along a " << side << " m side";
-                throw std::invalid_argument(what.str());
-            }
-            return static_cast<std::uint32_t>(n);
-        };
-        return MapGrid(d, along(d.width()), along(d.height()), SampleAt::Centres);
+    if (o.texel_size && !(std::isfinite(*o.texel_size) && *o.texel_size > 0.0)) {
+        throw std::invalid_argument("export: the cell size must be a positive number of metres");
     }
-    if (o.map_size < 1 || o.map_size > kMaxMapSide) {
+    if (!o.texel_size && (o.map_size < 1 || o.map_size > kMaxMapSide)) {
         throw std::invalid_argument("export: the map size must lie in 1.." +
                                     std::to_string(kMaxMapSide));
     }
     const double longer = std::max(d.width(), d.height());
     const auto along = [&](double side) {
-        return std::max<std::uint32_t>(
-            1, static_cast<std::uint32_t>(std::lround(o.map_size * side / longer)));
+        const double n = std::max(
+            1.0, std::round(o.texel_size ? side / *o.texel_size : o.map_size * side / longer));
+        if (!(n <= kMaxMapSide)) {
+            std::ostringstream what;
+            what << "export: a cell size of " << *o.texel_size << " m gives more than "
+                 << kMaxMapSide << " texels along a " << side << " m side";
+            throw std::invalid_argument(what.str());
+        }
+        return static_cast<std::uint32_t>(n);
     };
     return MapGrid(d, along(d.width()), along(d.height()), SampleAt::Centres);
 }
@@ -93,9 +86,9 @@ GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
     HeightRaster raster;
     raster.width = grid.width;
     raster.height = grid.height;
-    raster.cell_size = grid.spacing().x;
-    const double dy = grid.spacing().y;
-    if (dy != raster.cell_size) raster.cell_height = dy;
+    const Vec2 spacing = grid.spacing();
+    raster.cell_size = spacing.x;
+    if (spacing.y != spacing.x) raster.cell_height = spacing.y;
     raster.origin = grid.domain.min;
     raster.heights = bake_height_map(tin, grid).values;
     raster.source_format = "tin";
@@ -185,8 +178,8 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
             // Both spacings: rounding a side to whole cells spaces the rows differently from
             // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
             // one spacing would stretch the terrain.
-            const double cell = grid.spacing().x;
-            const double cell_height = grid.spacing().y;
+            const double cell = report.map_spacing.x;
+            const double cell_height = report.map_spacing.y;
             if (format == ExportFormat::HeightPng) {
                 report.height_step = height_png_range(heights) / 65535.0;
                 write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
@@ -194,11 +187,15 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                 write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
             }
         } else if (format == ExportFormat::NormalPng) {
-            const TexelFrame frame{grid.spacing(), o.georeference};
-            write(out, encode_normal_png(bake_normal_map(tin, grid, o.normal_mode), frame), report);
+            write(out,
+                  encode_normal_png(bake_normal_map(tin, grid, o.normal_mode),
+                                    {report.map_spacing, o.georeference}),
+                  report);
         } else {
-            const TexelFrame frame{grid.spacing(), o.georeference};
-            write(out, encode_albedo_png(bake_albedo_map(tin, grid, o.palette), frame), report);
+            write(out,
+                  encode_albedo_png(bake_albedo_map(tin, grid, o.palette),
+                                    {report.map_spacing, o.georeference}),
+                  report);
         }
         report.ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -257,7 +254,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         report.map_width = grid.width;
         report.map_height = grid.height;
         report.map_spacing = grid.spacing();
-        const TexelFrame frame{grid.spacing(), o.georeference};
+        const TexelFrame frame{report.map_spacing, o.georeference};
         textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette), frame);
         // In the mesh's own tangent frame, as glTF's normalTexture (and OBJ importers reading
         // map_Bump) expect: the terrain's normals relative to the exported mesh's.

@@ -502,15 +502,22 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
                                "' needs the physics, which this runner was created without");
     }
     std::vector<VertexId> eroded;
-    // What float relaxation (the GPU) added or lost by rounding, m³: measured, since it has
-    // no account of its own.
+    // What float relaxation (the GPU) added or lost by rounding, m³. Every height it writes
+    // goes through the TIN's volume ledger, so reading the ledger around each physics call
+    // measures it without a pass over the terrain (a stroke erodes after every stamp).
     double erosion_drift = 0.0;
-    // Relaxation, then the simplification of what it touched. Both conserve volume (the
-    // relaxation to its arithmetic's rounding).
-    auto relax = [&](int iterations, bool until_rest) {
-        eroded.clear();
+    auto physics_call = [&](int iterations, bool until_rest) {
+        const double ledger = tin.volume_ledger();
         PhysicsStepReport r = until_rest ? backend_.run_to_rest(iterations, &eroded)
                                          : backend_.step(iterations, &eroded);
+        if (!backend_.exact_volume) erosion_drift += tin.volume_ledger() - ledger;
+        return r;
+    };
+    // Relaxation, then the simplification of what it touched. Both conserve volume (the
+    // relaxation to its arithmetic's rounding).
+    auto erode = [&](int iterations, bool until_rest) {
+        eroded.clear();
+        PhysicsStepReport r = physics_call(iterations, until_rest);
         context.simplifier.enqueue(eroded);
         if (!context.settings.simplify_after_edit) return r;
         const SimplifyReport simplified = context.simplifier.run(tin, context.settings.simplify);
@@ -522,17 +529,10 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step) {
             // step leaves is at rest, so those settle now; what that moves is queued for the
             // next edit's simplification.
             eroded.clear();
-            const PhysicsStepReport settle = backend_.run_to_rest(iterations, &eroded);
+            const PhysicsStepReport settle = physics_call(iterations, true);
             context.simplifier.enqueue(eroded);
             r.accumulate(settle);
         }
-        return r;
-    };
-    auto erode = [&](int iterations, bool until_rest) {
-        if (backend_.exact_volume) return relax(iterations, until_rest);
-        const double before = tin.volume();
-        const PhysicsStepReport r = relax(iterations, until_rest);
-        erosion_drift += tin.volume() - before;
         return r;
     };
     const auto t0 = std::chrono::steady_clock::now();

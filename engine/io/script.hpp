@@ -164,7 +164,7 @@ struct PhysicsBackend {
     std::function<void()> activate_all;
     /// True when the relaxation conserves volume to double rounding (the CPU physics), so an
     /// erosion reports a volume change of 0. False for float arithmetic (the GPU): each erosion
-    /// then measures the terrain's volume before and after and reports the drift.
+    /// then reports the drift the TIN's volume ledger shows across it.
     bool exact_volume = true;
 };
 /// Creates a backend that follows `tin` from now on, with the script's settings and the scene's
