@@ -130,6 +130,7 @@ void App::panel_file() {
             // terrain lies on it, and the georeference.
             ExportOptions options;
             apply_import_defaults(*doc_.tin, doc_.metadata_json, options);
+            options.palette = export_palette(doc_.materials);  // as the viewport shows them
             const ExportReport r =
                 export_terrain(*doc_.tin, export_buf_, export_format_for(export_buf_), options);
             report("exported " + std::to_string(r.files.size()) + " file(s)");

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "io/export_terrain.hpp"
 #include "io/import_grid.hpp"
+#include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "util/atomic_file.hpp"
@@ -112,6 +113,9 @@ int run_export(const std::vector<std::string>& raw) {
     // put vertices between those samples.
     const std::optional<DefaultSampling> sampling =
         apply_import_defaults(tin, session.metadata_json, options, args.has("--size"));
+    // The colours the scene was sculpted with, recoloured materials included.
+    options.palette = export_palette(
+        materials_from_metadata(session.metadata_json).value_or(MaterialTable::presets()));
     ExportReport report;
     try {
         report = export_terrain(tin, out, format, options);

@@ -101,8 +101,16 @@ std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const Texel
     return encode_rgb8(normals, 1.0, 0.5, frame);
 }
 
+double srgb_encode(double linear) {
+    const double c = std::clamp(linear, 0.0, 1.0);
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
 std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame) {
-    return encode_rgb8(colours, 0.0, 1.0, frame);
+    MapImage encoded = colours;
+    for (double& v : encoded.values)
+        v = srgb_encode(v);
+    return encode_rgb8(encoded, 0.0, 1.0, frame);
 }
 
 }  // namespace sandtin

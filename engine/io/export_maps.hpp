@@ -39,7 +39,11 @@ struct TexelFrame {
 };
 /// `normals` has three channels, unit vectors.
 std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const TexelFrame& frame = {});
-/// `colours` has three channels in [0, 1].
+/// `colours` has three channels of linear albedo in [0, 1], written as an 8-bit RGB PNG in the
+/// sRGB encoding that image viewers, glTF's baseColorTexture and OBJ's map_Kd expect
+/// (IEC 61966-2-1).
 std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame = {});
+/// The sRGB transfer function for a linear value (clamped to [0, 1]).
+double srgb_encode(double linear);
 
 }  // namespace sandtin

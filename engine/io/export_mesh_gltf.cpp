@@ -141,7 +141,8 @@ std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures
         material.pbrMetallicRoughness.baseColorTexture.index =
             add_texture(model, textures.albedo_png, "albedo");
     } else {
-        material.pbrMetallicRoughness.baseColorFactor = {0.84, 0.74, 0.55, 1.0};
+        material.pbrMetallicRoughness.baseColorFactor = {
+            textures.base_colour.x, textures.base_colour.y, textures.base_colour.z, 1.0};
     }
     if (!textures.normal_png.empty()) {
         material.normalTexture.index = add_texture(model, textures.normal_png, "normal");

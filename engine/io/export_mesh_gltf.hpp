@@ -16,6 +16,8 @@ namespace sandtin {
 struct GltfTextures {
     std::vector<std::uint8_t> albedo_png;  ///< empty: no base colour texture
     std::vector<std::uint8_t> normal_png;  ///< empty: no normal texture
+    /// Linear RGB base colour factor without an albedo texture (glTF's baseColorFactor).
+    Vec3 base_colour{1.0, 1.0, 1.0};
 };
 
 /// Throws std::invalid_argument for a Z-up mesh and std::runtime_error when tinygltf fails.

@@ -161,6 +161,8 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     ExportReport report;
     report.format = format;
     const Rect d = tin.domain();
+    if (o.palette.colours.empty())
+        throw std::invalid_argument("export: the palette has no colours");
 
     if (!is_mesh(format)) {
         if (o.max_error || o.base != BaseKind::None || o.up) {
@@ -248,6 +250,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
 
     // Textures come from the original terrain: simplification changes geometry, not looks.
     GltfTextures textures;
+    textures.base_colour = o.palette.colours.front();
     const bool with_textures = o.textures && (format == ExportFormat::Obj || gltf);
     if (with_textures) {
         const MapGrid grid = texture_grid(d, o);

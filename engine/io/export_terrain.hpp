@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/export_mesh.hpp"
+#include "io/export_palette.hpp"
 #include "io/greedy_tin.hpp"
 #include "maps/albedo_map.hpp"
 #include "maps/normal_map.hpp"
@@ -68,7 +69,8 @@ struct ExportOptions {
     std::optional<double> texel_size;
     bool textures = true;  ///< OBJ and glTF: bake and embed/write albedo and normal maps
     NormalMode normal_mode = NormalMode::Smooth;
-    MaterialColours palette = default_material_colours();
+    /// Albedo maps and mesh materials: the scene's materials (`export_palette`).
+    MaterialColours palette = export_palette(MaterialTable::presets());
 };
 
 struct ExportReport {

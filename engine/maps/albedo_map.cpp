@@ -7,10 +7,6 @@
 
 namespace sandtin {
 
-MaterialColours default_material_colours() {
-    return {{{0.84, 0.74, 0.55}, {0.62, 0.52, 0.38}, {0.52, 0.50, 0.47}}, 0.6};
-}
-
 MapImage bake_albedo_map(const Tin& tin, const MapGrid& grid, const MaterialColours& palette) {
     if (palette.colours.empty()) throw std::invalid_argument("albedo bake: empty palette");
     const VertexArrays& va = tin.vertices();

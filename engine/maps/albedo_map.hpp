@@ -11,17 +11,15 @@
 
 namespace sandtin {
 
-/// Colour of a material index, sRGB components in [0, 1]. Indices past the end use the last.
+/// Colour of a material index: linear RGB albedo in [0, 1], as the viewport shades it (files
+/// store it sRGB-encoded: io/export_maps.hpp). Indices past the end use the last.
 struct MaterialColours {
     std::vector<Vec3> colours;
     /// Reflectance kept at full moisture: colour * (1 - (1 - wet_factor) * moisture).
     double wet_factor = 0.6;
 };
 
-/// Dry sand, wet sand, gravel: the colours of the default material presets.
-MaterialColours default_material_colours();
-
-/// Three channels (r, g, b) in [0, 1].
+/// Three channels (r, g, b) of linear albedo in [0, 1].
 MapImage bake_albedo_map(const Tin& tin, const MapGrid& grid, const MaterialColours& palette);
 
 }  // namespace sandtin

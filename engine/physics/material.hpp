@@ -21,6 +21,10 @@
 
 namespace sandtin {
 
+/// Share of its albedo a material keeps at full saturation: wet sand is darker. The viewport
+/// and the exported albedo both shade colour x (1 - (1 - kWetReflectance) m).
+inline constexpr float kWetReflectance = 0.6f;
+
 struct Material {
     std::string name = "dry_sand";
     double repose_dry = 0.5585053606381855;         ///< radians (32°)

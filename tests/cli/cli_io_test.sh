@@ -223,6 +223,16 @@ scenario_export_bad() {
     check_eq "exit code for bad session data" "$rc" 1
     grep -q -- "--cell-size or --size" tiny_meta.err || fail "no way out named: $(cat tiny_meta.err)"
     expect_ok tiny_meta_sized export tiny.sandtin -o tiny_meta.png --size 8 || return
+    # A scene's own material colours (the editor's Materials panel writes them into its
+    # metadata) reach the albedo map and the OBJ material; before, exports used fixed colours.
+    "$SESSION_METADATA" g.sandtin red.sandtin /materials \
+        '[{"name": "red_sand", "colour": [0.6, 0.05, 0.0]}]' ||
+        fail "session_metadata could not write red.sandtin"
+    expect_ok red_map export red.sandtin -o red.png --map albedo --size 8 || return
+    expect_ok plain_map export g.sandtin -o plain.png --map albedo --size 8 || return
+    cmp -s red.png plain.png && fail "the recoloured scene exported the preset colours"
+    expect_ok red_obj export red.sandtin -o red.obj || return
+    grep -q "^Kd 0.6" red.mtl || fail "MTL colour of the recoloured scene: $(grep Kd red.mtl)"
     return 0
 }
 

@@ -13,8 +13,10 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "formats/png_image.hpp"
+#include "io/export_palette.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/import_grid.hpp"
@@ -749,6 +751,60 @@ TEST_F(Export, NormalAndAlbedoMapsAreRgbPngs) {
         EXPECT_DOUBLE_EQ(text("sandtin:texel_height"), 8.0 / 43.0) << map;
         EXPECT_DOUBLE_EQ(text("sandtin:west"), 500000.0) << map;
         EXPECT_DOUBLE_EQ(text("sandtin:south"), 4000000.0) << map;
+    }
+}
+
+/// The sRGB transfer function as IEC 61966-2-1 writes it, for the oracle: linear -> encoded.
+double srgb_from_linear(double c) {
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+// Exports bake each material's colour as the viewport shades it (linear albedo, wet sand
+// darker by the viewport's factor) and store it sRGB-encoded, as PNG viewers, glTF and OBJ
+// read it; a material table the artist recoloured (the editor's Materials panel, a scene's
+// metadata) reaches the albedo map and the untextured glTF's base colour. Before, every export
+// used fixed colours near the presets', stored unencoded.
+TEST_F(Export, AlbedoIsTheScenesMaterialColourInSrgb) {
+    Tin tin = Tin::random_points(Rect{{0.0, 0.0}, {4.0, 4.0}}, 200, 3, hills);
+    for (VertexId v : test::live_ids(tin)) {
+        if (tin.position(v).x > 2.0) tin.set_material(v, 1);
+        if (tin.position(v).y > 2.0) tin.set_moisture(v, 1.0f);
+    }
+    MaterialTable table = MaterialTable::presets();
+    std::vector<Material> recoloured = table.all();
+    recoloured[0].colour[0] = 0.6f;
+    recoloured[0].colour[1] = 0.05f;
+    recoloured[0].colour[2] = 0.0f;
+    recoloured[1].colour[0] = 0.1f;
+    recoloured[1].colour[1] = 0.3f;
+    recoloured[1].colour[2] = 0.9f;
+    for (const MaterialTable& materials : {table, MaterialTable(recoloured)}) {
+        ExportOptions o;
+        o.map_size = 16;
+        o.palette = export_palette(materials);
+        const PngImage albedo = decode_png(run(tin, "a.png", o, "albedo"));
+        // Texel centres in the middle of each quadrant lie inside one material and moisture
+        // (the terrain's triangles are far smaller than a quadrant's interior).
+        for (const auto& [col, row, material, moisture] :
+             std::vector<std::tuple<std::uint32_t, std::uint32_t, std::size_t, double>>{
+                 {3, 12, 0, 0.0}, {12, 12, 1, 0.0}, {3, 3, 0, 1.0}, {12, 3, 1, 1.0}}) {
+            const Material& m = materials.all()[material];
+            for (std::uint32_t c = 0; c < 3; ++c) {
+                const double linear =
+                    static_cast<double>(m.colour[c]) *
+                    (1.0 - (1.0 - static_cast<double>(kWetReflectance)) * moisture);
+                EXPECT_EQ(static_cast<long>(albedo.sample(col, row, c)),
+                          std::lround(255.0 * srgb_from_linear(linear)))
+                    << m.name << " channel " << c << " at texel " << col << ", " << row;
+            }
+        }
+        o.textures = false;
+        const LoadedGltf g = load_gltf(run(tin, "plain.glb", o), true);
+        const std::vector<double> factor =
+            g.model.materials.at(0).pbrMetallicRoughness.baseColorFactor;
+        ASSERT_EQ(factor.size(), 4u);
+        for (std::size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(factor[c], static_cast<double>(materials.all()[0].colour[c]), 1e-7);
     }
 }
 

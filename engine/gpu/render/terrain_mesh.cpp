@@ -49,7 +49,7 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     out.position[1] = static_cast<float>(p.y - origin.y);
     out.position[2] = static_cast<float>(h);
     const Material& m = materials_.at(va.material[id]);
-    const float wet = 1.0f - 0.4f * std::clamp(va.moisture[id], 0.0f, 1.0f);
+    const float wet = 1.0f - (1.0f - kWetReflectance) * std::clamp(va.moisture[id], 0.0f, 1.0f);
     for (int j = 0; j < 3; ++j)
         out.albedo[j] = m.colour[j] * wet;
     // Slope of the area-weighted mean plane around the vertex (|grad z| = |n_xy| / n_z): a
