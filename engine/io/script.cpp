@@ -446,14 +446,8 @@ void warn_if_nothing_stamped(nlohmann::json& j, const StampReport& total) {
 
 /// A pour or removal that moved less than asked says how much and why.
 void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
-    if (!(std::abs(moved) < 0.99 * asked)) return;
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  remove ? "removed %.3g m³ of the %.3g m³ asked: there is no more sand above the "
-                           "bedrock there, or the point lies outside the terrain"
-                         : "poured %.3g m³ of the %.3g m³ asked: the rest fell outside the terrain",
-                  std::abs(moved), asked);
-    j["warning"] = text;
+    if (const std::optional<std::string> w = short_pour_warning(remove, asked, moved))
+        j["warning"] = *w;
 }
 
 }  // namespace

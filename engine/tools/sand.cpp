@@ -1,6 +1,7 @@
 #include "tools/sand.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "tools/refine.hpp"
@@ -133,6 +134,17 @@ PourReport remove_sand(Tin& tin, Vec2 centre, double volume, const PourSettings&
     report.vertices_changed = k.vertices.size();
     context.simplifier.enqueue(k.simplifiable);
     return report;
+}
+
+std::optional<std::string> short_pour_warning(bool remove, double asked, double moved) {
+    if (!(std::abs(moved) < 0.99 * asked)) return std::nullopt;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  remove ? "removed %.3g m³ of the %.3g m³ asked: there is no more sand above the "
+                           "bedrock there, or the point lies outside the terrain"
+                         : "poured %.3g m³ of the %.3g m³ asked: the rest fell outside the terrain",
+                  std::abs(moved), asked);
+    return std::string(text);
 }
 
 }  // namespace sandtin

@@ -4,6 +4,9 @@
 // by dh_i = V k_i / sum(A_j k_j), so sum(A_i dh_i) = V. Where the terrain is coarse, points are
 // first inserted so the pour has a shape. The physics then lets the sand slide.
 
+#include <optional>
+#include <string>
+
 #include "tin/tin.hpp"
 #include "tools/falloff.hpp"
 #include "tools/sculpt_context.hpp"
@@ -33,5 +36,10 @@ PourReport pour_sand(Tin& tin, Vec2 centre, double volume, const PourSettings& s
 /// the report may show less than asked for when the sand runs out.
 PourReport remove_sand(Tin& tin, Vec2 centre, double volume, const PourSettings& settings,
                        SculptContext& context);
+
+/// The warning for a pour or removal that moved less than 99 % of the `asked` m³ (`moved` is
+/// the reports' volume, negative for a removal), saying how much and why; none otherwise. The
+/// script runner and the editor both show it.
+std::optional<std::string> short_pour_warning(bool remove, double asked, double moved);
 
 }  // namespace sandtin
