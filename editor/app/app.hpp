@@ -46,6 +46,7 @@
 #include "layout_probe.hpp"
 #include "physics/sand_physics.hpp"
 #include "picking.hpp"
+#include "pour_flow.hpp"
 #include "swapchain.hpp"
 #include "terrain_scale.hpp"
 #include "tools/brushes.hpp"
@@ -67,6 +68,10 @@ using Clock = std::chrono::steady_clock;
 
 /// Milliseconds of relaxation per frame at most (the rest waits for the next frame).
 inline constexpr double kErosionBudgetMs = 25.0;
+
+/// Seconds a frame of a scripted run counts for (a held pour): 60 frames a second, so a
+/// script pours the same on any machine, however fast it draws.
+inline constexpr double kScriptFrameSeconds = 1.0 / 60.0;
 
 inline double ms_since(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -152,6 +157,16 @@ class App {
 
     std::optional<Vec3> pick(double x, double y) const;
     void tool_at(Vec3 point);
+    /// The Pour or Remove tool at `xy` (press or move): the dabs the pour flow places there.
+    void pour_at(Vec2 xy);
+    /// One dab of the Pour or Remove tool, of the Pour slider's volume.
+    void pour_dab(Vec2 at);
+    /// A pour held down keeps pouring with time (pour_flow.hpp); called once per frame.
+    void pour_while_held();
+    /// Ends the Pour or Remove gesture; one that moved less sand than asked says so.
+    void end_pour();
+    /// Metres: the pour's disc is half the Size slider's radius.
+    double pour_radius() const { return 0.5 * settings_.tool_radius; }
     void end_action();
     /// The erosion came to rest: simplify what it moved, let the sand settle that, and make
     /// the whole an undo level.
@@ -263,6 +278,10 @@ class App {
     std::optional<StrokeSampler> sampler_;
     std::optional<Tool> active_tool_;
     std::optional<Vec2> last_dab_;
+    std::optional<PourFlow> pour_flow_;           ///< the Pour or Remove gesture under way
+    bool pour_removes_ = false;                   ///< that gesture is a Remove
+    Clock::time_point pour_clock_{};              ///< when the held pour last counted its time
+    double pour_asked_ = 0.0, pour_moved_ = 0.0;  ///< m³ over the gesture (moved < 0: removed)
     double flatten_level_ = 0.0;  ///< metres: the Flatten brush's level for this stroke
     std::string pending_label_;
     bool erosion_pending_ = false;

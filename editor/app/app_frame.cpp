@@ -274,6 +274,7 @@ bool App::frame(bool capture) {
     // The simulation and the panels may edit the terrain: the haptic snapshot is not held
     // through them, so a long edit fades the force as the loop's staleness rule intends.
     if (haptics_) haptics_->release();
+    pour_while_held();
     update_simulation();
     update_mesh();
 

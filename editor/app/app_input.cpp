@@ -65,21 +65,60 @@ void App::tool_at(Vec3 p) {
             break;
         }
         case ToolKind::Pour:
-        case ToolKind::Remove: {
-            PourSettings ps;
-            ps.radius = settings_.tool_radius * 0.5;
-            if (t.kind == ToolKind::Pour) {
-                pour_sand(*doc_.tin, xy, settings_.pour_volume, ps, *doc_.context);
-                pending_label_ = "pour";
-            } else {
-                remove_sand(*doc_.tin, xy, settings_.pour_volume, ps, *doc_.context);
-                pending_label_ = "remove sand";
-            }
+        case ToolKind::Remove:
+            pour_at(xy);
             break;
-        }
     }
     tool_ms_ += ms_since(t0);
     physics_kick_ = true;
+}
+
+void App::pour_at(Vec2 xy) {
+    if (pour_flow_) {
+        for (Vec2 at : pour_flow_->move(xy))
+            pour_dab(at);
+        return;
+    }
+    // The dabs along a drag are spaced as the script's pour path spaces its points: half the
+    // pour disc's radius.
+    pour_flow_.emplace(0.5 * pour_radius());
+    pour_removes_ = kTools[settings_.tool].kind == ToolKind::Remove;
+    pour_clock_ = Clock::now();
+    for (Vec2 at : pour_flow_->press(xy))
+        pour_dab(at);
+}
+
+void App::pour_dab(Vec2 at) {
+    PourSettings ps;
+    ps.radius = pour_radius();
+    const PourReport r = pour_removes_
+                             ? remove_sand(*doc_.tin, at, settings_.pour_volume, ps, *doc_.context)
+                             : pour_sand(*doc_.tin, at, settings_.pour_volume, ps, *doc_.context);
+    pour_asked_ += settings_.pour_volume;
+    pour_moved_ += r.volume;
+    pending_label_ = pour_removes_ ? "remove sand" : "pour";
+    physics_kick_ = true;
+}
+
+void App::pour_while_held() {
+    if (!pour_flow_ || !left_down_) return;
+    const auto now = Clock::now();
+    const double seconds = options_.scripted()
+                               ? kScriptFrameSeconds
+                               : std::chrono::duration<double>(now - pour_clock_).count();
+    pour_clock_ = now;
+    for (Vec2 at : pour_flow_->hold(seconds))
+        pour_dab(at);
+    tool_ms_ += ms_since(now);
+}
+
+void App::end_pour() {
+    if (!pour_flow_) return;
+    pour_flow_.reset();
+    if (const std::optional<std::string> w =
+            short_pour_warning(pour_removes_, pour_asked_, pour_moved_))
+        report(*w);
+    pour_asked_ = pour_moved_ = 0.0;
 }
 
 void App::mouse_button(int button, bool down, double x, double y) {

@@ -229,7 +229,9 @@ void App::panel_tools() {
             const double cube = size * size * size;
             scaled_slider("Pour", "", settings_.pour_volume, 1e-6 * cube, 2e-4 * cube,
                           volume_unit(2e-4 * cube), "%.0f");
-            tip("Sand volume poured or removed per click or mouse move");
+            tip("Sand poured or removed per dab. A click is one dab; a drag adds one every\n"
+                "quarter of the Size along the stroke, however fast the mouse moves; holding\n"
+                "the button still adds four dabs a second (4 x this volume per second)");
             break;
         }
         case ToolKind::Brush: {

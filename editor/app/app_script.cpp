@@ -9,6 +9,8 @@ namespace sandtin::editor {
 // {"ops": [ {"op": "tool", "name": "Ball"} | {"op": "set", "<setting>": value, ...}
 //         | {"op": "drag", "button": "left"|"right"|"middle", "path": [[fx, fy], ...], "steps": n}
 //         | {"op": "click", "at": [fx, fy]} | {"op": "move", "at": [fx, fy]}
+//         | {"op": "press", "at": [fx, fy]} | {"op": "release"}  (the left button held down
+//            across frames: a "wait" between them holds it still, each frame counting 1/60 s)
 //         | {"op": "key", "key": "z", "ctrl": true}
 //         | {"op": "scroll", "steps": s} | {"op": "wait", "frames": n}
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
@@ -161,6 +163,12 @@ void App::run_script_op(const nlohmann::json& op) {
         } else {
             haptics_.reset();
         }
+    } else if (kind == "press") {
+        const auto p = px(op.at("at"));
+        mouse_move(p.first, p.second);
+        mouse_button(GLFW_MOUSE_BUTTON_LEFT, true, p.first, p.second);
+    } else if (kind == "release") {
+        mouse_button(GLFW_MOUSE_BUTTON_LEFT, false, mouse_x_, mouse_y_);
     } else if (kind == "move") {
         const auto p = px(op.at("at"));
         mouse_move(p.first, p.second);

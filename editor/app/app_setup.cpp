@@ -257,6 +257,7 @@ void App::end_action() {
         }
         sampler_.reset();
     }
+    end_pour();
     if (!pending_label_.empty()) {
         if (doc_.history->record(pending_label_)) {
             mark_edited();

@@ -761,6 +761,68 @@ TEST_F(EditorXvfb, ToolsPourAndRelocationRadiusFollowTheTerrainsSize) {
     EXPECT_NEAR(hi_large / hi_small, 100.0, 5.0);
 }
 
+// Pour and Remove move sand by the gesture, not by the mouse events that delivered it: a drag
+// pours one dab where it starts and one every half pour radius along its path (the script's
+// pour path spacing), and a button held still pours four dabs a second (a scripted frame
+// counts 1/60 s). Before, every mouse-move event poured a dab: the same drag poured 4 dabs as
+// 3 events and 42 as 41, and a held button poured once.
+class EditorPour : public EditorXvfb {
+  protected:
+    static constexpr double kDab = 1e-6;  ///< m³, the Pour slider
+    /// The volume a script's Pour gesture adds to a flat 1 m scene, from above.
+    double poured(const std::string& name, const std::string& gesture) {
+        const fs::path scene = kWork / "pour-flat.sandtin";
+        if (!fs::exists(scene)) save_flat_scene(scene, 1.0, unit_square_points(6000, 99));
+        const fs::path after = kWork / (name + "-after.sandtin");
+        const std::string ops =
+            R"([{"op": "set", "erosion": false, "radius": 0.04, "pour_volume": )" +
+            std::to_string(kDab) + R"(}, {"op": "camera", "pitch": 1.5},
+            {"op": "tool", "name": "Pour"}, )" +
+            gesture + "]";
+        const EditorRun r =
+            run_editor(name, ops, scene.string() + " --save-after " + after.string());
+        EXPECT_EQ(r.exit_code, 0) << r.log;
+        return Tin::from_snapshot(load_session(after).terrain).volume();
+    }
+};
+
+TEST_F(EditorPour, ADragPoursTheSameWhateverTheNumberOfMouseEvents) {
+    const std::string path = R"({"op": "drag", "path": [[0.45, 0.45], [0.6, 0.55]], "steps": )";
+    const double few = poured("pour-drag-3", path + "3}");
+    const double many = poured("pour-drag-41", path + "41}");
+    const double dabs = std::round(few / kDab);
+    EXPECT_GE(dabs, 5.0) << "the drag should be several dab spacings long";
+    EXPECT_NEAR(few, dabs * kDab, 1e-3 * kDab) << "not a whole number of dabs";
+    EXPECT_NEAR(many, few, 1e-3 * kDab) << "3 events poured " << few << " m³, 41 poured " << many;
+}
+
+TEST_F(EditorPour, HoldingTheButtonStillKeepsPouringFourDabsASecond) {
+    // A click: one dab. Held for 40 and 100 frames of waiting, plus the press's and the
+    // wait's own frames: 0.7 s and 1.7 s, so 2 and 6 more dabs.
+    const auto hold = [](int frames) {
+        return R"({"op": "press", "at": [0.6, 0.5]}, {"op": "wait", "frames": )" +
+               std::to_string(frames) + R"(}, {"op": "release"})";
+    };
+    EXPECT_NEAR(poured("pour-click", R"({"op": "click", "at": [0.6, 0.5]})"), kDab, 1e-3 * kDab);
+    EXPECT_NEAR(poured("pour-hold-40", hold(40)), 3.0 * kDab, 1e-3 * kDab);
+    EXPECT_NEAR(poured("pour-hold-100", hold(100)), 7.0 * kDab, 1e-3 * kDab);
+}
+
+// A Remove that finds less sand above the bedrock than it asks for says so, with the words
+// `sandtin run` uses (it used to be silent): 200 cm³ asked of a 5 mm disc on the sandbox.
+TEST_F(EditorPour, ARemoveThatFindsLessSandThanAskedSaysSo) {
+    const std::string ops = R"([{"op": "set", "erosion": false, "radius": 0.01,
+        "pour_volume": 0.0002}, {"op": "tool", "name": "Remove"},
+        {"op": "click", "at": [0.6, 0.5]}])";
+    ::setenv("SANDTIN_EDITOR_TRACE", "1", 1);  // the status line's reports go to the log
+    const EditorRun r = run_editor("remove-short", ops);
+    ::unsetenv("SANDTIN_EDITOR_TRACE");
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_NE(r.log.find("of the 0.0002 m³ asked: there is no more sand above the bedrock"),
+              std::string::npos)
+        << r.log;
+}
+
 // The panel's simplification tolerance holds for a scene opened during the session too, not
 // only for the one the editor started with: the same stroke after Ctrl+O re-opens the scene
 // must leave the same terrain as without it. (Each opened document used to get the engine's
