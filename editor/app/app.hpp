@@ -44,6 +44,7 @@
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "layout_probe.hpp"
+#include "panel_layout.hpp"
 #include "physics/sand_physics.hpp"
 #include "picking.hpp"
 #include "pour_flow.hpp"
@@ -114,6 +115,11 @@ class App {
                doc_.physics->gpu_dispatches();
     }
     void draw_panels();
+    /// Pixels the status window takes at the bottom of the window with its margin (0 when
+    /// there is no status).
+    float status_window_height() const;
+    /// The status line in its own window, pinned below the panel (`height` as above).
+    void status_window(float height);
     void panel_tools();
     void panel_materials();
     void panel_erosion();

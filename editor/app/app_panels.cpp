@@ -54,8 +54,17 @@ bool path_field(const char* id, const char* hint, char* buffer, std::size_t size
 // ---- Panels ---------------------------------------------------------------------------------
 
 void App::draw_panels() {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-    ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_Always);
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    // The status line (save and autosave failures, the terrain-scaling notice) has its own
+    // window in the bottom-left corner, and the panel ends above it: when the panel is taller
+    // than the window it scrolls, and the status line must never scroll out of sight with it.
+    const float status_height = status_window_height();
+    const float panel_bottom =
+        std::max(display.y - kPanelMargin - status_height, 2.0f * kPanelMargin);
+    ImGui::SetNextWindowPos(ImVec2(kPanelMargin, kPanelMargin), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kPanelWidth, 0.0f),
+                                        ImVec2(kPanelWidth, panel_bottom - kPanelMargin));
     ImGui::Begin("sandtin", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
     // Controls take the width left of a column wide enough for the longest label; the layout
     // probe reports any control that still reaches past the panel's edge.
@@ -74,10 +83,9 @@ void App::draw_panels() {
     section("Erosion", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_erosion);
     section("Haptics", 0, &App::panel_haptics);
     open_panels_.reset();
-    if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
     ImGui::PopItemWidth();
     ImGui::End();
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    status_window(status_height);
     ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
     // As wide as its widest line with the stage times at their usual magnitudes.
     const float stats_width = ImGui::CalcTextSize("upload 00.00  bake 00.00  render 000.00 ms").x +
@@ -90,6 +98,28 @@ void App::draw_panels() {
     ImGui::End();
     recovery_prompt();
     discard_prompt();
+}
+
+float App::status_window_height() const {
+    if (status_.empty()) return 0.0f;
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float wrap = kPanelWidth - 2.0f * style.WindowPadding.x;
+    return ImGui::CalcTextSize(status_.c_str(), nullptr, false, wrap).y +
+           2.0f * style.WindowPadding.y + kPanelMargin;
+}
+
+void App::status_window(float height) {
+    if (status_.empty()) return;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(kPanelMargin, display.y - kPanelMargin), ImGuiCond_Always,
+                            ImVec2(0.0f, 1.0f));
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, height - kPanelMargin), ImGuiCond_Always);
+    ImGui::Begin("##status", nullptr,
+                 ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                     ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+    ImGui::TextWrapped("%s", status_.c_str());
+    layout_.item_visible("status");
+    ImGui::End();
 }
 
 void App::panel_file() {

@@ -537,6 +537,7 @@ int App::run() {
         s["idle_gpu_work"] = idle_gpu_work;
         s["validation_messages"] = validation;
         s["layout_overflow_px"] = layout_.overflow_px();
+        s["layout_hidden_px"] = layout_.hidden_px();
         if (haptics_) {
             const HapticsLive l = haptics_->live();
             s["haptics"] = {{"device", l.device},

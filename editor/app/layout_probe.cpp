@@ -32,4 +32,19 @@ void LayoutProbe::end() {
     section_.clear();
 }
 
+void LayoutProbe::item_visible(const std::string& name) {
+    const ImGuiWindow* window = ImGui::GetCurrentWindow();
+    const ImRect item(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+    // What can be seen: the window's inner region (inside its scrollbars, and inside the
+    // window, which the display may cut) within the display.
+    ImRect seen = window->InnerClipRect;
+    seen.ClipWith(ImRect(ImVec2(0.0f, 0.0f), ImGui::GetIO().DisplaySize));
+    ImRect shown = item;
+    shown.ClipWith(seen);
+    const float hidden = std::max(item.GetWidth() - std::max(0.0f, shown.GetWidth()),
+                                  item.GetHeight() - std::max(0.0f, shown.GetHeight()));
+    float& worst = hidden_px_[name];
+    worst = std::max(worst, hidden);
+}
+
 }  // namespace sandtin::editor

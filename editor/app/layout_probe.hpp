@@ -19,8 +19,17 @@ class LayoutProbe {
     /// in every frame.
     const std::map<std::string, float>& overflow_px() const { return overflow_px_; }
 
+    /// Call right after the item `name` (inside its window): measures how much of it lies
+    /// outside what can be seen, i.e. outside its window's visible region (scrolled away or
+    /// clipped) or outside the display.
+    void item_visible(const std::string& name);
+    /// The most pixels of each measured item's height or width ever hidden: 0 when it was
+    /// wholly on screen in every frame it was drawn.
+    const std::map<std::string, float>& hidden_px() const { return hidden_px_; }
+
   private:
     std::map<std::string, float> overflow_px_;
+    std::map<std::string, float> hidden_px_;
     std::string section_;
     float window_reach_ = 0.0f;  ///< the window's widest control before the section began
 };

@@ -1077,13 +1077,17 @@ TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
     // open, every tool picked in turn (each shows its own controls) and the haptic loop
     // connected (its live lines), on the 1 m sandbox and on a 100 m terrain, whose sliders
     // show other units. The editor measures how far each section's controls reach past its
-    // window's edge (layout_probe.hpp); it must be nowhere.
+    // window's edge (layout_probe.hpp); it must be nowhere. The status line (here "nothing to
+    // undo", and on the 100 m terrain the scaling notice before it) must be on screen at the
+    // smaller window sizes too, where the panel is taller than the window and scrolls: it
+    // once was the panel's last line, below the fold at 1280 x 720.
     std::string ops = R"([{"op": "set", "erosion": false}, {"op": "panels", "open": true},
-        {"op": "wait", "frames": 1})";
+        {"op": "key", "key": "z", "ctrl": true}, {"op": "wait", "frames": 1})";
     for (const editor::ToolEntry& t : editor::kTools)
         ops += std::string(R"(, {"op": "tool", "name": ")") + t.label +
                R"("}, {"op": "wait", "frames": 1})";
-    ops += R"(, {"op": "haptics", "connect": true}, {"op": "wait", "frames": 3}])";
+    ops += R"(, {"op": "tool", "name": "Box"}, {"op": "haptics", "connect": true},
+        {"op": "wait", "frames": 3}])";
     const fs::path large = kWork / "layout-100m.sandtin";
     // unit_square_points spans the unit square: scaled to the 100 m terrain.
     std::vector<Vec2> points = unit_square_points(400, 7);
@@ -1091,16 +1095,23 @@ TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
         p = p * 100.0;
     save_flat_scene(large, 100.0, points);
     for (const std::string& scene : {std::string(), large.string()}) {
-        const EditorRun r =
-            run_editor(scene.empty() ? "layout-sandbox" : "layout-100m", ops, scene);
-        ASSERT_EQ(r.exit_code, 0) << r.log;
-        EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
-        const nlohmann::json& overflow = r.stats.at("layout_overflow_px");
-        for (const char* section : {"File", "Tools", "Materials", "Erosion", "Haptics", "Stats"}) {
-            ASSERT_TRUE(overflow.contains(section)) << section << " was never drawn: " << overflow;
-            EXPECT_EQ(overflow.at(section).get<double>(), 0.0)
-                << section << " reaches past its panel's edge on "
-                << (scene.empty() ? "the sandbox" : scene);
+        for (const std::string size : {"1280x720", "1024x640"}) {
+            const std::string run = (scene.empty() ? "layout-sandbox-" : "layout-100m-") + size;
+            const EditorRun r = run_editor(run, ops, scene + " --size " + size);
+            ASSERT_EQ(r.exit_code, 0) << r.log;
+            EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+            const nlohmann::json& overflow = r.stats.at("layout_overflow_px");
+            for (const char* section :
+                 {"File", "Tools", "Materials", "Erosion", "Haptics", "Stats"}) {
+                ASSERT_TRUE(overflow.contains(section))
+                    << section << " was never drawn: " << overflow;
+                EXPECT_EQ(overflow.at(section).get<double>(), 0.0)
+                    << section << " reaches past its panel's edge in " << run;
+            }
+            const nlohmann::json& hidden = r.stats.at("layout_hidden_px");
+            ASSERT_TRUE(hidden.contains("status")) << "no status line was drawn in " << run;
+            EXPECT_EQ(hidden.at("status").get<double>(), 0.0)
+                << "the status line is (partly) out of sight in " << run;
         }
     }
 }
