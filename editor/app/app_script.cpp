@@ -131,11 +131,12 @@ void App::run_script_op(const nlohmann::json& op) {
             mouse_move(pts[i].first, pts[i].second);
         mouse_button(button, false, pts.back().first, pts.back().second);
     } else if (kind == "camera") {
-        // Absolute orbit angles (radians) and a zoom in wheel steps from frame-to-fit.
-        frame_terrain();
+        // Absolute orbit angles (radians) and a zoom in wheel steps from frame-to-fit, which
+        // frames the terrain as seen from those angles.
         camera_.yaw = op.value("yaw", camera_.yaw);
         camera_.pitch = std::clamp(op.value("pitch", camera_.pitch), OrbitCamera::kMinPitch,
                                    OrbitCamera::kMaxPitch);
+        frame_terrain();
         camera_.zoom(op.value("zoom", 0.0));
     } else if (kind == "resize") {
         const int nw = op.at("size").at(0).get<int>(), nh = op.at("size").at(1).get<int>();

@@ -191,9 +191,12 @@ void App::frame_terrain() {
         lo = std::min(lo, va.height[i]);
         hi = std::max(hi, va.height[i]);
     }
-    camera_.frame({-0.5 * d.width(), -0.5 * d.height(), lo},
-                  {0.5 * d.width(), 0.5 * d.height(), hi});
-    camera_.distance *= 0.8;  // the domain's corners may leave the view a little: more terrain
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    // The whole terrain where the panel does not cover it; in a window too narrow for that,
+    // the whole terrain in the whole view.
+    camera_.frame_in({-0.5 * d.width(), -0.5 * d.height(), lo},
+                     {0.5 * d.width(), 0.5 * d.height(), hi}, w, h, free_viewport(w, h));
 }
 
 void App::fit_settings_to_document() {

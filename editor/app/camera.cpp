@@ -68,6 +68,52 @@ void OrbitCamera::frame(Vec3 lo, Vec3 hi) {
     distance = std::clamp(1.05 * radius / std::sin(0.5 * fov_y), kMinDistance, kMaxDistance);
 }
 
+std::optional<PixelRect> OrbitCamera::projected_box(Vec3 lo, Vec3 hi, double width,
+                                                    double height) const {
+    PixelRect r{1e300, 1e300, -1e300, -1e300};
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{(corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                     (corner & 4) ? hi.z : lo.z};
+        double px = 0.0, py = 0.0;
+        if (!project(p, width, height, px, py)) return std::nullopt;
+        r = {std::min(r.x0, px), std::min(r.y0, py), std::max(r.x1, px), std::max(r.y1, py)};
+    }
+    return r;
+}
+
+bool OrbitCamera::frame_in(Vec3 lo, Vec3 hi, double width, double height, PixelRect free,
+                           double margin) {
+    frame(lo, hi);
+    const PixelRect want{free.x0 + margin * free.width(), free.y0 + margin * free.height(),
+                         free.x1 - margin * free.width(), free.y1 - margin * free.height()};
+    if (!(want.width() > 0.0 && want.height() > 0.0)) return false;
+    const OrbitCamera whole_view = *this;
+    // The projection is centred on the viewport and the free part need not be: alternately
+    // pan the box's image onto the free part's centre and scale the distance so the image
+    // fills it. Perspective makes each step approximate; a few dozen converge to a pixel.
+    auto fits = [&] {
+        const std::optional<PixelRect> r = projected_box(lo, hi, width, height);
+        return r && r->x0 >= want.x0 && r->x1 <= want.x1 && r->y0 >= want.y0 && r->y1 <= want.y1;
+    };
+    for (int step = 0; step < 64; ++step) {
+        const std::optional<PixelRect> r = projected_box(lo, hi, width, height);
+        if (!r) {
+            distance = std::min(distance * 1.5, kMaxDistance);  // a corner behind the eye
+            continue;
+        }
+        pan(0.5 * (want.x0 + want.x1 - r->x0 - r->x1), 0.5 * (want.y0 + want.y1 - r->y0 - r->y1),
+            height);
+        const double scale = std::max(r->width() / want.width(), r->height() / want.height());
+        distance = std::clamp(distance * scale, kMinDistance, kMaxDistance);
+    }
+    // Converged from inside or outside: step back until every corner is in.
+    for (int step = 0; step < 100 && !fits(); ++step)
+        distance = std::min(distance * 1.01, kMaxDistance);
+    if (fits()) return true;
+    *this = whole_view;
+    return false;
+}
+
 Mat4 OrbitCamera::view() const {
     const Basis b = basis(*this);
     const Vec3 e = eye();

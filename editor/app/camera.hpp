@@ -3,6 +3,7 @@
 // matrices (y down in clip space, depth 0..1) and the pick ray through a pixel.
 
 #include <array>
+#include <optional>
 
 #include "geom/vec3.hpp"
 
@@ -13,6 +14,14 @@ using Mat4 = std::array<float, 16>;  ///< column-major
 struct Ray {
     Vec3 origin;
     Vec3 direction;  ///< unit length
+};
+
+/// A rectangle of a viewport, in pixels (y down).
+struct PixelRect {
+    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+    double width() const { return x1 - x0; }
+    double height() const { return y1 - y0; }
+    bool contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
 };
 
 class OrbitCamera {
@@ -38,6 +47,17 @@ class OrbitCamera {
     void zoom(double steps);
     /// Fits a box (metres) in view from the current direction.
     void frame(Vec3 box_min, Vec3 box_max);
+    /// Fits a box (metres), seen from the current direction, into the part `free` of a
+    /// width x height viewport (what the panels leave uncovered): its eight corners project
+    /// into `free` shrunk by `margin` (a fraction of its size on each side), and the box fills
+    /// it as far as that allows. False when no fit was found (`free` empty, say): the camera
+    /// then frames the box in the whole view.
+    bool frame_in(Vec3 box_min, Vec3 box_max, double width, double height, PixelRect free,
+                  double margin = 0.03);
+    /// The pixel rectangle the box's eight corners project to; none when one of them is
+    /// behind the camera.
+    std::optional<PixelRect> projected_box(Vec3 box_min, Vec3 box_max, double width,
+                                           double height) const;
 
     Mat4 view() const;
     Mat4 projection(double aspect) const;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "camera.hpp"
+#include "panel_layout.hpp"
 #include "picking.hpp"
 #include "tin/tin.hpp"
 
@@ -102,6 +103,42 @@ TEST(Camera, PanMovesTheTargetWithTheDrag) {
     ASSERT_TRUE(c.project(before, kW, kH, px1, py1));
     EXPECT_NEAR(px1 - px0, 40.0, 0.5);
     EXPECT_NEAR(py1 - py0, 0.0, 0.5);
+}
+
+// Framing leaves the panel alone: at the window sizes where the terrain used to lie partly
+// behind the panel (1024 x 640, 1280 x 800, 1280 x 1000) and at the usual ones, every corner
+// of the sandbox's box projects into the part of the window right of the panel, from the
+// default angles and from others, and the box still fills most of that part.
+TEST(Camera, FrameInPutsEveryCornerOfTheTerrainRightOfThePanel) {
+    const Vec3 lo{-0.5, -0.5, 0.0}, hi{0.5, 0.5, 0.1};
+    const std::pair<double, double> sizes[] = {
+        {1024.0, 640.0}, {1280.0, 800.0}, {1280.0, 1000.0}, {1280.0, 720.0}, {1920.0, 1080.0}};
+    for (const auto& [w, h] : sizes) {
+        for (double yaw : {-1.9, 0.0, 0.8, 2.5}) {
+            for (double pitch : {0.75, 0.3, 1.5}) {
+                OrbitCamera c;
+                c.yaw = yaw;
+                c.pitch = pitch;
+                const PixelRect free = free_viewport(w, h);
+                ASSERT_TRUE(c.frame_in(lo, hi, w, h, free)) << w << "x" << h;
+                PixelRect image{1e300, 1e300, -1e300, -1e300};
+                for (int corner = 0; corner < 8; ++corner) {
+                    const Vec3 p{(corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
+                                 (corner & 4) ? hi.z : lo.z};
+                    double px = 0.0, py = 0.0;
+                    ASSERT_TRUE(c.project(p, w, h, px, py));
+                    EXPECT_TRUE(free.contains(px, py))
+                        << "corner " << corner << " at (" << px << ", " << py << ") in " << w << "x"
+                        << h << ", yaw " << yaw << ", pitch " << pitch;
+                    image = {std::min(image.x0, px), std::min(image.y0, py), std::max(image.x1, px),
+                             std::max(image.y1, py)};
+                }
+                EXPECT_GT(std::max(image.width() / free.width(), image.height() / free.height()),
+                          0.85)
+                    << "the terrain is framed too small in " << w << "x" << h;
+            }
+        }
+    }
 }
 
 TEST(Picking, HitsAnAnalyticPlaneWhereTheRayMeetsIt) {
