@@ -228,6 +228,10 @@ class App {
     /// Before the document is replaced (New, Open, Import): unsaved edits of a scene with a
     /// file go to its autosave, which is offered for recovery when the scene is opened again.
     void keep_unsaved_edits();
+    /// A scripted run's outputs, data first: the scene (--save-after), then the screenshot.
+    /// Each is tried whatever became of the other (a bad screenshot path once lost the
+    /// scene); the failures are returned, for the run to report and exit 1 with.
+    std::vector<std::string> write_outputs();
     /// The interactive main loop: until the window closes.
     void interactive_loop();
     LoopState loop_state() const;

@@ -441,6 +441,7 @@ int App::run() {
     frame_terrain();
 
     int exit_code = 0;
+    std::vector<std::string> output_failures;
     std::uint64_t idle_submissions = 0, idle_gpu_work = 0;
     int frames_after_script = 0;
     // Whatever goes wrong in a session, scripted or interactive, its edits are not lost with the
@@ -469,9 +470,7 @@ int App::run() {
                 frame(last && !options_.screenshot.empty());
                 if (last) break;
             }
-            if (!options_.screenshot.empty())
-                write_png(options_.screenshot, swapchain_->screenshot());
-            if (!options_.save_after.empty()) save(options_.save_after);
+            output_failures = write_outputs();
             if (options_.idle_seconds > 0.0) {
                 // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
                 const std::uint64_t before = swapchain_->submissions();
@@ -563,6 +562,9 @@ int App::run() {
         }
         std::ofstream(options_.stats) << s.dump(2) << "\n";
     }
+    for (const std::string& failure : output_failures)
+        std::fprintf(stderr, "sandtin-editor: %s\n", failure.c_str());
+    if (!output_failures.empty()) exit_code = 1;
     if (validation > 0) {
         for (const std::string& m : context_->validation_messages())
             std::fprintf(stderr, "validation: %s\n", m.c_str());
@@ -571,6 +573,26 @@ int App::run() {
     if (!options_.scripted() && !(settings_ == saved_settings_)) save_settings_reporting();
     shutdown();
     return exit_code;
+}
+
+std::vector<std::string> App::write_outputs() {
+    std::vector<std::string> failures;
+    if (!options_.save_after.empty()) {
+        try {
+            save(options_.save_after);
+        } catch (const std::exception& e) {
+            failures.push_back("cannot save the scene: " + std::string(e.what()));
+            keep_unsaved_edits();  // as when a session fails: to the autosave, if it has one
+        }
+    }
+    if (!options_.screenshot.empty()) {
+        try {
+            write_png(options_.screenshot, swapchain_->screenshot());
+        } catch (const std::exception& e) {
+            failures.push_back("cannot write the screenshot: " + std::string(e.what()));
+        }
+    }
+    return failures;
 }
 
 int run_editor(const EditorOptions& options) {

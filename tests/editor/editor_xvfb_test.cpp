@@ -1116,6 +1116,30 @@ TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
     }
 }
 
+// Data first: the scene is saved before the screenshot is written, and one output's failure
+// does not skip the other; each failure is reported and the run exits 1. (The screenshot used
+// to be written first, and a bad screenshot path lost the sculpting it was to save.)
+TEST_F(EditorXvfb, ABadScreenshotPathStillSavesTheScene) {
+    const fs::path saved = kWork / "bad-shot-saved.sandtin";
+    const fs::path missing = kWork / "no-such-folder";
+    fs::remove(saved);
+    const EditorRun r = run_editor(
+        "bad-shot", kStroke,
+        "--save-after " + saved.string() + " --screenshot " + (missing / "s.png").string());
+    EXPECT_EQ(r.exit_code, 1) << r.log;
+    EXPECT_NE(r.log.find("cannot write the screenshot"), std::string::npos) << r.log;
+    ASSERT_TRUE(fs::exists(saved)) << "the bad screenshot path lost the scene: " << r.log;
+    const Tin t = Tin::from_snapshot(load_session(saved).terrain);
+    EXPECT_GT(t.constrained_edge_count(), 0u) << "the saved scene lacks the stroke";
+
+    const EditorRun both = run_editor("bad-shot-and-save", kStroke,
+                                      "--save-after " + (missing / "x.sandtin").string() +
+                                          " --screenshot " + (missing / "s.png").string());
+    EXPECT_EQ(both.exit_code, 1) << both.log;
+    EXPECT_NE(both.log.find("cannot save the scene"), std::string::npos) << both.log;
+    EXPECT_NE(both.log.find("cannot write the screenshot"), std::string::npos) << both.log;
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1) << r.log;
