@@ -1,6 +1,7 @@
 // Set-up, document operations and the main loop of the editor.
 
 #include "app.hpp"
+#include "io/session_name.hpp"
 #include "util/json_document.hpp"
 
 namespace sandtin::editor {
@@ -216,6 +217,11 @@ void App::fit_settings_to_document() {
 }
 
 void App::save(const std::filesystem::path& p) {
+    // The rule `sandtin` applies to its -o: a session never takes another format's name (the
+    // document would then carry that name, and Ctrl+S write there again).
+    if (const std::optional<std::string> problem = session_name_problem(p))
+        throw std::runtime_error("'" + p.string() + "': " + *problem +
+                                 " (Export writes meshes and maps)");
     end_action();
     // An autosave still being written would otherwise land after the save retired it.
     autosave_writer_.cancel();

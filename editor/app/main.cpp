@@ -7,9 +7,11 @@
 
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "editor_app.hpp"
+#include "io/session_name.hpp"
 
 namespace {
 
@@ -71,6 +73,12 @@ int main(int argc, char** argv) {
     }
     if (o.frames < 0 || o.width < 64 || o.height < 64 || o.width > 8192 || o.height > 8192)
         usage("frames must be >= 0 and the size between 64 and 8192 pixels");
+    // Before the work, not after it, as `sandtin` checks its -o.
+    if (const std::optional<std::string> problem = sandtin::session_name_problem(o.save_after);
+        !o.save_after.empty() && problem) {
+        usage("--save-after '" + o.save_after.string() + "': " + *problem +
+              " (sandtin export writes meshes and maps)");
+    }
     try {
         return sandtin::editor::run_editor(o);
     } catch (const std::exception& e) {

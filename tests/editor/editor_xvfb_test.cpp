@@ -1140,6 +1140,24 @@ TEST_F(EditorXvfb, ABadScreenshotPathStillSavesTheScene) {
     EXPECT_NE(both.log.find("cannot write the screenshot"), std::string::npos) << both.log;
 }
 
+// A session is never written under another format's name (.png, .obj, .json, ...), by the
+// editor's Save and Ctrl+S (App::save, here through the script's "save" op) or by
+// --save-after (refused before the run, as `sandtin` refuses such an -o), with the CLI's
+// words. The editor used to write a session file named out.png.
+TEST_F(EditorXvfb, ASessionIsNeverSavedUnderAnotherFormatsName) {
+    const fs::path png = kWork / "looks-like.png";
+    fs::remove(png);
+    const EditorRun save_op = run_editor(
+        "save-as-png", then(kFlat, R"({"op": "save", "path": ")" + png.string() + R"("})"));
+    EXPECT_EQ(save_op.exit_code, 1) << save_op.log;
+    EXPECT_NE(save_op.log.find("not as .png; name it .sandtin"), std::string::npos) << save_op.log;
+    EXPECT_FALSE(fs::exists(png));
+    const EditorRun after = run_editor("save-after-png", kFlat, "--save-after " + png.string());
+    EXPECT_EQ(after.exit_code, 2) << after.log;
+    EXPECT_NE(after.log.find("not as .png; name it .sandtin"), std::string::npos) << after.log;
+    EXPECT_FALSE(fs::exists(png));
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1) << r.log;
