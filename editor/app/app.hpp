@@ -134,8 +134,11 @@ class App {
     /// asked first. A scene with a file keeps its edits in the autosave (keep_unsaved_edits).
     void replace_document(const std::string& what, std::function<void()> action);
     void discard_prompt();
+    /// The discard prompt's answers. Save writes the scene where Save and Ctrl+S write an
+    /// untitled one (the File panel's Scene field: the editor has no file dialog), then goes on.
+    enum class DiscardChoice { Save, Discard, Cancel };
     /// The discard prompt's answer (its buttons, or the script's "discard" op).
-    void answer_discard(bool discard);
+    void answer_discard(DiscardChoice choice);
     /// The window was asked to close and may: an untitled scene with unsaved edits asks
     /// first (the discard prompt), and the window stays open meanwhile.
     bool close_confirmed();
@@ -160,6 +163,8 @@ class App {
     void run_script_op(const nlohmann::json& op);
     void set_physics(const std::string& name);
     void set_falloff(const std::string& name);
+    /// The script's "scene_path": typed into the File panel's Scene field.
+    void set_scene_field(const std::string& path);
 
     std::optional<Vec3> pick(double x, double y) const;
     void tool_at(Vec3 point);
@@ -184,6 +189,12 @@ class App {
     void edit_material(int index, const Material& m);
     void redo();
     void save(const std::filesystem::path& p);
+    /// Save, Save As and Ctrl+S: a failure is reported on the status line. True when saved.
+    bool save_reporting(const std::filesystem::path& p);
+    /// Where Save and Ctrl+S write: the scene's file, or the Scene field for an untitled one.
+    std::filesystem::path save_path() const {
+        return doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path;
+    }
     void open(const std::filesystem::path& p);
     void frame_terrain();
     /// The length settings follow the new document's terrain size (terrain_scale.hpp), and the

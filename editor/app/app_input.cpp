@@ -170,13 +170,9 @@ void App::key(int k, bool ctrl) {
         undo();
     else if (ctrl && k == GLFW_KEY_Y)
         redo();
-    else if (ctrl && k == GLFW_KEY_S) {
-        try {
-            save(doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path);
-        } catch (const std::exception& e) {
-            report(std::string("save failed: ") + e.what());
-        }
-    } else if (ctrl && k == GLFW_KEY_N) {
+    else if (ctrl && k == GLFW_KEY_S)
+        save_reporting(save_path());
+    else if (ctrl && k == GLFW_KEY_N) {
         replace_document("New", [this] { new_document(); });
     } else if (ctrl && k == GLFW_KEY_O) {
         replace_document("Open", [this] { open_reporting(); });

@@ -131,22 +131,10 @@ void App::panel_file() {
     if (ImGui::Button("Open")) replace_document("Open", [this] { open_reporting(); });
     tip("Open the .sandtin session named above (Ctrl+O)");
     ImGui::SameLine();
-    if (ImGui::Button("Save")) {
-        try {
-            save(doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path);
-        } catch (const std::exception& e) {
-            report(std::string("save failed: ") + e.what());
-        }
-    }
+    if (ImGui::Button("Save")) save_reporting(save_path());
     tip("Save the scene to its file (Ctrl+S); the autosave is then removed");
     ImGui::SameLine();
-    if (ImGui::Button("Save As")) {
-        try {
-            save(path_buf_);
-        } catch (const std::exception& e) {
-            report(std::string("save failed: ") + e.what());
-        }
-    }
+    if (ImGui::Button("Save As")) save_reporting(path_buf_);
     tip("Save the scene under the path above");
     if (path_field("##heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
                    "Import"))
@@ -553,34 +541,45 @@ void App::replace_document(const std::string& what, std::function<void()> action
     action();
 }
 
-void App::answer_discard(bool discard) {
+void App::answer_discard(DiscardChoice choice) {
     if (!pending_replacement_) throw std::runtime_error("no unsaved edits wait to be discarded");
     std::function<void()> action = std::move(pending_replacement_);
     pending_replacement_ = nullptr;
-    if (discard) {
-        action();
-    } else {
-        report("kept the unsaved scene: save it with Save As");
+    switch (choice) {
+        case DiscardChoice::Save:
+            // A failed save keeps the scene, and the status line says why.
+            if (save_reporting(save_path())) action();
+            break;
+        case DiscardChoice::Discard:
+            action();
+            break;
+        case DiscardChoice::Cancel:
+            report("kept the unsaved scene: save it with Save or Save As");
+            break;
     }
 }
 
 void App::discard_prompt() {
     if (!pending_replacement_) return;
-    ImGui::OpenPopup("Discard unsaved edits?");
-    if (ImGui::BeginPopupModal("Discard unsaved edits?", nullptr,
-                               ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("The untitled scene has unsaved edits, and no file to autosave them to.");
-        if (ImGui::Button(("Discard and " + pending_replacement_label_).c_str())) {
+    ImGui::OpenPopup("Unsaved edits");
+    if (ImGui::BeginPopupModal("Unsaved edits", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::Text("The untitled scene has unsaved edits.");
+        const std::string target = save_path().string();
+        ImGui::Text("Save writes it to %s (the Scene field under File).", target.c_str());
+        const std::string& then = pending_replacement_label_;
+        const auto answer = [&](DiscardChoice choice) {
             ImGui::CloseCurrentPopup();
-            answer_discard(true);
-        }
+            answer_discard(choice);
+        };
+        if (ImGui::Button(("Save and " + then).c_str())) answer(DiscardChoice::Save);
+        tip("Save the scene to the path in the Scene field, then go on; if the save fails,\n"
+            "the scene stays and the status line says why");
+        ImGui::SameLine();
+        if (ImGui::Button(("Discard and " + then).c_str())) answer(DiscardChoice::Discard);
         tip("The edits are lost");
         ImGui::SameLine();
-        if (ImGui::Button("Cancel")) {
-            ImGui::CloseCurrentPopup();
-            answer_discard(false);
-        }
-        tip("Keep the scene; Save As writes it to the path in the Scene field");
+        if (ImGui::Button("Cancel")) answer(DiscardChoice::Cancel);
+        tip("Keep the scene open as it is");
         ImGui::EndPopup();
     }
 }

@@ -16,8 +16,9 @@ namespace sandtin::editor {
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
 //         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
-//         | {"op": "discard", "choice": "discard"|"cancel"}  (answers the prompt before New,
-//            Open, Import or closing drops an untitled scene's unsaved edits)
+//         | {"op": "discard", "choice": "save"|"discard"|"cancel"}  (answers the prompt before
+//            New, Open, Import or closing drops an untitled scene's unsaved edits; "save" saves
+//            to the Scene field first)
 //         | {"op": "close"}  (the window's close button)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "panels", "open": true|false}  (every panel header, from the next frame)
@@ -29,8 +30,8 @@ namespace sandtin::editor {
 // "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, brush_strength
 // (Raise and Lower, metres per dab), brush_blend (Smooth and Flatten, 0..1 per dab), falloff
 // ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
-// simplify_tolerance (metres, as the Erosion panel's slider) and physics ("cpu" | "gpu", the
-// Erosion panel's switch).
+// simplify_tolerance (metres, as the Erosion panel's slider), physics ("cpu" | "gpu", the
+// Erosion panel's switch) and scene_path (typed into the File panel's Scene field).
 // Positions are fractions of the window (0..1): scripts work at any --size.
 
 void App::set_physics(const std::string& name) {
@@ -48,6 +49,12 @@ void App::set_falloff(const std::string& name) {
             "script: falloff must be constant, linear, smooth or gaussian, not '" + name + "'");
     }
     settings_.brush_falloff = name;
+}
+
+void App::set_scene_field(const std::string& path) {
+    if (path.size() >= sizeof(path_buf_))
+        throw std::runtime_error("script: scene_path is longer than the Scene field holds");
+    std::snprintf(path_buf_, sizeof(path_buf_), "%s", path.c_str());
 }
 
 void App::run_script_op(const nlohmann::json& op) {
@@ -100,6 +107,8 @@ void App::run_script_op(const nlohmann::json& op) {
                 settings_.relocation_radius = v.get<double>();
             else if (k2 == "physics")
                 set_physics(v.get<std::string>());
+            else if (k2 == "scene_path")
+                set_scene_field(v.get<std::string>());
             else
                 throw std::runtime_error("script: unknown setting '" + k2 + "'");
         }
@@ -152,9 +161,11 @@ void App::run_script_op(const nlohmann::json& op) {
         glfwSetWindowShouldClose(window_, GLFW_TRUE);  // as the window's close button does
     } else if (kind == "discard") {
         const std::string choice = op.at("choice").get<std::string>();
-        if (choice != "discard" && choice != "cancel")
-            throw std::runtime_error("script: discard choice must be discard or cancel");
-        answer_discard(choice == "discard");
+        if (choice != "save" && choice != "discard" && choice != "cancel")
+            throw std::runtime_error("script: discard choice must be save, discard or cancel");
+        answer_discard(choice == "save"      ? DiscardChoice::Save
+                       : choice == "discard" ? DiscardChoice::Discard
+                                             : DiscardChoice::Cancel);
     } else if (kind == "haptics") {
         // Connects the simulated pen (as the panel's Connect button does) or disconnects.
         if (op.value("connect", true)) {

@@ -232,6 +232,16 @@ void App::save(const std::filesystem::path& p) {
     report("saved " + p.string());
 }
 
+bool App::save_reporting(const std::filesystem::path& p) {
+    try {
+        save(p);
+        return true;
+    } catch (const std::exception& e) {
+        report(std::string("save failed: ") + e.what());
+        return false;
+    }
+}
+
 void App::open(const std::filesystem::path& p) {
     end_action();
     keep_unsaved_edits();

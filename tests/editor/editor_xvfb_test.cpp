@@ -505,6 +505,63 @@ TEST_F(EditorXvfb, ClosingAsksBeforeDroppingAnUntitledScenesEdits) {
     EXPECT_FALSE(stays_open("close-clean", R"([{"op": "close"}])"));
 }
 
+// The unsaved-edits prompt offers Save too (it had only Discard and Cancel): it saves the
+// untitled scene where Save and Ctrl+S would (the Scene field), then goes on; a save that
+// fails keeps the scene and says why.
+TEST_F(EditorXvfb, TheUnsavedEditsPromptCanSaveFirst) {
+    const fs::path fresh = kWork / "prompt-fresh.sandtin";
+    ASSERT_EQ(run_editor("prompt-fresh", kFlat, "--save-after " + fresh.string()).exit_code, 0);
+    const fs::path stroked = kWork / "prompt-stroked.sandtin";
+    ASSERT_EQ(run_editor("prompt-stroked", kStroke, "--save-after " + stroked.string()).exit_code,
+              0);
+    const auto save_to = [](const fs::path& p) {
+        return R"({"op": "set", "scene_path": ")" + p.string() + R"("}, )";
+    };
+    const std::string press_new = R"({"op": "key", "key": "n", "ctrl": true}, )";
+
+    // Save and New: the edits are in the file, and the editor holds a new sandbox.
+    const fs::path saved = kWork / "prompt-saved.sandtin";
+    const fs::path after_new = kWork / "prompt-after-new.sandtin";
+    fs::remove(saved);
+    const EditorRun s = run_editor(
+        "prompt-save-new",
+        then(kStroke, save_to(saved) + press_new + R"({"op": "discard", "choice": "save"})"),
+        "--save-after " + after_new.string());
+    ASSERT_EQ(s.exit_code, 0) << s.log;
+    ASSERT_TRUE(fs::exists(saved)) << s.log;
+    EXPECT_EQ(load_session(saved).terrain.vertices.height,
+              load_session(stroked).terrain.vertices.height);
+    EXPECT_EQ(load_session(after_new).terrain.vertices.height,
+              load_session(fresh).terrain.vertices.height);
+
+    // Save and Quit: saved, and the editor closed before the script's next op.
+    const fs::path quit_saved = kWork / "prompt-quit-saved.sandtin";
+    const fs::path probe = kWork / "prompt-quit-probe.sandtin";
+    fs::remove(quit_saved);
+    fs::remove(probe);
+    const EditorRun q = run_editor(
+        "prompt-save-quit",
+        then(kStroke, save_to(quit_saved) + R"({"op": "close"}, {"op": "discard", "choice": "save"},
+            {"op": "save", "path": ")" +
+                          probe.string() + R"("})"));
+    ASSERT_EQ(q.exit_code, 0) << q.log;
+    EXPECT_TRUE(fs::exists(quit_saved)) << q.log;
+    EXPECT_FALSE(fs::exists(probe)) << "the editor stayed open after Save and Quit";
+
+    // A save that fails (a name that claims another format): the scene and its edits stay.
+    const fs::path kept = kWork / "prompt-kept.sandtin";
+    ::setenv("SANDTIN_EDITOR_TRACE", "1", 1);  // the status line's reports go to the log
+    const EditorRun f = run_editor("prompt-save-fails",
+                                   then(kStroke, save_to(kWork / "x.png") + press_new +
+                                                     R"({"op": "discard", "choice": "save"})"),
+                                   "--save-after " + kept.string());
+    ::unsetenv("SANDTIN_EDITOR_TRACE");
+    ASSERT_EQ(f.exit_code, 0) << f.log;
+    EXPECT_NE(f.log.find("save failed"), std::string::npos) << f.log;
+    EXPECT_EQ(load_session(kept).terrain.vertices.height,
+              load_session(stroked).terrain.vertices.height);
+}
+
 TEST_F(EditorXvfb, AnAutosaveThatCannotBeRebuiltLeavesTheSceneOpen) {
     const fs::path scene = kWork / "bad-autosave.sandtin";
     ASSERT_EQ(run_editor("bad-autosave-base", kFlat, "--save-after " + scene.string()).exit_code,
