@@ -28,6 +28,7 @@
 #include "camera.hpp"
 #include "change_fanout.hpp"
 #include "editor_settings.hpp"
+#include "erosion_status.hpp"
 #include "formats/png_image.hpp"
 #include "frame_policy.hpp"
 #include "gpu/gpu_error.hpp"
@@ -123,6 +124,11 @@ class App {
     void panel_tools();
     void panel_materials();
     void panel_erosion();
+    /// The Erosion panel's state line (erosion_status.hpp).
+    std::string erosion_status() const {
+        return erosion_status_text(settings_.erosion_running, doc_.physics->at_rest(),
+                                   erosion_active_);
+    }
     void panel_haptics();
     void panel_stats();
     void panel_file();
@@ -309,6 +315,10 @@ class App {
     /// The erosion's simplification ran; the sand settles what it steepened (settle_erosion).
     bool resettling_ = false;
     bool physics_kick_ = true;
+    /// Vertices the last relaxation step left active. Read right after a step, when both
+    /// solvers have taken every pending activation (the GPU solver's count between steps adds
+    /// its pending list, which may repeat vertices).
+    std::size_t erosion_active_ = 0;
     std::vector<std::uint8_t> active_;
     double tool_ms_ = 0.0;
     bool mesh_stale_ = true;

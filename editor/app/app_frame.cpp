@@ -52,6 +52,7 @@ void App::update_simulation() {
                 if (doc_.physics->at_rest() || ms_since(t0) > kErosionBudgetMs) break;
             }
         }
+        erosion_active_ = doc_.physics->active_count();
         std::sort(changed.begin(), changed.end());
         changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
         // What the sand moved is simplified once it rests (below), as an edit's vertices are.

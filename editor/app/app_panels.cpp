@@ -345,8 +345,8 @@ void App::panel_erosion() {
     }
     tip("Run or pause talus relaxation; an erosion run becomes one undo level");
     ImGui::SameLine();
-    ImGui::Text("%s, %zu active", doc_.physics->at_rest() ? "at rest" : "sliding",
-                doc_.physics->active_count());
+    ImGui::TextUnformatted(erosion_status().c_str());
+    tip("Paused, at rest, or sliding with the number of vertices the relaxation still looks at");
     ImGui::SliderInt("Steps/frame", &settings_.erosion_steps, 1, 200);
     tip("Relaxation iterations per frame");
     int solver = settings_.erosion_gpu ? 1 : 0;

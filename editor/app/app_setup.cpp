@@ -535,6 +535,7 @@ int App::run() {
                 : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
         s["physics_ms_median"] = StageTimes::median(times_.physics);
         s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
+        s["erosion_status"] = erosion_status();
         s["mesh_ms_median"] = StageTimes::median(times_.mesh);
         s["upload_ms_median"] = StageTimes::median(times_.upload);
         s["bake_ms_median"] = StageTimes::median(times_.bake);

@@ -1128,6 +1128,38 @@ TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
     }
 }
 
+// The Erosion panel's state line is true: "paused" while paused (it said "sliding, 40800
+// active" on the untouched sandbox, and counts above the vertex count on the GPU), "at rest"
+// once the sand rests, and while sand slides a count of distinct vertices, never more than
+// the terrain has. The stats report the line the panel shows.
+TEST_F(EditorXvfb, TheErosionStatusLineIsTrue) {
+    const EditorRun paused = run_editor("erosion-paused", kFlat);
+    ASSERT_EQ(paused.exit_code, 0) << paused.log;
+    EXPECT_EQ(paused.stats.at("erosion_status").get<std::string>(), "paused");
+
+    const EditorRun rest = run_editor(
+        "erosion-rest", R"([{"op": "set", "erosion": true}, {"op": "wait", "frames": 80}])");
+    ASSERT_EQ(rest.exit_code, 0) << rest.log;
+    EXPECT_EQ(rest.stats.at("erosion_status").get<std::string>(), "at rest");
+
+    for (const char* physics : {"cpu", "gpu"}) {
+        const EditorRun r =
+            run_editor(std::string("erosion-sliding-") + physics,
+                       std::string(R"([{"op": "set", "erosion": false, "physics": ")") + physics +
+                           R"(", "pour_volume": 0.0002}, {"op": "tool", "name": "Pour"},
+                {"op": "click", "at": [0.6, 0.5]}, {"op": "set", "erosion": true,
+                "steps": 1}])",
+                       "--frames 2");
+        ASSERT_EQ(r.exit_code, 0) << r.log;
+        const std::string status = r.stats.at("erosion_status").get<std::string>();
+        unsigned long active = 0;
+        ASSERT_EQ(std::sscanf(status.c_str(), "sliding, %lu active", &active), 1)
+            << physics << ": " << status;
+        EXPECT_GT(active, 0u);
+        EXPECT_LE(active, r.stats.at("vertices").get<unsigned long>()) << physics;
+    }
+}
+
 TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
     // The panels have a fixed width: a control or label that does not fit is cut off at the
     // edge (the Import and Export buttons and the Settle margin label once were). Every panel
