@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -130,7 +131,10 @@ class App {
                                    erosion_active_);
     }
     void panel_haptics();
-    void panel_stats();
+    /// The Stats window's first lines: vertex and triangle counts, constrained edges and
+    /// volume (their length sizes the window).
+    std::array<std::string, 2> stats_terrain_lines() const;
+    void panel_stats(const std::array<std::string, 2>& terrain_lines);
     void panel_file();
     void recovery_prompt();
     /// The recovery prompt's answer (its buttons, or the script's "recovery" op).

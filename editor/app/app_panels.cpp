@@ -87,13 +87,17 @@ void App::draw_panels() {
     ImGui::End();
     status_window(status_height);
     ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
-    // As wide as its widest line with the stage times at their usual magnitudes.
-    const float stats_width = ImGui::CalcTextSize("upload 00.00  bake 00.00  render 000.00 ms").x +
-                              2.0f * ImGui::GetStyle().WindowPadding.x;
+    // As wide as its widest line: the stage times at their usual magnitudes, or the terrain's
+    // counts and volume, which a large or high terrain makes longer.
+    float stats_text_width = ImGui::CalcTextSize("upload 00.00  bake 00.00  render 000.00 ms").x;
+    const std::array<std::string, 2> terrain_lines = stats_terrain_lines();
+    for (const std::string& line : terrain_lines)
+        stats_text_width = std::max(stats_text_width, ImGui::CalcTextSize(line.c_str()).x);
+    const float stats_width = stats_text_width + 2.0f * ImGui::GetStyle().WindowPadding.x;
     ImGui::SetNextWindowSize(ImVec2(stats_width, 0), ImGuiCond_Always);
     ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
     layout_.begin("Stats");
-    panel_stats();
+    panel_stats(terrain_lines);
     layout_.end();
     ImGui::End();
     recovery_prompt();
@@ -449,14 +453,22 @@ void App::panel_haptics() {
     tip("Force over the last 240 frames (0-10 N)");
 }
 
-void App::panel_stats() {
+std::array<std::string, 2> App::stats_terrain_lines() const {
     const Tin& t = *doc_.tin;
-    ImGui::Text("%zu vertices, %zu triangles", t.vertex_count(), t.triangle_count());
     // Litres on the 1 m sandbox, cubic metres on a terrain a hundred times larger.
     const double size = settings_.scene_size;
     const DisplayUnit unit = volume_unit(1e-2 * size * size * size);
-    ImGui::Text("%zu constrained edges, volume %.3f %s", t.constrained_edge_count(),
-                t.volume() / unit.metres, unit.suffix);
+    char counts[96], volume[160];
+    std::snprintf(counts, sizeof(counts), "%zu vertices, %zu triangles", t.vertex_count(),
+                  t.triangle_count());
+    std::snprintf(volume, sizeof(volume), "%zu constrained edges, volume %.3f %s",
+                  t.constrained_edge_count(), t.volume() / unit.metres, unit.suffix);
+    return {counts, volume};
+}
+
+void App::panel_stats(const std::array<std::string, 2>& terrain_lines) {
+    for (const std::string& line : terrain_lines)
+        ImGui::TextUnformatted(line.c_str());
     const double frame_ms = StageTimes::median(times_.frame);
     ImGui::Text("%.1f fps (%.1f ms)", frame_ms > 0.0 ? 1000.0 / frame_ms : 0.0, frame_ms);
     ImGui::Text("tool %.2f  physics %.2f  mesh %.2f", StageTimes::median(times_.tool),

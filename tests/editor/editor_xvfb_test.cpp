@@ -140,12 +140,13 @@ std::vector<Vec2> unit_square_points(int count, std::uint64_t seed) {
     return points;
 }
 
-/// Writes a flat scene (height 0) over `points` on a size x size terrain to `path`; returns
-/// the session it wrote.
-Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec2>& points) {
+/// Writes a flat scene (at `height` metres) over `points` on a size x size terrain to `path`;
+/// returns the session it wrote.
+Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec2>& points,
+                        double height = 0.0) {
     Session session;
     session.terrain = Tin::from_points(Rect::from_size(size, size), points,
-                                       std::vector<double>(points.size(), 0.0))
+                                       std::vector<double>(points.size(), height))
                           .snapshot();
     fs::create_directories(path.parent_path());
     save_session(path, session);
@@ -1178,11 +1179,13 @@ TEST_F(EditorXvfb, EveryPanelControlFitsInsideItsPanel) {
     ops += R"(, {"op": "tool", "name": "Box"}, {"op": "haptics", "connect": true},
         {"op": "wait", "frames": 3}])";
     const fs::path large = kWork / "layout-100m.sandtin";
-    // unit_square_points spans the unit square: scaled to the 100 m terrain.
+    // unit_square_points spans the unit square: scaled to the 100 m terrain. An elevation model
+    // 1 000 m above the datum: the Stats line "volume 10000000.000 m3" is longer than the line
+    // the Stats window's width was once made for, and was cut off.
     std::vector<Vec2> points = unit_square_points(400, 7);
     for (Vec2& p : points)
         p = p * 100.0;
-    save_flat_scene(large, 100.0, points);
+    save_flat_scene(large, 100.0, points, 1000.0);
     for (const std::string& scene : {std::string(), large.string()}) {
         for (const std::string size : {"1280x720", "1024x640"}) {
             const std::string run = (scene.empty() ? "layout-sandbox-" : "layout-100m-") + size;
