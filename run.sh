@@ -16,7 +16,7 @@ fi
 echo "run.sh: no display (DISPLAY is not set), so no editor window. To see the editor without"
 echo "a screen, render a scripted screenshot under a virtual X server, for example:"
 echo "  xvfb-run -a -s '-screen 0 1280x720x24' build/editor/app/sandtin-editor \\"
-echo "    assets/scenes/default.sandtin --script docs/scripts/stroke.json --frames 30 \\"
+echo "    assets/scenes/default.sandtin --script docs/scripts/sculpt.json --frames 30 \\"
 echo "    --screenshot editor.png"
 echo "run.sh: running the default batch job (sandtin demo)"
 exec build/editor/cli/sandtin demo "$@"

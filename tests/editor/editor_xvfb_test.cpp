@@ -1250,6 +1250,25 @@ TEST_F(EditorXvfb, ASessionIsNeverSavedUnderAnotherFormatsName) {
     EXPECT_FALSE(fs::exists(png));
 }
 
+// The headless example run.sh prints (when there is no display) works: its script exists and
+// runs. It once named docs/scripts/stroke.json, which does not exist.
+TEST_F(EditorXvfb, TheHeadlessExampleThatRunShPrintsWorks) {
+    const fs::path source(SANDTIN_SOURCE_DIR);
+    std::ifstream run_sh(source / "run.sh");
+    ASSERT_TRUE(run_sh) << "no run.sh in " << source;
+    const std::string text{std::istreambuf_iterator<char>(run_sh), {}};
+    const std::size_t at = text.find("--script ");
+    ASSERT_NE(at, std::string::npos) << "run.sh shows no --script example";
+    const std::size_t from = at + std::string("--script ").size();
+    const fs::path script = source / text.substr(from, text.find(' ', from) - from);
+    ASSERT_TRUE(fs::exists(script)) << "run.sh suggests " << script << ", which does not exist";
+    std::ifstream in(script);
+    const nlohmann::json ops = nlohmann::json::parse(in).at("ops");
+    const EditorRun r = run_editor("run-sh-example", ops.dump(),
+                                   (source / "assets/scenes/default.sandtin").string());
+    EXPECT_EQ(r.exit_code, 0) << r.log;
+}
+
 TEST_F(EditorXvfb, BadScriptsAndScenesFailWithAClearMessage) {
     const EditorRun r = run_editor("bad-op", R"([{"op": "explode"}])");
     EXPECT_EQ(r.exit_code, 1) << r.log;
