@@ -349,6 +349,11 @@ class App {
     void update_contrast_range();
     /// The current stamp tool's inner contour at the cursor, on the terrain (render frame).
     std::vector<std::array<float, 3>> footprint_outline();
+    /// The current stamp tool as the next stamp will be (built again when the tool, Size or
+    /// Extrude changed).
+    const Tool& cursor_tool();
+    /// In place of the Size slider for a stamp it does not size: the stamp's own extent.
+    void stamp_size_readout();
     std::optional<Tool> cursor_tool_;
     int cursor_tool_index_ = -1;
     double cursor_tool_radius_ = 0.0;

@@ -175,7 +175,7 @@ void App::update_contrast_range() {
     contrast_stale_ = false;
 }
 
-std::vector<std::array<float, 3>> App::footprint_outline() {
+const Tool& App::cursor_tool() {
     if (!cursor_tool_ || cursor_tool_index_ != settings_.tool ||
         cursor_tool_radius_ != settings_.tool_radius || cursor_tool_extrude_ != settings_.extrude) {
         cursor_tool_ = build_tool();
@@ -183,6 +183,11 @@ std::vector<std::array<float, 3>> App::footprint_outline() {
         cursor_tool_radius_ = settings_.tool_radius;
         cursor_tool_extrude_ = settings_.extrude;
     }
+    return *cursor_tool_;
+}
+
+std::vector<std::array<float, 3>> App::footprint_outline() {
+    cursor_tool();
     const double angle = settings_.follow_path && sampler_
                              ? last_heading_
                              : settings_.tool_angle * 3.14159265358979 / 180.0;

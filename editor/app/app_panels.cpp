@@ -214,11 +214,21 @@ void App::panel_tools() {
 
     const ToolEntry& tool = kTools[settings_.tool];
     const double size = settings_.scene_size;
-    length_slider("Size", settings_.tool_radius, 0.005, 0.15, size, "%.1f");
-    tip("Radius of round tools, brushes and the pour");
-    length_slider("Depth", settings_.tool_depth, -0.02, 0.04, size, "%.1f");
-    tip("How deep a stamp tool presses below the terrain ahead of it, and how deep the\n"
-        "haptic pen's tip rests in the sand");
+    // Only the sliders that act on this tool: Size does not size the box, rake, letter or
+    // foot, and Depth acts on stamps and on the haptic pen only.
+    const bool round_stamp = tool.kind == ToolKind::Stamp && sized_by_slider(cursor_tool().spec());
+    const ToolSliders sliders = sliders_for(tool, round_stamp, haptics_ != nullptr);
+    if (sliders.size) {
+        length_slider("Size", settings_.tool_radius, 0.005, 0.15, size, "%.1f");
+        tip("Radius of round tools (circle, ball), brushes and the pour");
+    } else {
+        stamp_size_readout();
+    }
+    if (sliders.depth) {
+        length_slider("Depth", settings_.tool_depth, -0.02, 0.04, size, "%.1f");
+        tip("How deep a stamp tool presses below the terrain ahead of it, and how deep the\n"
+            "haptic pen's tip rests in the sand");
+    }
     switch (tool.kind) {
         case ToolKind::Stamp: {
             float spacing = static_cast<float>(100.0 * settings_.stroke_spacing_ratio);
@@ -287,6 +297,22 @@ void App::panel_tools() {
             break;
         }
     }
+}
+
+void App::stamp_size_readout() {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const Vec2 p : cursor_tool().shape().inner) {
+        x0 = std::min(x0, p.x);
+        y0 = std::min(y0, p.y);
+        x1 = std::max(x1, p.x);
+        y1 = std::max(y1, p.y);
+    }
+    // The unit the Size slider shows on this terrain.
+    const DisplayUnit unit = length_unit(0.15 * settings_.scene_size);
+    ImGui::LabelText("Size", "%.1f x %.1f %s", (x1 - x0) / unit.metres, (y1 - y0) / unit.metres,
+                     unit.suffix);
+    tip("This tool's own size (its shape, scaled to the terrain); the Size slider sets the\n"
+        "radius of round tools only");
 }
 
 void App::panel_materials() {

@@ -257,7 +257,7 @@ Tool App::build_tool() const {
     // to it, and round tools take the Size slider's radius.
     ToolSpec spec =
         scaled_tool_spec(load_tool_asset(kTools[settings_.tool].asset), settings_.scene_size);
-    if (spec.contour == ContourKind::Circle) spec.radius = settings_.tool_radius;
+    if (sized_by_slider(spec)) spec.radius = settings_.tool_radius;
     spec.extrude = settings_.extrude;
     return Tool::build(spec);
 }

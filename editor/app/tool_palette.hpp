@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "tools/brushes.hpp"
+#include "tools/tool.hpp"
 
 namespace sandtin::editor {
 
@@ -48,6 +49,24 @@ inline constexpr ToolEntry kTools[] = {
      "Brush: paint the selected material (key P)"},
 };
 inline constexpr int kToolCount = static_cast<int>(std::size(kTools));
+
+/// Whether the Size slider sets a stamp's radius: only for round contours (the circle and the
+/// ball); the others (box, rake, letter, foot) keep their asset's shape and size.
+inline bool sized_by_slider(const ToolSpec& stamp) {
+    return stamp.contour == ContourKind::Circle;
+}
+
+/// Which of the Tools panel's shared sliders act on a tool, so the panel shows only those.
+struct ToolSliders {
+    bool size = false;   ///< the radius of brushes, the pour and round stamps
+    bool depth = false;  ///< how deep a stamp presses; the haptic pen's tip depth for any tool
+};
+
+/// `round_stamp`: a stamp whose asset sized_by_slider(); `haptics`: the pen is connected.
+constexpr ToolSliders sliders_for(const ToolEntry& t, bool round_stamp, bool haptics) {
+    const bool stamp = t.kind == ToolKind::Stamp;
+    return {!stamp || round_stamp, stamp || haptics};
+}
 
 /// The tool a key picks (digits and upper-case letters, as GLFW's key codes), if any.
 constexpr std::optional<int> tool_for_key(int key) {

@@ -45,6 +45,32 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     EXPECT_TRUE(remove);
 }
 
+// The Tools panel shows Size and Depth only for the tools they act on. Size: the circle and
+// the ball take the slider's radius, while the box, rake, letter and foot keep their asset's
+// shape whatever the radius (checked on the built tools, not assumed); Depth: stamps, and
+// every tool while the haptic pen rests in the sand. Both sliders used to show for every tool.
+TEST(ToolPalette, SizeAndDepthShowOnlyForTheToolsTheyActOn) {
+    for (const ToolEntry& t : kTools) {
+        bool round = false;
+        if (t.kind == ToolKind::Stamp) {
+            ToolSpec small = load_tool_asset(t.asset), large = small;
+            round = sized_by_slider(small);
+            small.radius = 0.01;
+            large.radius = 0.15;
+            const bool radius_matters =
+                Tool::build(small).shape().inner != Tool::build(large).shape().inner;
+            EXPECT_EQ(round, radius_matters) << t.label;
+        }
+        const ToolSliders alone = sliders_for(t, round, false);
+        const ToolSliders with_pen = sliders_for(t, round, true);
+        const std::string label = t.label;
+        const bool sized = label == "Circle" || label == "Ball" || t.kind != ToolKind::Stamp;
+        EXPECT_EQ(alone.size, sized) << label;
+        EXPECT_EQ(alone.depth, t.kind == ToolKind::Stamp) << label;
+        EXPECT_TRUE(with_pen.depth) << label;
+    }
+}
+
 TEST(ToolPalette, EachKeyAndLabelPicksOneTool) {
     std::set<char> keys;
     std::set<std::string> labels;
