@@ -172,8 +172,7 @@ void App::panel_file() {
     ImGui::EndDisabled();
     tip("Redo (Ctrl+Y)");
     ImGui::SameLine();
-    ImGui::Text("%zu levels, %.1f MB", undo_log_.levels(),
-                static_cast<double>(doc_.history->bytes()) / 1048576.0);
+    ImGui::TextUnformatted(undo_levels_text(undo_log_.levels(), doc_.history->bytes()).c_str());
 }
 
 void App::panel_tools() {

@@ -1,5 +1,6 @@
 #include "undo_log.hpp"
 
+#include <cstdio>
 #include <utility>
 
 namespace sandtin::editor {
@@ -42,6 +43,13 @@ std::optional<UndoLog::Entry> UndoLog::redo() {
 void UndoLog::clear() {
     done_.clear();
     undone_.clear();
+}
+
+std::string undo_levels_text(std::size_t levels, std::size_t bytes) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%zu level%s, %.1f MB", levels, levels == 1 ? "" : "s",
+                  static_cast<double>(bytes) / 1048576.0);
+    return text;
 }
 
 }  // namespace sandtin::editor

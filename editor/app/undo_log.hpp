@@ -45,4 +45,8 @@ class UndoLog {
     std::vector<Entry> undone_;
 };
 
+/// The File panel's readout of the undo levels and the memory their terrain levels hold:
+/// "1 level, 0.1 MB", "3 levels, 2.5 MB".
+std::string undo_levels_text(std::size_t levels, std::size_t bytes);
+
 }  // namespace sandtin::editor

@@ -56,5 +56,12 @@ TEST(UndoLog, ForgetsTheOldestLevelsBeyondItsBound) {
     EXPECT_EQ(log.undo()->label, "level " + std::to_string(UndoLog::kMaxLevels + 9));
 }
 
+TEST(UndoLog, TheReadoutCountsLevelsInGoodEnglish) {
+    // It said "1 levels".
+    EXPECT_EQ(undo_levels_text(0, 0), "0 levels, 0.0 MB");
+    EXPECT_EQ(undo_levels_text(1, 104858), "1 level, 0.1 MB");
+    EXPECT_EQ(undo_levels_text(3, 2621440), "3 levels, 2.5 MB");
+}
+
 }  // namespace
 }  // namespace sandtin::editor
