@@ -201,6 +201,9 @@ class App {
     void save(const std::filesystem::path& p);
     /// Save, Save As and Ctrl+S: a failure is reported on the status line. True when saved.
     bool save_reporting(const std::filesystem::path& p);
+    /// The terrain to a mesh or height map, as `sandtin export` writes it (format from the
+    /// extension), with the materials as the viewport shows them. Throws on failure.
+    void export_to(const std::filesystem::path& p);
     /// Where Save and Ctrl+S write: the scene's file, or the Scene field for an untitled one.
     std::filesystem::path save_path() const {
         return doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path;

@@ -147,15 +147,7 @@ void App::panel_file() {
         "PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid");
     if (path_field("##export", "file to export to", export_buf_, sizeof(export_buf_), "Export")) {
         try {
-            end_action();
-            // The defaults `sandtin export` takes from the session: the import grid while the
-            // terrain lies on it, and the georeference.
-            ExportOptions options;
-            apply_import_defaults(*doc_.tin, doc_.metadata_json, options);
-            options.palette = export_palette(doc_.materials);  // as the viewport shows them
-            const ExportReport r =
-                export_terrain(*doc_.tin, export_buf_, export_format_for(export_buf_), options);
-            report("exported " + std::to_string(r.files.size()) + " file(s)");
+            export_to(export_buf_);
         } catch (const std::exception& e) {
             report(std::string("export failed: ") + e.what());
         }

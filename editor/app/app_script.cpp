@@ -23,6 +23,7 @@ namespace sandtin::editor {
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "panels", "open": true|false}  (every panel header, from the next frame)
 //         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
+//         | {"op": "export", "path": "..."}  (the File panel's Export)
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
@@ -214,6 +215,8 @@ void App::run_script_op(const nlohmann::json& op) {
         save_settings_reporting();  // what the interactive loop does after a panel change
     } else if (kind == "save") {
         save(op.at("path").get<std::string>());
+    } else if (kind == "export") {
+        export_to(op.at("path").get<std::string>());
     } else if (kind == "autosave") {
         // A script that asks for an autosave gets autosaving as an interactive session has it
         // (otherwise scripted runs leave no autosave files behind).

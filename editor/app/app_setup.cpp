@@ -242,6 +242,17 @@ bool App::save_reporting(const std::filesystem::path& p) {
     }
 }
 
+void App::export_to(const std::filesystem::path& p) {
+    end_action();
+    // The defaults `sandtin export` takes from the session: the import grid while the terrain
+    // lies on it, and the georeference; the colours are the live table's, unsaved edits included.
+    ExportOptions options;
+    apply_import_defaults(*doc_.tin, doc_.metadata_json, options);
+    options.palette = export_palette(doc_.materials);
+    const ExportReport r = export_terrain(*doc_.tin, p, export_format_for(p), options);
+    report("exported " + std::to_string(r.files.size()) + " file(s)");
+}
+
 void App::open(const std::filesystem::path& p) {
     end_action();
     keep_unsaved_edits();

@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
@@ -705,20 +707,36 @@ TEST_F(EditorXvfb, GpuErosionRelaxesLikeTheCpuJacobiReferenceAndTheSwitchPersist
 }
 
 // A Materials-panel edit is an undo level and travels with the scene: saved after the edit,
-// after undoing it and after redoing it, then reopened and saved again.
+// after undoing it and after redoing it, then reopened and saved again. The File panel's
+// Export writes the edited colour (it once wrote the presets' whatever the panel said).
 TEST_F(EditorXvfb, MaterialEditsAreUndoLevelsAndAreSavedWithTheScene) {
     const fs::path edited = kWork / "mat-edited.sandtin", undone = kWork / "mat-undone.sandtin",
                    redone = kWork / "mat-redone.sandtin", reopened = kWork / "mat-reopened.sandtin";
     std::string ops = R"([{"op": "set", "erosion": false},
         {"op": "material", "index": 0, "repose_dry": 21.5, "colour": [0.3, 0.5, 0.9]},
         {"op": "wait", "frames": 1}, {"op": "save", "path": "@1@"},
+        {"op": "export", "path": "@4@"},
         {"op": "key", "key": "z", "ctrl": true}, {"op": "save", "path": "@2@"},
         {"op": "key", "key": "y", "ctrl": true}, {"op": "save", "path": "@3@"}])";
     ops.replace(ops.find("@1@"), 3, edited.string());
     ops.replace(ops.find("@2@"), 3, undone.string());
     ops.replace(ops.find("@3@"), 3, redone.string());
+    const fs::path exported = kWork / "mat-edited.obj";
+    fs::remove(kWork / "mat-edited.mtl");
+    ops.replace(ops.find("@4@"), 3, exported.string());
     const EditorRun r = run_editor("materials", ops);
     ASSERT_EQ(r.exit_code, 0) << r.log;
+    // The sandbox is one material: the OBJ's material is its colour, as edited.
+    std::ifstream mtl(kWork / "mat-edited.mtl");
+    std::string line;
+    std::array<double, 3> kd{-1.0, -1.0, -1.0};
+    while (std::getline(mtl, line)) {
+        if (line.rfind("Kd ", 0) == 0)
+            std::istringstream(line.substr(3)) >> kd[0] >> kd[1] >> kd[2];
+    }
+    EXPECT_NEAR(kd[0], 0.3, 1e-6);
+    EXPECT_NEAR(kd[1], 0.5, 1e-6);
+    EXPECT_NEAR(kd[2], 0.9, 1e-6);
     const auto table = [](const fs::path& p) {
         const auto t = materials_from_metadata(load_session(p).metadata_json);
         EXPECT_TRUE(t.has_value()) << p;
