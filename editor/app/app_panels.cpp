@@ -515,7 +515,7 @@ void App::answer_recovery(bool recover) {
         if (recover) {
             const Session s = recover_autosave(*recovery_for_);
             doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
-                       materials_of(s), s.metadata_json);
+                       materials_or_presets(s.metadata_json), s.metadata_json);
             mark_edited();
             document_replaced();
             report("recovered the autosave of " + recovery_for_->string());

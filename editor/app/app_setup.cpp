@@ -73,7 +73,7 @@ void App::load_initial_scene() {
     }
     const Session s = load_session(options_.scene);
     doc_.adopt(session_terrain(s, options_.scene), s.next_generation, options_.scene,
-               materials_of(s), s.metadata_json);
+               materials_or_presets(s.metadata_json), s.metadata_json);
     // An autosave newer than the scene: the prompt asks (a script answers with "recovery").
     if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
         recovery_for_ = options_.scene;
@@ -257,7 +257,8 @@ void App::open(const std::filesystem::path& p) {
     end_action();
     keep_unsaved_edits();
     const Session s = load_session(p);
-    doc_.adopt(session_terrain(s, p), s.next_generation, p, materials_of(s), s.metadata_json);
+    doc_.adopt(session_terrain(s, p), s.next_generation, p, materials_or_presets(s.metadata_json),
+               s.metadata_json);
     document_replaced();
     frame_terrain();
     report("opened " + p.string());

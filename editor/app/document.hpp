@@ -52,11 +52,6 @@ struct Document {
     }
 };
 
-/// The material table a loaded session was saved with (presets when it has none).
-inline MaterialTable materials_of(const Session& s) {
-    return materials_from_metadata(s.metadata_json).value_or(MaterialTable::presets());
-}
-
 /// A new sandbox: 1 m x 1 m of sand with dunes, ripples and a band of moist sand (see
 /// document.cpp).
 Tin default_sandbox();

@@ -114,8 +114,7 @@ int run_export(const std::vector<std::string>& raw) {
     const std::optional<DefaultSampling> sampling =
         apply_import_defaults(tin, session.metadata_json, options, args.has("--size"));
     // The colours the scene was sculpted with, recoloured materials included.
-    options.palette = export_palette(
-        materials_from_metadata(session.metadata_json).value_or(MaterialTable::presets()));
+    options.palette = export_palette(materials_or_presets(session.metadata_json));
     ExportReport report;
     try {
         report = export_terrain(tin, out, format, options);

@@ -14,6 +14,10 @@ std::string session_metadata(const MaterialTable& materials, const std::string& 
     return j.dump();
 }
 
+MaterialTable materials_or_presets(const std::string& metadata_json) {
+    return materials_from_metadata(metadata_json).value_or(MaterialTable::presets());
+}
+
 std::optional<MaterialTable> materials_from_metadata(const std::string& metadata_json) {
     nlohmann::json j;
     try {

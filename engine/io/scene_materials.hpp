@@ -22,4 +22,9 @@ std::string session_metadata(const MaterialTable& materials, const std::string& 
 /// JsonInputError naming the entry and field for invalid metadata.
 std::optional<MaterialTable> materials_from_metadata(const std::string& metadata_json);
 
+/// The material table a scene was saved with, or the presets when its metadata holds none:
+/// what the editor opens it with, `sandtin run` erodes it with and `sandtin export` colours it
+/// with. Throws as materials_from_metadata.
+MaterialTable materials_or_presets(const std::string& metadata_json);
+
 }  // namespace sandtin

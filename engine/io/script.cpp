@@ -455,13 +455,14 @@ void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
                            bool with_physics, const PhysicsBackendFactory& backend,
                            const Session* carried)
-    : tin_(tin), context_(context), materials_(MaterialTable::presets()) {
+    : tin_(tin),
+      context_(context),
+      // A scene from the editor erodes with the materials it was sculpted with.
+      materials_(carried != nullptr ? materials_or_presets(carried->metadata_json)
+                                    : MaterialTable::presets()) {
     if (carried != nullptr) {
         carried_.metadata_json = carried->metadata_json;
         carried_.unknown_chunks = carried->unknown_chunks;
-        // A scene from the editor erodes with the materials it was sculpted with.
-        if (auto table = materials_from_metadata(carried->metadata_json))
-            materials_ = std::move(*table);
     }
     if (script.simplify_tolerance) context.settings.simplify.tolerance = *script.simplify_tolerance;
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;

@@ -15,8 +15,9 @@ namespace sandtin {
 /// store it sRGB-encoded: io/export_maps.hpp). Indices past the end use the last.
 struct MaterialColours {
     std::vector<Vec3> colours;
-    /// Reflectance kept at full moisture: colour * (1 - (1 - wet_factor) * moisture).
-    double wet_factor = 0.6;
+    /// Reflectance kept at full moisture: colour * (1 - (1 - wet_factor) * moisture). 1: wet
+    /// sand is not darker; export_palette sets the viewport's (kWetReflectance).
+    double wet_factor = 1.0;
 };
 
 /// Three channels (r, g, b) of linear albedo in [0, 1].
