@@ -101,15 +101,32 @@ std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const Texel
     return encode_rgb8(normals, 1.0, 0.5, frame);
 }
 
-double srgb_encode(double linear) {
-    const double c = std::clamp(linear, 0.0, 1.0);
-    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+namespace {
+
+/// The 8-bit sRGB code of a linear value (IEC 61966-2-1, rounded to the nearest code): the
+/// number of codes whose upper half-step lies at or below it, found in a table of those
+/// half-steps decoded to linear. One pow per code once, not one per texel and channel (which
+/// made a 1024-texel glTF export a fifth slower).
+double srgb8(double linear) {
+    static const std::array<double, 255> kUpperHalfStep = [] {
+        std::array<double, 255> t{};
+        for (std::size_t k = 0; k < t.size(); ++k) {
+            const double c = (static_cast<double>(k) + 0.5) / 255.0;
+            t[k] = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        }
+        return t;
+    }();
+    const auto code = std::upper_bound(kUpperHalfStep.begin(), kUpperHalfStep.end(), linear) -
+                      kUpperHalfStep.begin();
+    return static_cast<double>(code) / 255.0;
 }
+
+}  // namespace
 
 std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame) {
     MapImage encoded = colours;
     for (double& v : encoded.values)
-        v = srgb_encode(v);
+        v = srgb8(v);
     return encode_rgb8(encoded, 0.0, 1.0, frame);
 }
 

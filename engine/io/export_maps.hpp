@@ -43,7 +43,5 @@ std::vector<std::uint8_t> encode_normal_png(const MapImage& normals, const Texel
 /// sRGB encoding that image viewers, glTF's baseColorTexture and OBJ's map_Kd expect
 /// (IEC 61966-2-1).
 std::vector<std::uint8_t> encode_albedo_png(const MapImage& colours, const TexelFrame& frame = {});
-/// The sRGB transfer function for a linear value (clamped to [0, 1]).
-double srgb_encode(double linear);
 
 }  // namespace sandtin

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -16,6 +17,7 @@
 #include <tuple>
 
 #include "formats/png_image.hpp"
+#include "io/export_maps.hpp"
 #include "io/export_palette.hpp"
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
@@ -805,6 +807,24 @@ TEST_F(Export, AlbedoIsTheScenesMaterialColourInSrgb) {
         ASSERT_EQ(factor.size(), 4u);
         for (std::size_t c = 0; c < 3; ++c)
             EXPECT_NEAR(factor[c], static_cast<double>(materials.all()[0].colour[c]), 1e-7);
+    }
+}
+
+// The albedo PNG's encoding over the whole range, against the transfer function written out
+// above: every linear value in steps of 1/2000, and values past either end (clamped).
+TEST(AlbedoPng, EncodesLinearAlbedoAsTheNearestSrgbCode) {
+    MapImage ramp{2003, 1, 3, {}};
+    std::vector<double> linear;
+    for (int i = -1; i <= 2001; ++i)
+        linear.push_back(i / 2000.0);
+    for (const double v : linear)
+        ramp.values.insert(ramp.values.end(), {v, v, v});
+    const PngImage png = decode_png(encode_albedo_png(ramp));
+    ASSERT_EQ(png.width, 2003u);
+    for (std::uint32_t i = 0; i < png.width; ++i) {
+        const double v = std::clamp(linear[i], 0.0, 1.0);
+        EXPECT_EQ(static_cast<long>(png.sample(i, 0, 1)), std::lround(255.0 * srgb_from_linear(v)))
+            << "linear " << linear[i];
     }
 }
 
