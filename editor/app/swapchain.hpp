@@ -17,8 +17,8 @@
 namespace sandtin::editor {
 
 using UniqueSwapchain = gpu::Unique<VkDevice, VkSwapchainKHR, &vkDestroySwapchainKHR>;
-using UniqueRenderPass = gpu::Unique<VkDevice, VkRenderPass, &vkDestroyRenderPass>;
-using UniqueFramebuffer = gpu::Unique<VkDevice, VkFramebuffer, &vkDestroyFramebuffer>;
+using gpu::UniqueFramebuffer;
+using gpu::UniqueRenderPass;
 
 class Swapchain {
   public:

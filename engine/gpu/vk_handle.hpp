@@ -93,5 +93,7 @@ using UniqueDescriptorSetLayout =
 using UniqueDescriptorPool = Unique<VkDevice, VkDescriptorPool, &vkDestroyDescriptorPool>;
 using UniqueQueryPool = Unique<VkDevice, VkQueryPool, &vkDestroyQueryPool>;
 using UniqueSampler = Unique<VkDevice, VkSampler, &vkDestroySampler>;
+using UniqueRenderPass = Unique<VkDevice, VkRenderPass, &vkDestroyRenderPass>;
+using UniqueFramebuffer = Unique<VkDevice, VkFramebuffer, &vkDestroyFramebuffer>;
 
 }  // namespace sandtin::gpu

@@ -125,11 +125,19 @@ MeshUpdate TerrainMesh::update(const Tin& tin, const ChangeSet& changes,
     if (vertices_.empty()) return rebuild(tin);
     // New ids and slots beyond the arrays: grow with headroom (the journal names the new
     // entries, so nothing else needs recomputing; the renderer reallocates its buffers).
-    if (tin.vertex_capacity() > vertices_.size())
-        vertices_.resize(tin.vertex_capacity() + tin.vertex_capacity() / 2, RenderVertex{});
-    if (std::size_t{tin.slot_capacity()} * 3 > indices_.size())
-        indices_.resize((std::size_t{tin.slot_capacity()} + tin.slot_capacity() / 2) * 3, 0u);
     MeshUpdate u;
+    // The new tail (headroom included) is on no upload range, and a GPU buffer that was big
+    // enough already holds whatever it held before there (another terrain's triangles after a
+    // document was replaced, undefined memory on a fresh allocation): a resized mesh is
+    // uploaded whole. Growth is geometric, so this is amortised.
+    if (tin.vertex_capacity() > vertices_.size()) {
+        vertices_.resize(tin.vertex_capacity() + tin.vertex_capacity() / 2, RenderVertex{});
+        u.resized = true;
+    }
+    if (std::size_t{tin.slot_capacity()} * 3 > indices_.size()) {
+        indices_.resize((std::size_t{tin.slot_capacity()} + tin.slot_capacity() / 2) * 3, 0u);
+        u.resized = true;
+    }
     // Vertices to recompute: those the journal names, the corners of changed slots, the
     // flipped active flags, and the neighbours of all of them.
     std::vector<std::uint32_t> seeds;

@@ -33,7 +33,9 @@ static_assert(sizeof(RenderVertex) == 14 * sizeof(float));
 struct MeshUpdate {
     std::vector<IdRange> vertices;
     std::vector<IdRange> slots;
-    bool resized = false;         ///< capacities grew: everything must be uploaded
+    /// The arrays were rebuilt or grew: everything must be uploaded (the ranges name only
+    /// what was recomputed, not the new tail).
+    bool resized = false;
     bool edges_changed = false;   ///< constrained_edges() changed
     std::uint64_t bytes() const;  ///< bytes to upload for these ranges
 };

@@ -215,6 +215,7 @@ void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) 
     vertices_.flush(context_);
     indices_.flush(context_);
     index_count_ = static_cast<std::uint32_t>(idx.size());
+    vertex_bytes_ = static_cast<std::size_t>(vbytes);
     if (update.edges_changed || update.resized || grew) {
         const auto& e = mesh.constrained_edges();
         constrained_count_ = static_cast<std::uint32_t>(e.size());
@@ -240,6 +241,29 @@ void TerrainRenderer::set_normal_map(VkImageView view, VkSampler sampler) {
     w.pImageInfo = &image;
     vkUpdateDescriptorSets(context_.device(), 1, &w, 0, nullptr);
     has_normal_map_ = true;
+}
+
+void TerrainRenderer::drop_mesh() {
+    vertices_ = gpu::Buffer();
+    indices_ = gpu::Buffer();
+    constrained_ = gpu::Buffer();
+    wire_ = gpu::Buffer();
+    index_count_ = 0;
+    vertex_bytes_ = 0;
+    constrained_count_ = 0;
+    wire_count_ = 0;
+    wire_stale_ = true;
+}
+
+std::span<const std::byte> TerrainRenderer::drawn_vertex_bytes() const {
+    if (!vertices_) return {};
+    return {static_cast<const std::byte*>(vertices_.mapped()), vertex_bytes_};
+}
+
+std::span<const std::byte> TerrainRenderer::drawn_index_bytes() const {
+    if (!indices_) return {};
+    return {static_cast<const std::byte*>(indices_.mapped()),
+            std::size_t{index_count_} * sizeof(std::uint32_t)};
 }
 
 void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,

@@ -9,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -54,6 +55,16 @@ class TerrainRenderer {
 
     std::uint64_t bytes_uploaded() const { return bytes_uploaded_; }
 
+    /// Forgets the mesh: its buffers go, and the next upload (which must be a rebuild's)
+    /// allocates them again, so nothing of a replaced terrain stays in memory the renderer
+    /// draws from. Draws nothing until then. The GPU must not be drawing.
+    void drop_mesh();
+    /// What the GPU draws from: the vertex and index buffers' bytes for the mesh last
+    /// uploaded (its vertices() and indices() sizes). For tests, which compare them with the
+    /// mesh.
+    std::span<const std::byte> drawn_vertex_bytes() const;
+    std::span<const std::byte> drawn_index_bytes() const;
+
   private:
     void ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage);
 
@@ -72,6 +83,7 @@ class TerrainRenderer {
     gpu::Buffer wire_;
     gpu::Buffer outline_;
     std::uint32_t index_count_ = 0;
+    std::size_t vertex_bytes_ = 0;  ///< of the mesh last uploaded
     std::uint32_t constrained_count_ = 0;
     std::uint32_t wire_count_ = 0;
     bool wire_stale_ = true;
