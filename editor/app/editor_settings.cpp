@@ -1,10 +1,15 @@
 #include "editor_settings.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -16,37 +21,48 @@ namespace sandtin::editor {
 
 namespace {
 
-// One table drives both directions so a new field cannot be saved but not loaded.
+// One table drives both directions so a new field cannot be saved but not loaded; numeric
+// fields carry their range (nullptr: any value of the type).
 template <class F>
 void fields(EditorSettings& s, F&& f) {
-    f("tool_radius", s.tool_radius);
-    f("tool_depth", s.tool_depth);
+    f("tool_radius", s.tool_radius, &kToolRadiusRange);
+    f("tool_depth", s.tool_depth, &kToolDepthRange);
     // Not "stroke_spacing": that key held metres in earlier versions, and is ignored now.
-    f("stroke_spacing_ratio", s.stroke_spacing_ratio);
-    f("extrude", s.extrude);
-    f("follow_path", s.follow_path);
-    f("tool_angle", s.tool_angle);
-    f("brush_strength", s.brush_strength);
-    f("brush_blend", s.brush_blend);
-    f("brush_falloff", s.brush_falloff);
-    f("pour_volume", s.pour_volume);
-    f("material", s.material);
-    f("erosion_running", s.erosion_running);
-    f("erosion_steps", s.erosion_steps);
-    f("erosion_gpu", s.erosion_gpu);
-    f("simplify_tolerance", s.simplify_tolerance);
-    f("relocation_radius", s.relocation_radius);
-    f("settle_margin", s.settle_margin);
-    f("overlay_wireframe", s.overlay_wireframe);
-    f("overlay_active", s.overlay_active);
-    f("overlay_thickness", s.overlay_thickness);
-    f("overlay_slope", s.overlay_slope);
-    f("contrast", s.contrast);
-    f("vsync", s.vsync);
-    f("scene_size", s.scene_size);
+    f("stroke_spacing_ratio", s.stroke_spacing_ratio, &kStrokeSpacingRange);
+    f("extrude", s.extrude, nullptr);
+    f("follow_path", s.follow_path, nullptr);
+    f("tool_angle", s.tool_angle, &kToolAngleRange);
+    f("brush_strength", s.brush_strength, &kBrushStrengthRange);
+    f("brush_blend", s.brush_blend, &kBrushBlendRange);
+    f("brush_falloff", s.brush_falloff, nullptr);
+    f("pour_volume", s.pour_volume, &kPourVolumeRange);
+    f("material", s.material, nullptr);
+    f("erosion_running", s.erosion_running, nullptr);
+    f("erosion_steps", s.erosion_steps, &kErosionStepsRange);
+    f("erosion_gpu", s.erosion_gpu, nullptr);
+    f("simplify_tolerance", s.simplify_tolerance, &kSimplifyToleranceRange);
+    f("relocation_radius", s.relocation_radius, &kRelocationRadiusRange);
+    f("settle_margin", s.settle_margin, &kSettleMarginRange);
+    f("overlay_wireframe", s.overlay_wireframe, nullptr);
+    f("overlay_active", s.overlay_active, nullptr);
+    f("overlay_thickness", s.overlay_thickness, nullptr);
+    f("overlay_slope", s.overlay_slope, nullptr);
+    f("contrast", s.contrast, &kContrastRange);
+    f("vsync", s.vsync, nullptr);
+    f("scene_size", s.scene_size, nullptr);
+}
+
+std::string shown(const nlohmann::json& value) {
+    std::string text = value.dump();
+    return text.size() > 40 ? text.substr(0, 37) + "..." : text;
 }
 
 }  // namespace
+
+double SettingRange::clamp(double value, double size) const {
+    if (!(value >= lo_at(size))) return lo_at(size);  // also NaN
+    return std::min(value, hi_at(size));
+}
 
 std::filesystem::path default_settings_path() {
     if (const char* x = std::getenv("XDG_CONFIG_HOME"); x != nullptr && *x != '\0')
@@ -57,33 +73,72 @@ std::filesystem::path default_settings_path() {
 }
 
 EditorSettings load_settings(const std::filesystem::path& path, std::string* problem) {
-    EditorSettings s;
     std::ifstream in(path);
-    if (!in) return s;
+    if (!in) return {};
+    nlohmann::json j;
     try {
-        const nlohmann::json j = nlohmann::json::parse(in);
+        j = nlohmann::json::parse(in);
         if (!j.is_object()) throw std::runtime_error("not a JSON object");
-        EditorSettings loaded;
-        fields(loaded, [&](const char* key, auto& value) {
-            if (j.contains(key)) value = j.at(key).get<std::decay_t<decltype(value)>>();
-        });
-        if (const auto t = j.find("tool"); t != j.end() && t->is_string())
-            loaded.tool = tool_named(t->get<std::string>()).value_or(0);
-        if (!falloff_named(loaded.brush_falloff))
-            throw std::runtime_error("brush_falloff '" + loaded.brush_falloff + "' is unknown");
-        if (!(loaded.brush_blend >= 0.0 && loaded.brush_blend <= 1.0))
-            throw std::runtime_error("brush_blend must lie in [0, 1]");
-        if (!(loaded.stroke_spacing_ratio >= kMinStrokeSpacingRatio &&
-              loaded.stroke_spacing_ratio <= kMaxStrokeSpacingRatio)) {
-            static_assert(kMinStrokeSpacingRatio == 0.02 && kMaxStrokeSpacingRatio == 2.0,
-                          "the message below names the range");
-            throw std::runtime_error(
-                "stroke_spacing_ratio must lie in [0.02, 2] (a fraction of the tool's radius)");
-        }
-        s = loaded;
     } catch (const std::exception& e) {
         if (problem != nullptr)
             *problem = "settings file " + path.string() + " ignored: " + e.what();
+        return {};
+    }
+    std::vector<std::string> bad;
+    EditorSettings s;
+    // The size the file's lengths are for comes first: the ranges scale with it.
+    if (const auto size = j.find("scene_size"); size != j.end()) {
+        if (size->is_number() && size->get<double>() > 0.0 && std::isfinite(size->get<double>()) &&
+            size->get<double>() <= 1e9)
+            s.scene_size = size->get<double>();
+        else
+            bad.push_back("scene_size " + shown(*size) + " is not a size in metres (1 used)");
+    }
+    const EditorSettings defaults = s;
+    fields(s, [&](const char* key, auto& value, const SettingRange* range) {
+        using T = std::decay_t<decltype(value)>;
+        const auto it = j.find(key);
+        if (it == j.end() || std::string_view(key) == "scene_size") return;
+        T loaded{};
+        try {
+            if constexpr (std::is_same_v<T, double>) {
+                if (!it->is_number()) throw std::runtime_error("not a number");
+            } else if constexpr (std::is_same_v<T, int>) {
+                if (!it->is_number_integer()) throw std::runtime_error("not an integer");
+            }
+            loaded = it->get<T>();
+        } catch (const std::exception&) {
+            bad.push_back(std::string(key) + " " + shown(*it) + " has the wrong type");
+            return;
+        }
+        if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+            const double v = static_cast<double>(loaded);
+            if (range != nullptr && !range->contains(v, s.scene_size)) {
+                char text[200];
+                std::snprintf(text, sizeof(text), "%s %s is outside [%.6g, %.6g]", key,
+                              shown(*it).c_str(), range->lo_at(s.scene_size),
+                              range->hi_at(s.scene_size));
+                bad.emplace_back(text);
+                return;
+            }
+        }
+        value = loaded;
+    });
+    if (const auto t = j.find("tool"); t != j.end() && t->is_string())
+        s.tool = tool_named(t->get<std::string>()).value_or(0);
+    if (!falloff_named(s.brush_falloff)) {
+        bad.push_back("brush_falloff '" + s.brush_falloff + "' is unknown");
+        s.brush_falloff = defaults.brush_falloff;
+    }
+    if (s.material < 0) {
+        bad.push_back("material " + std::to_string(s.material) + " is not an index");
+        s.material = defaults.material;
+    }
+    if (!bad.empty() && problem != nullptr) {
+        std::string text = "settings file " + path.string() + ": ";
+        for (std::size_t i = 0; i < bad.size(); ++i)
+            text += (i > 0 ? "; " : "") + bad[i];
+        *problem = text + " (the defaults are used for these)";
     }
     return s;
 }
@@ -91,7 +146,7 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
 void save_settings(const std::filesystem::path& path, const EditorSettings& settings) {
     nlohmann::json j = nlohmann::json::object();
     EditorSettings copy = settings;
-    fields(copy, [&](const char* key, auto& value) { j[key] = value; });
+    fields(copy, [&](const char* key, auto& value, const SettingRange*) { j[key] = value; });
     j["tool"] = kTools[std::clamp(settings.tool, 0, kToolCount - 1)].label;
     std::error_code ec;
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);

@@ -47,12 +47,59 @@ struct EditorSettings {
     friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
 };
 
+/// How a setting's range follows the terrain (terrain_scale.hpp).
+enum class Scaling { None, Length, Volume };
+
+/// The range a numeric setting may take on the 1 m sandbox; a length's range scales with the
+/// terrain's size and a volume's with its cube. One table for every place a value comes in:
+/// the panels' sliders offer exactly this range and clamp typed values (Ctrl+click) to it,
+/// scripts' "set" clamps to it, and load_settings() puts a value outside it back to its
+/// default, so no value the tools or the physics would refuse reaches them.
+struct SettingRange {
+    double lo = 0.0;
+    double hi = 0.0;
+    Scaling scaling = Scaling::None;
+
+    /// The factor lengths or volumes carry on a terrain of `size` metres.
+    constexpr double factor(double size) const {
+        return scaling == Scaling::Length   ? size
+               : scaling == Scaling::Volume ? size * size * size
+                                            : 1.0;
+    }
+    constexpr double lo_at(double size) const { return lo * factor(size); }
+    constexpr double hi_at(double size) const { return hi * factor(size); }
+    /// `value` within the range on a terrain of `size` metres (NaN goes to the low end).
+    double clamp(double value, double size) const;
+    bool contains(double value, double size) const {
+        return value >= lo_at(size) && value <= hi_at(size);
+    }
+};
+
+inline constexpr SettingRange kToolRadiusRange{0.005, 0.15, Scaling::Length};
+/// A stamp presses at least half a millimetre (on the sandbox): at 0 or above the surface it
+/// would do nothing, silently.
+inline constexpr SettingRange kToolDepthRange{0.0005, 0.04, Scaling::Length};
+inline constexpr SettingRange kStrokeSpacingRange{0.02, 2.0};  ///< of the tool's radius
+inline constexpr SettingRange kToolAngleRange{-180.0, 180.0};  ///< degrees
+inline constexpr SettingRange kBrushStrengthRange{0.0005, 0.02, Scaling::Length};
+inline constexpr SettingRange kBrushBlendRange{0.05, 1.0};
+inline constexpr SettingRange kPourVolumeRange{1e-6, 2e-4, Scaling::Volume};
+inline constexpr SettingRange kErosionStepsRange{1.0, 200.0};
+/// 0 removes only exactly planar patches (which moves no volume).
+inline constexpr SettingRange kSimplifyToleranceRange{0.0, 0.005, Scaling::Length};
+inline constexpr SettingRange kRelocationRadiusRange{0.001, 0.05, Scaling::Length};
+inline constexpr SettingRange kSettleMarginRange{0.0, 0.1};
+inline constexpr SettingRange kContrastRange{0.0, 1.0};
+
 /// The range of stroke_spacing_ratio the panel offers and a settings file may hold.
-inline constexpr double kMinStrokeSpacingRatio = 0.02;
-inline constexpr double kMaxStrokeSpacingRatio = 2.0;
+inline constexpr double kMinStrokeSpacingRatio = kStrokeSpacingRange.lo;
+inline constexpr double kMaxStrokeSpacingRatio = kStrokeSpacingRange.hi;
 
 std::filesystem::path default_settings_path();
-/// Missing file: defaults. Unreadable or invalid JSON: defaults, with `problem` set to why.
+/// Missing file: defaults. Unreadable or invalid JSON: defaults, with `problem` set to why. A
+/// field of the wrong type or outside its range (SettingRange, at the file's scene_size) falls
+/// back to its default alone, and `problem` names it, its value and its range: the rest of the
+/// file still counts, and the editor starts whatever a hand edit or an older version wrote.
 /// The tool is found by its label; an index (files of older versions, whose palette had
 /// another order) or a label the palette no longer has falls back to the first tool.
 EditorSettings load_settings(const std::filesystem::path& path, std::string* problem = nullptr);

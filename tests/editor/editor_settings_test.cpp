@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -94,6 +95,66 @@ TEST(Settings, TheToolIsSavedByItsLabelAndBrushSettingsAreChecked) {
     EXPECT_EQ(load_settings(path, &problem).tool_radius, 0.03);
     EXPECT_TRUE(problem.empty()) << problem;
     std::filesystem::remove_all(dir);
+}
+
+TEST(Settings, ABadFieldFallsBackAloneAndIsNamedWithItsRange) {
+    const auto dir = std::filesystem::temp_directory_path() / "sandtin-editor-settings-fields";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const auto path = dir / "editor.json";
+    const EditorSettings defaults;
+    // Values a typed slider once let in (issue 43): each falls back to its default, the good
+    // fields count, and the problem names each bad field with its value and range.
+    std::ofstream(path) << R"({"tool_radius": -2, "pour_volume": -5, "erosion_steps": 0,
+        "tool_depth": -0.01, "contrast": 0.7, "vsync": false, "settle_margin": "lots"})";
+    std::string problem;
+    const EditorSettings s = load_settings(path, &problem);
+    EXPECT_EQ(s.tool_radius, defaults.tool_radius);
+    EXPECT_EQ(s.pour_volume, defaults.pour_volume);
+    EXPECT_EQ(s.erosion_steps, defaults.erosion_steps);
+    EXPECT_EQ(s.tool_depth, defaults.tool_depth);
+    EXPECT_EQ(s.settle_margin, defaults.settle_margin);
+    EXPECT_EQ(s.contrast, 0.7);
+    EXPECT_FALSE(s.vsync);
+    for (const char* named : {"tool_radius -2 is outside [0.005, 0.15]", "pour_volume -5",
+                              "erosion_steps 0", "tool_depth -0.01", "settle_margin \"lots\""})
+        EXPECT_NE(problem.find(named), std::string::npos) << named << " in " << problem;
+    EXPECT_EQ(problem.find("contrast"), std::string::npos) << problem;
+
+    // The ranges are those of the terrain the file was written for: on a 100 m terrain a 4 m
+    // tool is in range and a 40 m one is not.
+    std::ofstream(path) << R"({"scene_size": 100, "tool_radius": 4, "relocation_radius": 40})";
+    problem.clear();
+    const EditorSettings big = load_settings(path, &problem);
+    EXPECT_EQ(big.scene_size, 100.0);
+    EXPECT_EQ(big.tool_radius, 4.0);
+    EXPECT_EQ(big.relocation_radius, defaults.relocation_radius);
+    EXPECT_NE(problem.find("relocation_radius 40 is outside [0.1, 5]"), std::string::npos)
+        << problem;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Settings, RangesClampWhatIsTypedAndScaleWithTheTerrain) {
+    EXPECT_EQ(kToolRadiusRange.clamp(-2.0, 1.0), 0.005);
+    EXPECT_EQ(kToolRadiusRange.clamp(1e9, 1.0), 0.15);
+    EXPECT_EQ(kToolRadiusRange.clamp(0.05, 1.0), 0.05);
+    EXPECT_EQ(kToolRadiusRange.clamp(std::nan(""), 1.0), 0.005);
+    EXPECT_DOUBLE_EQ(kToolRadiusRange.hi_at(200.0), 30.0);
+    EXPECT_DOUBLE_EQ(kPourVolumeRange.hi_at(10.0), 2e-4 * 1000.0);
+    EXPECT_EQ(kStrokeSpacingRange.hi_at(500.0), 2.0);  // a share of the radius: not scaled
+    // The defaults lie in their ranges (a fresh install must pass its own check).
+    const EditorSettings d;
+    EXPECT_TRUE(kToolRadiusRange.contains(d.tool_radius, 1.0));
+    EXPECT_TRUE(kToolDepthRange.contains(d.tool_depth, 1.0));
+    EXPECT_TRUE(kStrokeSpacingRange.contains(d.stroke_spacing_ratio, 1.0));
+    EXPECT_TRUE(kBrushStrengthRange.contains(d.brush_strength, 1.0));
+    EXPECT_TRUE(kBrushBlendRange.contains(d.brush_blend, 1.0));
+    EXPECT_TRUE(kPourVolumeRange.contains(d.pour_volume, 1.0));
+    EXPECT_TRUE(kErosionStepsRange.contains(d.erosion_steps, 1.0));
+    EXPECT_TRUE(kSimplifyToleranceRange.contains(d.simplify_tolerance, 1.0));
+    EXPECT_TRUE(kRelocationRadiusRange.contains(d.relocation_radius, 1.0));
+    EXPECT_TRUE(kSettleMarginRange.contains(d.settle_margin, 1.0));
+    EXPECT_TRUE(kContrastRange.contains(d.contrast, 1.0));
 }
 
 }  // namespace
