@@ -11,11 +11,11 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev libeigen3-dev
   # files and formats (GDAL: GeoTIFF import; OpenEXR: float heightmaps; tinygltf: glTF export)
   nlohmann-json3-dev libpng-dev libgdal-dev libopenexr-dev libtinygltf-dev
-  # GPU, window and UI
+  # GPU, window and UI (X11, XRandR and XTest headers: scripted runs send real X input)
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools glslang-dev
-  libglfw3-dev libimgui-dev libstb-dev
+  libglfw3-dev libimgui-dev libstb-dev libx11-dev libxrandr-dev libxtst-dev
   # tests: GoogleTest, a virtual X server for the editor tests
-  libgtest-dev libgmock-dev xvfb xauth
+  libgtest-dev libgmock-dev xvfb xauth xdotool
   # fuzzing and sanitizers: clang with libFuzzer and its runtimes
   clang-14 libclang-rt-14-dev
 )

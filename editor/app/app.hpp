@@ -64,6 +64,8 @@
 #include "stage_times.hpp"
 #include "tool_palette.hpp"
 #include "undo_log.hpp"
+#include "widget_map.hpp"
+#include "x_input.hpp"
 
 namespace sandtin::editor {
 
@@ -76,13 +78,11 @@ inline constexpr double kErosionBudgetMs = 25.0;
 /// script pours the same on any machine, however fast it draws.
 inline constexpr double kScriptFrameSeconds = 1.0 / 60.0;
 
+/// The undo level of sand the erosion moved with no gesture of the artist's before it.
+inline constexpr const char* kErosionLevel = "erosion";
+
 inline double ms_since(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-/// Every control explains itself on hover.
-inline void tip(const char* text) {
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
 class App {
@@ -94,7 +94,9 @@ class App {
     App& operator=(const App&) = delete;
     int run();
 
-    void load_initial_scene();
+    void load_settings_reporting();
+    /// The scene named on the command line, or a new sandbox.
+    Document initial_document();
     void init_window_and_gpu();
     void init_imgui();
     void shutdown();
@@ -116,7 +118,14 @@ class App {
                (m != nullptr ? m->staging().batches_submitted() : 0) +
                doc_.physics->gpu_dispatches();
     }
+
+    // ---- Panels (app_panels.cpp) ----
     void draw_panels();
+    /// Every control explains itself on hover; the tooltip shown is noted (widget map).
+    void tip(const char* text);
+    /// A control with a name: noted in the widget map, where scripted clicks and the xdotool
+    /// test find it, then explained by `text` on hover.
+    void ui(const std::string& name, const char* text);
     /// Pixels the status window takes at the bottom of the window with its margin (0 when
     /// there is no status).
     float status_window_height() const;
@@ -127,9 +136,15 @@ class App {
     void panel_erosion();
     /// The Erosion panel's state line (erosion_status.hpp).
     std::string erosion_status() const {
-        return erosion_status_text(settings_.erosion_running, doc_.physics->at_rest(),
-                                   erosion_active_);
+        if (doc_.erosion_held && settings_.erosion_running)
+            return "paused for the opened scene: Run lets it settle";
+        return erosion_status_text(erosion_runs(), doc_.physics->at_rest(), erosion_active_);
     }
+    /// Whether the relaxation runs now: the Run/Pause switch, unless this document is still
+    /// held (document.hpp: an opened scene waits for Run).
+    bool erosion_runs() const { return settings_.erosion_running && !doc_.erosion_held; }
+    /// The Run/Pause button: Run also releases a held document.
+    void toggle_erosion();
     void panel_haptics();
     /// The Stats window's first lines: vertex and triangle counts, constrained edges and
     /// volume (their length sizes the window).
@@ -137,69 +152,43 @@ class App {
     void panel_stats(const std::array<std::string, 2>& terrain_lines);
     void panel_file();
     void recovery_prompt();
-    /// The recovery prompt's answer (its buttons, or the script's "recovery" op).
+    void discard_prompt();
+    void overwrite_prompt();
+
+    // ---- Document operations (app_document.cpp) ----
+    /// The one way a document replaces another (New, Open, Import, Recover, and the scene at
+    /// start-up): everything that depends on the terrain is torn down and built again for the
+    /// new one (mesh, renderer buffers, GPU mirror, normal map, physics, undo, journal
+    /// readers), and the mesh and normal map are built before anything draws, so no frame
+    /// ever draws one terrain with another's GPU objects, wherever this is called from.
+    void install_document(Document next, const std::string& message);
+    /// The recovery prompt's answer (its buttons).
     void answer_recovery(bool recover);
     /// Replaces the document (New, Open, Import) through `action`; when that would drop the
     /// unsaved edits of an untitled scene (no file, so no autosave to keep them), the user is
     /// asked first. A scene with a file keeps its edits in the autosave (keep_unsaved_edits).
     void replace_document(const std::string& what, std::function<void()> action);
-    void discard_prompt();
     /// The discard prompt's answers. Save writes the scene where Save and Ctrl+S write an
     /// untitled one (the File panel's Scene field: the editor has no file dialog), then goes on.
     enum class DiscardChoice { Save, Discard, Cancel };
-    /// The discard prompt's answer (its buttons, or the script's "discard" op).
+    /// The discard prompt's answer (its buttons).
     void answer_discard(DiscardChoice choice);
     /// The window was asked to close and may: an untitled scene with unsaved edits asks
     /// first (the discard prompt), and the window stays open meanwhile.
     bool close_confirmed();
-    bool quit_confirmed_ = false;
     void new_document();
     /// Opens the scene named in the Scene field; a failure is reported.
     void open_reporting();
-    /// Imports the heightmap named in the Heightmap field; a failure is reported.
+    void open(const std::filesystem::path& p);
+    /// Imports the heightmap named in the Heightmap field as an untitled scene, and fills the
+    /// Scene field with a name of its own; a failure is reported.
     void import_document();
-
-    // Input, shared by GLFW callbacks and the script.
-    void mouse_button(int button, bool down, double x, double y);
-    /// Every GLFW callback calls this first: the loop's timed waits tell events from timeouts,
-    /// and the haptic snapshot is no longer held (the event may edit the terrain).
-    void note_event() {
-        ++events_seen_;
-        if (haptics_) haptics_->release();
-    }
-    void mouse_move(double x, double y);
-    void scroll(double dy);
-    void key(int key, bool ctrl);
-    void run_script_op(const nlohmann::json& op);
-    void set_physics(const std::string& name);
-    void set_falloff(const std::string& name);
-    /// The script's "scene_path": typed into the File panel's Scene field.
-    void set_scene_field(const std::string& path);
-
-    std::optional<Vec3> pick(double x, double y) const;
-    void tool_at(Vec3 point);
-    /// The Pour or Remove tool at `xy` (press or move): the dabs the pour flow places there.
-    void pour_at(Vec2 xy);
-    /// One dab of the Pour or Remove tool, of the Pour slider's volume.
-    void pour_dab(Vec2 at);
-    /// A pour held down keeps pouring with time (pour_flow.hpp); called once per frame.
-    void pour_while_held();
-    /// Ends the Pour or Remove gesture; one that moved less sand than asked says so.
-    void end_pour();
-    /// Metres: the pour's disc is half the Size slider's radius.
-    double pour_radius() const { return 0.5 * settings_.tool_radius; }
-    void end_action();
-    /// The erosion came to rest: simplify what it moved, let the sand settle that, and make
-    /// the whole an undo level.
-    void settle_erosion();
-    void undo();
-    /// A new material table everywhere it is used (physics, mesh colours); not an undo level.
-    void apply_materials(const MaterialTable& table);
-    /// The Materials panel's edit of material `index` (released control): an undo level.
-    void edit_material(int index, const Material& m);
-    void redo();
     void save(const std::filesystem::path& p);
-    /// Save, Save As and Ctrl+S: a failure is reported on the status line. True when saved.
+    /// Save, Save As, Ctrl+S and the prompts' Save: writes the scene to `p`, then runs `then`.
+    /// A file at `p` that is not this scene's own is replaced only after the overwrite prompt
+    /// says so. A failure is reported on the status line and `then` does not run.
+    void request_save(const std::filesystem::path& p, std::function<void()> then = {});
+    /// Save and Ctrl+S: a failure is reported on the status line. True when saved.
     bool save_reporting(const std::filesystem::path& p);
     /// The terrain to a mesh or height map, as `sandtin export` writes it (format from the
     /// extension), with the materials as the viewport shows them. Throws on failure.
@@ -208,38 +197,15 @@ class App {
     std::filesystem::path save_path() const {
         return doc_.path.empty() ? std::filesystem::path(path_buf_) : doc_.path;
     }
-    void open(const std::filesystem::path& p);
     void frame_terrain();
     /// The length settings follow the new document's terrain size (terrain_scale.hpp), and the
-    /// document's sculpting context takes the panel's simplification tolerance.
-    void fit_settings_to_document();
+    /// document's sculpting context takes the panel's simplification tolerance. Returns the
+    /// sentence that says so when they were scaled, else nothing.
+    std::string fit_settings_to_document();
     /// Waits until the GPU no longer uses anything: before objects a submitted frame or
     /// solver step may still read (the normal map, the mirrors) are destroyed.
     void wait_gpu_idle() const {
         if (context_) vkDeviceWaitIdle(context_->device());
-    }
-    /// After doc_ holds a new terrain: per-terrain state restarts.
-    void document_replaced() {
-        fit_settings_to_document();
-        // A new document starts clean (a recovered one is already on disk as the autosave).
-        autosave_schedule_.saved(Clock::now());
-        wait_gpu_idle();      // the last frame may still sample the normal map
-        normal_map_.reset();  // it refers to the old mirror
-        own_mirror_.reset();
-        fanout_ = std::make_unique<ChangeFanout>(*doc_.tin);
-        undo_log_.clear();
-        if (mesh_) mesh_->set_materials(doc_.materials);
-        attach_physics(false);
-        // An opened scene was never relaxed by this physics (it may have been saved mid-slide,
-        // or imported steeper than repose): all of it is a candidate, as after a switch of
-        // solver. What is at rest leaves the active set after a few quiet iterations.
-        doc_.physics->activate_all();
-        mesh_stale_ = true;
-        contrast_stale_ = true;
-        active_.clear();
-        active_ids_.clear();
-        active_flipped_.clear();
-        physics_kick_ = true;
     }
     /// The document changed: it needs saving, and an autosave once the interval has passed.
     void mark_edited() {
@@ -252,12 +218,91 @@ class App {
     /// Before the document is replaced (New, Open, Import): unsaved edits of a scene with a
     /// file go to its autosave, which is offered for recovery when the scene is opened again.
     void keep_unsaved_edits();
+    void undo();
+    void redo();
+    /// A new material table everywhere it is used (physics, mesh colours); not an undo level.
+    void apply_materials(const MaterialTable& table);
+    /// The Materials panel's edit of material `index` (released control): an undo level.
+    void edit_material(int index, const Material& m);
+
+    // ---- Strokes and undo levels (app_input.cpp) ----
+    void mouse_button(int button, bool down, double x, double y);
+    /// Every GLFW callback calls this first: the loop's timed waits tell events from timeouts,
+    /// and the haptic snapshot is no longer held (the event may edit the terrain).
+    void note_event() {
+        ++events_seen_;
+        if (haptics_) haptics_->release();
+    }
+    void mouse_move(double x, double y);
+    void scroll(double dy);
+    void key(int key, bool ctrl);
+    /// Runs an input handler; an error in it (a tool that refuses its parameters, a file
+    /// that cannot be read) is shown on the status line and the gesture under way is ended,
+    /// never thrown through GLFW (C code) or out of the editor.
+    template <class F>
+    void guarded(const char* what, F&& handler) {
+        try {
+            handler();
+        } catch (const std::exception& e) {
+            abandon_gesture();
+            report(std::string(what) + ": " + e.what());
+        }
+    }
+    std::optional<Vec3> pick(double x, double y) const;
+    void tool_at(Vec3 point);
+    /// The Pour or Remove tool at `xy` (press or move): the dabs the pour flow places there.
+    void pour_at(Vec2 xy);
+    /// One dab of the Pour or Remove tool, of the Pour slider's volume.
+    void pour_dab(Vec2 at);
+    /// A pour held down keeps pouring with time (pour_flow.hpp); called once per frame.
+    void pour_while_held();
+    /// Ends the Pour or Remove gesture; one that moved less sand than asked says so.
+    void end_pour();
+    /// Metres: the pour's disc is half the Size slider's radius.
+    double pour_radius() const { return 0.5 * settings_.tool_radius; }
+    /// The gesture under way (a stroke's last stamps, a pour) ends; its undo level stays open
+    /// while the sand it disturbed settles (settle_erosion closes it), so that one stroke and
+    /// its settling undo together.
+    void end_gesture();
+    /// The gesture, and the undo level it and the erosion since opened, end now: before
+    /// anything else changes the document (a new stroke, undo, save, a switch of solver).
+    void end_action();
+    /// An error stopped the gesture: what it did so far stays and becomes its undo level.
+    void abandon_gesture();
+    /// The erosion came to rest: simplify what it moved, let the sand settle that, and close
+    /// the open undo level.
+    void settle_erosion();
+
+    // ---- Scripted mode (app_script.cpp) ----
+    void run_script_op(const nlohmann::json& op);
+    /// Runs the next real-input step of a scripted op (each step is followed by a frame).
+    void run_input_step();
+    /// The centre of the control `name` as the last frame drew it (window pixels); nullopt
+    /// while it is not (yet) on screen.
+    std::optional<std::pair<double, double>> widget_centre(const std::string& name) const;
+    /// Queues a click of `button` at a window position (pointer there, then down, then up,
+    /// each in its own frame, as a hand does), with Ctrl held when `ctrl`.
+    void queue_click(std::function<std::pair<double, double>()> where, int button, bool ctrl);
+    void queue_key(int glfw_key, bool ctrl);
+    void set_physics(const std::string& name);
+    void set_falloff(const std::string& name);
+    /// The script's "scene_path": typed into the File panel's Scene field.
+    void set_scene_field(const std::string& path);
+    /// The script's "import_path": typed into the File panel's Heightmap field.
+    void set_import_field(const std::string& path);
     /// A scripted run's outputs, data first: the scene (--save-after), then the screenshot.
     /// Each is tried whatever became of the other (a bad screenshot path once lost the
     /// scene); the failures are returned, for the run to report and exit 1 with.
     std::vector<std::string> write_outputs();
+    /// Writes the widget map to --widget-map when it changed (the xdotool test reads it).
+    void publish_widget_map();
+
     /// The interactive main loop: until the window closes.
     void interactive_loop();
+    /// The scripted loop: every op, then the frames asked for.
+    void scripted_loop();
+    void idle_measurement(std::uint64_t& submissions, std::uint64_t& gpu_work);
+    void write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_work);
     LoopState loop_state() const;
     /// Waits as frame_policy.hpp decides for `state`, for at most `at_most_seconds` when that
     /// is not kWaitForEvent, and says whether to draw a frame now.
@@ -268,6 +313,8 @@ class App {
     void save_settings_reporting();
     void report(const std::string& message) {
         status_ = message;
+        // The session's messages, for the stats a scripted run writes (the line shows the last).
+        if (messages_.size() < 1000) messages_.push_back(message);
         if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
             std::fprintf(stderr, "sandtin-editor: %s\n", message.c_str());
     }
@@ -301,7 +348,10 @@ class App {
     OrbitCamera camera_;
     StageTimes times_;
     std::string status_;
-    LayoutProbe layout_;  ///< how far the panels' controls reach past their edges
+    std::vector<std::string> messages_;
+    LayoutProbe layout_;             ///< how far the panels' controls reach past their edges
+    WidgetMap widgets_;              ///< where the named controls were drawn
+    std::string published_widgets_;  ///< the map last written to --widget-map
     /// Opens (true) or closes every panel header in the next frame (the script's "panels" op).
     std::optional<bool> open_panels_;
 
@@ -317,8 +367,9 @@ class App {
     Clock::time_point pour_clock_{};              ///< when the held pour last counted its time
     double pour_asked_ = 0.0, pour_moved_ = 0.0;  ///< m³ over the gesture (moved < 0: removed)
     double flatten_level_ = 0.0;  ///< metres: the Flatten brush's level for this stroke
-    std::string pending_label_;
-    bool erosion_pending_ = false;
+    /// The undo level being made: the gesture's label ("stroke (Ball)") from its first edit
+    /// until the sand it disturbed rests; "erosion" when the erosion alone moved sand.
+    std::string open_level_;
     /// The erosion's simplification ran; the sand settles what it steepened (settle_erosion).
     bool resettling_ = false;
     bool physics_kick_ = true;
@@ -333,6 +384,13 @@ class App {
     std::optional<std::filesystem::path> recovery_for_;
     std::function<void()> pending_replacement_;  ///< waits for the discard prompt
     std::string pending_replacement_label_;
+    /// A save that would replace another file waits for the overwrite prompt.
+    struct PendingOverwrite {
+        std::filesystem::path path;
+        std::function<void()> then;
+    };
+    std::optional<PendingOverwrite> pending_overwrite_;
+    bool quit_confirmed_ = false;
     AutosaveSchedule autosave_schedule_{std::chrono::seconds(60)};
     AutosaveWriter autosave_writer_;   ///< finishes a queued autosave when the editor closes
     bool autosave_in_script_ = false;  ///< a script's "autosave" op turns autosaving on
@@ -370,7 +428,10 @@ class App {
     std::vector<nlohmann::json> script_;
     std::size_t script_pos_ = 0;
     int script_wait_ = 0;
-    bool ctrl_ = false;
+    /// Real input for scripted runs; each step injects events and is followed by one frame.
+    std::unique_ptr<XInput> x_input_;
+    /// A step returns false to be tried again next frame (a control not on screen yet).
+    std::deque<std::function<bool()>> input_steps_;
     char path_buf_[512] = "scene.sandtin";
     char import_buf_[512] = "";
     char export_buf_[512] = "terrain.glb";

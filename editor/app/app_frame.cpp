@@ -28,12 +28,27 @@ void App::attach_physics(bool switched) {
     if (!doc_.physics) doc_.physics = make_cpu_erosion(*doc_.tin, doc_.materials);
     if (switched) doc_.physics->activate_all();
     physics_kick_ = true;
+    // The normal map went with the old solver's mirror: it is baked again now, so a frame
+    // drawn after this (the panel's switch is pressed in the middle of one) samples a map
+    // that exists.
+    if (renderer_ && mesh_) update_normal_map();
+}
+
+void App::toggle_erosion() {
+    if (erosion_runs()) {
+        end_action();  // what slid so far is its level
+        settings_.erosion_running = false;
+        return;
+    }
+    settings_.erosion_running = true;
+    doc_.erosion_held = false;  // the artist let this scene settle
+    physics_kick_ = true;
 }
 
 void App::update_simulation() {
     const auto t0 = Clock::now();
     // The physics learns about edits when it steps, so an edit "kicks" it.
-    if (settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest())) {
+    if (erosion_runs() && (physics_kick_ || !doc_.physics->at_rest())) {
         physics_kick_ = false;
         doc_.physics->settings().parameters.relocation_radius = settings_.relocation_radius;
         // Clamped: a hand-edited settings file must not stop the physics.
@@ -73,8 +88,10 @@ void App::update_simulation() {
                 active_flipped_.push_back(v);
             }
         }
-        if (!changed.empty() && !left_down_) erosion_pending_ = true;
-        if (doc_.physics->at_rest() && erosion_pending_ && !left_down_) settle_erosion();
+        // Sand the erosion moved belongs to the open level (the gesture that disturbed it), or
+        // makes a level of its own.
+        if (!changed.empty() && open_level_.empty()) open_level_ = kErosionLevel;
+        if (doc_.physics->at_rest() && !open_level_.empty() && !left_down_) settle_erosion();
     } else if (!active_ids_.empty()) {
         for (VertexId v : active_ids_) {
             active_[v.index()] = 0;
@@ -86,48 +103,6 @@ void App::update_simulation() {
     times_.push(times_.tool, tool_ms_);
     tool_ms_ = 0.0;
     autosave_if_due();
-}
-
-void App::settle_erosion() {
-    // Flat ground the sand left behind, and the refinement r_S grew where it passed, go as an
-    // edit's do: detail follows the work. A removal re-triangulates its hole and shifts heights
-    // to keep the volume, which can steepen an edge, so the sand settles once more before the
-    // erosion becomes an undo level; what that moves waits for the next edit's simplification,
-    // as the scripts' "until_rest" does. (More rounds gain little: on a pour's flanks the
-    // settling refines again at r_S what the simplification removed. Measured on a 0.1 L pour
-    // on 3 000 points, r_S = 1 cm, before the refinement's vertices were queued too: 3 414
-    // vertices without it, 3 262 after one round, 3 241 after three, 3 224 after six.)
-    if (!resettling_ && doc_.context->settings.simplify_after_edit) {
-        const SimplifyReport simplified =
-            doc_.context->simplifier.run(*doc_.tin, doc_.context->settings.simplify);
-        if (simplified.removed > 0) {
-            resettling_ = true;
-            physics_kick_ = true;
-            return;
-        }
-    }
-    end_action();
-}
-
-void App::keep_unsaved_edits() {
-    if (doc_.dirty && !doc_.path.empty() && autosaves()) {
-        autosave_writer_.submit(doc_.path, doc_.session());
-        report("unsaved edits of " + doc_.path.string() + " kept in its autosave");
-    }
-    autosave_writer_.flush();
-    if (const std::optional<std::string> error = autosave_writer_.take_error())
-        report("autosave failed: " + *error);
-}
-
-void App::autosave_if_due() {
-    const auto now = Clock::now();
-    if (const std::optional<std::string> error = autosave_writer_.take_error()) {
-        report("autosave failed, will retry: " + *error);
-        autosave_schedule_.edited(now);  // due again one interval from now
-    }
-    if (doc_.path.empty() || !autosaves() || !autosave_schedule_.due(now)) return;
-    autosave_writer_.submit(doc_.path, doc_.session());
-    autosave_schedule_.saved(now);
 }
 
 void App::update_haptics() {
@@ -284,6 +259,7 @@ bool App::frame(bool capture) {
     update_simulation();
     update_mesh();
 
+    widgets_.begin_frame();
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();

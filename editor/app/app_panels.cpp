@@ -6,24 +6,35 @@ namespace sandtin::editor {
 
 namespace {
 
-/// A slider over [lo, hi] (metres, or m³), shown in `unit`: "name (unit per)". The ImGui id is
-/// the name alone, so a change of unit is not a new widget.
-bool scaled_slider(const char* name, const char* per, double& value, double lo, double hi,
-                   DisplayUnit unit, const char* format) {
+/// A slider over `range` at the terrain size `size` (metres, or m³), shown in the unit that
+/// suits its largest value: "name (unit per)". The ImGui id is the name alone, so a change of
+/// unit is not a new widget. A value typed in (Ctrl+click) is clamped to the range, as a drag
+/// is: a tool never receives a size, depth or volume it would refuse.
+bool range_slider(const char* name, const char* per, double& value, const SettingRange& range,
+                  double size, const char* format) {
+    const DisplayUnit unit = range.scaling == Scaling::Volume ? volume_unit(range.hi_at(size))
+                                                              : length_unit(range.hi_at(size));
     const std::string label =
         std::string(name) + " (" + unit.suffix + per + ")###" + std::string(name);
     auto shown = [&](double v) { return static_cast<float>(v / unit.metres); };
     float v = shown(value);
-    if (!ImGui::SliderFloat(label.c_str(), &v, shown(lo), shown(hi), format)) return false;
-    value = static_cast<double>(v) * unit.metres;
+    if (!ImGui::SliderFloat(label.c_str(), &v, shown(range.lo_at(size)), shown(range.hi_at(size)),
+                            format, ImGuiSliderFlags_AlwaysClamp))
+        return false;
+    value = range.clamp(static_cast<double>(v) * unit.metres, size);
     return true;
 }
 
-/// A length slider whose range is [lo, hi] metres on the 1 m sandbox, scaled to a terrain of
-/// `size` metres (terrain_scale.hpp), in the unit that suits the scaled range.
-bool length_slider(const char* name, double& metres, double lo, double hi, double size,
-                   const char* format, const char* per = "") {
-    return scaled_slider(name, per, metres, lo * size, hi * size, length_unit(hi * size), format);
+/// A plain slider over `range` (no unit scaling), clamped as range_slider is.
+bool plain_slider(const char* label, double& value, const SettingRange& range, const char* format,
+                  double shown_per_unit = 1.0, ImGuiSliderFlags flags = ImGuiSliderFlags_None) {
+    float v = static_cast<float>(value * shown_per_unit);
+    if (!ImGui::SliderFloat(label, &v, static_cast<float>(range.lo * shown_per_unit),
+                            static_cast<float>(range.hi * shown_per_unit), format,
+                            flags | ImGuiSliderFlags_AlwaysClamp))
+        return false;
+    value = range.clamp(static_cast<double>(v) / shown_per_unit, 1.0);
+    return true;
 }
 
 /// A material's name as the panels show it: "dry_sand" reads "dry sand".
@@ -36,14 +47,16 @@ std::string shown_name(std::string name) {
 constexpr const char* kWidestLabel = "Settle margin (%)";
 
 /// A path field filling its row with its button at the right end, "[path ......][Button]";
-/// `hint` shows while the field is empty, and hovering the field shows its whole path. True
-/// when the button was pressed; the caller's `tip` that follows explains the button.
-bool path_field(const char* id, const char* hint, char* buffer, std::size_t size,
-                const char* button) {
+/// `hint` shows while the field is empty, and hovering the field shows its whole path. The
+/// field is noted in `widgets` as `field_name`. True when the button was pressed; the caller's
+/// `ui` that follows names and explains the button.
+bool path_field(WidgetMap& widgets, const char* field_name, const char* hint, char* buffer,
+                std::size_t size, const char* button) {
     const ImGuiStyle& style = ImGui::GetStyle();
     const float button_width = ImGui::CalcTextSize(button).x + 2.0f * style.FramePadding.x;
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - button_width - style.ItemSpacing.x);
-    ImGui::InputTextWithHint(id, hint, buffer, size);
+    ImGui::InputTextWithHint((std::string("##") + field_name).c_str(), hint, buffer, size);
+    widgets.note(field_name);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", buffer[0] != '\0' ? buffer : hint);
     ImGui::SameLine();
     return ImGui::Button(button);
@@ -102,6 +115,7 @@ void App::draw_panels() {
     ImGui::End();
     recovery_prompt();
     discard_prompt();
+    overwrite_prompt();
 }
 
 float App::status_window_height() const {
@@ -126,43 +140,61 @@ void App::status_window(float height) {
     ImGui::End();
 }
 
+void App::tip(const char* text) {
+    if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+    ImGui::SetTooltip("%s", text);
+    widgets_.note_tooltip(text);
+}
+
+void App::ui(const std::string& name, const char* text) {
+    widgets_.note(name);
+    tip(text);
+}
+
 void App::panel_file() {
     ImGui::InputText("Scene", path_buf_, sizeof(path_buf_));
-    tip("Path used by Open, Save As and Ctrl+S when the scene has no file yet");
+    ui("Scene", "Path used by Open, Save As and Ctrl+S when the scene has no file yet");
     if (ImGui::Button("New")) replace_document("New", [this] { new_document(); });
-    tip("Start a new 1 m x 1 m sandbox with dunes (Ctrl+N)");
+    ui("New", "Start a new 1 m x 1 m sandbox with dunes (Ctrl+N)");
     ImGui::SameLine();
     if (ImGui::Button("Open")) replace_document("Open", [this] { open_reporting(); });
-    tip("Open the .sandtin session named above (Ctrl+O)");
+    ui("Open", "Open the .sandtin session named above (Ctrl+O)");
     ImGui::SameLine();
-    if (ImGui::Button("Save")) save_reporting(save_path());
-    tip("Save the scene to its file (Ctrl+S); the autosave is then removed");
+    if (ImGui::Button("Save")) request_save(save_path());
+    ui("Save",
+       "Save the scene to its file (Ctrl+S); the autosave is then removed. An untitled\n"
+       "scene is saved under the path above");
     ImGui::SameLine();
-    if (ImGui::Button("Save As")) save_reporting(path_buf_);
-    tip("Save the scene under the path above");
-    if (path_field("##heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
+    if (ImGui::Button("Save As")) request_save(path_buf_);
+    ui("Save As", "Save the scene under the path above (asks before replacing another file)");
+    if (path_field(widgets_, "Heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
                    "Import"))
         replace_document("Import", [this] { import_document(); });
-    tip("Import the heightmap named on the left as an error-bounded TIN (replaces the scene):\n"
-        "PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid");
-    if (path_field("##export", "file to export to", export_buf_, sizeof(export_buf_), "Export")) {
+    ui("Import",
+       "Import the heightmap named on the left as a new, untitled scene (an error-bounded\n"
+       "TIN): PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid");
+    if (path_field(widgets_, "Export path", "file to export to", export_buf_, sizeof(export_buf_),
+                   "Export")) {
         try {
             export_to(export_buf_);
         } catch (const std::exception& e) {
             report(std::string("export failed: ") + e.what());
         }
     }
-    tip("Write the terrain to the file named on the left: a mesh (.obj .ply .stl .gltf .glb)\n"
-        "or a heightmap (.png .exr); the extension picks the format");
+    ui("Export",
+       "Write the terrain to the file named on the left: a mesh (.obj .ply .stl .gltf .glb)\n"
+       "or a heightmap (.png .exr); the extension picks the format");
     ImGui::BeginDisabled(!undo_log_.can_undo());
     if (ImGui::Button("Undo")) undo();
     ImGui::EndDisabled();
-    tip("Undo the last stroke, brush, pour, erosion run or material edit (Ctrl+Z)");
+    ui("Undo",
+       "Undo the last stroke with its settling, brush, pour, erosion run or material\n"
+       "edit (Ctrl+Z)");
     ImGui::SameLine();
     ImGui::BeginDisabled(!undo_log_.can_redo());
     if (ImGui::Button("Redo")) redo();
     ImGui::EndDisabled();
-    tip("Redo (Ctrl+Y)");
+    ui("Redo", "Redo (Ctrl+Y)");
     ImGui::SameLine();
     ImGui::TextUnformatted(undo_levels_text(undo_log_.levels(), doc_.history->bytes()).c_str());
 }
@@ -190,10 +222,10 @@ void App::panel_tools() {
             if (placed % 3 == 0) ImGui::TextDisabled("%s", placed == 0 ? heading : "");
             ImGui::SameLine(left + column * static_cast<float>(placed % 3));
             if (ImGui::RadioButton(kTools[i].label, settings_.tool == i)) {
-                end_action();
+                end_gesture();
                 settings_.tool = i;
             }
-            tip(kTools[i].help);
+            ui(kTools[i].label, kTools[i].help);
             ++placed;
         }
     };
@@ -210,64 +242,59 @@ void App::panel_tools() {
     const bool round_stamp = tool.kind == ToolKind::Stamp && sized_by_slider(cursor_tool().spec());
     const ToolSliders sliders = sliders_for(tool, round_stamp, haptics_ != nullptr);
     if (sliders.size) {
-        length_slider("Size", settings_.tool_radius, 0.005, 0.15, size, "%.1f");
-        tip("Radius of round tools (circle, ball), brushes and the pour");
+        range_slider("Size", "", settings_.tool_radius, kToolRadiusRange, size, "%.1f");
+        ui("Size", "Radius of round tools (circle, ball), brushes and the pour");
     } else {
         stamp_size_readout();
     }
     if (sliders.depth) {
-        length_slider("Depth", settings_.tool_depth, -0.02, 0.04, size, "%.1f");
-        tip("How deep a stamp tool presses below the terrain ahead of it, and how deep the\n"
-            "haptic pen's tip rests in the sand");
+        range_slider("Depth", "", settings_.tool_depth, kToolDepthRange, size, "%.1f");
+        ui("Depth",
+           "How deep a stamp tool presses below the terrain ahead of it, and how deep\n"
+           "the haptic pen's tip rests in the sand");
     }
     switch (tool.kind) {
         case ToolKind::Stamp: {
-            float spacing = static_cast<float>(100.0 * settings_.stroke_spacing_ratio);
-            if (ImGui::SliderFloat("Spacing", &spacing,
-                                   static_cast<float>(100.0 * kMinStrokeSpacingRatio),
-                                   static_cast<float>(100.0 * kMaxStrokeSpacingRatio),
-                                   "%.0f %% of size", ImGuiSliderFlags_Logarithmic))
-                settings_.stroke_spacing_ratio = static_cast<double>(spacing) / 100.0;
-            tip("Distance between stamps along a stroke, as a share of the tool's radius\n"
-                "(independent of frame rate)");
+            plain_slider("Spacing", settings_.stroke_spacing_ratio, kStrokeSpacingRange,
+                         "%.0f %% of size", 100.0, ImGuiSliderFlags_Logarithmic);
+            ui("Spacing",
+               "Distance between stamps along a stroke, as a share of the tool's\n"
+               "radius (independent of frame rate)");
             ImGui::Checkbox("Extrude", &settings_.extrude);
-            tip("Push the displaced sand into a rim beside and ahead of the tool (volume "
-                "conserved).");
+            ui("Extrude",
+               "Push the displaced sand into a rim beside and ahead of the tool (volume "
+               "conserved).");
             ImGui::SameLine();
             ImGui::Checkbox("Follow path", &settings_.follow_path);
-            tip("Turn the tool with the stroke direction; otherwise use the fixed orientation");
-            float angle = static_cast<float>(settings_.tool_angle);
+            ui("Follow path",
+               "Turn the tool with the stroke direction; otherwise use the fixed orientation");
             ImGui::BeginDisabled(settings_.follow_path);
-            if (ImGui::SliderFloat("Orientation", &angle, -180.0f, 180.0f, "%.0f deg"))
-                settings_.tool_angle = static_cast<double>(angle);
+            plain_slider("Orientation", settings_.tool_angle, kToolAngleRange, "%.0f deg");
             ImGui::EndDisabled();
-            if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-                ImGui::SetTooltip(
-                    "Tool heading when it does not follow the path (turn Follow "
-                    "path off to set it)");
+            ui("Orientation",
+               "Tool heading when it does not follow the path (turn Follow path off to set it)");
             break;
         }
         case ToolKind::Pour:
         case ToolKind::Remove: {
-            const double cube = size * size * size;
-            scaled_slider("Pour", "", settings_.pour_volume, 1e-6 * cube, 2e-4 * cube,
-                          volume_unit(2e-4 * cube), "%.0f");
-            tip("Sand poured or removed per dab. A click is one dab; a drag adds one every\n"
-                "quarter of the Size along the stroke, however fast the mouse moves; holding\n"
-                "the button still adds four dabs a second (4 x this volume per second)");
+            range_slider("Pour", "", settings_.pour_volume, kPourVolumeRange, size, "%.0f");
+            ui("Pour",
+               "Sand poured or removed per dab. A click is one dab; a drag adds one\n"
+               "every quarter of the Size along the stroke, however fast the mouse\n"
+               "moves; holding the button still adds four dabs a second (4 x this\n"
+               "volume per second)");
             break;
         }
         case ToolKind::Brush: {
             if (tool.brush == BrushKind::Raise || tool.brush == BrushKind::Lower) {
-                length_slider("Height", settings_.brush_strength, 0.0005, 0.02, size, "%.1f",
-                              "/dab");
-                tip("Height a Raise or Lower dab adds or takes at its centre");
+                range_slider("Height", "/dab", settings_.brush_strength, kBrushStrengthRange, size,
+                             "%.1f");
+                ui("Height", "Height a Raise or Lower dab adds or takes at its centre");
             } else if (tool.brush == BrushKind::Smooth || tool.brush == BrushKind::Flatten) {
-                float blend = static_cast<float>(settings_.brush_blend);
-                if (ImGui::SliderFloat("Strength", &blend, 0.05f, 1.0f, "%.2f"))
-                    settings_.brush_blend = static_cast<double>(blend);
-                tip("Fraction of the way to the smooth surface (Smooth) or to the stroke's\n"
-                    "starting level (Flatten) that one dab goes at the brush centre");
+                plain_slider("Strength", settings_.brush_blend, kBrushBlendRange, "%.2f");
+                ui("Strength",
+                   "Fraction of the way to the smooth surface (Smooth) or to the stroke's\n"
+                   "starting level (Flatten) that one dab goes at the brush centre");
             }
             if (tool.brush != BrushKind::PaintMaterial) {
                 int falloff = static_cast<int>(
@@ -275,8 +302,9 @@ void App::panel_tools() {
                 if (ImGui::Combo("Falloff", &falloff, kFalloffNames.data(),
                                  static_cast<int>(kFalloffNames.size())))
                     settings_.brush_falloff = kFalloffNames[static_cast<std::size_t>(falloff)];
-                tip("How a dab's effect fades from its centre to its rim: constant, linear,\n"
-                    "smooth (flat centre, soft rim) or gaussian (1 % at the rim)");
+                ui("Falloff",
+                   "How a dab's effect fades from its centre to its rim: constant, linear,\n"
+                   "smooth (flat centre, soft rim) or gaussian (1 % at the rim)");
             } else if (settings_.material >= 0 &&
                        settings_.material < static_cast<int>(doc_.materials.size())) {
                 ImGui::TextWrapped(
@@ -302,8 +330,9 @@ void App::stamp_size_readout() {
     const DisplayUnit unit = length_unit(0.15 * settings_.scene_size);
     ImGui::LabelText("Size", "%.1f x %.1f %s", (x1 - x0) / unit.metres, (y1 - y0) / unit.metres,
                      unit.suffix);
-    tip("This tool's own size (its shape, scaled to the terrain); the Size slider sets the\n"
-        "radius of round tools only");
+    ui("Size",
+       "This tool's own size (its shape, scaled to the terrain); the Size slider sets\n"
+       "the radius of round tools only");
 }
 
 void App::panel_materials() {
@@ -317,7 +346,8 @@ void App::panel_materials() {
         const std::string label = shown_name(m.name) + "##material" + std::to_string(i);
         if (ImGui::RadioButton(label.c_str(), settings_.material == static_cast<int>(i)))
             settings_.material = static_cast<int>(i);
-        tip("Select: the Paint brush and the pour use this material; edit it below");
+        ui("material " + std::to_string(i),
+           "Select: the Paint brush and the pour use this material; edit it below");
         ImGui::SameLine();
         ImGui::Text("%.0f / %.0f deg", m.repose_dry * 57.2957795, m.repose_wet * 57.2957795);
         tip("Angle of repose dry / with capillary moisture");
@@ -327,93 +357,89 @@ void App::panel_materials() {
     float dry = static_cast<float>(m.repose_dry * 57.2957795);
     float wet = static_cast<float>(m.repose_wet * 57.2957795);
     bool edited = false;
-    ImGui::SliderFloat("Repose dry", &dry, 10.0f, 50.0f, "%.1f deg");
-    tip("Steepest stable slope of the dry material");
+    // Typed values are clamped to the sliders' ranges, as everywhere (AlwaysClamp).
+    ImGui::SliderFloat("Repose dry", &dry, 10.0f, 50.0f, "%.1f deg", ImGuiSliderFlags_AlwaysClamp);
+    ui("Repose dry", "Steepest stable slope of the dry material");
     edited |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderFloat("Repose moist", &wet, dry, 70.0f, "%.1f deg");
-    tip("Steepest stable slope with capillary moisture (the plateau before slumping)");
+    ImGui::SliderFloat("Repose moist", &wet, dry, 70.0f, "%.1f deg", ImGuiSliderFlags_AlwaysClamp);
+    ui("Repose moist",
+       "Steepest stable slope with capillary moisture (the plateau before "
+       "slumping)");
     edited |= ImGui::IsItemDeactivatedAfterEdit();
     ImGui::ColorEdit3("Colour", m.colour, ImGuiColorEditFlags_Float);
-    tip("Albedo of the material (linear RGB)");
+    ui("Colour", "Albedo of the material (linear RGB)");
     edited |= ImGui::IsItemDeactivatedAfterEdit();
-    ImGui::SliderFloat("Paint moisture", &m.default_moisture, 0.0f, 1.0f, "%.2f");
-    tip("Saturation the Paint brush gives the sand it paints with this material");
+    ImGui::SliderFloat("Paint moisture", &m.default_moisture, 0.0f, 1.0f, "%.2f",
+                       ImGuiSliderFlags_AlwaysClamp);
+    ui("Paint moisture", "Saturation the Paint brush gives the sand it paints with this material");
     edited |= ImGui::IsItemDeactivatedAfterEdit();
-    m.repose_dry = static_cast<double>(dry) / 57.2957795;
-    m.repose_wet = static_cast<double>(std::max(wet, dry)) / 57.2957795;
+    for (float& c : m.colour)
+        c = std::clamp(c, 0.0f, 1.0f);  // an albedo: a typed 3 is white, not a light source
+    m.repose_dry = static_cast<double>(std::clamp(dry, 10.0f, 50.0f)) / 57.2957795;
+    m.repose_wet = static_cast<double>(std::clamp(std::max(wet, dry), dry, 70.0f)) / 57.2957795;
     // Applied when the control is released.
     if (edited) edit_material(settings_.material, m);
 }
 
-void App::edit_material(int index, const Material& m) {
-    std::vector<Material> all = doc_.materials.all();
-    if (index < 0 || index >= static_cast<int>(all.size()))
-        throw std::runtime_error("there is no material " + std::to_string(index));
-    all[static_cast<std::size_t>(index)] = m;
-    // The whole terrain is re-checked against the new angles and the colours are rebuilt. One
-    // undo level, saved with the scene.
-    end_action();
-    const MaterialTable before = doc_.materials;
-    apply_materials(MaterialTable(std::move(all)));
-    undo_log_.push_materials(before, doc_.materials);
-    mark_edited();
-}
-
 void App::panel_erosion() {
-    if (ImGui::Button(settings_.erosion_running ? "Pause" : "Run")) {
-        settings_.erosion_running = !settings_.erosion_running;
-        if (!settings_.erosion_running) end_action();
-    }
-    tip("Run or pause talus relaxation; an erosion run becomes one undo level");
+    // "Run###Run": one control, whatever it says, for the scripts and the test that find it.
+    if (ImGui::Button(erosion_runs() ? "Pause###Run" : "Run###Run")) toggle_erosion();
+    ui("Run",
+       "Run or pause talus relaxation. An opened or imported scene waits for Run, so\n"
+       "an elevation model does not melt as it appears. A stroke and the settling it\n"
+       "causes are one undo level");
     ImGui::SameLine();
     ImGui::TextUnformatted(erosion_status().c_str());
     tip("Paused, at rest, or sliding with the number of vertices the relaxation still looks at");
-    ImGui::SliderInt("Steps/frame", &settings_.erosion_steps, 1, 200);
-    tip("Relaxation iterations per frame");
+    ImGui::SliderInt("Steps/frame", &settings_.erosion_steps,
+                     static_cast<int>(kErosionStepsRange.lo),
+                     static_cast<int>(kErosionStepsRange.hi), "%d", ImGuiSliderFlags_AlwaysClamp);
+    ui("Steps/frame", "Relaxation iterations per frame");
     int solver = settings_.erosion_gpu ? 1 : 0;
     ImGui::RadioButton("CPU", &solver, 0);
-    tip("Relaxation on the CPU: the reference solver (sequential active list)");
+    ui("CPU", "Relaxation on the CPU: the reference solver (sequential active list)");
     ImGui::SameLine();
     ImGui::RadioButton("GPU", &solver, 1);
-    tip("Relaxation on the GPU (Jacobi, two phases over the active list); the heights are read\n"
-        "back into the terrain after every batch, so tools, saves and undo see them");
+    ui("GPU",
+       "Relaxation on the GPU (Jacobi, two phases over the active list); the heights are read\n"
+       "back into the terrain after every batch, so tools, saves and undo see them");
     if ((solver == 1) != settings_.erosion_gpu) {
         end_action();
         settings_.erosion_gpu = solver == 1;
         attach_physics(true);
     }
-    length_slider("r_S", settings_.relocation_radius, 0.001, 0.05, settings_.scene_size, "%.1f");
-    tip("Relocation radius: material never jumps farther; longer edges are split");
-    float margin = static_cast<float>(settings_.settle_margin * 100.0);
-    if (ImGui::SliderFloat("Settle margin (%)", &margin, 0.0f, 10.0f, "%.1f"))
-        settings_.settle_margin = static_cast<double>(margin) / 100.0;
-    tip("Sand that slides comes to rest this much below its angle of repose (the dynamic\n"
-        "angle is 1-3 degrees lower). 0 = the seeds' rule: a dug slope creeps for much longer");
-    if (length_slider("Simplify", settings_.simplify_tolerance, 0.00005, 0.005,
-                      settings_.scene_size, "%.2f"))
+    range_slider("r_S", "", settings_.relocation_radius, kRelocationRadiusRange,
+                 settings_.scene_size, "%.1f");
+    ui("r_S", "Relocation radius: material never jumps farther; longer edges are split");
+    plain_slider("Settle margin (%)", settings_.settle_margin, kSettleMarginRange, "%.1f", 100.0);
+    ui("Settle margin",
+       "Sand that slides comes to rest this much below its angle of repose (the dynamic\n"
+       "angle is 1-3 degrees lower). 0 = the seeds' rule: a dug slope creeps for much longer");
+    if (range_slider("Simplify", "", settings_.simplify_tolerance, kSimplifyToleranceRange,
+                     settings_.scene_size, "%.2f"))
         doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
-    tip("Vertices within this distance of a common plane with their neighbours are removed");
+    ui("Simplify",
+       "Vertices within this distance of a common plane with their neighbours are removed");
     ImGui::Checkbox("Wireframe", &settings_.overlay_wireframe);
-    tip("Show the triangulation; constrained edges (tool rims) in magenta");
+    ui("Wireframe", "Show the triangulation; constrained edges (tool rims) in magenta");
     ImGui::SameLine();
     ImGui::Checkbox("Active", &settings_.overlay_active);
-    tip("Highlight vertices that moved in the last erosion step");
+    ui("Active", "Highlight vertices that moved in the last erosion step");
     ImGui::Checkbox("Sand depth", &settings_.overlay_thickness);
-    tip("Sand thickness above bedrock: blue thin, yellow 5 cm or more");
+    ui("Sand depth", "Sand thickness above bedrock: blue thin, yellow 5 cm or more");
     ImGui::SameLine();
     ImGui::Checkbox("Slope", &settings_.overlay_slope);
-    tip("Slope against the angle of repose: green stable, yellow at repose, red over-steep");
-    float contrast = static_cast<float>(settings_.contrast);
-    if (ImGui::SliderFloat("Contrast", &contrast, 0.0f, 1.0f))
-        settings_.contrast = static_cast<double>(contrast);
-    tip("Strength of the height contrast curve (histogram stretch)");
+    ui("Slope",
+       "Slope against the angle of repose: green stable, yellow at repose, red over-steep");
+    plain_slider("Contrast", settings_.contrast, kContrastRange, "%.3f");
+    ui("Contrast", "Strength of the height contrast curve (histogram stretch)");
     if (ImGui::Checkbox("VSync", &settings_.vsync)) {
         int w = 0, h = 0;
         glfwGetFramebufferSize(window_, &w, &h);
         swapchain_->recreate({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
                              settings_.vsync);
     }
-    tip("Wait for the display's refresh when presenting");
+    ui("VSync", "Wait for the display's refresh when presenting");
 }
 
 void App::panel_haptics() {
@@ -423,14 +449,14 @@ void App::panel_haptics() {
     ImGui::Combo("Device", &haptic_device_, devices, 2);
     tip("Simulated: a virtual pen pulled to the tool cursor by a spring and pushed back by the "
         "sand. UDP: a separate driver process that owns the hardware (see engine/haptics)");
-    ImGui::SliderInt("Loop (Hz)", &haptic_rate_hz_, 250, 4000);
-    tip("Rate of the force loop thread");
+    ImGui::SliderInt("Loop (Hz)", &haptic_rate_hz_, 250, 4000, "%d", ImGuiSliderFlags_AlwaysClamp);
+    ui("Loop", "Rate of the force loop thread");
     if (haptic_device_ == static_cast<int>(HapticDeviceKind::Udp)) {
         ImGui::InputInt("UDP port", &haptic_udp_port_);
         tip("Loopback port the driver sends poses to (0: any free port)");
     }
     ImGui::EndDisabled();
-    if (ImGui::Button(connected ? "Disconnect" : "Connect")) {
+    if (ImGui::Button(connected ? "Disconnect###Connect" : "Connect###Connect")) {
         if (connected) {
             haptics_.reset();
         } else {
@@ -447,7 +473,7 @@ void App::panel_haptics() {
             }
         }
     }
-    tip("Start or stop the force loop; the tool under the cursor is what the pen feels");
+    ui("Connect", "Start or stop the force loop; the tool under the cursor is what the pen feels");
     if (!haptics_error_.empty()) ImGui::TextWrapped("%s", haptics_error_.c_str());
     if (!haptics_) return;
     const HapticsLive l = haptics_->live();
@@ -506,90 +532,6 @@ void App::panel_stats(const std::array<std::string, 2>& terrain_lines) {
     tip("Frame time over the last 240 frames (0-100 ms)");
 }
 
-void App::answer_recovery(bool recover) {
-    if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
-    autosave_writer_.cancel();  // nothing may rewrite the autosave being recovered or discarded
-    // The autosave was checked when the scene opened, but it can still fail now (its terrain
-    // may not rebuild, the folder may have become read-only): the scene stays as it is.
-    try {
-        if (recover) {
-            const Session s = recover_autosave(*recovery_for_);
-            doc_.adopt(Tin::from_snapshot(s.terrain), s.next_generation, *recovery_for_,
-                       materials_or_presets(s.metadata_json), s.metadata_json);
-            mark_edited();
-            document_replaced();
-            report("recovered the autosave of " + recovery_for_->string());
-        } else {
-            discard_autosave(*recovery_for_);
-            report("discarded the autosave of " + recovery_for_->string());
-        }
-    } catch (const std::exception& e) {
-        report(std::string(recover ? "cannot recover the autosave: " : "cannot discard it: ") +
-               e.what());
-    }
-    recovery_for_.reset();
-}
-
-void App::new_document() {
-    keep_unsaved_edits();
-    doc_.adopt(default_sandbox(), 1, {});
-    document_replaced();
-    frame_terrain();
-    report("new sandbox");
-}
-
-void App::open_reporting() {
-    try {
-        open(path_buf_);
-    } catch (const std::exception& e) {
-        report(std::string("open failed: ") + e.what());
-    }
-}
-
-void App::import_document() {
-    try {
-        ImportResult r = import_heightmap(import_buf_, ImportOptions{});
-        keep_unsaved_edits();
-        // The import record, as `sandtin import` writes it: exports read its grid and
-        // georeference.
-        doc_.adopt(std::move(r.tin), 1, {}, MaterialTable::presets(),
-                   nlohmann::json{{"import", to_json(r.report)}}.dump());
-        document_replaced();
-        frame_terrain();
-        report("imported " + std::string(import_buf_));
-    } catch (const std::exception& e) {
-        report(std::string("import failed: ") + e.what());
-    }
-}
-
-void App::replace_document(const std::string& what, std::function<void()> action) {
-    end_action();
-    if (doc_.dirty && doc_.path.empty()) {
-        pending_replacement_ = std::move(action);
-        pending_replacement_label_ = what;
-        return;
-    }
-    action();
-}
-
-void App::answer_discard(DiscardChoice choice) {
-    if (!pending_replacement_) throw std::runtime_error("no unsaved edits wait to be discarded");
-    std::function<void()> action = std::move(pending_replacement_);
-    pending_replacement_ = nullptr;
-    switch (choice) {
-        case DiscardChoice::Save:
-            // A failed save keeps the scene, and the status line says why.
-            if (save_reporting(save_path())) action();
-            break;
-        case DiscardChoice::Discard:
-            action();
-            break;
-        case DiscardChoice::Cancel:
-            report("kept the unsaved scene: save it with Save or Save As");
-            break;
-    }
-}
-
 void App::discard_prompt() {
     if (!pending_replacement_) return;
     ImGui::OpenPopup("Unsaved edits");
@@ -598,20 +540,51 @@ void App::discard_prompt() {
         const std::string target = save_path().string();
         ImGui::Text("Save writes it to %s (the Scene field under File).", target.c_str());
         const std::string& then = pending_replacement_label_;
-        const auto answer = [&](DiscardChoice choice) {
-            ImGui::CloseCurrentPopup();
-            answer_discard(choice);
-        };
-        if (ImGui::Button(("Save and " + then).c_str())) answer(DiscardChoice::Save);
-        tip("Save the scene to the path in the Scene field, then go on; if the save fails,\n"
-            "the scene stays and the status line says why");
+        // The answer is taken after the popup is closed and its frame's items are done with:
+        // it may replace the document.
+        std::optional<DiscardChoice> choice;
+        if (ImGui::Button(("Save and " + then).c_str())) choice = DiscardChoice::Save;
+        ui("unsaved/Save",
+           "Save the scene to the path in the Scene field, then go on; if the\n"
+           "save fails, the scene stays and the status line says why");
         ImGui::SameLine();
-        if (ImGui::Button(("Discard and " + then).c_str())) answer(DiscardChoice::Discard);
-        tip("The edits are lost");
+        if (ImGui::Button(("Discard and " + then).c_str())) choice = DiscardChoice::Discard;
+        ui("unsaved/Discard", "The edits are lost");
         ImGui::SameLine();
-        if (ImGui::Button("Cancel")) answer(DiscardChoice::Cancel);
-        tip("Keep the scene open as it is");
+        if (ImGui::Button("Cancel")) choice = DiscardChoice::Cancel;
+        ui("unsaved/Cancel", "Keep the scene open as it is");
+        if (choice) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
+        if (choice) answer_discard(*choice);
+    }
+}
+
+void App::overwrite_prompt() {
+    if (!pending_overwrite_) return;
+    ImGui::OpenPopup("Replace file?");
+    if (ImGui::BeginPopupModal("Replace file?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        const std::string target = pending_overwrite_->path.string();
+        std::error_code ec;
+        if (std::filesystem::exists(pending_overwrite_->path, ec))
+            ImGui::Text("%s already exists; this scene is not that file.", target.c_str());
+        if (find_autosave(pending_overwrite_->path))
+            ImGui::Text("Its autosave holds edits that were never saved; it goes too.");
+        std::optional<bool> replace;
+        if (ImGui::Button("Replace")) replace = true;
+        ui("overwrite/Replace", "Save this scene over that file");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) replace = false;
+        ui("overwrite/Cancel", "Save nothing; type another name in the Scene field");
+        if (replace) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+        if (replace) {
+            const PendingOverwrite pending = std::move(*pending_overwrite_);
+            pending_overwrite_.reset();
+            if (!*replace)
+                report("not saved: " + target + " exists (type another name in the Scene field)");
+            else if (save_reporting(pending.path) && pending.then)
+                pending.then();
+        }
     }
 }
 
@@ -620,18 +593,15 @@ void App::recovery_prompt() {
     ImGui::OpenPopup("Recover autosave?");
     if (ImGui::BeginPopupModal("Recover autosave?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("An autosave newer than %s exists.", recovery_for_->c_str());
-        if (ImGui::Button("Recover")) {
-            answer_recovery(true);
-            ImGui::CloseCurrentPopup();
-        }
-        tip("Load the autosave; save to keep it");
+        std::optional<bool> recover;
+        if (ImGui::Button("Recover")) recover = true;
+        ui("recovery/Recover", "Load the autosave; save to keep it");
         ImGui::SameLine();
-        if (ImGui::Button("Discard")) {
-            answer_recovery(false);
-            ImGui::CloseCurrentPopup();
-        }
-        tip("Delete the autosave and keep the scene as saved");
+        if (ImGui::Button("Discard")) recover = false;
+        ui("recovery/Discard", "Delete the autosave and keep the scene as saved");
+        if (recover) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
+        if (recover) answer_recovery(*recover);
     }
 }
 

@@ -1,4 +1,5 @@
-// Scripted mode: JSON ops fed through the same handlers as the real mouse and keys.
+// Scripted mode: JSON ops. Mouse and keyboard ops are real input: X events (x_input.hpp) that
+// reach the editor through GLFW's queue and ImGui exactly as a hand's do, one step per frame.
 
 #include "app.hpp"
 
@@ -6,34 +7,76 @@ namespace sandtin::editor {
 
 // ---- Script ---------------------------------------------------------------------------------
 //
-// {"ops": [ {"op": "tool", "name": "Ball"} | {"op": "set", "<setting>": value, ...}
+// {"ops": [ {"op": "tool", "name": "Ball"}  (its key, as an artist picks it)
+//         | {"op": "set", "<setting>": value, ...}
 //         | {"op": "drag", "button": "left"|"right"|"middle", "path": [[fx, fy], ...], "steps": n}
-//         | {"op": "click", "at": [fx, fy]} | {"op": "move", "at": [fx, fy]}
+//         | {"op": "click", "at": [fx, fy]} | {"op": "click", "widget": "Save", "ctrl": false}
+//         | {"op": "move", "at": [fx, fy]} | {"op": "hover", "widget": "Size"}
 //         | {"op": "press", "at": [fx, fy]} | {"op": "release"}  (the left button held down
 //            across frames: a "wait" between them holds it still, each frame counting 1/60 s)
-//         | {"op": "key", "key": "z", "ctrl": true}
+//         | {"op": "key", "key": "z"|"enter"|"escape"|"backspace"|..., "ctrl": true}
+//         | {"op": "type", "text": "..."}  (characters into whatever has the keyboard)
 //         | {"op": "scroll", "steps": s} | {"op": "wait", "frames": n}
 //         | {"op": "camera", "yaw": rad, "pitch": rad, "zoom": steps}
 //         | {"op": "haptics", "connect": true|false, "rate": hz}
-//         | {"op": "recovery", "choice": "recover"|"discard"}  (answers the autosave prompt)
-//         | {"op": "discard", "choice": "save"|"discard"|"cancel"}  (answers the prompt before
-//            New, Open, Import or closing drops an untitled scene's unsaved edits; "save" saves
-//            to the Scene field first)
-//         | {"op": "close"}  (the window's close button)
+//         | {"op": "recovery", "choice": "recover"|"discard"}  (clicks the autosave prompt's
+//            button)
+//         | {"op": "discard", "choice": "save"|"discard"|"cancel"}  (clicks the button of the
+//            prompt before New, Open, Import or closing drops an untitled scene's unsaved edits)
+//         | {"op": "overwrite", "choice": "replace"|"cancel"}  (the prompt before a save
+//            replaces another file)
+//         | {"op": "close"}  (the window manager's close request)
 //         | {"op": "resize", "size": [w, h]}  (the window, in screen pixels)
 //         | {"op": "panels", "open": true|false}  (every panel header, from the next frame)
-//         | {"op": "erode", "frames": n} | {"op": "save", "path": "..."}
-//         | {"op": "export", "path": "..."}  (the File panel's Export)
+//         | {"op": "erode", "frames": n}  (Run, as its button: a held scene is let go too)
+//         | {"op": "settle", "frames": n}  (waits until the sand rests and its undo level is
+//            closed: at most n frames, 600 by default, else the script fails)
+//         | {"op": "save", "path": "..."} | {"op": "export", "path": "..."}
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
 //            "colour": [r, g, b]}  (the Materials panel's edit: one undo level) ] }
+// Widget names are the panels' (app_panels.cpp: the names given to ui()); prompts' buttons are
+// "recovery/Recover", "unsaved/Discard", "overwrite/Replace" and so on. A click on a widget
+// waits (up to 10 frames) until it is on screen and has stopped moving.
 // "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, brush_strength
 // (Raise and Lower, metres per dab), brush_blend (Smooth and Flatten, 0..1 per dab), falloff
 // ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
 // simplify_tolerance (metres, as the Erosion panel's slider), physics ("cpu" | "gpu", the
-// Erosion panel's switch) and scene_path (typed into the File panel's Scene field).
+// Erosion panel's switch), scene_path and import_path (typed into the File panel's Scene and
+// Heightmap fields); numbers
+// are clamped to their sliders' ranges, as typed values are.
 // Positions are fractions of the window (0..1): scripts work at any --size.
+
+namespace {
+
+/// The GLFW key a script names: one letter or digit, or a key's name.
+int glfw_key_named(const std::string& name) {
+    if (name.size() == 1) {
+        const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+        if (c >= '0' && c <= '9') return GLFW_KEY_0 + (c - '0');
+        if (c >= 'A' && c <= 'Z') return GLFW_KEY_A + (c - 'A');
+        if (c == '-') return GLFW_KEY_MINUS;
+        if (c == '.') return GLFW_KEY_PERIOD;
+    }
+    static const std::pair<const char*, int> kNamed[] = {
+        {"enter", GLFW_KEY_ENTER}, {"escape", GLFW_KEY_ESCAPE}, {"backspace", GLFW_KEY_BACKSPACE},
+        {"tab", GLFW_KEY_TAB},     {"delete", GLFW_KEY_DELETE}, {"home", GLFW_KEY_HOME},
+        {"end", GLFW_KEY_END},     {"left", GLFW_KEY_LEFT},     {"right", GLFW_KEY_RIGHT},
+        {"up", GLFW_KEY_UP},       {"down", GLFW_KEY_DOWN},     {"space", GLFW_KEY_SPACE},
+        {"f1", GLFW_KEY_F1}};
+    for (const auto& [key_name, key] : kNamed) {
+        if (name == key_name) return key;
+    }
+    throw std::runtime_error("script: no key named '" + name + "'");
+}
+
+/// Frames a click on a widget waits for it to appear and settle. Everything the editor shows
+/// after an input is drawn in the next frame or two (a popup sizes itself in its first, hidden
+/// frame): counted in frames, not seconds, so a slow machine waits as long.
+constexpr int kWidgetWaitFrames = 10;
+
+}  // namespace
 
 void App::set_physics(const std::string& name) {
     if (name != "cpu" && name != "gpu")
@@ -54,37 +97,115 @@ void App::set_falloff(const std::string& name) {
 
 void App::set_scene_field(const std::string& path) {
     if (path.size() >= sizeof(path_buf_))
-        throw std::runtime_error("script: scene_path is longer than the Scene field holds");
+        throw std::runtime_error("the path is longer than the Scene field holds");
     std::snprintf(path_buf_, sizeof(path_buf_), "%s", path.c_str());
 }
 
+void App::set_import_field(const std::string& path) {
+    if (path.size() >= sizeof(import_buf_))
+        throw std::runtime_error("the path is longer than the Heightmap field holds");
+    std::snprintf(import_buf_, sizeof(import_buf_), "%s", path.c_str());
+}
+
+std::optional<std::pair<double, double>> App::widget_centre(const std::string& name) const {
+    const std::optional<WidgetRect> r = widgets_.find(name);
+    if (!r || !widgets_.settled(name)) return std::nullopt;
+    return std::pair<double, double>{r->centre_x(), r->centre_y()};
+}
+
+void App::run_input_step() {
+    if (input_steps_.front()()) input_steps_.pop_front();
+    // The events reach GLFW's queue, then its callbacks and state (which ImGui reads at the
+    // start of the frame that follows).
+    x_input_->sync();
+    glfwPollEvents();
+}
+
+void App::queue_click(std::function<std::pair<double, double>()> where, int button, bool ctrl) {
+    auto at = std::make_shared<std::pair<double, double>>();
+    // The pointer goes there first, in a frame of its own: ImGui decides what is under the
+    // pointer (a panel, or the terrain) from where it was in the last frame, as with a hand.
+    input_steps_.push_back([this, where, at, ctrl] {
+        *at = where();
+        if (ctrl) x_input_->key(GLFW_KEY_LEFT_CONTROL, true);
+        x_input_->move_to(at->first, at->second);
+        return true;
+    });
+    input_steps_.push_back([this, button] {
+        x_input_->button(button, true);
+        return true;
+    });
+    input_steps_.push_back([this, button, ctrl] {
+        x_input_->button(button, false);
+        if (ctrl) x_input_->key(GLFW_KEY_LEFT_CONTROL, false);
+        return true;
+    });
+}
+
+void App::queue_key(int glfw_key, bool ctrl) {
+    // Down and up in frames of their own: ImGui reads a key's state once per frame.
+    input_steps_.push_back([this, glfw_key, ctrl] {
+        if (ctrl) x_input_->key(GLFW_KEY_LEFT_CONTROL, true);
+        x_input_->key(glfw_key, true);
+        return true;
+    });
+    input_steps_.push_back([this, glfw_key, ctrl] {
+        x_input_->key(glfw_key, false);
+        if (ctrl) x_input_->key(GLFW_KEY_LEFT_CONTROL, false);
+        return true;
+    });
+}
+
 void App::run_script_op(const nlohmann::json& op) {
-    // Ops drive the input handlers directly, without GLFW callbacks: release as they do.
-    if (haptics_) haptics_->release();
     int w = 0, h = 0;
     glfwGetWindowSize(window_, &w, &h);
     const std::string kind = op.at("op").get<std::string>();
     auto px = [&](const nlohmann::json& p) {
         return std::pair<double, double>{p.at(0).get<double>() * w, p.at(1).get<double>() * h};
     };
+    // A widget's centre, found when the step runs: it waits for the control to be on screen.
+    auto widget = [this](const std::string& name, const std::string& why_missing = {}) {
+        auto waited = std::make_shared<int>(0);
+        return [this, name, why_missing, waited]() -> std::pair<double, double> {
+            if (const auto c = widget_centre(name)) return *c;
+            if (++*waited > kWidgetWaitFrames)
+                throw std::runtime_error("script: no control '" + name + "' on screen after " +
+                                         std::to_string(kWidgetWaitFrames) + " frames" +
+                                         (why_missing.empty() ? "" : ": " + why_missing));
+            return {-1.0, -1.0};
+        };
+    };
+    // A click at a control waits, frame after frame, for the control to appear.
+    auto click_widget = [&](const std::string& name, bool ctrl,
+                            const std::string& why_missing = {}) {
+        auto find = widget(name, why_missing);
+        auto at = std::make_shared<std::pair<double, double>>(-1.0, -1.0);
+        input_steps_.push_back([this, find, at] {
+            *at = find();
+            return at->first >= 0.0;
+        });
+        queue_click([at] { return *at; }, GLFW_MOUSE_BUTTON_LEFT, ctrl);
+    };
     if (kind == "tool") {
         // Through the tool's key, as an artist picks it.
         const std::string name = op.at("name").get<std::string>();
         const std::optional<int> tool = tool_named(name);
         if (!tool) throw std::runtime_error("script: unknown tool '" + name + "'");
-        key(kTools[*tool].key, false);
+        queue_key(kTools[*tool].key, false);
     } else if (kind == "panels") {
         open_panels_ = op.at("open").get<bool>();
     } else if (kind == "set") {
         nlohmann::json j = op;
         j.erase("op");
+        const double size = settings_.scene_size;
         for (auto& [k2, v] : j.items()) {
             if (k2 == "radius")
-                settings_.tool_radius = v.get<double>();
+                settings_.tool_radius = kToolRadiusRange.clamp(v.get<double>(), size);
             else if (k2 == "depth")
-                settings_.tool_depth = v.get<double>();
+                settings_.tool_depth = kToolDepthRange.clamp(v.get<double>(), size);
             else if (k2 == "material")
-                settings_.material = v.get<int>();
+                settings_.material =
+                    std::clamp(v.get<int>(), 0, static_cast<int>(doc_.materials.size()) - 1);
             else if (k2 == "erosion")
                 settings_.erosion_running = v.get<bool>();
             else if (k2 == "wireframe")
@@ -92,54 +213,145 @@ void App::run_script_op(const nlohmann::json& op) {
             else if (k2 == "slope")
                 settings_.overlay_slope = v.get<bool>();
             else if (k2 == "pour_volume")
-                settings_.pour_volume = v.get<double>();
+                settings_.pour_volume = kPourVolumeRange.clamp(v.get<double>(), size);
             else if (k2 == "brush_strength")
-                settings_.brush_strength = v.get<double>();
+                settings_.brush_strength = kBrushStrengthRange.clamp(v.get<double>(), size);
             else if (k2 == "brush_blend")
-                settings_.brush_blend = std::clamp(v.get<double>(), 0.0, 1.0);
+                settings_.brush_blend = kBrushBlendRange.clamp(v.get<double>(), size);
             else if (k2 == "falloff")
                 set_falloff(v.get<std::string>());
             else if (k2 == "simplify_tolerance")
                 doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance =
-                    std::max(0.0, v.get<double>());
+                    kSimplifyToleranceRange.clamp(v.get<double>(), size);
             else if (k2 == "steps")
-                settings_.erosion_steps = std::clamp(v.get<int>(), 1, 1000);
+                settings_.erosion_steps =
+                    static_cast<int>(kErosionStepsRange.clamp(v.get<int>(), size));
             else if (k2 == "relocation_radius")
-                settings_.relocation_radius = v.get<double>();
+                settings_.relocation_radius = kRelocationRadiusRange.clamp(v.get<double>(), size);
             else if (k2 == "physics")
                 set_physics(v.get<std::string>());
             else if (k2 == "scene_path")
                 set_scene_field(v.get<std::string>());
+            else if (k2 == "import_path")
+                set_import_field(v.get<std::string>());
             else
                 throw std::runtime_error("script: unknown setting '" + k2 + "'");
         }
-    } else if (kind == "drag" || kind == "click") {
+    } else if (kind == "click") {
         const std::string b = op.value("button", "left");
         const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
                            : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
                                            : GLFW_MOUSE_BUTTON_LEFT;
-        std::vector<std::pair<double, double>> pts;
-        if (kind == "click") {
-            pts.push_back(px(op.at("at")));
+        if (op.contains("widget")) {
+            click_widget(op.at("widget").get<std::string>(), op.value("ctrl", false));
         } else {
-            const auto& path = op.at("path");
-            if (path.size() < 2) throw std::runtime_error("script: a drag needs two points");
-            const int steps = std::max(1, op.value("steps", 20));
-            for (std::size_t i = 0; i + 1 < path.size(); ++i) {
-                const auto a = px(path[i]), c = px(path[i + 1]);
-                for (int s = 0; s < steps; ++s) {
-                    const double t = static_cast<double>(s) / steps;
-                    pts.push_back(
-                        {a.first + t * (c.first - a.first), a.second + t * (c.second - a.second)});
-                }
-            }
-            pts.push_back(px(path.back()));
+            const auto p = px(op.at("at"));
+            queue_click([p] { return p; }, button, op.value("ctrl", false));
         }
-        mouse_move(pts[0].first, pts[0].second);
-        mouse_button(button, true, pts[0].first, pts[0].second);
-        for (std::size_t i = 1; i < pts.size(); ++i)
-            mouse_move(pts[i].first, pts[i].second);
-        mouse_button(button, false, pts.back().first, pts.back().second);
+    } else if (kind == "drag") {
+        const std::string b = op.value("button", "left");
+        const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
+                           : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
+                                           : GLFW_MOUSE_BUTTON_LEFT;
+        const auto& path = op.at("path");
+        if (path.size() < 2) throw std::runtime_error("script: a drag needs two points");
+        const int steps = std::max(1, op.value("steps", 20));
+        std::vector<std::pair<double, double>> pts;
+        for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+            const auto a = px(path[i]), c = px(path[i + 1]);
+            for (int s = 0; s < steps; ++s) {
+                const double t = static_cast<double>(s) / steps;
+                pts.push_back(
+                    {a.first + t * (c.first - a.first), a.second + t * (c.second - a.second)});
+            }
+        }
+        pts.push_back(px(path.back()));
+        // Pointer to the start, button down, the motion (every event delivered before the
+        // next frame, as a quick hand's), button up.
+        input_steps_.push_back([this, p = pts[0]] {
+            x_input_->move_to(p.first, p.second);
+            return true;
+        });
+        input_steps_.push_back([this, button] {
+            x_input_->button(button, true);
+            return true;
+        });
+        input_steps_.push_back([this, pts] {
+            for (std::size_t i = 1; i < pts.size(); ++i)
+                x_input_->move_to(pts[i].first, pts[i].second);
+            return true;
+        });
+        input_steps_.push_back([this, button] {
+            x_input_->button(button, false);
+            return true;
+        });
+    } else if (kind == "press" || kind == "move" || kind == "hover") {
+        std::function<std::pair<double, double>()> where;
+        if (op.contains("widget")) {
+            where = widget(op.at("widget").get<std::string>());
+        } else {
+            const auto p = px(op.at("at"));
+            where = [p] { return p; };
+        }
+        const bool press = kind == "press";
+        input_steps_.push_back([this, where] {
+            const auto p = where();
+            if (p.first < 0.0) return false;
+            x_input_->move_to(p.first, p.second);
+            return true;
+        });
+        if (press) {
+            input_steps_.push_back([this] {
+                x_input_->button(GLFW_MOUSE_BUTTON_LEFT, true);
+                return true;
+            });
+        }
+    } else if (kind == "release") {
+        input_steps_.push_back([this] {
+            x_input_->button(GLFW_MOUSE_BUTTON_LEFT, false);
+            return true;
+        });
+    } else if (kind == "key") {
+        queue_key(glfw_key_named(op.at("key").get<std::string>()), op.value("ctrl", false));
+    } else if (kind == "type") {
+        const std::string text = op.at("text").get<std::string>();
+        input_steps_.push_back([this, text] {
+            for (char c : text)
+                x_input_->type(c);
+            return true;
+        });
+    } else if (kind == "scroll") {
+        const long clicks = std::lround(op.at("steps").get<double>());
+        input_steps_.push_back([this, clicks] {
+            for (long i = 0; i < std::labs(clicks); ++i)
+                x_input_->wheel(clicks > 0);
+            return true;
+        });
+    } else if (kind == "close") {
+        input_steps_.push_back([this] {
+            x_input_->request_close();
+            return true;
+        });
+    } else if (kind == "recovery") {
+        const std::string choice = op.at("choice").get<std::string>();
+        if (choice != "recover" && choice != "discard")
+            throw std::runtime_error("script: recovery choice must be recover or discard");
+        click_widget(choice == "recover" ? "recovery/Recover" : "recovery/Discard", false,
+                     "there is no autosave to recover or discard");
+    } else if (kind == "discard") {
+        const std::string choice = op.at("choice").get<std::string>();
+        if (choice != "save" && choice != "discard" && choice != "cancel")
+            throw std::runtime_error("script: discard choice must be save, discard or cancel");
+        click_widget(choice == "save"      ? "unsaved/Save"
+                     : choice == "discard" ? "unsaved/Discard"
+                                           : "unsaved/Cancel",
+                     false, "no unsaved edits wait to be discarded");
+    } else if (kind == "overwrite") {
+        const std::string choice = op.at("choice").get<std::string>();
+        if (choice != "replace" && choice != "cancel")
+            throw std::runtime_error("script: overwrite choice must be replace or cancel");
+        click_widget(choice == "replace" ? "overwrite/Replace" : "overwrite/Cancel", false,
+                     "no save waits to replace a file");
     } else if (kind == "camera") {
         // Absolute orbit angles (radians) and a zoom in wheel steps from frame-to-fit, which
         // frames the terrain as seen from those angles.
@@ -153,20 +365,6 @@ void App::run_script_op(const nlohmann::json& op) {
         if (nw < 64 || nh < 64 || nw > 8192 || nh > 8192)
             throw std::runtime_error("script: resize wants 64..8192 pixels a side");
         glfwSetWindowSize(window_, nw, nh);
-    } else if (kind == "recovery") {
-        const std::string choice = op.at("choice").get<std::string>();
-        if (choice != "recover" && choice != "discard")
-            throw std::runtime_error("script: recovery choice must be recover or discard");
-        answer_recovery(choice == "recover");
-    } else if (kind == "close") {
-        glfwSetWindowShouldClose(window_, GLFW_TRUE);  // as the window's close button does
-    } else if (kind == "discard") {
-        const std::string choice = op.at("choice").get<std::string>();
-        if (choice != "save" && choice != "discard" && choice != "cancel")
-            throw std::runtime_error("script: discard choice must be save, discard or cancel");
-        answer_discard(choice == "save"      ? DiscardChoice::Save
-                       : choice == "discard" ? DiscardChoice::Discard
-                                             : DiscardChoice::Cancel);
     } else if (kind == "haptics") {
         // Connects the simulated pen (as the panel's Connect button does) or disconnects.
         if (op.value("connect", true)) {
@@ -176,25 +374,21 @@ void App::run_script_op(const nlohmann::json& op) {
         } else {
             haptics_.reset();
         }
-    } else if (kind == "press") {
-        const auto p = px(op.at("at"));
-        mouse_move(p.first, p.second);
-        mouse_button(GLFW_MOUSE_BUTTON_LEFT, true, p.first, p.second);
-    } else if (kind == "release") {
-        mouse_button(GLFW_MOUSE_BUTTON_LEFT, false, mouse_x_, mouse_y_);
-    } else if (kind == "move") {
-        const auto p = px(op.at("at"));
-        mouse_move(p.first, p.second);
-    } else if (kind == "key") {
-        const std::string k = op.at("key").get<std::string>();
-        if (k.size() != 1) throw std::runtime_error("script: key must be one character");
-        const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(k[0])));
-        key(c >= '0' && c <= '9' ? GLFW_KEY_0 + (c - '0') : GLFW_KEY_A + (c - 'A'),
-            op.value("ctrl", false));
-    } else if (kind == "scroll") {
-        scroll(op.at("steps").get<double>());
+    } else if (kind == "settle") {
+        // Frames until the sand rests and the undo level it made is closed.
+        const int most = op.value("frames", 600);
+        auto waited = std::make_shared<int>(0);
+        input_steps_.push_back([this, most, waited] {
+            if (!erosion_runs() ||
+                (doc_.physics->at_rest() && open_level_.empty() && !physics_kick_))
+                return true;
+            if (++*waited > most)
+                throw std::runtime_error("script: the sand did not rest within " +
+                                         std::to_string(most) + " frames");
+            return false;
+        });
     } else if (kind == "wait" || kind == "erode") {
-        if (kind == "erode") settings_.erosion_running = true;
+        if (kind == "erode" && !erosion_runs()) toggle_erosion();
         script_wait_ = op.value("frames", 1);
     } else if (kind == "material") {
         // As the Materials panel: angles in degrees, linear RGB colour.

@@ -2,6 +2,7 @@
 
 #include "app.hpp"
 #include "io/session_name.hpp"
+#include "util/atomic_file.hpp"
 #include "util/json_document.hpp"
 
 namespace sandtin::editor {
@@ -12,18 +13,24 @@ App* app_of(GLFWwindow* w) {
     return static_cast<App*>(glfwGetWindowUserPointer(w));
 }
 
+// An exception must not cross GLFW (C code): each handler runs guarded, and an error in it is
+// shown on the status line.
 void on_button(GLFWwindow* w, int b, int action, int mods) {
-    app_of(w)->note_event();
+    App* app = app_of(w);
+    app->note_event();
     double x = 0.0, y = 0.0;
     glfwGetCursorPos(w, &x, &y);
     (void)mods;
     const bool down = action == GLFW_PRESS;
+    // A press over a panel is the panel's (ImGui saw the pointer there in the last frame); a
+    // release always reaches the app, which ends whatever the press began.
     if (down && ImGui::GetIO().WantCaptureMouse) return;
-    app_of(w)->mouse_button(b, down, x, y);
+    app->guarded("the tool stopped", [&] { app->mouse_button(b, down, x, y); });
 }
 void on_cursor(GLFWwindow* w, double x, double y) {
-    app_of(w)->note_event();
-    app_of(w)->mouse_move(x, y);
+    App* app = app_of(w);
+    app->note_event();
+    app->guarded("the tool stopped", [&] { app->mouse_move(x, y); });
 }
 void on_wheel(GLFWwindow* w, double, double dy) {
     app_of(w)->note_event();
@@ -31,10 +38,15 @@ void on_wheel(GLFWwindow* w, double, double dy) {
     app_of(w)->scroll(dy);
 }
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
-    app_of(w)->note_event();
-    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    App* app = app_of(w);
+    app->note_event();
+    // A held key repeats only undo and redo: a repeated Ctrl+N or Ctrl+O would replace the
+    // document again for as long as the key stays down.
+    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
+    const bool repeats = ctrl && (key == GLFW_KEY_Z || key == GLFW_KEY_Y);
+    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && repeats)) return;
     if (ImGui::GetIO().WantCaptureKeyboard) return;
-    app_of(w)->key(key, (mods & GLFW_MOD_CONTROL) != 0);
+    app->guarded("the key's command failed", [&] { app->key(key, ctrl); });
 }
 
 // Events that only ImGui or the window itself act on still ask for a frame (typing into a
@@ -62,21 +74,20 @@ void on_iconify(GLFWwindow* w, int) {
 
 // ---- Set-up -------------------------------------------------------------------------------
 
-void App::load_initial_scene() {
-    if (options_.scene.empty()) {
-        doc_.adopt(default_sandbox(), 1, {});
-        doc_.tin->take_changes();
-        return;
-    }
+Document App::initial_document() {
+    if (options_.scene.empty()) return Document::make(default_sandbox(), 1, {});
     if (!std::filesystem::exists(options_.scene)) {
         throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
     }
     const Session s = load_session(options_.scene);
-    doc_.adopt(session_terrain(s, options_.scene), s.next_generation, options_.scene,
-               materials_or_presets(s.metadata_json), s.metadata_json);
-    // An autosave newer than the scene: the prompt asks (a script answers with "recovery").
+    Document d =
+        Document::make(session_terrain(s, options_.scene), s.next_generation, options_.scene,
+                       materials_or_presets(s.metadata_json), s.metadata_json);
+    d.erosion_held = true;
+    // An autosave newer than the scene: the prompt asks.
     if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
         recovery_for_ = options_.scene;
+    return d;
 }
 
 void App::init_window_and_gpu() {
@@ -176,219 +187,13 @@ void App::shutdown() {
     imgui_pool_.reset();
     swapchain_.reset();
     context_.reset();
+    x_input_.reset();  // restores the X server's auto-repeat while the connection lives
     if (window_ != nullptr) glfwDestroyWindow(window_);
     window_ = nullptr;
     glfwTerminate();
 }
 
-// ---- Document operations ------------------------------------------------------------------
-
-void App::frame_terrain() {
-    const Rect d = doc_.tin->domain();
-    const VertexArrays& va = doc_.tin->vertices();
-    double lo = 1e300, hi = -1e300;
-    for (std::size_t i = 0; i < va.size(); ++i) {
-        if (!va.alive[i]) continue;
-        lo = std::min(lo, va.height[i]);
-        hi = std::max(hi, va.height[i]);
-    }
-    int w = 0, h = 0;
-    glfwGetWindowSize(window_, &w, &h);
-    // The whole terrain where the panel does not cover it; in a window too narrow for that,
-    // the whole terrain in the whole view.
-    camera_.frame_in({-0.5 * d.width(), -0.5 * d.height(), lo},
-                     {0.5 * d.width(), 0.5 * d.height(), hi}, w, h, free_viewport(w, h));
-}
-
-void App::fit_settings_to_document() {
-    const double size = terrain_size(doc_.tin->domain());
-    const double k = fit_settings_to_terrain(settings_, size);
-    doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance;
-    if (k != 1.0) {
-        cursor_tool_.reset();  // built at the old size
-        haptic_tool_.reset();
-        char text[160];
-        std::snprintf(text, sizeof(text),
-                      "tool size, depth, brush, pour, r_S and simplification scaled "
-                      "x%.3g for this %.4g m terrain",
-                      k, size);
-        report(text);
-    }
-}
-
-void App::save(const std::filesystem::path& p) {
-    // The rule `sandtin` applies to its -o: a session never takes another format's name (the
-    // document would then carry that name, and Ctrl+S write there again).
-    if (const std::optional<std::string> problem = session_name_problem(p))
-        throw std::runtime_error("'" + p.string() + "': " + *problem +
-                                 " (Export writes meshes and maps)");
-    end_action();
-    // An autosave still being written would otherwise land after the save retired it.
-    autosave_writer_.cancel();
-    save_session_clearing_autosave(p, doc_.session());
-    doc_.path = p;
-    doc_.dirty = false;
-    autosave_schedule_.saved(Clock::now());
-    report("saved " + p.string());
-}
-
-bool App::save_reporting(const std::filesystem::path& p) {
-    try {
-        save(p);
-        return true;
-    } catch (const std::exception& e) {
-        report(std::string("save failed: ") + e.what());
-        return false;
-    }
-}
-
-void App::export_to(const std::filesystem::path& p) {
-    end_action();
-    // The defaults `sandtin export` takes from the session: the import grid while the terrain
-    // lies on it, and the georeference; the colours are the live table's, unsaved edits included.
-    ExportOptions options;
-    apply_import_defaults(*doc_.tin, doc_.metadata_json, options);
-    options.palette = export_palette(doc_.materials);
-    const ExportReport r = export_terrain(*doc_.tin, p, export_format_for(p), options);
-    report("exported " + std::to_string(r.files.size()) + " file(s)");
-}
-
-void App::open(const std::filesystem::path& p) {
-    end_action();
-    keep_unsaved_edits();
-    const Session s = load_session(p);
-    doc_.adopt(session_terrain(s, p), s.next_generation, p, materials_or_presets(s.metadata_json),
-               s.metadata_json);
-    document_replaced();
-    frame_terrain();
-    report("opened " + p.string());
-}
-
-Tool App::build_tool() const {
-    // The assets are made for the 1 m sandbox: on another terrain they keep their proportion
-    // to it, and round tools take the Size slider's radius.
-    ToolSpec spec =
-        scaled_tool_spec(load_tool_asset(kTools[settings_.tool].asset), settings_.scene_size);
-    if (sized_by_slider(spec)) spec.radius = settings_.tool_radius;
-    spec.extrude = settings_.extrude;
-    return Tool::build(spec);
-}
-
-void App::end_action() {
-    if (sampler_) {
-        for (const StrokeSample& s : sampler_->finish()) {
-            StrokeSettings ss;
-            ss.depth = settings_.tool_depth;
-            ss.follow_path = settings_.follow_path;
-            ss.angle = settings_.tool_angle * 3.14159265358979 / 180.0;
-            const ToolPlacement at =
-                placement_for(*doc_.tin, *active_tool_, s, ss, &doc_.context->hint);
-            const StampReport r = stamp(*doc_.tin, *active_tool_, at, *doc_.context, s.direction);
-            if (const std::optional<std::string> w = lost_extrusion_warning(r)) report(*w);
-        }
-        sampler_.reset();
-    }
-    end_pour();
-    if (!pending_label_.empty()) {
-        if (doc_.history->record(pending_label_)) {
-            mark_edited();
-            undo_log_.push_terrain(pending_label_);
-        }
-        pending_label_.clear();
-    }
-    if (erosion_pending_) {
-        if (doc_.history->record("erosion")) {
-            mark_edited();
-            undo_log_.push_terrain("erosion");
-        }
-        erosion_pending_ = false;
-    }
-    resettling_ = false;
-}
-
-void App::apply_materials(const MaterialTable& table) {
-    doc_.materials = table;
-    // Both solvers re-read the angles of repose and look at every vertex again.
-    doc_.physics->set_materials(doc_.materials);
-    mesh_->set_materials(doc_.materials);
-    mesh_stale_ = true;  // colours and slope ratios of every vertex
-    physics_kick_ = true;
-}
-
-void App::undo() {
-    end_action();
-    const std::optional<UndoLog::Entry> entry = undo_log_.undo();
-    if (!entry) {
-        report("nothing to undo");
-        return;
-    }
-    if (!entry->terrain) {
-        apply_materials(entry->before);
-        report("undo " + entry->label);
-        mark_edited();
-        return;
-    }
-    const HistoryStep step = doc_.history->undo();
-    std::string message = step.done ? "undo " + step.label : "nothing to undo";
-    if (step.done && !step.report.exact()) {
-        message += " (approximate: " + std::to_string(step.report.unrestored.size()) +
-                   " vertices could not be restored)";
-        if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr) {
-            for (Vec2 p : step.report.unrestored) {
-                LocateHint h;
-                const Location loc = doc_.tin->locate(p, &h);
-                for (VertexId c : loc.corners) {
-                    if (doc_.tin->position(c) == p)
-                        std::fprintf(stderr, "unrestored %.6f %.6f boundary %d constraint %d\n",
-                                     p.x, p.y, doc_.tin->is_boundary(c),
-                                     doc_.tin->is_on_constraint(c));
-                }
-            }
-        }
-    }
-    if (step.label == "erosion" && settings_.erosion_running) {
-        // Running on, the physics would slide the restored sand straight back.
-        settings_.erosion_running = false;
-        message += "; erosion paused";
-    }
-    report(message);
-    physics_kick_ = true;
-    mark_edited();
-}
-
-void App::redo() {
-    end_action();
-    const std::optional<UndoLog::Entry> entry = undo_log_.redo();
-    if (!entry) {
-        report("nothing to redo");
-        return;
-    }
-    if (!entry->terrain) {
-        apply_materials(entry->after);
-        report("redo " + entry->label);
-        mark_edited();
-        return;
-    }
-    const HistoryStep step = doc_.history->redo();
-    report(step.done ? "redo " + step.label : "nothing to redo");
-    physics_kick_ = true;
-    mark_edited();
-}
-
 // ---- Main loop ------------------------------------------------------------------------------
-
-bool App::close_confirmed() {
-    if (!glfwWindowShouldClose(window_)) return false;
-    if (quit_confirmed_ || !doc_.dirty || !doc_.path.empty()) return true;
-    // Closing would drop an untitled scene's edits: stay open and ask (discard_prompt).
-    glfwSetWindowShouldClose(window_, GLFW_FALSE);
-    replace_document("Quit", [this] {
-        quit_confirmed_ = true;
-        glfwSetWindowShouldClose(window_, GLFW_TRUE);
-    });
-    redraw_frames_ = 3;
-    return false;
-}
 
 void App::save_settings_reporting() {
     // Tried once per change: a settings file that cannot be written (a read-only home) must
@@ -439,18 +244,42 @@ void App::interactive_loop() {
         glfwGetFramebufferSize(window_, &w, &h);
         if (!can_draw(w, h)) continue;  // minimised since the wait began
         frame(false);
+        publish_widget_map();
         if (redraw_frames_ > 0) --redraw_frames_;
         if (!(settings_ == saved_settings_)) save_settings_reporting();
     }
 }
 
-int App::run() {
+void App::publish_widget_map() {
+    if (options_.widget_map.empty()) return;
+    const std::string text = widgets_.to_json().dump() + "\n";
+    if (text == published_widgets_) return;  // an idle editor writes nothing
+    try {
+        write_file_atomically(options_.widget_map,
+                              std::span<const std::uint8_t>(
+                                  reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+        published_widgets_ = text;
+    } catch (const std::exception& e) {
+        report(std::string("cannot write the widget map: ") + e.what());
+        options_.widget_map.clear();
+    }
+}
+
+void App::load_settings_reporting() {
     settings_path_ = options_.settings.empty() ? default_settings_path() : options_.settings;
     std::string problem;
     settings_ = load_settings(settings_path_, &problem);
-    if (!problem.empty()) std::fprintf(stderr, "sandtin-editor: %s\n", problem.c_str());
     settings_.tool = std::clamp(settings_.tool, 0, kToolCount - 1);
     saved_settings_ = settings_;
+    if (!problem.empty()) {
+        // On the status line, where the artist looks, not only on a terminal nobody reads.
+        std::fprintf(stderr, "sandtin-editor: %s\n", problem.c_str());
+        report(problem);
+    }
+}
+
+int App::run() {
+    load_settings_reporting();
     if (!options_.script.empty()) {
         const nlohmann::json j = read_json_document(options_.script, "editor script");
         if (!j.contains("ops") || !j["ops"].is_array())
@@ -459,64 +288,28 @@ int App::run() {
         for (const auto& op : j["ops"])
             script_.push_back(op);
     }
-    load_initial_scene();
+    Document first = initial_document();
     if (!options_.scene.empty())
         std::snprintf(path_buf_, sizeof(path_buf_), "%s", options_.scene.c_str());
     init_window_and_gpu();
     init_imgui();
-    document_replaced();  // the journal's fan-out, and the GPU solver if the settings ask
+    if (options_.scripted()) x_input_ = std::make_unique<XInput>(window_);
+    const std::string settings_problem = status_;
+    install_document(std::move(first), "");
+    if (!settings_problem.empty()) report(settings_problem);
     std::fprintf(stderr, "sandtin-editor: %s\n", context_->describe().c_str());
-    frame_terrain();
 
     int exit_code = 0;
     std::vector<std::string> output_failures;
     std::uint64_t idle_submissions = 0, idle_gpu_work = 0;
-    int frames_after_script = 0;
     // Whatever goes wrong in a session, scripted or interactive, its edits are not lost with the
     // editor: they go to the autosave first (offered for recovery next time), then the error is
     // reported. A script's edits go there only once it asked for autosaving ("autosave" op).
     try {
         if (options_.scripted()) {
-            const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
-            // Scripted: every op runs between frames through the real input handlers.
-            while (!close_confirmed()) {
-                glfwPollEvents();
-                if (script_wait_ > 0) {
-                    --script_wait_;
-                } else if (script_pos_ < script_.size()) {
-                    run_script_op(script_[script_pos_++]);
-                    if (trace)
-                        std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n",
-                                     script_pos_, script_[script_pos_ - 1].dump().c_str(),
-                                     doc_.tin->vertex_count());
-                } else {
-                    end_action();
-                    ++frames_after_script;
-                }
-                const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
-                                  frames_after_script >= std::max(1, options_.frames);
-                frame(last && !options_.screenshot.empty());
-                if (last) break;
-            }
+            scripted_loop();
             output_failures = write_outputs();
-            if (options_.idle_seconds > 0.0) {
-                // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
-                const std::uint64_t before = swapchain_->submissions();
-                const std::uint64_t work_before = gpu_work();
-                const auto until =
-                    Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
-                settings_.erosion_running = false;
-                redraw_frames_ = 0;
-                // The interactive loop's waits and decisions, bounded by the idle time.
-                while (Clock::now() < until) {
-                    const double left = std::chrono::duration<double>(until - Clock::now()).count();
-                    if (!wait_for_events(loop_state(), std::max(left, 1e-3))) continue;
-                    frame(false);
-                    if (redraw_frames_ > 0) --redraw_frames_;
-                }
-                idle_submissions = swapchain_->submissions() - before;
-                idle_gpu_work = gpu_work() - work_before;
-            }
+            if (options_.idle_seconds > 0.0) idle_measurement(idle_submissions, idle_gpu_work);
         } else {
             interactive_loop();
             end_action();
@@ -533,64 +326,7 @@ int App::run() {
     }
 
     const std::uint64_t validation = context_->validation_message_count();
-    if (!options_.stats.empty()) {
-        nlohmann::json s;
-        s["device"] = context_->device_name();
-        s["frames"] = times_.frame.size();
-        s["frame_ms_median"] = StageTimes::median(times_.frame);
-        s["tool_ms_median"] = StageTimes::median(times_.tool);
-        // A scripted drag applies its whole stroke between two frames: the largest frame's
-        // tool time is that stroke's cost.
-        s["tool_ms_max"] =
-            times_.tool.empty()
-                ? 0.0
-                : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
-        s["physics_ms_median"] = StageTimes::median(times_.physics);
-        s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
-        s["erosion_status"] = erosion_status();
-        s["mesh_ms_median"] = StageTimes::median(times_.mesh);
-        s["upload_ms_median"] = StageTimes::median(times_.upload);
-        s["bake_ms_median"] = StageTimes::median(times_.bake);
-        s["normal_map_bakes"] = normal_map_bakes_;
-        s["normal_map_texels_baked"] = normal_map_ ? normal_map_->texels_baked() : 0;
-        s["render_ms_median"] = StageTimes::median(times_.render);
-        s["fps"] =
-            StageTimes::median(times_.frame) > 0 ? 1000.0 / StageTimes::median(times_.frame) : 0.0;
-        s["vertices"] = doc_.tin->vertex_count();
-        s["triangles"] = doc_.tin->triangle_count();
-        s["undo_levels"] = doc_.history->undo_levels();
-        s["submissions"] = swapchain_->submissions();
-        s["bytes_uploaded"] = renderer_->bytes_uploaded();
-        s["mesh_updates"] = mesh_updates_;
-        s["mesh_rebuilds"] = mesh_rebuilds_;
-        s["mesh_vertices_recomputed"] = mesh_recomputed_;
-        s["idle_submissions"] = idle_submissions;
-        s["idle_gpu_work"] = idle_gpu_work;
-        s["validation_messages"] = validation;
-        s["layout_overflow_px"] = layout_.overflow_px();
-        s["layout_hidden_px"] = layout_.hidden_px();
-        if (haptics_) {
-            const HapticsLive l = haptics_->live();
-            s["haptics"] = {{"device", l.device},
-                            {"rate_hz", l.rate_hz},
-                            {"ticks", l.ticks},
-                            {"force_n", l.force_n},
-                            {"contact", l.contact},
-                            {"stale", l.stale},
-                            {"device_lost", l.device_lost},
-                            {"backup_thread", l.backup_thread}};
-        }
-        if (cursor_) s["cursor"] = {cursor_->x, cursor_->y, cursor_->z};
-        double px = 0, py = 0;
-        int w = 0, h = 0;
-        glfwGetWindowSize(window_, &w, &h);
-        if (cursor_) {
-            const Vec2 c = doc_.tin->domain().centre();
-            if (camera_.project({cursor_->x - c.x, cursor_->y - c.y, cursor_->z}, w, h, px, py))
-                s["cursor_pixel"] = {px, py};
-        }
-        std::ofstream(options_.stats) << s.dump(2) << "\n";
-    }
+    if (!options_.stats.empty()) write_stats(idle_submissions, idle_gpu_work);
     for (const std::string& failure : output_failures)
         std::fprintf(stderr, "sandtin-editor: %s\n", failure.c_str());
     if (!output_failures.empty()) exit_code = 1;
@@ -602,6 +338,132 @@ int App::run() {
     if (!options_.scripted() && !(settings_ == saved_settings_)) save_settings_reporting();
     shutdown();
     return exit_code;
+}
+
+void App::scripted_loop() {
+    const bool trace = std::getenv("SANDTIN_EDITOR_TRACE") != nullptr;
+    int frames_after_script = 0;
+    // Every op runs between frames; an op that is real input (a click, a key, a drag) is a
+    // sequence of steps, each of which sends its X events, lets GLFW deliver them, and is
+    // followed by one frame, as when a hand moves the mouse.
+    while (!close_confirmed()) {
+        glfwPollEvents();
+        if (!input_steps_.empty()) {
+            run_input_step();
+        } else if (script_wait_ > 0) {
+            --script_wait_;
+        } else if (script_pos_ < script_.size()) {
+            run_script_op(script_[script_pos_++]);
+            if (!input_steps_.empty()) run_input_step();
+            if (trace)
+                std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n", script_pos_,
+                             script_[script_pos_ - 1].dump().c_str(), doc_.tin->vertex_count());
+        } else {
+            end_action();
+            ++frames_after_script;
+        }
+        const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
+                          input_steps_.empty() &&
+                          frames_after_script >= std::max(1, options_.frames);
+        frame(last && !options_.screenshot.empty());
+        if (last) break;
+    }
+}
+
+void App::idle_measurement(std::uint64_t& submissions, std::uint64_t& work) {
+    // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
+    const std::uint64_t before = swapchain_->submissions();
+    const std::uint64_t work_before = gpu_work();
+    const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
+    settings_.erosion_running = false;
+    redraw_frames_ = 0;
+    // The interactive loop's waits and decisions, bounded by the idle time.
+    while (Clock::now() < until) {
+        const double left = std::chrono::duration<double>(until - Clock::now()).count();
+        if (!wait_for_events(loop_state(), std::max(left, 1e-3))) continue;
+        frame(false);
+        if (redraw_frames_ > 0) --redraw_frames_;
+    }
+    submissions = swapchain_->submissions() - before;
+    work = gpu_work() - work_before;
+}
+
+void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_work) {
+    nlohmann::json s;
+    s["device"] = context_->device_name();
+    s["frames"] = times_.frame.size();
+    s["frame_ms_median"] = StageTimes::median(times_.frame);
+    s["tool_ms_median"] = StageTimes::median(times_.tool);
+    // A scripted drag applies its whole stroke between two frames: the largest frame's
+    // tool time is that stroke's cost.
+    s["tool_ms_max"] =
+        times_.tool.empty()
+            ? 0.0
+            : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
+    s["physics_ms_median"] = StageTimes::median(times_.physics);
+    s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
+    s["erosion_status"] = erosion_status();
+    s["erosion_running"] = erosion_runs();
+    s["mesh_ms_median"] = StageTimes::median(times_.mesh);
+    s["upload_ms_median"] = StageTimes::median(times_.upload);
+    s["bake_ms_median"] = StageTimes::median(times_.bake);
+    s["normal_map_bakes"] = normal_map_bakes_;
+    s["normal_map_texels_baked"] = normal_map_ ? normal_map_->texels_baked() : 0;
+    s["render_ms_median"] = StageTimes::median(times_.render);
+    s["fps"] =
+        StageTimes::median(times_.frame) > 0 ? 1000.0 / StageTimes::median(times_.frame) : 0.0;
+    s["vertices"] = doc_.tin->vertex_count();
+    s["triangles"] = doc_.tin->triangle_count();
+    s["undo_levels"] = undo_log_.levels();
+    s["submissions"] = swapchain_->submissions();
+    s["bytes_uploaded"] = renderer_->bytes_uploaded();
+    s["mesh_updates"] = mesh_updates_;
+    s["mesh_rebuilds"] = mesh_rebuilds_;
+    s["mesh_vertices_recomputed"] = mesh_recomputed_;
+    s["idle_submissions"] = idle_submissions;
+    s["idle_gpu_work"] = idle_gpu_work;
+    s["validation_messages"] = context_->validation_message_count();
+    s["layout_overflow_px"] = layout_.overflow_px();
+    s["layout_hidden_px"] = layout_.hidden_px();
+    s["status"] = status_;
+    s["messages"] = messages_;
+    s["scene_path"] = doc_.path.string();
+    s["scene_field"] = std::string(path_buf_);
+    s["dirty"] = doc_.dirty;
+    s["tooltip"] = widgets_.last_tooltip();
+    s["settings"] = {{"tool_radius", settings_.tool_radius},
+                     {"tool_depth", settings_.tool_depth},
+                     {"stroke_spacing_ratio", settings_.stroke_spacing_ratio},
+                     {"pour_volume", settings_.pour_volume},
+                     {"brush_strength", settings_.brush_strength},
+                     {"brush_blend", settings_.brush_blend},
+                     {"erosion_steps", settings_.erosion_steps},
+                     {"relocation_radius", settings_.relocation_radius},
+                     {"settle_margin", settings_.settle_margin},
+                     {"simplify_tolerance", settings_.simplify_tolerance},
+                     {"contrast", settings_.contrast},
+                     {"tool_angle", settings_.tool_angle}};
+    if (haptics_) {
+        const HapticsLive l = haptics_->live();
+        s["haptics"] = {{"device", l.device},
+                        {"rate_hz", l.rate_hz},
+                        {"ticks", l.ticks},
+                        {"force_n", l.force_n},
+                        {"contact", l.contact},
+                        {"stale", l.stale},
+                        {"device_lost", l.device_lost},
+                        {"backup_thread", l.backup_thread}};
+    }
+    if (cursor_) s["cursor"] = {cursor_->x, cursor_->y, cursor_->z};
+    double px = 0, py = 0;
+    int w = 0, h = 0;
+    glfwGetWindowSize(window_, &w, &h);
+    if (cursor_) {
+        const Vec2 c = doc_.tin->domain().centre();
+        if (camera_.project({cursor_->x - c.x, cursor_->y - c.y, cursor_->z}, w, h, px, py))
+            s["cursor_pixel"] = {px, py};
+    }
+    std::ofstream(options_.stats) << s.dump(2) << "\n";
 }
 
 std::vector<std::string> App::write_outputs() {

@@ -14,9 +14,10 @@
 
 namespace sandtin::editor {
 
-/// The terrain being edited and everything that follows its lifetime.
+/// The terrain being edited and everything that follows its lifetime. Movable: the parts live
+/// on the heap, so the history's and the physics' references to the TIN stay valid.
 struct Document {
-    std::filesystem::path path;
+    std::filesystem::path path;  ///< empty: untitled (new, or imported from a heightmap)
     std::unique_ptr<Tin> tin;
     std::unique_ptr<SculptContext> context;
     std::unique_ptr<Erosion> physics;  ///< CPU here; the app may switch it to the GPU
@@ -26,22 +27,52 @@ struct Document {
     /// it, with the materials replaced.
     std::string metadata_json = "{}";
     bool dirty = false;
+    /// An opened, imported or recovered terrain is not eroded until the artist presses Run
+    /// (an elevation model would otherwise start melting as it appears); a new sandbox is.
+    bool erosion_held = false;
 
-    /// A new terrain with its material table (presets for a new or imported terrain) and the
-    /// metadata it came with.
-    void adopt(Tin t, Generation next_generation, const std::filesystem::path& p,
-               MaterialTable table = MaterialTable::presets(), std::string metadata = "{}") {
+    Document() = default;
+    Document(Document&&) = default;
+    /// Tears this document down (in the order its parts depend on each other) first.
+    Document& operator=(Document&& other) noexcept {
+        if (this != &other) {
+            close();
+            path = std::move(other.path);
+            tin = std::move(other.tin);
+            context = std::move(other.context);
+            physics = std::move(other.physics);
+            history = std::move(other.history);
+            materials = std::move(other.materials);
+            metadata_json = std::move(other.metadata_json);
+            dirty = other.dirty;
+            erosion_held = other.erosion_held;
+        }
+        return *this;
+    }
+    ~Document() { close(); }
+
+    /// A document over terrain `t` with its material table (presets for a new or imported
+    /// terrain) and the metadata it came with, at `p` (empty: untitled).
+    static Document make(Tin t, Generation next_generation, const std::filesystem::path& p,
+                         MaterialTable table = MaterialTable::presets(),
+                         std::string metadata = "{}") {
+        Document d;
+        d.materials = std::move(table);
+        d.metadata_json = std::move(metadata);
+        d.tin = std::make_unique<Tin>(std::move(t));
+        d.context = std::make_unique<SculptContext>(d.tin->domain());
+        d.context->set_next_generation(next_generation);
+        d.physics = make_cpu_erosion(*d.tin, d.materials);
+        d.history = std::make_unique<History>(*d.tin);
+        d.path = p;
+        return d;
+    }
+    /// Drops the parts that refer to the TIN before the TIN.
+    void close() {
         history.reset();
-        materials = std::move(table);
-        metadata_json = std::move(metadata);
         physics.reset();
-        tin = std::make_unique<Tin>(std::move(t));
-        context = std::make_unique<SculptContext>(tin->domain());
-        context->set_next_generation(next_generation);
-        physics = make_cpu_erosion(*tin, materials);
-        history = std::make_unique<History>(*tin);
-        path = p;
-        dirty = false;
+        context.reset();
+        tin.reset();
     }
     Session session() const {
         Session s;

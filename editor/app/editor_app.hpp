@@ -19,7 +19,10 @@ struct EditorOptions {
     int width = 1280;
     int height = 720;
     double idle_seconds = 0.0;  ///< scripted: then sit idle this long, counting submits
-    bool validation = false;    ///< Vulkan validation layer; exit code 3 on messages
+    /// Written after every frame whose controls moved: where each named control is (window
+    /// pixels), so that a test driving the editor with real X events (xdotool) can aim.
+    std::filesystem::path widget_map;
+    bool validation = false;  ///< Vulkan validation layer; exit code 3 on messages
     bool scripted() const { return !script.empty() || !screenshot.empty() || frames > 0; }
 };
 

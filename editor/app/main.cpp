@@ -1,6 +1,6 @@
 // sandtin-editor [scene.sandtin] [--script s.json] [--frames N] [--screenshot out.png]
 //                [--size WxH] [--stats out.json] [--save-after out.sandtin]
-//                [--idle-seconds S] [--settings path] [--validation]
+//                [--idle-seconds S] [--settings path] [--widget-map out.json] [--validation]
 //
 // A separate executable rather than a `sandtin editor` subcommand: the CLI stays free of
 // GLFW, Vulkan surfaces and ImGui, so it runs and links on headless machines without them.
@@ -20,7 +20,7 @@ namespace {
                  "sandtin-editor: %s\nusage: sandtin-editor [scene.sandtin] [--script s.json] "
                  "[--frames N] [--screenshot out.png] [--size WxH] [--stats out.json] "
                  "[--save-after out.sandtin] [--idle-seconds S] [--settings path] "
-                 "[--validation]\n",
+                 "[--widget-map out.json] [--validation]\n",
                  problem.c_str());
     std::exit(2);
 }
@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
                 o.stats = value();
             else if (a == "--settings")
                 o.settings = value();
+            else if (a == "--widget-map")
+                o.widget_map = value();
             else if (a == "--save-after")
                 o.save_after = value();
             else if (a == "--frames")
