@@ -232,6 +232,10 @@ class App {
     void note_event() {
         ++events_seen_;
         if (haptics_) haptics_->release();
+        // ImGui settles over the frames after an event: a click that closes a prompt leaves
+        // it open in the frame that handles the click, and until another frame is drawn ImGui
+        // still says it wants the keyboard, so the next shortcut would be swallowed.
+        redraw_frames_ = std::max(redraw_frames_, 3);
     }
     void mouse_move(double x, double y);
     void scroll(double dy);

@@ -256,7 +256,7 @@ void App::key(int k, bool ctrl) {
     redraw_frames_ = 3;
     // While a prompt waits for its answer, shortcuts must not change the document under it
     // (Ctrl+O could open another scene with the recovery prompt still about the first).
-    if (recovery_for_ || pending_replacement_) return;
+    if (recovery_for_ || pending_replacement_ || pending_overwrite_) return;
     if (ctrl && k == GLFW_KEY_Z)
         undo();
     else if (ctrl && k == GLFW_KEY_Y)
@@ -267,6 +267,9 @@ void App::key(int k, bool ctrl) {
         replace_document("New", [this] { new_document(); });
     } else if (ctrl && k == GLFW_KEY_O) {
         replace_document("Open", [this] { open_reporting(); });
+    } else if (ctrl && k == GLFW_KEY_Q) {
+        // As the window's close button: an untitled scene's unsaved edits are asked about.
+        glfwSetWindowShouldClose(window_, GLFW_TRUE);
     } else if (ctrl) {
         return;  // no other shortcut uses Ctrl: Ctrl+R must not pick the Raise brush
     } else if (k == GLFW_KEY_F) {

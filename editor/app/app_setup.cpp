@@ -45,7 +45,11 @@ void on_key(GLFWwindow* w, int key, int, int action, int mods) {
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
     const bool repeats = ctrl && (key == GLFW_KEY_Z || key == GLFW_KEY_Y);
     if (action != GLFW_PRESS && !(action == GLFW_REPEAT && repeats)) return;
-    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    // Keys go to a text field being typed into (a path, a value typed into a slider). Not
+    // WantCaptureKeyboard: ImGui decides that when a frame starts, and a key that follows the
+    // click closing a prompt would find the prompt still there and be swallowed. The app
+    // itself ignores shortcuts while a prompt waits (App::key).
+    if (ImGui::GetIO().WantTextInput) return;
     app->guarded("the key's command failed", [&] { app->key(key, ctrl); });
 }
 
@@ -211,7 +215,8 @@ LoopState App::loop_state() const {
     glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
     state.redraw_pending = redraw_frames_ > 0;
     state.dragging = left_down_;
-    state.prompt_open = recovery_for_.has_value() || pending_replacement_ != nullptr;
+    state.prompt_open =
+        recovery_for_.has_value() || pending_replacement_ != nullptr || pending_overwrite_;
     state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
     state.haptics_connected = haptics_ != nullptr;
     return state;

@@ -1,9 +1,11 @@
 #include "editor_harness.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <sys/wait.h>
 
@@ -114,6 +116,17 @@ Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec
     fs::create_directories(path.parent_path());
     save_session(path, session);
     return session;
+}
+
+double surface_difference(const Tin& a, const Tin& b) {
+    double worst = 0.0;
+    const VertexArrays& va = a.vertices();
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (!va.alive[i]) continue;
+        const std::optional<double> h = b.height_at(va.position[i]);
+        worst = std::max(worst, h ? std::abs(*h - va.height[i]) : 1e300);
+    }
+    return worst;
 }
 
 }  // namespace sandtin::editor_test

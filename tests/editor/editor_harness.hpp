@@ -17,6 +17,7 @@
 #include "formats/png_image.hpp"
 #include "geom/vec2.hpp"
 #include "io/session_file.hpp"
+#include "tin/tin.hpp"
 
 namespace sandtin::editor_test {
 
@@ -63,6 +64,10 @@ std::vector<Vec2> unit_square_points(int count, std::uint64_t seed);
 /// returns the session it wrote.
 Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec2>& points,
                         double height = 0.0);
+
+/// The largest height difference between two terrains at the vertices of `a` (interpolated on
+/// `b`): 0, up to the rounding of the interpolation, when they are the same surface.
+double surface_difference(const Tin& a, const Tin& b);
 
 class EditorXvfb : public ::testing::Test {
   protected:

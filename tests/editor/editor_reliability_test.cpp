@@ -64,19 +64,6 @@ Tin tin_of(const fs::path& scene) {
     return Tin::from_snapshot(load_session(scene).terrain);
 }
 
-/// The largest height difference between two terrains at the vertices of `a` (interpolated on
-/// `b`): 0, up to the rounding of the interpolation, when they are the same surface.
-double surface_difference(const Tin& a, const Tin& b) {
-    double worst = 0.0;
-    const VertexArrays& va = a.vertices();
-    for (std::size_t i = 0; i < va.size(); ++i) {
-        if (!va.alive[i]) continue;
-        const std::optional<double> h = b.height_at(va.position[i]);
-        worst = std::max(worst, h ? std::abs(*h - va.height[i]) : 1e300);
-    }
-    return worst;
-}
-
 /// The largest per-pixel channel difference over the terrain's part of the view: right of the
 /// panel, below the Stats window, above the bottom edge (the status line sits under the panel).
 int max_viewport_diff(const PngImage& a, const PngImage& b) {
