@@ -105,6 +105,12 @@ class App {
     /// Gives the document the solver the Erosion panel asks for (CPU or GPU). `switched`: the
     /// new solver looks at every vertex once (it does not know what the old one had left).
     void attach_physics(bool switched);
+    /// The Erosion panel's choice resolved on this device: Auto is the GPU on a hardware GPU
+    /// and the CPU on a software device (gpu/device_selection.hpp).
+    bool gpu_physics_wanted() const;
+    /// "relaxation on the CPU (Auto: llvmpipe is a software device)": for the status line.
+    std::string physics_placement_text() const;
+    bool gpu_physics_failed_ = false;  ///< the GPU solver could not start: the CPU's for now
     void update_mesh();
     /// Syncs the GPU mirror and re-bakes the normal map where the terrain changed (the caller
     /// waited for the previous frame).

@@ -4,12 +4,32 @@
 
 #include <algorithm>
 
+#include "gpu/device_selection.hpp"
+
 namespace sandtin::editor {
 
 // ---- Per frame ------------------------------------------------------------------------------
 
+bool App::gpu_physics_wanted() const {
+    if (gpu_physics_failed_ || !context_) return false;
+    if (settings_.physics == "gpu") return true;
+    if (settings_.physics == "cpu") return false;
+    return gpu::prefers_gpu_physics(context_->properties().deviceType);
+}
+
+std::string App::physics_placement_text() const {
+    const bool gpu = doc_.physics && doc_.physics->backend() == ErosionBackend::Gpu;
+    std::string text = std::string("relaxation on the ") + (gpu ? "GPU" : "CPU");
+    if (settings_.physics == "auto" && context_)
+        text += " (Auto: " + context_->device_name() +
+                (gpu::prefers_gpu_physics(context_->properties().deviceType)
+                     ? " is a GPU)"
+                     : " is a software device)");
+    return text;
+}
+
 void App::attach_physics(bool switched) {
-    const ErosionBackend want = settings_.erosion_gpu ? ErosionBackend::Gpu : ErosionBackend::Cpu;
+    const ErosionBackend want = gpu_physics_wanted() ? ErosionBackend::Gpu : ErosionBackend::Cpu;
     if (doc_.physics && doc_.physics->backend() == want) return;
     wait_gpu_idle();  // the solver being replaced, and the normal map, may still be in use
     doc_.physics.reset();
@@ -21,12 +41,15 @@ void App::attach_physics(bool switched) {
                 return fanout->take(ChangeFanout::Mirror);
             });
         } catch (const gpu::GpuError& e) {
-            settings_.erosion_gpu = false;
+            gpu_physics_failed_ = true;  // not tried again this session
             report(std::string("GPU erosion unavailable, using the CPU: ") + e.what());
         }
     }
     if (!doc_.physics) doc_.physics = make_cpu_erosion(*doc_.tin, doc_.materials);
-    if (switched) doc_.physics->activate_all();
+    if (switched) {
+        doc_.physics->activate_all();
+        report(physics_placement_text());
+    }
     physics_kick_ = true;
     // The normal map went with the old solver's mirror: it is baked again now, so a frame
     // drawn after this (the panel's switch is pressed in the middle of one) samples a map

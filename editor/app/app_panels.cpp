@@ -395,17 +395,25 @@ void App::panel_erosion() {
                      static_cast<int>(kErosionStepsRange.lo),
                      static_cast<int>(kErosionStepsRange.hi), "%d", ImGuiSliderFlags_AlwaysClamp);
     ui("Steps/frame", "Relaxation iterations per frame");
-    int solver = settings_.erosion_gpu ? 1 : 0;
-    ImGui::RadioButton("CPU", &solver, 0);
+    // Auto, CPU or GPU; Auto says where it resolved on this device.
+    const bool on_gpu = doc_.physics->backend() == ErosionBackend::Gpu;
+    const std::string auto_label = std::string("Auto (") + (on_gpu ? "GPU" : "CPU") + ")###Auto";
+    std::string choice = settings_.physics;
+    if (ImGui::RadioButton(auto_label.c_str(), choice == "auto")) choice = "auto";
+    ui("Auto",
+       "Relaxation on the GPU when the Vulkan device is a hardware GPU, on the CPU on a\n"
+       "software device (lavapipe), where the CPU solver is faster and exact");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("CPU", choice == "cpu")) choice = "cpu";
     ui("CPU", "Relaxation on the CPU: the reference solver (sequential active list)");
     ImGui::SameLine();
-    ImGui::RadioButton("GPU", &solver, 1);
+    if (ImGui::RadioButton("GPU", choice == "gpu")) choice = "gpu";
     ui("GPU",
        "Relaxation on the GPU (Jacobi, two phases over the active list); the heights are read\n"
        "back into the terrain after every batch, so tools, saves and undo see them");
-    if ((solver == 1) != settings_.erosion_gpu) {
+    if (choice != settings_.physics) {
         end_action();
-        settings_.erosion_gpu = solver == 1;
+        settings_.physics = choice;
         attach_physics(true);
     }
     range_slider("r_S", "", settings_.relocation_radius, kRelocationRadiusRange,

@@ -42,7 +42,7 @@ namespace sandtin::editor {
 // "set" knows radius, depth, material, erosion, wireframe, slope, pour_volume, brush_strength
 // (Raise and Lower, metres per dab), brush_blend (Smooth and Flatten, 0..1 per dab), falloff
 // ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
-// simplify_tolerance (metres, as the Erosion panel's slider), physics ("cpu" | "gpu", the
+// simplify_tolerance (metres, as the Erosion panel's slider), physics ("auto" | "cpu" | "gpu", the
 // Erosion panel's switch), scene_path and import_path (typed into the File panel's Scene and
 // Heightmap fields); numbers
 // are clamped to their sliders' ranges, as typed values are.
@@ -79,11 +79,11 @@ constexpr int kWidgetWaitFrames = 10;
 }  // namespace
 
 void App::set_physics(const std::string& name) {
-    if (name != "cpu" && name != "gpu")
-        throw std::runtime_error("script: physics must be cpu or gpu, not '" + name + "'");
-    if ((name == "gpu") == settings_.erosion_gpu) return;
+    if (name != "auto" && name != "cpu" && name != "gpu")
+        throw std::runtime_error("script: physics must be auto, cpu or gpu, not '" + name + "'");
+    if (name == settings_.physics) return;
     end_action();
-    settings_.erosion_gpu = name == "gpu";
+    settings_.physics = name;
     attach_physics(true);
 }
 

@@ -300,8 +300,15 @@ int App::run() {
     init_imgui();
     if (options_.scripted()) x_input_ = std::make_unique<XInput>(window_);
     const std::string settings_problem = status_;
+    status_.clear();
     install_document(std::move(first), "");
-    if (!settings_problem.empty()) report(settings_problem);
+    // The status line starts with what the settings file had to say, what the scene asked of
+    // the tools (scaled to its size), and where the relaxation runs.
+    std::string start = settings_problem;
+    for (const std::string& part : {status_, physics_placement_text()}) {
+        if (!part.empty()) start += (start.empty() ? "" : "; ") + part;
+    }
+    report(start);
     std::fprintf(stderr, "sandtin-editor: %s\n", context_->describe().c_str());
 
     int exit_code = 0;

@@ -39,7 +39,7 @@ void fields(EditorSettings& s, F&& f) {
     f("material", s.material, nullptr);
     f("erosion_running", s.erosion_running, nullptr);
     f("erosion_steps", s.erosion_steps, &kErosionStepsRange);
-    f("erosion_gpu", s.erosion_gpu, nullptr);
+    f("physics", s.physics, nullptr);
     f("simplify_tolerance", s.simplify_tolerance, &kSimplifyToleranceRange);
     f("relocation_radius", s.relocation_radius, &kRelocationRadiusRange);
     f("settle_margin", s.settle_margin, &kSettleMarginRange);
@@ -130,6 +130,13 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
         bad.push_back("brush_falloff '" + s.brush_falloff + "' is unknown");
         s.brush_falloff = defaults.brush_falloff;
     }
+    if (s.physics != "auto" && s.physics != "cpu" && s.physics != "gpu") {
+        bad.push_back("physics '" + s.physics + "' is not auto, cpu or gpu");
+        s.physics = defaults.physics;
+    }
+    // Files of earlier versions chose with a flag: true was a choice of the GPU, false the
+    // default, which Auto now is.
+    if (!j.contains("physics") && j.value("erosion_gpu", false) == true) s.physics = "gpu";
     if (s.material < 0) {
         bad.push_back("material " + std::to_string(s.material) + " is not an index");
         s.material = defaults.material;

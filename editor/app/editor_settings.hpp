@@ -26,8 +26,10 @@ struct EditorSettings {
     double pour_volume = 2e-5;             ///< m³ per click / per 10 ms of drag
     int material = 0;                      ///< material painted and poured
     bool erosion_running = true;
-    int erosion_steps = 20;              ///< relaxation iterations per frame
-    bool erosion_gpu = false;            ///< relaxation on the GPU (GpuSandPhysics), else CPU
+    int erosion_steps = 20;  ///< relaxation iterations per frame
+    /// Where the relaxation runs: "auto" (the GPU when the Vulkan device is a hardware GPU,
+    /// the CPU on a software device such as lavapipe), "cpu" or "gpu".
+    std::string physics = "auto";
     double simplify_tolerance = 0.0005;  ///< metres
     double relocation_radius = 0.01;     ///< r_S, metres
     /// Flowing sand rests this fraction below its angle of repose (TalusParameters::

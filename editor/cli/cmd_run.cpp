@@ -7,6 +7,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "gpu/device_selection.hpp"
 #include "gpu/gpu_error.hpp"
 #include "gpu/gpu_sand_physics.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -23,7 +24,7 @@ namespace sandtin::cli {
 namespace {
 constexpr const char* kUsage =
     "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin "
-    "[--physics cpu|gpu] [--json]";
+    "[--physics auto|cpu|gpu] [--json]";
 }
 
 int run_run(const std::vector<std::string>& raw) {
@@ -58,20 +59,34 @@ int run_run(const std::vector<std::string>& raw) {
     }
 
     // --physics gpu: the relaxation runs on the GPU (engine/gpu), fed by the TIN's journal.
-    const std::string physics = args.text_or("--physics", "cpu");
-    if (physics != "cpu" && physics != "gpu") {
-        throw UsageError("--physics must be cpu or gpu, not '" + physics +
+    // auto (the default): on the GPU when the Vulkan device is a hardware GPU, on the CPU
+    // on a software device (lavapipe) or without one; the device is asked only when the script
+    // erodes.
+    const std::string choice = args.text_or("--physics", "auto");
+    if (choice != "auto" && choice != "cpu" && choice != "gpu") {
+        throw UsageError("--physics must be auto, cpu or gpu, not '" + choice +
                          "'\nusage: " + std::string(kUsage));
     }
     std::unique_ptr<gpu::VulkanContext> gpu_context;
-    PhysicsBackendFactory backend;
-    if (physics == "gpu") {
+    if (choice == "gpu") {
         try {
             gpu_context = std::make_unique<gpu::VulkanContext>(gpu::ContextOptions{});
         } catch (const gpu::GpuUnavailable& e) {
             throw std::runtime_error(std::string("--physics gpu: no Vulkan device (") + e.what() +
                                      "); use --physics cpu");
         }
+    } else if (choice == "auto" && script.uses_physics) {
+        try {
+            gpu_context = std::make_unique<gpu::VulkanContext>(gpu::ContextOptions{});
+            if (!gpu::prefers_gpu_physics(gpu_context->properties().deviceType))
+                gpu_context.reset();
+        } catch (const gpu::GpuUnavailable&) {
+            // No Vulkan device: the CPU, as asked for.
+        }
+    }
+    const std::string physics = gpu_context ? "gpu" : "cpu";
+    PhysicsBackendFactory backend;
+    if (gpu_context) {
         backend = [&gpu_context](Tin& t, const TalusSettings& s, const MaterialTable& materials) {
             auto p = std::make_shared<gpu::GpuSandPhysics>(t, *gpu_context, materials, s);
             PhysicsBackend b;

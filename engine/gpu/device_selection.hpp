@@ -34,6 +34,12 @@ const char* device_type_name(VkPhysicalDeviceType type);
 // Rank: lower is preferred.
 int device_type_rank(VkPhysicalDeviceType type);
 
+// Whether the terrain's physics runs on this device when nobody chose (the editor's Auto, the
+// CLI's --physics auto): on a hardware GPU (discrete, integrated, virtual), yes; on a CPU device
+// (lavapipe), no: there the CPU solver is the faster one (`sandtin bench gpu`) and exact in
+// double precision.
+bool prefers_gpu_physics(VkPhysicalDeviceType type);
+
 // Picks a device. Throws GpuUnavailable when no candidate is usable, GpuError when the
 // override matches no usable device.
 DeviceChoice choose_device(const std::vector<DeviceCandidate>& candidates,

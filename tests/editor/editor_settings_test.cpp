@@ -26,7 +26,7 @@ TEST(Settings, RoundTripAndBadFiles) {
     s.overlay_slope = true;
     s.vsync = false;
     s.erosion_steps = 77;
-    s.erosion_gpu = true;
+    s.physics = "gpu";
     s.settle_margin = 0.05;
     save_settings(path, s);
     std::string problem;
@@ -131,6 +131,26 @@ TEST(Settings, ABadFieldFallsBackAloneAndIsNamedWithItsRange) {
     EXPECT_EQ(big.relocation_radius, defaults.relocation_radius);
     EXPECT_NE(problem.find("relocation_radius 40 is outside [0.1, 5]"), std::string::npos)
         << problem;
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Settings, ThePhysicsChoiceIsAutoByDefaultAndAnOldGpuFlagStaysAChoiceOfTheGpu) {
+    const auto dir = std::filesystem::temp_directory_path() / "sandtin-editor-settings-physics";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const auto path = dir / "editor.json";
+    EXPECT_EQ(EditorSettings{}.physics, "auto");
+    std::string problem;
+    std::ofstream(path) << R"({"erosion_gpu": true})";
+    EXPECT_EQ(load_settings(path, &problem).physics, "gpu");
+    std::ofstream(path) << R"({"erosion_gpu": false})";
+    EXPECT_EQ(load_settings(path, &problem).physics, "auto");
+    std::ofstream(path) << R"({"physics": "cpu", "erosion_gpu": true})";
+    EXPECT_EQ(load_settings(path, &problem).physics, "cpu");
+    EXPECT_TRUE(problem.empty()) << problem;
+    std::ofstream(path) << R"({"physics": "quantum"})";
+    EXPECT_EQ(load_settings(path, &problem).physics, "auto");
+    EXPECT_NE(problem.find("physics 'quantum'"), std::string::npos) << problem;
     std::filesystem::remove_all(dir);
 }
 

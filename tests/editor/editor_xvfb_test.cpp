@@ -510,6 +510,21 @@ TEST_F(EditorXvfb, ResizingTheWindowRebuildsTheSwapchainCleanly) {
     EXPECT_GT(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 3.0);
 }
 
+TEST_F(EditorXvfb, AutoPutsTheRelaxationWhereTheDeviceIsFasterAndSaysWhere) {
+    const fs::path settings = kWork / "auto-physics.settings.json";
+    fs::remove(settings);
+    const EditorRun r = run_editor("auto-physics", kFlat, "--settings " + settings.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    // The device decides: a software rasteriser (lavapipe's "(CPU, ..." in the log) keeps the
+    // relaxation on the CPU; a hardware GPU takes it.
+    const bool software = r.log.find("(CPU, Vulkan") != std::string::npos;
+    EXPECT_EQ(r.stats.at("physics").get<std::string>(), software ? "cpu" : "gpu") << r.log;
+    const std::string first = r.stats.at("messages").at(0).get<std::string>();
+    EXPECT_NE(first.find(software ? "relaxation on the CPU (Auto: " : "relaxation on the GPU"),
+              std::string::npos)
+        << first;
+}
+
 TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
     const EditorRun r = run_editor("idle", kFlat, "--frames 2 --idle-seconds 2");
     ASSERT_EQ(r.exit_code, 0) << r.log;

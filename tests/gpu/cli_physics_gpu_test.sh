@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `sandtin run --physics cpu|gpu`: the same script (stamps + erosion, Jacobi schedule) gives the
+# `sandtin run --physics auto|cpu|gpu`: the same script (stamps + erosion, Jacobi schedule) gives the
 # same terrain on both (volume, vertex count, relaxation work), and a bad choice is a usage
 # error. Exit 77 (ctest SKIP) only when the machine has no Vulkan device at all.
 # usage: cli_physics_gpu_test.sh /path/to/sandtin /path/to/json_get <work-dir>
@@ -118,7 +118,18 @@ done
 if "$SANDTIN" run erode.json -o bad.sandtin --physics tpu > /dev/null 2> bad.err; then
     fail "--physics tpu was accepted"
 fi
-grep -q "cpu or gpu" bad.err || fail "the error does not name the choices: $(cat bad.err)"
+grep -q "auto, cpu or gpu" bad.err || fail "the error does not name the choices: $(cat bad.err)"
+
+# Auto (the default): the GPU on a hardware GPU, the CPU on a software device such as lavapipe.
+# The device is the one the gpu run named: its type decides.
+"$SANDTIN" run erode.json -o auto.sandtin --json > auto.json 2> auto.err ||
+    fail "auto run failed: $(cat auto.err)"
+case "$(get gpu.json /device)" in
+    *"(CPU,"*) want=cpu ;;
+    *) want=gpu ;;
+esac
+[[ "$(get auto.json /physics)" == "$want" ]] ||
+    fail "auto ran on $(get auto.json /physics), not $want, with $(get gpu.json /device)"
 
 [[ $failures -eq 0 ]] && echo "cli physics gpu: ok"
 exit $((failures > 0))

@@ -70,6 +70,14 @@ TEST(DeviceSelection, NoUsableDeviceIsUnavailable) {
     EXPECT_THROW(choose_device(devices, std::nullopt), GpuUnavailable);
 }
 
+TEST(DeviceSelection, PhysicsGoesToHardwareGpusAndStaysOnTheCpuOnASoftwareDevice) {
+    EXPECT_TRUE(prefers_gpu_physics(VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU));
+    EXPECT_TRUE(prefers_gpu_physics(VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU));
+    EXPECT_TRUE(prefers_gpu_physics(VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU));
+    EXPECT_FALSE(prefers_gpu_physics(VK_PHYSICAL_DEVICE_TYPE_CPU));  // lavapipe
+    EXPECT_FALSE(prefers_gpu_physics(VK_PHYSICAL_DEVICE_TYPE_OTHER));
+}
+
 TEST_F(GpuTest, ContextDescribesItsDevice) {
     EXPECT_FALSE(ctx().device_name().empty());
     EXPECT_NE(ctx().describe().find(ctx().device_name()), std::string::npos);
