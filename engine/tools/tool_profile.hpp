@@ -29,7 +29,11 @@ class ToolProfile {
     static ToolProfile heightfield(const PngImage& image, const Rect& extent, double relief);
     /// The lower envelope of a triangle mesh (x, y horizontal, z up; units metres times
     /// `scale`, centred on the mesh's xy bounding box). Points the mesh does not cover are
-    /// "no contact" (+infinity). Sampled on a `resolution` x `resolution` grid.
+    /// "no contact" (+infinity), but for a skirt one grid cell's diagonal wide around its
+    /// outline, which takes the height of the mesh's nearest point: the underside has contact
+    /// everywhere on the mesh, up to its outline (the contour of a contour_from_mesh tool).
+    /// Sampled on a `resolution` x `resolution` grid; in a cell where some samples have no
+    /// contact, offset() blends those that do.
     static ToolProfile mesh_imprint(const TriangleMesh& mesh, double scale, int resolution = 256);
 
     Kind kind() const { return kind_; }

@@ -189,6 +189,64 @@ TEST(ToolProfile, MeshImprintIsTheLowerEnvelopeWithinGridResolution) {
         EXPECT_EQ(p.offset(q), std::numeric_limits<double>::infinity());
 }
 
+// A tool whose contour is its mesh's outline (the shipped foot) stamps its inner contour on
+// that outline, so the underside must have contact there, and everywhere along it. The grid
+// samples the mesh at its nodes, and a point on the outline often lies in a cell whose nodes
+// are all, or nearest, outside the sole: the foot read "no contact" at 39 of its 72 outline
+// points, and extrusion, weighting the ridge by the cut at each of them, heaped the sand in
+// radial stripes. Oracle: the mesh's lower envelope by brute force over its triangles, with
+// the bound of bilinear interpolation (every sample that enters lies within a cell diagonal of
+// the point, on the mesh or within that diagonal of it, so the error is at most the mesh's
+// steepest slope times two diagonals).
+TEST(ToolProfile, MeshImprintHasContactAlongTheWholeOutline) {
+    const ToolSpec spec = load_tool_asset("foot");
+    ASSERT_TRUE(spec.contour_from_mesh);
+    const Tool tool = Tool::build(spec);
+    const TriangleMesh mesh = read_obj(spec.profile_file);
+    Rect box;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& v : mesh.vertices) {
+        box.expand(Vec2{v[0], v[1]});
+        lowest = std::min(lowest, v[2]);
+    }
+    const Vec2 centre = box.centre();
+    double steepest = 0.0;
+    for (const auto& t : mesh.triangles) {
+        const auto& a = mesh.vertices[t[0]];
+        const auto& b = mesh.vertices[t[1]];
+        const auto& c = mesh.vertices[t[2]];
+        const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+        const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+        const double nz = ux * vy - uy * vx;
+        if (std::abs(nz) < 1e-300) continue;
+        const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz;
+        steepest = std::max(steepest, std::hypot(nx, ny) / std::abs(nz));
+    }
+    const double diag = std::hypot(box.width(), box.height()) / (256 - 1);
+    const std::vector<Vec2>& outline = tool.shape().inner;
+    std::size_t without_contact = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        const Vec2 a = outline[i];
+        const Vec2 b = outline[(i + 1) % outline.size()];
+        for (int k = 0; k < 8; ++k) {
+            const Vec2 q = lerp(a, b, k / 8.0);
+            const double offset = tool.profile().offset(q);
+            if (!std::isfinite(offset)) {
+                ++without_contact;
+                continue;
+            }
+            // The envelope just inside the outline (on it, rounding may miss every triangle).
+            const Vec2 inward = q + (Vec2{} - q) * 1e-9;
+            const double envelope = lower_envelope(mesh, inward + centre) - lowest;
+            ASSERT_TRUE(std::isfinite(envelope)) << q.x << ", " << q.y;
+            worst = std::max(worst, std::abs(offset - envelope));
+        }
+    }
+    EXPECT_EQ(without_contact, 0u) << "of " << 8 * outline.size() << " points on the outline";
+    EXPECT_LE(worst, 2.0 * steepest * diag) << "steepest slope " << steepest;
+}
+
 TEST(ToolProfile, MeshOutlineIsTheBorderRingCentredAndScaled) {
     const Dome dome;
     const TriangleMesh mesh = dome.mesh(/*with_lid=*/false);
