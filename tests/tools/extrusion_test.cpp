@@ -573,5 +573,35 @@ TEST(Extrusion, TheFootsRidgeFollowsTheSole) {
     }
 }
 
+// deposit_ridge weights the ridge by the cut at each contour point. A ridge as wide as the band
+// cannot follow a cut that changes from one point to the next: given a cut of 0 and 1 cm at
+// alternate points of a circle, it raised radial stripes (the crest at the flat level between
+// them). The cut is now averaged along the contour, so the ridge is the even ring. Oracle: the
+// analytic ring of the documented cross-section, V = H 2 pi (2 w R / 3 + w² / 3), on flat sand.
+TEST(Extrusion, ACutThatAlternatesAlongTheContourGivesAnEvenRidge) {
+    const double level = 0.1;
+    Tin tin = Tin::random_points(test::kUnitSquare, 40000, 37, [=](Vec2) { return level; });
+    const double radius = 0.05;
+    std::vector<Vec2> outer;
+    for (Vec2 p : circle_contour(radius, 48))
+        outer.push_back(p + Vec2{0.5, 0.5});
+    std::vector<double> cut(outer.size());
+    for (std::size_t i = 0; i < cut.size(); ++i)
+        cut[i] = i % 2 == 0 ? 0.01 : 0.0;
+    const double w = 0.04;
+    const double volume = 2e-5;
+    const double v0 = tin.volume();
+    const RidgeReport r = deposit_ridge(tin, outer, cut, std::nullopt, w, volume);
+    EXPECT_NEAR(r.deposited, volume, 1e-15);
+    EXPECT_NEAR(tin.volume() - v0, volume, 1e-12 * v0);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    const double ring = volume / (2.0 * std::numbers::pi * (2.0 * w * radius / 3.0 + w * w / 3.0));
+    const std::vector<double> crest = crest_rise(tin, outer, w, level);
+    ASSERT_EQ(crest.size(), 3 * outer.size());
+    const auto [lowest, highest] = std::minmax_element(crest.begin(), crest.end());
+    EXPECT_GE(*lowest, 0.8 * ring) << "the even ring is " << ring << " m high";
+    EXPECT_LE(*highest, 1.2 * ring) << "the even ring is " << ring << " m high";
+}
+
 }  // namespace
 }  // namespace sandtin
