@@ -131,6 +131,84 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
     }
 }
 
+/// The inner contour with the points its constrained chords need to follow the imprint (the
+/// tool's underside where it touches the sand, the sand where it stands above it) within
+/// `tolerance`. Along each edge the candidates are the terrain's section points and, for a
+/// curved profile, points every `profile_spacing`; Douglas-Peucker keeps those the chord misses
+/// by more than the tolerance, none closer than `min_spacing` to a kept one. Without them the
+/// rake, whose I is enforced whole (its edges stand above the sand) with points 25 mm apart,
+/// about its tine pitch, walled off the previous stamp's furrows with straight chords across
+/// its back edge at the height of the sand between the tines: its strokes left rows of studs.
+std::vector<Vec2> drape_inner(const Tin& tin, std::span<const Vec2> inner, const ToolFrame& frame,
+                              bool dig, double profile_spacing, double tolerance,
+                              double min_spacing, LocateHint* hint) {
+    const std::size_t n = inner.size();
+    std::vector<Vec2> out;
+    std::vector<std::pair<double, double>> samples;  // (t, imprint height) along the edge
+    std::vector<std::uint8_t> keep;
+    std::vector<std::pair<std::size_t, std::size_t>> stack;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = inner[i];
+        const Vec2 b = inner[(i + 1) % n];
+        out.push_back(a);
+        const double len = distance(a, b);
+        if (!(len > 2.0 * min_spacing)) continue;
+        const auto sec = tin.section(a, b, hint);
+        // The section's t values, with the profile's own samples merged in.
+        std::vector<double> ts;
+        for (const auto& [t, h] : sec)
+            ts.push_back(t);
+        if (profile_spacing > 0.0) {
+            const auto pieces = static_cast<std::size_t>(std::ceil(len / profile_spacing));
+            for (std::size_t k = 1; k < pieces; ++k)
+                ts.push_back(static_cast<double>(k) / static_cast<double>(pieces));
+        }
+        std::sort(ts.begin(), ts.end());
+        samples.clear();
+        std::size_t piece = 0;
+        for (double t : ts) {
+            while (piece + 2 < sec.size() && sec[piece + 1].first < t)
+                ++piece;
+            const auto [t0, h0] = sec[piece];
+            const auto [t1, h1] = sec[std::min(piece + 1, sec.size() - 1)];
+            const double terrain = t1 > t0 ? h0 + (h1 - h0) * (t - t0) / (t1 - t0) : h0;
+            const double u = frame.underside(lerp(a, b, t));
+            const double h = !std::isfinite(u) ? terrain : (dig ? std::min(terrain, u) : u);
+            samples.emplace_back(t, h);
+        }
+        const double min_dt = min_spacing / len;
+        keep.assign(samples.size(), 0);
+        stack.assign(1, {0, samples.size() - 1});
+        while (!stack.empty()) {
+            const auto [lo, hi] = stack.back();
+            stack.pop_back();
+            if (hi <= lo + 1) continue;
+            double worst = 0.0;
+            std::size_t at = lo;
+            for (std::size_t k = lo + 1; k < hi; ++k) {
+                const double f = (samples[k].first - samples[lo].first) /
+                                 (samples[hi].first - samples[lo].first);
+                const double dev = std::abs(
+                    samples[k].second - ((1.0 - f) * samples[lo].second + f * samples[hi].second));
+                if (dev > worst) {
+                    worst = dev;
+                    at = k;
+                }
+            }
+            if (worst > tolerance && samples[at].first - samples[lo].first > min_dt &&
+                samples[hi].first - samples[at].first > min_dt) {
+                keep[at] = 1;
+                stack.emplace_back(lo, at);
+                stack.emplace_back(at, hi);
+            }
+        }
+        for (std::size_t k = 1; k + 1 < samples.size(); ++k) {
+            if (keep[k]) out.push_back(lerp(a, b, samples[k].first));
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptContext& context,
@@ -184,11 +262,21 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const double ledger_start = tin.volume_ledger();
     EditReport edit;
 
-    // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour and at
-    //    the interior samples of a curved profile.
+    // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour (with
+    //    the points it needs to follow the imprint) and at the interior samples of a curved
+    //    profile.
+    const bool dig = tool.spec().mode == ImprintMode::Dig;
+    // The rim tolerance scales with the tool (1 % of its radius by default), so on its own it
+    // would let a big tool pressed in shallower than that change nothing at all (a 1.5 m tool
+    // 1 cm deep). Relief below the simplification tolerance d_m is not worth enforcing either
+    // (the simplifier would take it away): the smaller of the two decides.
+    const double tol = std::min(tool.rim_tolerance(), context.settings.simplify.tolerance);
     std::vector<Vec2> rim;
     std::vector<double> rim_h;
     const double min_spacing = 0.25 * tool.shape().gap;
+    inner = drape_inner(tin, inner, frame, dig,
+                        tool.profile().is_flat() ? 0.0 : tool.interior_samples().spacing, tol,
+                        min_spacing, hint);
     std::size_t rim_crossings = 0;
     sample_rim(tin, outer, tool.rim_tolerance(), min_spacing, hint, rim, rim_h, rim_crossings);
     std::vector<double> inner_terrain(inner.size());
@@ -230,7 +318,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (std::isnan(h)) h = 0.0;  // outside the domain, as surface_or
         }
     }
-    const bool dig = tool.spec().mode == ImprintMode::Dig;
     // The height the stamp leaves where its underside is at height u and the sand at `terrain`.
     auto imprint_under = [&](double u, double terrain) {
         if (!std::isfinite(u)) return terrain;  // no contact there
@@ -251,11 +338,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // Which parts of I would move sand (imprint_activity.hpp); none at all: the terrain already
     // holds this imprint (re-working a trail), and the stamp changes nothing, so it adds no
     // vertices, constraints or releases either.
-    // The rim tolerance scales with the tool (1 % of its radius by default), so on its own it
-    // would let a big tool pressed in shallower than that change nothing at all (a 1.5 m tool
-    // 1 cm deep). Relief below the simplification tolerance d_m is not worth enforcing either
-    // (the simplifier would take it away): the smaller of the two decides.
-    const double tol = std::min(tool.rim_tolerance(), context.settings.simplify.tolerance);
     const double lateral = tool.shape().gap;
     const ImprintActivity activity =
         inner_contour_activity(tin, inner, imprint, tol, lateral, hint);

@@ -9,10 +9,12 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "support/slivers.hpp"
@@ -524,6 +526,71 @@ TEST(Stroke, ToolsStrokedAlongAStraightSideLeaveNoVerticalSlivers) {
         EXPECT_TRUE(tin.check_valid().ok());
         RecordProperty(std::string(asset) + "_constraints",
                        static_cast<int>(tin.constraint_count()));
+    }
+}
+
+// ---- Rake furrows -----------------------------------------------------------------------------
+
+/// The highest and lowest surface along the line through `from` in direction `d` (unit), at
+/// arc lengths [a, b] every 0.2 mm.
+std::pair<double, double> height_range_along(const Tin& tin, Vec2 from, Vec2 d, double a,
+                                             double b) {
+    LocateHint hint;
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (double s = a; s <= b; s += 2e-4) {
+        const double h = *tin.height_at(from + d * s, &hint);
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+    }
+    return {lo, hi};
+}
+
+// The rake (five round tines across a 12 cm head, 3 cm long) dragged straight at a constant
+// floor leaves five continuous furrows: along the middle of each tine's path the sand stands
+// at the floor, the tine tips' (black, the profile's lowest) height, within a tenth of the
+// depth. Its strokes left rows of studs: the inner contour I, enforced whole at the sand's
+// height because the rake's edges stand above the sand, had points only every 25 mm (about the
+// tine pitch), and its back edge's straight chords crossed the previous stamp's furrows at the
+// height of the sand between them, walling each furrow off at every stamp (the sand at the
+// surface there: a variation of the whole depth). Oracles: the flat level, the floor, and the
+// volume (with extrusion exactly kept; without, what the reports say).
+TEST(Stroke, ARakeStrokeLeavesContinuousFurrows) {
+    const double level = 0.1;
+    const double depth = 0.01;
+    const Vec2 from{0.2, 0.45};
+    const Vec2 to{0.8, 0.55};
+    const Vec2 d = (to - from) / distance(from, to);
+    const Vec2 across{-d.y, d.x};
+    for (const bool extrude : {false, true}) {
+        SCOPED_TRACE(extrude ? "extrusion on" : "extrusion off");
+        ToolSpec spec = load_tool_asset("rake");
+        spec.extrude = extrude;
+        const Tool tool = Tool::build(spec);
+        Tin tin = Tin::random_points(test::kUnitSquare, 40000, 43, [=](Vec2) { return level; });
+        SculptContext context(tin.domain());
+        StrokeSettings settings;
+        settings.spacing = 0.15 * tool.radius();
+        settings.depth_mode = DepthMode::Absolute;
+        settings.depth = level - depth;
+        const double v0 = tin.volume();
+        const std::vector<Vec2> path = {from, to};
+        const StampReport r = apply_stroke(tin, tool, path, settings, context);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        EXPECT_NEAR(tin.volume() - v0, r.volume_change, 1e-12);
+        if (extrude) {
+            EXPECT_NEAR(tin.volume(), v0, 1e-12);
+        }
+        // The tines' middles: 0, +-24 and +-48 mm across the head (the image's five pegs).
+        const double length = distance(from, to);
+        for (const double offset : {-0.048, -0.024, 0.0, 0.024, 0.048}) {
+            SCOPED_TRACE("tine at " + std::to_string(offset));
+            const auto [lo, hi] =
+                height_range_along(tin, from + across * offset, d, 0.03, length - 0.03);
+            EXPECT_GE(lo, level - depth - 1e-4);
+            EXPECT_LE(hi, level - 0.9 * depth)
+                << "the furrow rises " << hi - (level - depth) << " m above its floor";
+        }
     }
 }
 
