@@ -43,13 +43,13 @@ std::vector<StrokeSample> StrokeSampler::add_point(Vec2 p) {
     }
     travelled_ += len;
     last_ = p;
-    last_direction_ = dir;
     return out;
 }
 
 std::vector<StrokeSample> StrokeSampler::finish() {
     std::vector<StrokeSample> out;
-    if (start_pending_ && last_) out.push_back({*last_, last_direction_, 0.0});
+    // A path that never moved has no direction: its stamp has no motion either.
+    if (start_pending_ && last_) out.push_back({*last_, std::nullopt, 0.0});
     start_pending_ = false;
     return out;
 }
@@ -108,14 +108,14 @@ ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample
     // stamp identically.
     auto round_to = [](double v, double quantum) { return std::round(v / quantum) * quantum; };
     at.centre = {round_to(sample.position.x, 1e-10), round_to(sample.position.y, 1e-10)};
-    at.angle = round_to(
-        settings.follow_path ? std::atan2(sample.direction.y, sample.direction.x) : settings.angle,
-        1e-9);
+    const std::optional<Vec2>& dir = sample.direction;
+    at.angle =
+        round_to(settings.follow_path && dir ? std::atan2(dir->y, dir->x) : settings.angle, 1e-9);
     if (settings.depth_mode == DepthMode::Absolute) {
         at.bottom = settings.depth;
     } else {
         const Rect d = tin.domain();
-        Vec2 front = sample.position + sample.direction * tool.radius();
+        Vec2 front = sample.position + dir.value_or(Vec2{}) * tool.radius();
         front = {std::clamp(front.x, d.min.x, d.max.x), std::clamp(front.y, d.min.y, d.max.y)};
         const std::optional<double> h = tin.height_at(front, hint);
         const std::optional<double> hc =
@@ -133,13 +133,10 @@ StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
                          const std::function<void(const StampReport&)>& after_stamp) {
     StampReport total;
     StrokeSampler sampler(settings.spacing);
-    const bool moves = path.size() > 1;
     auto run = [&](const std::vector<StrokeSample>& samples) {
         for (const StrokeSample& s : samples) {
             const ToolPlacement at = placement_for(tin, tool, s, settings, &context.hint);
-            const std::optional<Vec2> motion =
-                moves ? std::optional<Vec2>(s.direction) : std::nullopt;
-            const StampReport r = stamp(tin, tool, at, context, motion);
+            const StampReport r = stamp(tin, tool, at, context, s.direction);
             if (per_stamp != nullptr) per_stamp->push_back(r);
             total.accumulate(r);
             if (after_stamp) after_stamp(r);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -101,7 +103,8 @@ TEST(Stroke, SamplerSpacesSamplesByArcLength) {
     for (std::size_t k = 0; k < p.size(); ++k) {
         EXPECT_NEAR(p[k].arc_length, k * spacing, 1e-12);
         EXPECT_NEAR(arc_length_of(kPolyline, p[k].position), k * spacing, 1e-12);
-        EXPECT_NEAR(length(p[k].direction), 1.0, 1e-15);
+        ASSERT_TRUE(p[k].direction.has_value());
+        EXPECT_NEAR(length(*p[k].direction), 1.0, 1e-15);
     }
 }
 
@@ -116,8 +119,9 @@ TEST(Stroke, SamplerIsIndependentOfHowThePathArrived) {
         for (std::size_t k = 0; k < s.size(); ++k) {
             EXPECT_NEAR(s[k].position.x, coarse[k].position.x, 1e-12);
             EXPECT_NEAR(s[k].position.y, coarse[k].position.y, 1e-12);
-            EXPECT_NEAR(s[k].direction.x, coarse[k].direction.x, 1e-12);
-            EXPECT_NEAR(s[k].direction.y, coarse[k].direction.y, 1e-12);
+            ASSERT_TRUE(s[k].direction && coarse[k].direction);
+            EXPECT_NEAR(s[k].direction->x, coarse[k].direction->x, 1e-12);
+            EXPECT_NEAR(s[k].direction->y, coarse[k].direction->y, 1e-12);
             EXPECT_NEAR(s[k].arc_length, coarse[k].arc_length, 1e-12);
         }
     }
@@ -529,8 +533,6 @@ TEST(Stroke, ToolsStrokedAlongAStraightSideLeaveNoVerticalSlivers) {
     }
 }
 
-// ---- Rake furrows -----------------------------------------------------------------------------
-
 /// The highest and lowest surface along the line through `from` in direction `d` (unit), at
 /// arc lengths [a, b] every 0.2 mm.
 std::pair<double, double> height_range_along(const Tin& tin, Vec2 from, Vec2 d, double a,
@@ -545,6 +547,84 @@ std::pair<double, double> height_range_along(const Tin& tin, Vec2 from, Vec2 d, 
     }
     return {lo, hi};
 }
+
+// ---- Clicks and depth ------------------------------------------------------------------------
+
+/// The rise of the surface over `before` in four quarters around `centre` (+x, +y, -x, -y),
+/// integrated on a grid of the square `half` metres around it.
+std::array<double, 4> rise_by_quarter(const Tin& tin, const Tin& before, Vec2 centre, double half) {
+    std::array<double, 4> q{};
+    constexpr int kN = 240;
+    const double cell = (2.0 * half / kN) * (2.0 * half / kN);
+    LocateHint h0, h1;
+    for (int j = 0; j < kN; ++j) {
+        for (int i = 0; i < kN; ++i) {
+            const Vec2 r{-half + 2.0 * half * (i + 0.5) / kN, -half + 2.0 * half * (j + 0.5) / kN};
+            const double rise =
+                *tin.height_at(centre + r, &h1) - *before.height_at(centre + r, &h0);
+            if (!(rise > 0.0)) continue;
+            const std::size_t k =
+                std::abs(r.x) >= std::abs(r.y) ? (r.x > 0.0 ? 0 : 2) : (r.y > 0.0 ? 1 : 3);
+            q[k] += rise * cell;
+        }
+    }
+    return q;
+}
+
+// A click (a press without moving) stamps once with no motion, and stamp() then puts the ridge
+// all around the tool. The sampler used to report the direction (1, 0) for a path that never
+// moved, and the editor passed it on as the motion: a click of the circle or the ball put all
+// of its ridge on the +x side. The same through apply_stroke with a path that never parts.
+// Oracle: on flat sand the four quarters around the tool get the same sand, to discretisation,
+// and the terrain keeps its volume.
+TEST(Stroke, AClickPutsItsRidgeAllAround) {
+    const Vec2 c{0.5, 0.5};
+    const double level = 0.1;
+    for (const char* asset : {"circle", "ball"}) {
+        ToolSpec spec = load_tool_asset(asset);
+        spec.extrude = true;
+        const Tool tool = Tool::build(spec);
+        StrokeSettings settings;
+        settings.spacing = 0.25 * tool.radius();
+        settings.depth = 0.015;
+        for (const int how : {0, 1, 2}) {
+            SCOPED_TRACE(std::string(asset) + (how == 0   ? ": sampler, placement_for, stamp"
+                                               : how == 1 ? ": apply_stroke, one point"
+                                                          : ": apply_stroke, a point twice"));
+            Tin tin = Tin::random_points(test::kUnitSquare, 40000, 47, [=](Vec2) { return level; });
+            const Tin before = Tin::from_snapshot(tin.snapshot());
+            SculptContext context(tin.domain());
+            const double v0 = tin.volume();
+            if (how == 0) {  // as the editor stamps a click
+                StrokeSampler sampler(settings.spacing);
+                EXPECT_TRUE(sampler.add_point(c).empty());
+                EXPECT_TRUE(sampler.add_point(c).empty());
+                const std::vector<StrokeSample> samples = sampler.finish();
+                ASSERT_EQ(samples.size(), 1u);
+                EXPECT_FALSE(samples[0].direction.has_value());
+                const ToolPlacement at =
+                    placement_for(tin, tool, samples[0], settings, &context.hint);
+                EXPECT_NEAR(at.bottom, level - settings.depth, 1e-15);
+                ASSERT_TRUE(stamp(tin, tool, at, context, samples[0].direction).applied);
+            } else {
+                const std::vector<Vec2> path(static_cast<std::size_t>(how), c);
+                std::vector<StampReport> per;
+                apply_stroke(tin, tool, path, settings, context, &per);
+                ASSERT_EQ(per.size(), 1u);
+            }
+            EXPECT_TRUE(mesh_is_sound(tin));
+            EXPECT_NEAR(tin.volume(), v0, 1e-12);
+            const std::array<double, 4> q =
+                rise_by_quarter(tin, before, c, tool.radius() + 2.0 * tool.extrusion_width());
+            const double mean = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+            ASSERT_GT(mean, 0.0);
+            for (std::size_t k = 0; k < 4; ++k)
+                EXPECT_NEAR(q[k], mean, 0.1 * mean) << "quarter " << k << " (+x, +y, -x, -y)";
+        }
+    }
+}
+
+// ---- Rake furrows -----------------------------------------------------------------------------
 
 // The rake (five round tines across a 12 cm head, 3 cm long) dragged straight at a constant
 // floor leaves five continuous furrows: along the middle of each tine's path the sand stands
