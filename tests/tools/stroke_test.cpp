@@ -624,6 +624,73 @@ TEST(Stroke, AClickPutsItsRidgeAllAround) {
     }
 }
 
+/// The surface along the segment from a to b, every 0.5 mm: its lowest and highest points.
+std::pair<double, double> range_between(const Tin& tin, Vec2 a, Vec2 b) {
+    const Vec2 d = (b - a) / distance(a, b);
+    return height_range_along(tin, a, d, 0.0, distance(a, b));
+}
+
+// A stroke cuts the depth it was asked for below the sand it started from, all along, its start
+// included. In relative mode the depth was taken below the terrain as it was at each stamp's
+// leading edge, where the previous stamp's ridge stood: the ball stroke of the editor (radius
+// 5 cm, 15 mm deep, a quarter of the radius apart) dug 15 mm at its first stamp, 10 mm two
+// stamps on and 11 mm through its middle (3 mm with the editor's erosion between frames). It is
+// now taken below the terrain as the stroke found it (StrokeGround). Oracle: the flat level
+// minus the depth along the path's centre line, where the ball's lowest point passes (between
+// two stamps 12.5 mm apart its underside stands 0.4 mm higher), with extrusion on and off,
+// through apply_stroke and through a Stroke fed point by point as the editor's mouse does.
+TEST(Stroke, CutsTheRequestedDepthAlongItsWholeLength) {
+    const double level = 0.1;
+    const double depth = 0.015;
+    const Vec2 from{0.25, 0.4};
+    const Vec2 to{0.75, 0.6};
+    for (const bool extrude : {false, true}) {
+        ToolSpec spec = load_tool_asset("ball");
+        spec.radius = 0.05;
+        spec.extrude = extrude;
+        const Tool tool = Tool::build(spec);
+        StrokeSettings settings;
+        settings.spacing = 0.25 * tool.radius();
+        settings.depth = depth;
+        settings.depth_mode = DepthMode::Relative;
+        for (const bool by_mouse : {false, true}) {
+            SCOPED_TRACE(std::string(extrude ? "extrusion on, " : "extrusion off, ") +
+                         (by_mouse ? "point by point" : "apply_stroke"));
+            Tin tin = Tin::random_points(test::kUnitSquare, 40000, 53, [=](Vec2) { return level; });
+            SculptContext context(tin.domain());
+            const double v0 = tin.volume();
+            std::vector<Vec2> stamped;
+            if (by_mouse) {
+                Stroke stroke(tool, settings);
+                for (int k = 0; k <= 100; ++k) {
+                    for (const StrokeStamp& s :
+                         stroke.add_point(tin, lerp(from, to, k / 100.0), context))
+                        stamped.push_back(s.placement.centre);
+                }
+                for (const StrokeStamp& s : stroke.finish(tin, context))
+                    stamped.push_back(s.placement.centre);
+            } else {
+                std::vector<StampReport> per;
+                apply_stroke(tin, tool, std::vector<Vec2>{from, to}, settings, context, &per);
+                const std::vector<StrokeSample> samples =
+                    sample_path(std::vector<Vec2>{from, to}, settings.spacing);
+                ASSERT_EQ(per.size(), samples.size());
+                for (const StrokeSample& s : samples)
+                    stamped.push_back(s.position);
+            }
+            ASSERT_GT(stamped.size(), 40u);
+            EXPECT_TRUE(mesh_is_sound(tin));
+            if (extrude) {
+                EXPECT_NEAR(tin.volume(), v0, 1e-12);
+            }
+            const auto [lo, hi] = range_between(tin, stamped.front(), stamped.back());
+            EXPECT_GE(lo, level - depth - 0.5e-3) << "deeper than asked by " << level - depth - lo;
+            EXPECT_LE(hi, level - depth + 1e-3)
+                << "shallower than asked by " << hi - (level - depth);
+        }
+    }
+}
+
 // ---- Rake furrows -----------------------------------------------------------------------------
 
 // The rake (five round tines across a 12 cm head, 3 cm long) dragged straight at a constant
