@@ -193,7 +193,7 @@ ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample
 Stroke::Stroke(const Tool& tool, const StrokeSettings& settings)
     : tool_(&tool),
       settings_(settings),
-      sampler_(settings.spacing),
+      sampler_(std::min(settings.spacing, tool.max_stroke_spacing())),
       // About a thousand lattice points in the disc a stamp may change, whatever the tool.
       ground_(
           (tool.shape().bounding_radius + (tool.spec().extrude ? tool.extrusion_width() : 0.0)) /

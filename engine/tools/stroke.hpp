@@ -56,8 +56,10 @@ enum class DepthMode : std::uint8_t {
 };
 
 struct StrokeSettings {
-    double spacing = 0.01;  ///< metres between stamps
-    double depth = 0.0;     ///< see DepthMode
+    /// Metres between stamps; a Stroke (and apply_stroke) keeps to the tool's
+    /// max_stroke_spacing() too, so that its tips leave continuous furrows.
+    double spacing = 0.01;
+    double depth = 0.0;  ///< see DepthMode
     DepthMode depth_mode = DepthMode::Relative;
     bool follow_path = true;  ///< tool heading = path tangent (else `angle`)
     double angle = 0.0;       ///< radians, when not following the path or before it moved
@@ -109,7 +111,8 @@ struct StrokeStamp {
 };
 
 /// A stroke of a tool along a path that arrives piece by piece (the editor's mouse, a pen): it
-/// samples the path every spacing, places each stamp, a relative depth below the terrain as the
+/// samples the path every spacing (the settings', at most the tool's max_stroke_spacing()),
+/// places each stamp, a relative depth below the terrain as the
 /// stroke found it (StrokeGround, kept in relative mode only), and stamps it moving along the
 /// path, or without motion for a click (its ridge all around). Refers to the tool, which must
 /// outlive it.

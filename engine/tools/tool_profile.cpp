@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -252,6 +253,59 @@ double ToolProfile::offset(Vec2 q) const {
         return total > 0.0 ? sum / total : std::numeric_limits<double>::infinity();
     }
     return (1 - ty) * ((1 - tx) * v00 + tx * v10) + ty * ((1 - tx) * v01 + tx * v11);
+}
+
+double ToolProfile::tip_length() const {
+    if (kind_ != Kind::Grid) return std::numeric_limits<double>::infinity();
+    double relief = 0.0;
+    for (double v : grid_) {
+        if (!std::isnan(v)) relief = std::max(relief, v);
+    }
+    const double band = kTipBand * relief;
+    const auto nx = static_cast<std::size_t>(nx_);
+    const std::size_t cells = grid_.size();
+    auto in_tip = [&](std::size_t i) { return !std::isnan(grid_[i]) && grid_[i] <= band; };
+    // Label the tips (4-connected), then measure each one's longest run along x.
+    std::vector<std::int32_t> tip(cells, -1);
+    std::int32_t tips = 0;
+    std::vector<std::size_t> stack;
+    for (std::size_t start = 0; start < cells; ++start) {
+        if (tip[start] >= 0 || !in_tip(start)) continue;
+        tip[start] = tips;
+        stack.assign(1, start);
+        while (!stack.empty()) {
+            const std::size_t i = stack.back();
+            stack.pop_back();
+            const std::size_t x = i % nx;
+            const std::array<std::size_t, 4> next = {x > 0 ? i - 1 : i, x + 1 < nx ? i + 1 : i,
+                                                     i >= nx ? i - nx : i,
+                                                     i + nx < cells ? i + nx : i};
+            for (std::size_t j : next) {
+                if (tip[j] < 0 && in_tip(j)) {
+                    tip[j] = tips;
+                    stack.push_back(j);
+                }
+            }
+        }
+        ++tips;
+    }
+    std::vector<std::size_t> longest(static_cast<std::size_t>(tips), 0);
+    for (std::size_t row = 0; row < cells; row += nx) {
+        std::size_t run = 0;
+        for (std::size_t x = 0; x < nx; ++x) {
+            const std::int32_t t = tip[row + x];
+            run = t >= 0 && x > 0 && tip[row + x - 1] == t ? run + 1 : (t >= 0 ? 1 : 0);
+            if (t >= 0) {
+                std::size_t& l = longest[static_cast<std::size_t>(t)];
+                l = std::max(l, run);
+            }
+        }
+    }
+    const double dx = extent_.width() / (nx_ - 1);
+    double shortest = std::numeric_limits<double>::infinity();
+    for (std::size_t l : longest)
+        shortest = std::min(shortest, static_cast<double>(l) * dx);
+    return shortest;
 }
 
 }  // namespace sandtin

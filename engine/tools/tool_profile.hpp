@@ -43,6 +43,15 @@ class ToolProfile {
     double offset(Vec2 q) const;
     /// A spacing (metres) fine enough to represent the profile's curvature; 0 for flat tools.
     double sample_spacing() const { return sample_spacing_; }
+    /// The length of the profile's shortest tip along the tool's forward axis (local +x), in
+    /// metres: of each tip (a connected region of samples within kTipBand of the relief above
+    /// the lowest point: a rake's tines, a sole's pads), the longest run of samples along x
+    /// (their count times the sample spacing), and the shortest of those. +infinity for flat
+    /// and half-sphere profiles, whose one tip is the whole footprint.
+    double tip_length() const;
+    /// The band above the lowest point that makes a tip, as a share of the relief (the highest
+    /// contact sample above the lowest).
+    static constexpr double kTipBand = 0.1;
 
   private:
     Kind kind_ = Kind::Flat;

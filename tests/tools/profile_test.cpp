@@ -313,6 +313,44 @@ TEST(ToolProfile, HeightfieldOfARampIsLinear) {
     EXPECT_THROW(ToolProfile::heightfield(ramp_image(1, 8), extent, -1.0), std::invalid_argument);
 }
 
+// A stroke keeps its spacing under half the length of the tool's shortest tip along the motion
+// (Tool::max_stroke_spacing), so a rake's tines leave furrows, not studs. Oracles: a bitmap
+// with two tips of known lengths (runs of black pixels along x); the rake's generator (its
+// tines' black core is 14 pixels along a tine's middle row: peg < 0.35 at d = 0.026, so
+// |2x - 23| < 13.2); and no limit for flat and round tools, whose one tip is the whole tool.
+TEST(ToolProfile, TipLengthIsTheShortestTipAlongTheForwardAxis) {
+    PngImage img;
+    img.width = 20;
+    img.height = 6;
+    img.channels = 1;
+    img.bit_depth = 8;
+    img.samples.assign(120, 255);
+    auto black = [&](std::uint32_t x, std::uint32_t row) { img.samples[row * 20 + x] = 0; };
+    for (std::uint32_t x = 2; x <= 4; ++x)  // a tip 3 pixels long
+        black(x, 1);
+    for (std::uint32_t x = 8; x <= 14; ++x)  // a tip 7 pixels long, with a shorter row on it
+        black(x, 4);
+    black(9, 3);
+    black(10, 3);
+    img.samples[2 * 20 + 17] = 20;  // within a tenth of the relief: a tip 1 pixel long...
+    img.samples[2 * 20 + 18] = 40;  // ...whose neighbour is not
+    const Rect extent{{0.0, 0.0}, {0.019, 0.005}};  // 1 mm between samples along x
+    ToolProfile p = ToolProfile::heightfield(img, extent, 0.01);
+    EXPECT_NEAR(p.tip_length(), 0.001, 1e-15);
+    img.samples[2 * 20 + 17] = 255;
+    p = ToolProfile::heightfield(img, extent, 0.01);
+    EXPECT_NEAR(p.tip_length(), 0.003, 1e-15);
+
+    const Tool rake = Tool::build(load_tool_asset("rake"));
+    EXPECT_NEAR(rake.max_stroke_spacing(), 0.5 * 14.0 * 0.03 / 23.0, 1e-12);
+    EXPECT_LT(rake.max_stroke_spacing(), 0.25 * rake.radius());  // the editor's spacing
+    for (const char* name : {"circle", "ball", "box", "lambda"}) {
+        EXPECT_EQ(Tool::build(load_tool_asset(name)).max_stroke_spacing(),
+                  std::numeric_limits<double>::infinity())
+            << name;
+    }
+}
+
 /// Stamps an asset tool on rolling sand and checks the imprint against the tool's own
 /// underside: nothing inside I above the pre-stamp sand or (beyond the simplifier's
 /// tolerance, which may shift heights to conserve volume) above the tool.
