@@ -131,20 +131,25 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
     }
 }
 
-/// The inner contour with the points its constrained chords need to follow the imprint (the
-/// tool's underside where it touches the sand, the sand where it stands above it) within
-/// `tolerance`. Along each edge the candidates are the terrain's section points and, for a
-/// curved profile, points every `profile_spacing`; Douglas-Peucker keeps those the chord misses
-/// by more than the tolerance, none closer than `min_spacing` to a kept one. Without them the
+/// The inner contour with the points its constrained chords need where the tool stands above
+/// the sand: there the stamp leaves the sand as it is, and a chord between two of I's points
+/// would cut through it or bridge over it. Along each edge the candidates are the terrain's
+/// section points clear of the tool; Douglas-Peucker keeps those the chord (between kept points
+/// at the imprint's heights) misses by more than `tolerance`, none closer than `min_spacing` to
+/// a kept one. Where the tool touches, I keeps its own points, as before. Without them the
 /// rake, whose I is enforced whole (its edges stand above the sand) with points 25 mm apart,
 /// about its tine pitch, walled off the previous stamp's furrows with straight chords across
 /// its back edge at the height of the sand between the tines: its strokes left rows of studs.
 std::vector<Vec2> drape_inner(const Tin& tin, std::span<const Vec2> inner, const ToolFrame& frame,
-                              bool dig, double profile_spacing, double tolerance,
-                              double min_spacing, LocateHint* hint) {
+                              bool dig, double tolerance, double min_spacing, LocateHint* hint) {
+    struct Sample {
+        double t;       ///< along the edge
+        double height;  ///< what the stamp leaves there
+        bool clear;     ///< the tool stands above the sand (or has no contact) there
+    };
     const std::size_t n = inner.size();
     std::vector<Vec2> out;
-    std::vector<std::pair<double, double>> samples;  // (t, imprint height) along the edge
+    std::vector<Sample> samples;
     std::vector<std::uint8_t> keep;
     std::vector<std::pair<std::size_t, std::size_t>> stack;
     for (std::size_t i = 0; i < n; ++i) {
@@ -153,57 +158,42 @@ std::vector<Vec2> drape_inner(const Tin& tin, std::span<const Vec2> inner, const
         out.push_back(a);
         const double len = distance(a, b);
         if (!(len > 2.0 * min_spacing)) continue;
-        const auto sec = tin.section(a, b, hint);
-        // The section's t values, with the profile's own samples merged in.
-        std::vector<double> ts;
-        for (const auto& [t, h] : sec)
-            ts.push_back(t);
-        if (profile_spacing > 0.0) {
-            const auto pieces = static_cast<std::size_t>(std::ceil(len / profile_spacing));
-            for (std::size_t k = 1; k < pieces; ++k)
-                ts.push_back(static_cast<double>(k) / static_cast<double>(pieces));
-        }
-        std::sort(ts.begin(), ts.end());
         samples.clear();
-        std::size_t piece = 0;
-        for (double t : ts) {
-            while (piece + 2 < sec.size() && sec[piece + 1].first < t)
-                ++piece;
-            const auto [t0, h0] = sec[piece];
-            const auto [t1, h1] = sec[std::min(piece + 1, sec.size() - 1)];
-            const double terrain = t1 > t0 ? h0 + (h1 - h0) * (t - t0) / (t1 - t0) : h0;
+        bool any_clear = false;
+        for (const auto& [t, terrain] : tin.section(a, b, hint)) {
             const double u = frame.underside(lerp(a, b, t));
-            const double h = !std::isfinite(u) ? terrain : (dig ? std::min(terrain, u) : u);
-            samples.emplace_back(t, h);
+            const bool clear = !std::isfinite(u) || (dig && terrain <= u);
+            samples.push_back({t, clear ? terrain : u, clear});
+            any_clear = any_clear || clear;
         }
+        if (!any_clear || samples.size() < 3) continue;
         const double min_dt = min_spacing / len;
         keep.assign(samples.size(), 0);
         stack.assign(1, {0, samples.size() - 1});
         while (!stack.empty()) {
             const auto [lo, hi] = stack.back();
             stack.pop_back();
-            if (hi <= lo + 1) continue;
             double worst = 0.0;
             std::size_t at = lo;
             for (std::size_t k = lo + 1; k < hi; ++k) {
-                const double f = (samples[k].first - samples[lo].first) /
-                                 (samples[hi].first - samples[lo].first);
-                const double dev = std::abs(
-                    samples[k].second - ((1.0 - f) * samples[lo].second + f * samples[hi].second));
+                if (!samples[k].clear) continue;
+                const double f = (samples[k].t - samples[lo].t) / (samples[hi].t - samples[lo].t);
+                const double chord = (1.0 - f) * samples[lo].height + f * samples[hi].height;
+                const double dev = std::abs(samples[k].height - chord);
                 if (dev > worst) {
                     worst = dev;
                     at = k;
                 }
             }
-            if (worst > tolerance && samples[at].first - samples[lo].first > min_dt &&
-                samples[hi].first - samples[at].first > min_dt) {
+            if (worst > tolerance && samples[at].t - samples[lo].t > min_dt &&
+                samples[hi].t - samples[at].t > min_dt) {
                 keep[at] = 1;
                 stack.emplace_back(lo, at);
                 stack.emplace_back(at, hi);
             }
         }
         for (std::size_t k = 1; k + 1 < samples.size(); ++k) {
-            if (keep[k]) out.push_back(lerp(a, b, samples[k].first));
+            if (keep[k]) out.push_back(lerp(a, b, samples[k].t));
         }
     }
     return out;
@@ -274,9 +264,7 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<Vec2> rim;
     std::vector<double> rim_h;
     const double min_spacing = 0.25 * tool.shape().gap;
-    inner = drape_inner(tin, inner, frame, dig,
-                        tool.profile().is_flat() ? 0.0 : tool.interior_samples().spacing, tol,
-                        min_spacing, hint);
+    inner = drape_inner(tin, inner, frame, dig, tol, min_spacing, hint);
     std::size_t rim_crossings = 0;
     sample_rim(tin, outer, tool.rim_tolerance(), min_spacing, hint, rim, rim_h, rim_crossings);
     std::vector<double> inner_terrain(inner.size());
