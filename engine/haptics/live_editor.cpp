@@ -52,7 +52,10 @@ bool LiveEditor::touches_sand(const ToolPlacement& at) {
 void LiveEditor::stamp_samples(const std::vector<StrokeSample>& samples, double bottom,
                                EditResult& result) {
     for (const StrokeSample& s : samples) {
-        const ToolPlacement at{s.position, std::atan2(s.direction.y, s.direction.x), bottom};
+        // A click without motion keeps the tool's last heading.
+        const double heading =
+            s.direction ? std::atan2(s.direction->y, s.direction->x) : placement_.angle;
+        const ToolPlacement at{s.position, heading, bottom};
         placement_.angle = at.angle;
         if (!touches_sand(at)) {
             ++result.skipped;

@@ -57,6 +57,45 @@ void insert_stations(Tin& tin, std::span<const Vec2> outer, std::span<const Vec2
     band.erase(std::unique(band.begin(), band.end()), band.end());
 }
 
+/// The cut depth along the closed contour, piecewise linear between its points, averaged over
+/// `half_window` metres of contour either side of each point. A ridge as wide as the band
+/// cannot follow a cut that changes from one contour point to the next: weighted point by
+/// point, the shipped foot (its toes, and each outline point its profile missed) heaped the
+/// sand in radial stripes, each the width of one rim edge and the band's length.
+std::vector<double> smoothed_along(std::span<const Vec2> contour, std::span<const double> cut,
+                                   double half_window) {
+    const std::size_t n = contour.size();
+    // Arc length at each point, and the integral of the cut from point 0 to each point.
+    std::vector<double> at(n + 1, 0.0);
+    std::vector<double> integral(n + 1, 0.0);
+    for (std::size_t k = 0; k < n; ++k) {
+        const double len = distance(contour[k], contour[(k + 1) % n]);
+        at[k + 1] = at[k] + len;
+        integral[k + 1] = integral[k] + 0.5 * len * (cut[k] + cut[(k + 1) % n]);
+    }
+    const double perimeter = at[n];
+    if (!(perimeter > 0.0) || !(half_window > 0.0)) return {cut.begin(), cut.end()};
+    if (2.0 * half_window >= perimeter) return std::vector<double>(n, integral[n] / perimeter);
+    // The integral of the cut from point 0 to arc length s, for any s (the contour repeats).
+    auto integral_to = [&](double s) {
+        const double turns = std::floor(s / perimeter);
+        const double x = s - turns * perimeter;
+        const auto k = static_cast<std::size_t>(
+            std::clamp<std::ptrdiff_t>(std::upper_bound(at.begin(), at.end(), x) - at.begin() - 1,
+                                       0, static_cast<std::ptrdiff_t>(n) - 1));
+        const double len = at[k + 1] - at[k];
+        const double t = len > 0.0 ? std::clamp((x - at[k]) / len, 0.0, 1.0) : 0.0;
+        const double c0 = cut[k];
+        const double ct = c0 + t * (cut[(k + 1) % n] - c0);
+        return turns * integral[n] + integral[k] + 0.5 * t * len * (c0 + ct);
+    };
+    std::vector<double> out(n);
+    for (std::size_t i = 0; i < n; ++i)
+        out[i] = (integral_to(at[i] + half_window) - integral_to(at[i] - half_window)) /
+                 (2.0 * half_window);
+    return out;
+}
+
 /// Each band vertex's share k_v of the ridge, in id order: at distance s outside O (within the
 /// width w), the cross-section 1 - (2s/w - 1)² times the weight interpolated along the nearest
 /// contour edge. Every vertex in the band carries the ridge, not only the stations: on a dense
@@ -122,7 +161,12 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
     const std::size_t n = outer.size();
     if (volume == 0.0 || !std::isfinite(volume) || n < 3 || !(width > 0.0)) return report;
 
-    // Per-vertex weights: cut depth times the direction factor.
+    // Per-vertex weights: cut depth (averaged along the contour over a quarter of the width
+    // either side) times the direction factor.
+    std::vector<double> cut(n);
+    for (std::size_t i = 0; i < n; ++i)
+        cut[i] = std::max(0.0, cut_depth[i]);
+    cut = smoothed_along(outer, cut, 0.25 * width);
     std::vector<double> cut_weight(n, 0.0);
     std::vector<Vec2> normal(n);
     double total_weight = 0.0;
@@ -139,7 +183,7 @@ RidgeReport deposit_ridge(Tin& tin, std::span<const Vec2> outer, std::span<const
             const Vec2 d = *motion / length(*motion);
             direction[i] = std::clamp((dot(nrm, d) + 0.5) / 1.5, 0.0, 1.0);
         }
-        cut_weight[i] = std::max(0.0, cut_depth[i]) * direction[i];
+        cut_weight[i] = cut[i] * direction[i];
         total_weight += cut_weight[i];
     }
     // Weights in order of preference. The tool may displace volume where no control point

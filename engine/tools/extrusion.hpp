@@ -5,8 +5,10 @@
 //
 // Cross-section: a parabola 1 - (2s/w - 1)² over the band s in [0, w] outward from the outer
 // contour, sampled at s = w/4, w/2, 3w/4 and closed at s = w. Along the contour the ridge is
-// weighted by how deep the tool cut next to each control point and by the direction of motion:
-// ahead gets the most, the sides a third, behind nothing (f = clamp((n·d + 1/2) / 1.5, 0, 1)).
+// weighted by how deep the tool cut next to each control point (averaged along the contour over
+// a quarter of the width either side: a ridge that wide cannot follow a cut that changes from one
+// point to the next) and by the direction of motion: ahead gets the most, the sides a third,
+// behind nothing (f = clamp((n·d + 1/2) / 1.5, 0, 1)).
 // Every vertex in the band carries the ridge. Where the band lacks vertices (a sparse terrain)
 // stations are inserted on the surface first: lines of four across the band, a quarter width
 // apart along the contour, each station only where no vertex is within an eighth of the width.

@@ -131,6 +131,74 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
     }
 }
 
+/// The inner contour with the points its constrained chords need where the tool stands above
+/// the sand: there the stamp leaves the sand as it is, and a chord between two of I's points
+/// would cut through it or bridge over it. Along each edge the candidates are the terrain's
+/// section points clear of the tool; Douglas-Peucker keeps those the chord (between kept points
+/// at the imprint's heights) misses by more than `tolerance`, none closer than `min_spacing` to
+/// a kept one. Where the tool touches, I keeps its own points, as before. Without them the
+/// rake, whose I is enforced whole (its edges stand above the sand) with points 25 mm apart,
+/// about its tine pitch, walled off the previous stamp's furrows with straight chords across
+/// its back edge at the height of the sand between the tines: its strokes left rows of studs.
+std::vector<Vec2> drape_inner(const Tin& tin, std::span<const Vec2> inner, const ToolFrame& frame,
+                              bool dig, double tolerance, double min_spacing, LocateHint* hint) {
+    struct Sample {
+        double t;       ///< along the edge
+        double height;  ///< what the stamp leaves there
+        bool clear;     ///< the tool stands above the sand (or has no contact) there
+    };
+    const std::size_t n = inner.size();
+    std::vector<Vec2> out;
+    std::vector<Sample> samples;
+    std::vector<std::uint8_t> keep;
+    std::vector<std::pair<std::size_t, std::size_t>> stack;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = inner[i];
+        const Vec2 b = inner[(i + 1) % n];
+        out.push_back(a);
+        const double len = distance(a, b);
+        if (!(len > 2.0 * min_spacing)) continue;
+        samples.clear();
+        bool any_clear = false;
+        for (const auto& [t, terrain] : tin.section(a, b, hint)) {
+            const double u = frame.underside(lerp(a, b, t));
+            const bool clear = !std::isfinite(u) || (dig && terrain <= u);
+            samples.push_back({t, clear ? terrain : u, clear});
+            any_clear = any_clear || clear;
+        }
+        if (!any_clear || samples.size() < 3) continue;
+        const double min_dt = min_spacing / len;
+        keep.assign(samples.size(), 0);
+        stack.assign(1, {0, samples.size() - 1});
+        while (!stack.empty()) {
+            const auto [lo, hi] = stack.back();
+            stack.pop_back();
+            double worst = 0.0;
+            std::size_t at = lo;
+            for (std::size_t k = lo + 1; k < hi; ++k) {
+                if (!samples[k].clear) continue;
+                const double f = (samples[k].t - samples[lo].t) / (samples[hi].t - samples[lo].t);
+                const double chord = (1.0 - f) * samples[lo].height + f * samples[hi].height;
+                const double dev = std::abs(samples[k].height - chord);
+                if (dev > worst) {
+                    worst = dev;
+                    at = k;
+                }
+            }
+            if (worst > tolerance && samples[at].t - samples[lo].t > min_dt &&
+                samples[hi].t - samples[at].t > min_dt) {
+                keep[at] = 1;
+                stack.emplace_back(lo, at);
+                stack.emplace_back(at, hi);
+            }
+        }
+        for (std::size_t k = 1; k + 1 < samples.size(); ++k) {
+            if (keep[k]) out.push_back(lerp(a, b, samples[k].t));
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptContext& context,
@@ -184,11 +252,19 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     const double ledger_start = tin.volume_ledger();
     EditReport edit;
 
-    // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour and at
-    //    the interior samples of a curved profile.
+    // 2. The terrain before the stamp: along the rim (adaptively), at the inner contour (with
+    //    the points it needs to follow the imprint) and at the interior samples of a curved
+    //    profile.
+    const bool dig = tool.spec().mode == ImprintMode::Dig;
+    // The rim tolerance scales with the tool (1 % of its radius by default), so on its own it
+    // would let a big tool pressed in shallower than that change nothing at all (a 1.5 m tool
+    // 1 cm deep). Relief below the simplification tolerance d_m is not worth enforcing either
+    // (the simplifier would take it away): the smaller of the two decides.
+    const double tol = std::min(tool.rim_tolerance(), context.settings.simplify.tolerance);
     std::vector<Vec2> rim;
     std::vector<double> rim_h;
     const double min_spacing = 0.25 * tool.shape().gap;
+    inner = drape_inner(tin, inner, frame, dig, tol, min_spacing, hint);
     std::size_t rim_crossings = 0;
     sample_rim(tin, outer, tool.rim_tolerance(), min_spacing, hint, rim, rim_h, rim_crossings);
     std::vector<double> inner_terrain(inner.size());
@@ -230,7 +306,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
             if (std::isnan(h)) h = 0.0;  // outside the domain, as surface_or
         }
     }
-    const bool dig = tool.spec().mode == ImprintMode::Dig;
     // The height the stamp leaves where its underside is at height u and the sand at `terrain`.
     auto imprint_under = [&](double u, double terrain) {
         if (!std::isfinite(u)) return terrain;  // no contact there
@@ -251,11 +326,6 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     // Which parts of I would move sand (imprint_activity.hpp); none at all: the terrain already
     // holds this imprint (re-working a trail), and the stamp changes nothing, so it adds no
     // vertices, constraints or releases either.
-    // The rim tolerance scales with the tool (1 % of its radius by default), so on its own it
-    // would let a big tool pressed in shallower than that change nothing at all (a 1.5 m tool
-    // 1 cm deep). Relief below the simplification tolerance d_m is not worth enforcing either
-    // (the simplifier would take it away): the smaller of the two decides.
-    const double tol = std::min(tool.rim_tolerance(), context.settings.simplify.tolerance);
     const double lateral = tool.shape().gap;
     const ImprintActivity activity =
         inner_contour_activity(tin, inner, imprint, tol, lateral, hint);

@@ -5,7 +5,9 @@
 //   2. interpolate the terrain heights along the outer contour O, subdividing its edges until
 //      the rim follows the terrain within the tool's tolerance;
 //   3. constrain O (each segment its own constraint, tagged with the stamp's generation);
-//   4. constrain the inner contour I with its points at the tool's profile height;
+//   4. constrain the inner contour I with its points at the tool's profile height (and where the
+//      tool stands above the sand, at the sand's, with the points its chords need to follow the
+//      sand there within the tolerance);
 //   5. set every vertex inside I to the profile, walking the faces inside the constrained I;
 //   6. remove inner vertices that became redundant (automatic simplification);
 //   7. optionally push the displaced volume into a ridge outside O (extrusion).

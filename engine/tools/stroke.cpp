@@ -43,13 +43,13 @@ std::vector<StrokeSample> StrokeSampler::add_point(Vec2 p) {
     }
     travelled_ += len;
     last_ = p;
-    last_direction_ = dir;
     return out;
 }
 
 std::vector<StrokeSample> StrokeSampler::finish() {
     std::vector<StrokeSample> out;
-    if (start_pending_ && last_) out.push_back({*last_, last_direction_, 0.0});
+    // A path that never moved has no direction: its stamp has no motion either.
+    if (start_pending_ && last_) out.push_back({*last_, std::nullopt, 0.0});
     start_pending_ = false;
     return out;
 }
@@ -100,54 +100,147 @@ std::vector<Vec2> catmull_rom(std::span<const Vec2> control, double max_step) {
     return out;
 }
 
+namespace {
+
+Vec2 clamped(Vec2 p, const Rect& d) {
+    return {std::clamp(p.x, d.min.x, d.max.x), std::clamp(p.y, d.min.y, d.max.y)};
+}
+
+std::uint64_t key_of(std::int64_t i, std::int64_t j) {
+    // The low 32 bits of each index: two lattice points share a key only 2^32 cells apart,
+    // farther than a stroke's million stamps reach.
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(i)) << 32) |
+           static_cast<std::uint32_t>(j);
+}
+
+}  // namespace
+
+StrokeGround::StrokeGround(double cell) : cell_(cell) {
+    if (!(cell > 0.0) || !std::isfinite(cell))
+        throw std::invalid_argument("stroke ground: the lattice spacing must be positive");
+}
+
+void StrokeGround::remember(const Tin& tin, Vec2 centre, double radius, LocateHint* hint) {
+    const Rect d = tin.domain();
+    const auto i0 = static_cast<std::int64_t>(std::floor((centre.x - radius) / cell_));
+    const auto i1 = static_cast<std::int64_t>(std::ceil((centre.x + radius) / cell_));
+    const auto j0 = static_cast<std::int64_t>(std::floor((centre.y - radius) / cell_));
+    const auto j1 = static_cast<std::int64_t>(std::ceil((centre.y + radius) / cell_));
+    for (std::int64_t j = j0; j <= j1; ++j) {
+        for (std::int64_t i = i0; i <= i1; ++i) {
+            const Vec2 p{static_cast<double>(i) * cell_, static_cast<double>(j) * cell_};
+            if (distance(p, centre) > radius) continue;
+            const std::uint64_t k = key_of(i, j);
+            if (heights_.contains(k)) continue;
+            if (const std::optional<double> h = tin.height_at(clamped(p, d), hint))
+                heights_.emplace(k, *h);
+        }
+    }
+}
+
+std::optional<double> StrokeGround::node_height(const Tin& tin, std::int64_t i, std::int64_t j,
+                                                LocateHint* hint) const {
+    const auto it = heights_.find(key_of(i, j));
+    if (it != heights_.end()) return it->second;
+    const Vec2 p{static_cast<double>(i) * cell_, static_cast<double>(j) * cell_};
+    return tin.height_at(clamped(p, tin.domain()), hint);
+}
+
+std::optional<double> StrokeGround::height_at(const Tin& tin, Vec2 p, LocateHint* hint) const {
+    const Vec2 q = clamped(p, tin.domain());
+    const double fx = q.x / cell_;
+    const double fy = q.y / cell_;
+    const auto i = static_cast<std::int64_t>(std::floor(fx));
+    const auto j = static_cast<std::int64_t>(std::floor(fy));
+    const double tx = fx - static_cast<double>(i);
+    const double ty = fy - static_cast<double>(j);
+    const std::optional<double> h00 = node_height(tin, i, j, hint);
+    const std::optional<double> h10 = node_height(tin, i + 1, j, hint);
+    const std::optional<double> h01 = node_height(tin, i, j + 1, hint);
+    const std::optional<double> h11 = node_height(tin, i + 1, j + 1, hint);
+    if (!h00 || !h10 || !h01 || !h11) return tin.height_at(q, hint);
+    return (1.0 - ty) * ((1.0 - tx) * *h00 + tx * *h10) + ty * ((1.0 - tx) * *h01 + tx * *h11);
+}
+
 ToolPlacement placement_for(const Tin& tin, const Tool& tool, const StrokeSample& sample,
-                            const StrokeSettings& settings, LocateHint* hint) {
+                            const StrokeSettings& settings, LocateHint* hint,
+                            const StrokeGround* ground) {
     ToolPlacement at;
     // Rounded to 0.1 nm and 1 nrad: the same path sampled at another rate gives samples that
     // differ in the last bits, and a stamp's rim draping reacts to every bit; rounded, they
     // stamp identically.
     auto round_to = [](double v, double quantum) { return std::round(v / quantum) * quantum; };
     at.centre = {round_to(sample.position.x, 1e-10), round_to(sample.position.y, 1e-10)};
-    at.angle = round_to(
-        settings.follow_path ? std::atan2(sample.direction.y, sample.direction.x) : settings.angle,
-        1e-9);
+    const std::optional<Vec2>& dir = sample.direction;
+    at.angle =
+        round_to(settings.follow_path && dir ? std::atan2(dir->y, dir->x) : settings.angle, 1e-9);
     if (settings.depth_mode == DepthMode::Absolute) {
         at.bottom = settings.depth;
-    } else {
-        const Rect d = tin.domain();
-        Vec2 front = sample.position + sample.direction * tool.radius();
-        front = {std::clamp(front.x, d.min.x, d.max.x), std::clamp(front.y, d.min.y, d.max.y)};
-        const std::optional<double> h = tin.height_at(front, hint);
-        const std::optional<double> hc =
-            tin.height_at({std::clamp(sample.position.x, d.min.x, d.max.x),
-                           std::clamp(sample.position.y, d.min.y, d.max.y)},
-                          hint);
-        at.bottom = (h ? *h : hc.value_or(0.0)) - settings.depth;
+        return at;
     }
+    const Rect d = tin.domain();
+    if (ground != nullptr) {
+        at.bottom = ground->height_at(tin, sample.position, hint).value_or(0.0) - settings.depth;
+        return at;
+    }
+    const Vec2 front = clamped(sample.position + dir.value_or(Vec2{}) * tool.radius(), d);
+    const std::optional<double> h = tin.height_at(front, hint);
+    const std::optional<double> hc = tin.height_at(clamped(sample.position, d), hint);
+    at.bottom = (h ? *h : hc.value_or(0.0)) - settings.depth;
     return at;
+}
+
+Stroke::Stroke(const Tool& tool, const StrokeSettings& settings)
+    : tool_(&tool),
+      settings_(settings),
+      sampler_(std::min(settings.spacing, tool.max_stroke_spacing())),
+      // About a thousand lattice points in the disc a stamp may change, whatever the tool.
+      ground_(
+          (tool.shape().bounding_radius + (tool.spec().extrude ? tool.extrusion_width() : 0.0)) /
+          16.0),
+      reach_(tool.shape().bounding_radius + (tool.spec().extrude ? tool.extrusion_width() : 0.0) +
+             2.0 * ground_.cell()) {}
+
+std::vector<StrokeStamp> Stroke::stamp_all(Tin& tin, const std::vector<StrokeSample>& samples,
+                                           SculptContext& context, const AfterStamp& after_stamp) {
+    std::vector<StrokeStamp> out;
+    const bool relative = settings_.depth_mode == DepthMode::Relative;
+    for (const StrokeSample& s : samples) {
+        const ToolPlacement at =
+            placement_for(tin, *tool_, s, settings_, &context.hint, relative ? &ground_ : nullptr);
+        // The ground under this stamp's reach, before it changes anything there.
+        if (relative) ground_.remember(tin, at.centre, reach_, &context.hint);
+        const StampReport r = stamp(tin, *tool_, at, context, s.direction);
+        out.push_back({s, at, r});
+        if (after_stamp) after_stamp(r);
+    }
+    return out;
+}
+
+std::vector<StrokeStamp> Stroke::add_point(Tin& tin, Vec2 p, SculptContext& context,
+                                           const AfterStamp& after_stamp) {
+    return stamp_all(tin, sampler_.add_point(p), context, after_stamp);
+}
+
+std::vector<StrokeStamp> Stroke::finish(Tin& tin, SculptContext& context,
+                                        const AfterStamp& after_stamp) {
+    return stamp_all(tin, sampler_.finish(), context, after_stamp);
 }
 
 StampReport apply_stroke(Tin& tin, const Tool& tool, std::span<const Vec2> path,
                          const StrokeSettings& settings, SculptContext& context,
-                         std::vector<StampReport>* per_stamp,
-                         const std::function<void(const StampReport&)>& after_stamp) {
+                         std::vector<StampReport>* per_stamp, const AfterStamp& after_stamp) {
     StampReport total;
-    StrokeSampler sampler(settings.spacing);
-    const bool moves = path.size() > 1;
-    auto run = [&](const std::vector<StrokeSample>& samples) {
-        for (const StrokeSample& s : samples) {
-            const ToolPlacement at = placement_for(tin, tool, s, settings, &context.hint);
-            const std::optional<Vec2> motion =
-                moves ? std::optional<Vec2>(s.direction) : std::nullopt;
-            const StampReport r = stamp(tin, tool, at, context, motion);
-            if (per_stamp != nullptr) per_stamp->push_back(r);
-            total.accumulate(r);
-            if (after_stamp) after_stamp(r);
+    Stroke stroke(tool, settings);
+    auto take = [&](const std::vector<StrokeStamp>& stamps) {
+        for (const StrokeStamp& s : stamps) {
+            if (per_stamp != nullptr) per_stamp->push_back(s.report);
+            total.accumulate(s.report);
         }
     };
     for (Vec2 p : path)
-        run(sampler.add_point(p));
-    run(sampler.finish());
+        take(stroke.add_point(tin, p, context, after_stamp));
+    take(stroke.finish(tin, context, after_stamp));
     return total;
 }
 

@@ -190,6 +190,7 @@ Tool Tool::build(const ToolSpec& spec) {
             tool.profile_ = ToolProfile::mesh_imprint(mesh, spec.scale);
             break;
     }
+    tool.max_stroke_spacing_ = 0.5 * tool.profile_.tip_length();
     if (!tool.profile_.is_flat()) {
         InteriorSamples& samples = tool.interior_samples_;
         samples.spacing = std::min(tool.rim_spacing_, tool.profile_.sample_spacing());

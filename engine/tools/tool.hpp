@@ -75,6 +75,13 @@ class Tool {
     double rim_spacing() const { return rim_spacing_; }
     double rim_tolerance() const { return rim_tolerance_; }
     double extrusion_width() const { return extrusion_width_; }
+    /// The longest spacing (m) at which a stroke of this tool leaves continuous furrows: half
+    /// its profile's shortest tip along the forward axis (ToolProfile::tip_length), so that
+    /// consecutive stamps overlap every tip by half its length and cover its flanks too, where
+    /// a round tip is shorter. The rake's tines are 18 mm long: 9 mm, where a quarter of its
+    /// radius (15 mm) left their flanks scalloped. +infinity for flat and half-sphere profiles,
+    /// whose one tip is the whole footprint. Stroke and apply_stroke keep to it.
+    double max_stroke_spacing() const { return max_stroke_spacing_; }
 
     /// One-off mappings; a loop over many points uses a ToolFrame (one sine and cosine).
     Vec2 to_world(const ToolPlacement& at, Vec2 local) const {
@@ -109,6 +116,7 @@ class Tool {
     double rim_spacing_ = 0.0;
     double rim_tolerance_ = 0.0;
     double extrusion_width_ = 0.0;
+    double max_stroke_spacing_ = 0.0;
     InteriorSamples interior_samples_;
 };
 

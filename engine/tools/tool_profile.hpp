@@ -29,7 +29,11 @@ class ToolProfile {
     static ToolProfile heightfield(const PngImage& image, const Rect& extent, double relief);
     /// The lower envelope of a triangle mesh (x, y horizontal, z up; units metres times
     /// `scale`, centred on the mesh's xy bounding box). Points the mesh does not cover are
-    /// "no contact" (+infinity). Sampled on a `resolution` x `resolution` grid.
+    /// "no contact" (+infinity), but for a skirt one grid cell's diagonal wide around its
+    /// outline, which takes the height of the mesh's nearest point: the underside has contact
+    /// everywhere on the mesh, up to its outline (the contour of a contour_from_mesh tool).
+    /// Sampled on a `resolution` x `resolution` grid; in a cell where some samples have no
+    /// contact, offset() blends those that do.
     static ToolProfile mesh_imprint(const TriangleMesh& mesh, double scale, int resolution = 256);
 
     Kind kind() const { return kind_; }
@@ -39,6 +43,15 @@ class ToolProfile {
     double offset(Vec2 q) const;
     /// A spacing (metres) fine enough to represent the profile's curvature; 0 for flat tools.
     double sample_spacing() const { return sample_spacing_; }
+    /// The length of the profile's shortest tip along the tool's forward axis (local +x), in
+    /// metres: of each tip (a connected region of samples within kTipBand of the relief above
+    /// the lowest point: a rake's tines, a sole's pads), the longest run of samples along x
+    /// (their count times the sample spacing), and the shortest of those. +infinity for flat
+    /// and half-sphere profiles, whose one tip is the whole footprint.
+    double tip_length() const;
+    /// The band above the lowest point that makes a tip, as a share of the relief (the highest
+    /// contact sample above the lowest).
+    static constexpr double kTipBand = 0.1;
 
   private:
     Kind kind_ = Kind::Flat;

@@ -483,5 +483,125 @@ TEST(Extrusion, OnACoarseElevationModelTheRidgeStaysInItsBand) {
     }
 }
 
+/// Where the surface rose along the ridge's crest: the points half the width w outside the
+/// counter-clockwise polygon `outer` (three per edge, stepped out along the edge's normal, kept
+/// only where that edge is the nearest: not in a concavity another edge is closer to).
+std::vector<double> crest_rise(const Tin& tin, std::span<const Vec2> outer, double w,
+                               double level) {
+    std::vector<double> rise;
+    LocateHint hint;
+    for (std::size_t i = 0; i < outer.size(); ++i) {
+        const Vec2 a = outer[i];
+        const Vec2 b = outer[(i + 1) % outer.size()];
+        const Vec2 e = (b - a) / length(b - a);
+        for (const double t : {0.25, 0.5, 0.75}) {
+            const Vec2 p = lerp(a, b, t) + Vec2{e.y, -e.x} * (0.5 * w);
+            if (std::abs(test::distance_to_border(p, outer) - 0.5 * w) > 1e-9 * w) continue;
+            rise.push_back(*tin.height_at(p, &hint) - level);
+        }
+    }
+    return rise;
+}
+
+/// The peak of a ridge that carries `volume` with the documented cross-section
+/// 1 - (2s/w - 1)² at every point of the band (s < w outside `outer`) and an even weight: the
+/// volume over the cross-section's integral, taken on a grid of the band's plane.
+double even_ridge_height(std::span<const Vec2> outer, double w, double volume) {
+    Rect box;
+    for (Vec2 p : outer)
+        box.expand(p);
+    const Rect band{box.min - Vec2{w, w}, box.max + Vec2{w, w}};
+    constexpr int kN = 500;
+    const double cell = (band.width() / kN) * (band.height() / kN);
+    double integral = 0.0;
+    for (int j = 0; j < kN; ++j) {
+        for (int i = 0; i < kN; ++i) {
+            const Vec2 p{band.min.x + band.width() * (i + 0.5) / kN,
+                         band.min.y + band.height() * (j + 0.5) / kN};
+            if (test::inside_polygon(p, outer)) continue;
+            const double s = test::distance_to_border(p, outer);
+            if (s >= w) continue;
+            const double t = 2.0 * s / w - 1.0;
+            integral += (1.0 - t * t) * cell;
+        }
+    }
+    return volume / integral;
+}
+
+// The foot, pressed without motion deep enough that its whole outline cuts the sand, puts the
+// sand back in a ridge that follows the sole, as the circle's does. It used to heap it in a
+// sunburst: 7-8 radial stripes the band's length (13 cm), with nothing between them (the
+// crest's lowest point at the flat level) and a peak three times the even ridge's height, since
+// the profile read "no contact" at most outline points and the ridge was weighted point by
+// point. Oracles: the flat level; the even ridge of the documented cross-section holding the
+// displaced volume (its cut varies along the sole, 4-17 mm, so the ridge may not be even: it
+// must stay within half and one and a half times the even ridge's height); the band's width
+// (beyond it nothing rises); and the volume, exactly the same before and after.
+TEST(Extrusion, TheFootsRidgeFollowsTheSole) {
+    const Tool tool = Tool::build(spec_of("foot", true));
+    const double w = tool.extrusion_width();
+    const double level = 0.1;
+    const double depth = 0.025;
+    for (const double angle : {0.0, 0.7, 2.0}) {
+        SCOPED_TRACE("angle " + std::to_string(angle));
+        Tin tin = Tin::random_points(test::kUnitSquare, 40000, 31, [=](Vec2) { return level; });
+        SculptContext context(tin.domain());
+        const ToolPlacement at{{0.5, 0.5}, angle, level - depth};
+        const double v0 = tin.volume();
+        const StampReport r = stamp(tin, tool, at, context);
+        ASSERT_TRUE(r.applied);
+        EXPECT_TRUE(mesh_is_sound(tin));
+        ASSERT_GT(r.displaced_volume, 1e-5);
+        EXPECT_NEAR(tin.volume(), v0, 1e-12 * v0);
+        EXPECT_NEAR(r.deposited_volume, r.displaced_volume, 1e-9 * r.displaced_volume);
+        const std::vector<Vec2> outer = test::rotate_all(tool.shape().outer, at.centre, angle);
+        const double even = even_ridge_height(outer, w, r.displaced_volume);
+        const std::vector<double> crest = crest_rise(tin, outer, w, level);
+        ASSERT_GT(crest.size(), 100u);
+        const double lowest = *std::min_element(crest.begin(), crest.end());
+        EXPECT_GE(lowest, 0.5 * even) << "a gap in the ridge; the even ridge is " << even << " m";
+        double highest = 0.0;
+        std::size_t beyond = 0;
+        for (VertexId v : live_ids(tin)) {
+            const Vec2 p = tin.position(v);
+            if (inside_polygon(p, outer)) continue;
+            highest = std::max(highest, tin.height(v) - level);
+            if (test::distance_to_border(p, outer) > w + 1e-9 && tin.height(v) != level) ++beyond;
+        }
+        EXPECT_LE(highest, 1.5 * even) << "a spike; the even ridge is " << even << " m";
+        EXPECT_EQ(beyond, 0u) << "vertices moved beyond the band";
+    }
+}
+
+// deposit_ridge weights the ridge by the cut at each contour point. A ridge as wide as the band
+// cannot follow a cut that changes from one point to the next: given a cut of 0 and 1 cm at
+// alternate points of a circle, it raised radial stripes (the crest at the flat level between
+// them). The cut is now averaged along the contour, so the ridge is the even ring. Oracle: the
+// analytic ring of the documented cross-section, V = H 2 pi (2 w R / 3 + w² / 3), on flat sand.
+TEST(Extrusion, ACutThatAlternatesAlongTheContourGivesAnEvenRidge) {
+    const double level = 0.1;
+    Tin tin = Tin::random_points(test::kUnitSquare, 40000, 37, [=](Vec2) { return level; });
+    const double radius = 0.05;
+    std::vector<Vec2> outer;
+    for (Vec2 p : circle_contour(radius, 48))
+        outer.push_back(p + Vec2{0.5, 0.5});
+    std::vector<double> cut(outer.size());
+    for (std::size_t i = 0; i < cut.size(); ++i)
+        cut[i] = i % 2 == 0 ? 0.01 : 0.0;
+    const double w = 0.04;
+    const double volume = 2e-5;
+    const double v0 = tin.volume();
+    const RidgeReport r = deposit_ridge(tin, outer, cut, std::nullopt, w, volume);
+    EXPECT_NEAR(r.deposited, volume, 1e-15);
+    EXPECT_NEAR(tin.volume() - v0, volume, 1e-12 * v0);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    const double ring = volume / (2.0 * std::numbers::pi * (2.0 * w * radius / 3.0 + w * w / 3.0));
+    const std::vector<double> crest = crest_rise(tin, outer, w, level);
+    ASSERT_EQ(crest.size(), 3 * outer.size());
+    const auto [lowest, highest] = std::minmax_element(crest.begin(), crest.end());
+    EXPECT_GE(*lowest, 0.8 * ring) << "the even ring is " << ring << " m high";
+    EXPECT_LE(*highest, 1.2 * ring) << "the even ring is " << ring << " m high";
+}
+
 }  // namespace
 }  // namespace sandtin

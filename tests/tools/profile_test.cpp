@@ -189,6 +189,64 @@ TEST(ToolProfile, MeshImprintIsTheLowerEnvelopeWithinGridResolution) {
         EXPECT_EQ(p.offset(q), std::numeric_limits<double>::infinity());
 }
 
+// A tool whose contour is its mesh's outline (the shipped foot) stamps its inner contour on
+// that outline, so the underside must have contact there, and everywhere along it. The grid
+// samples the mesh at its nodes, and a point on the outline often lies in a cell whose nodes
+// are all, or nearest, outside the sole: the foot read "no contact" at 39 of its 72 outline
+// points, and extrusion, weighting the ridge by the cut at each of them, heaped the sand in
+// radial stripes. Oracle: the mesh's lower envelope by brute force over its triangles, with
+// the bound of bilinear interpolation (every sample that enters lies within a cell diagonal of
+// the point, on the mesh or within that diagonal of it, so the error is at most the mesh's
+// steepest slope times two diagonals).
+TEST(ToolProfile, MeshImprintHasContactAlongTheWholeOutline) {
+    const ToolSpec spec = load_tool_asset("foot");
+    ASSERT_TRUE(spec.contour_from_mesh);
+    const Tool tool = Tool::build(spec);
+    const TriangleMesh mesh = read_obj(spec.profile_file);
+    Rect box;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& v : mesh.vertices) {
+        box.expand(Vec2{v[0], v[1]});
+        lowest = std::min(lowest, v[2]);
+    }
+    const Vec2 centre = box.centre();
+    double steepest = 0.0;
+    for (const auto& t : mesh.triangles) {
+        const auto& a = mesh.vertices[t[0]];
+        const auto& b = mesh.vertices[t[1]];
+        const auto& c = mesh.vertices[t[2]];
+        const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+        const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+        const double nz = ux * vy - uy * vx;
+        if (std::abs(nz) < 1e-300) continue;
+        const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz;
+        steepest = std::max(steepest, std::hypot(nx, ny) / std::abs(nz));
+    }
+    const double diag = std::hypot(box.width(), box.height()) / (256 - 1);
+    const std::vector<Vec2>& outline = tool.shape().inner;
+    std::size_t without_contact = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < outline.size(); ++i) {
+        const Vec2 a = outline[i];
+        const Vec2 b = outline[(i + 1) % outline.size()];
+        for (int k = 0; k < 8; ++k) {
+            const Vec2 q = lerp(a, b, k / 8.0);
+            const double offset = tool.profile().offset(q);
+            if (!std::isfinite(offset)) {
+                ++without_contact;
+                continue;
+            }
+            // The envelope just inside the outline (on it, rounding may miss every triangle).
+            const Vec2 inward = q + (Vec2{} - q) * 1e-9;
+            const double envelope = lower_envelope(mesh, inward + centre) - lowest;
+            ASSERT_TRUE(std::isfinite(envelope)) << q.x << ", " << q.y;
+            worst = std::max(worst, std::abs(offset - envelope));
+        }
+    }
+    EXPECT_EQ(without_contact, 0u) << "of " << 8 * outline.size() << " points on the outline";
+    EXPECT_LE(worst, 2.0 * steepest * diag) << "steepest slope " << steepest;
+}
+
 TEST(ToolProfile, MeshOutlineIsTheBorderRingCentredAndScaled) {
     const Dome dome;
     const TriangleMesh mesh = dome.mesh(/*with_lid=*/false);
@@ -253,6 +311,44 @@ TEST(ToolProfile, HeightfieldOfARampIsLinear) {
     EXPECT_THROW(ToolProfile::heightfield(tiny, extent, relief), std::invalid_argument);
     EXPECT_THROW(ToolProfile::heightfield(ramp_image(1, 8), Rect{}, relief), std::invalid_argument);
     EXPECT_THROW(ToolProfile::heightfield(ramp_image(1, 8), extent, -1.0), std::invalid_argument);
+}
+
+// A stroke keeps its spacing under half the length of the tool's shortest tip along the motion
+// (Tool::max_stroke_spacing), so a rake's tines leave furrows, not studs. Oracles: a bitmap
+// with two tips of known lengths (runs of black pixels along x); the rake's generator (its
+// tines' black core is 14 pixels along a tine's middle row: peg < 0.35 at d = 0.026, so
+// |2x - 23| < 13.2); and no limit for flat and round tools, whose one tip is the whole tool.
+TEST(ToolProfile, TipLengthIsTheShortestTipAlongTheForwardAxis) {
+    PngImage img;
+    img.width = 20;
+    img.height = 6;
+    img.channels = 1;
+    img.bit_depth = 8;
+    img.samples.assign(120, 255);
+    auto black = [&](std::uint32_t x, std::uint32_t row) { img.samples[row * 20 + x] = 0; };
+    for (std::uint32_t x = 2; x <= 4; ++x)  // a tip 3 pixels long
+        black(x, 1);
+    for (std::uint32_t x = 8; x <= 14; ++x)  // a tip 7 pixels long, with a shorter row on it
+        black(x, 4);
+    black(9, 3);
+    black(10, 3);
+    img.samples[2 * 20 + 17] = 20;  // within a tenth of the relief: a tip 1 pixel long...
+    img.samples[2 * 20 + 18] = 40;  // ...whose neighbour is not
+    const Rect extent{{0.0, 0.0}, {0.019, 0.005}};  // 1 mm between samples along x
+    ToolProfile p = ToolProfile::heightfield(img, extent, 0.01);
+    EXPECT_NEAR(p.tip_length(), 0.001, 1e-15);
+    img.samples[2 * 20 + 17] = 255;
+    p = ToolProfile::heightfield(img, extent, 0.01);
+    EXPECT_NEAR(p.tip_length(), 0.003, 1e-15);
+
+    const Tool rake = Tool::build(load_tool_asset("rake"));
+    EXPECT_NEAR(rake.max_stroke_spacing(), 0.5 * 14.0 * 0.03 / 23.0, 1e-12);
+    EXPECT_LT(rake.max_stroke_spacing(), 0.25 * rake.radius());  // the editor's spacing
+    for (const char* name : {"circle", "ball", "box", "lambda"}) {
+        EXPECT_EQ(Tool::build(load_tool_asset(name)).max_stroke_spacing(),
+                  std::numeric_limits<double>::infinity())
+            << name;
+    }
 }
 
 /// Stamps an asset tool on rolling sand and checks the imprint against the tool's own

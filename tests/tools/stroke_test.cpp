@@ -6,13 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "support/slivers.hpp"
@@ -99,7 +103,8 @@ TEST(Stroke, SamplerSpacesSamplesByArcLength) {
     for (std::size_t k = 0; k < p.size(); ++k) {
         EXPECT_NEAR(p[k].arc_length, k * spacing, 1e-12);
         EXPECT_NEAR(arc_length_of(kPolyline, p[k].position), k * spacing, 1e-12);
-        EXPECT_NEAR(length(p[k].direction), 1.0, 1e-15);
+        ASSERT_TRUE(p[k].direction.has_value());
+        EXPECT_NEAR(length(*p[k].direction), 1.0, 1e-15);
     }
 }
 
@@ -114,8 +119,9 @@ TEST(Stroke, SamplerIsIndependentOfHowThePathArrived) {
         for (std::size_t k = 0; k < s.size(); ++k) {
             EXPECT_NEAR(s[k].position.x, coarse[k].position.x, 1e-12);
             EXPECT_NEAR(s[k].position.y, coarse[k].position.y, 1e-12);
-            EXPECT_NEAR(s[k].direction.x, coarse[k].direction.x, 1e-12);
-            EXPECT_NEAR(s[k].direction.y, coarse[k].direction.y, 1e-12);
+            ASSERT_TRUE(s[k].direction && coarse[k].direction);
+            EXPECT_NEAR(s[k].direction->x, coarse[k].direction->x, 1e-12);
+            EXPECT_NEAR(s[k].direction->y, coarse[k].direction->y, 1e-12);
             EXPECT_NEAR(s[k].arc_length, coarse[k].arc_length, 1e-12);
         }
     }
@@ -524,6 +530,238 @@ TEST(Stroke, ToolsStrokedAlongAStraightSideLeaveNoVerticalSlivers) {
         EXPECT_TRUE(tin.check_valid().ok());
         RecordProperty(std::string(asset) + "_constraints",
                        static_cast<int>(tin.constraint_count()));
+    }
+}
+
+/// The highest and lowest surface along the line through `from` in direction `d` (unit), at
+/// arc lengths [a, b] every 0.2 mm.
+std::pair<double, double> height_range_along(const Tin& tin, Vec2 from, Vec2 d, double a,
+                                             double b) {
+    LocateHint hint;
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (double s = a; s <= b; s += 2e-4) {
+        const double h = *tin.height_at(from + d * s, &hint);
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+    }
+    return {lo, hi};
+}
+
+// ---- Clicks and depth ------------------------------------------------------------------------
+
+/// The rise of the surface over `before` in four quarters around `centre` (+x, +y, -x, -y),
+/// integrated on a grid of the square `half` metres around it.
+std::array<double, 4> rise_by_quarter(const Tin& tin, const Tin& before, Vec2 centre, double half) {
+    std::array<double, 4> q{};
+    constexpr int kN = 240;
+    const double cell = (2.0 * half / kN) * (2.0 * half / kN);
+    LocateHint h0, h1;
+    for (int j = 0; j < kN; ++j) {
+        for (int i = 0; i < kN; ++i) {
+            const Vec2 r{-half + 2.0 * half * (i + 0.5) / kN, -half + 2.0 * half * (j + 0.5) / kN};
+            const double rise =
+                *tin.height_at(centre + r, &h1) - *before.height_at(centre + r, &h0);
+            if (!(rise > 0.0)) continue;
+            const std::size_t k =
+                std::abs(r.x) >= std::abs(r.y) ? (r.x > 0.0 ? 0 : 2) : (r.y > 0.0 ? 1 : 3);
+            q[k] += rise * cell;
+        }
+    }
+    return q;
+}
+
+// A click (a press without moving) stamps once with no motion, and stamp() then puts the ridge
+// all around the tool. The sampler used to report the direction (1, 0) for a path that never
+// moved, and the editor passed it on as the motion: a click of the circle or the ball put all
+// of its ridge on the +x side. The same through apply_stroke with a path that never parts.
+// Oracle: on flat sand the four quarters around the tool get the same sand, to discretisation,
+// and the terrain keeps its volume.
+TEST(Stroke, AClickPutsItsRidgeAllAround) {
+    const Vec2 c{0.5, 0.5};
+    const double level = 0.1;
+    for (const char* asset : {"circle", "ball"}) {
+        ToolSpec spec = load_tool_asset(asset);
+        spec.extrude = true;
+        const Tool tool = Tool::build(spec);
+        StrokeSettings settings;
+        settings.spacing = 0.25 * tool.radius();
+        settings.depth = 0.015;
+        for (const int how : {0, 1, 2}) {
+            SCOPED_TRACE(std::string(asset) + (how == 0   ? ": sampler, placement_for, stamp"
+                                               : how == 1 ? ": apply_stroke, one point"
+                                                          : ": apply_stroke, a point twice"));
+            Tin tin = Tin::random_points(test::kUnitSquare, 40000, 47, [=](Vec2) { return level; });
+            const Tin before = Tin::from_snapshot(tin.snapshot());
+            SculptContext context(tin.domain());
+            const double v0 = tin.volume();
+            if (how == 0) {  // as the editor stamps a click
+                StrokeSampler sampler(settings.spacing);
+                EXPECT_TRUE(sampler.add_point(c).empty());
+                EXPECT_TRUE(sampler.add_point(c).empty());
+                const std::vector<StrokeSample> samples = sampler.finish();
+                ASSERT_EQ(samples.size(), 1u);
+                EXPECT_FALSE(samples[0].direction.has_value());
+                const ToolPlacement at =
+                    placement_for(tin, tool, samples[0], settings, &context.hint);
+                EXPECT_NEAR(at.bottom, level - settings.depth, 1e-15);
+                ASSERT_TRUE(stamp(tin, tool, at, context, samples[0].direction).applied);
+            } else {
+                const std::vector<Vec2> path(static_cast<std::size_t>(how), c);
+                std::vector<StampReport> per;
+                apply_stroke(tin, tool, path, settings, context, &per);
+                ASSERT_EQ(per.size(), 1u);
+            }
+            EXPECT_TRUE(mesh_is_sound(tin));
+            EXPECT_NEAR(tin.volume(), v0, 1e-12);
+            const std::array<double, 4> q =
+                rise_by_quarter(tin, before, c, tool.radius() + 2.0 * tool.extrusion_width());
+            const double mean = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+            ASSERT_GT(mean, 0.0);
+            for (std::size_t k = 0; k < 4; ++k)
+                EXPECT_NEAR(q[k], mean, 0.1 * mean) << "quarter " << k << " (+x, +y, -x, -y)";
+        }
+    }
+}
+
+/// The surface along the segment from a to b, every 0.5 mm: its lowest and highest points.
+std::pair<double, double> range_between(const Tin& tin, Vec2 a, Vec2 b) {
+    const Vec2 d = (b - a) / distance(a, b);
+    return height_range_along(tin, a, d, 0.0, distance(a, b));
+}
+
+// A stroke cuts the depth it was asked for below the sand it started from, all along, its start
+// included. In relative mode the depth was taken below the terrain as it was at each stamp's
+// leading edge, where the previous stamp's ridge stood: the ball stroke of the editor (radius
+// 5 cm, 15 mm deep, a quarter of the radius apart) dug 15 mm at its first stamp, 10 mm two
+// stamps on and 11 mm through its middle (3 mm with the editor's erosion between frames). It is
+// now taken below the terrain as the stroke found it (StrokeGround). Oracle: the flat level
+// minus the depth along the path's centre line, where the ball's lowest point passes (between
+// two stamps 12.5 mm apart its underside stands 0.4 mm higher), with extrusion on and off,
+// through apply_stroke and through a Stroke fed point by point as the editor's mouse does.
+TEST(Stroke, CutsTheRequestedDepthAlongItsWholeLength) {
+    const double level = 0.1;
+    const double depth = 0.015;
+    const Vec2 from{0.25, 0.4};
+    const Vec2 to{0.75, 0.6};
+    for (const bool extrude : {false, true}) {
+        ToolSpec spec = load_tool_asset("ball");
+        spec.radius = 0.05;
+        spec.extrude = extrude;
+        const Tool tool = Tool::build(spec);
+        StrokeSettings settings;
+        settings.spacing = 0.25 * tool.radius();
+        settings.depth = depth;
+        settings.depth_mode = DepthMode::Relative;
+        for (const bool by_mouse : {false, true}) {
+            SCOPED_TRACE(std::string(extrude ? "extrusion on, " : "extrusion off, ") +
+                         (by_mouse ? "point by point" : "apply_stroke"));
+            Tin tin = Tin::random_points(test::kUnitSquare, 40000, 53, [=](Vec2) { return level; });
+            SculptContext context(tin.domain());
+            const double v0 = tin.volume();
+            std::vector<Vec2> stamped;
+            if (by_mouse) {
+                Stroke stroke(tool, settings);
+                for (int k = 0; k <= 100; ++k) {
+                    for (const StrokeStamp& s :
+                         stroke.add_point(tin, lerp(from, to, k / 100.0), context))
+                        stamped.push_back(s.placement.centre);
+                }
+                for (const StrokeStamp& s : stroke.finish(tin, context))
+                    stamped.push_back(s.placement.centre);
+            } else {
+                std::vector<StampReport> per;
+                apply_stroke(tin, tool, std::vector<Vec2>{from, to}, settings, context, &per);
+                const std::vector<StrokeSample> samples =
+                    sample_path(std::vector<Vec2>{from, to}, settings.spacing);
+                ASSERT_EQ(per.size(), samples.size());
+                for (const StrokeSample& s : samples)
+                    stamped.push_back(s.position);
+            }
+            ASSERT_GT(stamped.size(), 40u);
+            EXPECT_TRUE(mesh_is_sound(tin));
+            if (extrude) {
+                EXPECT_NEAR(tin.volume(), v0, 1e-12);
+            }
+            const auto [lo, hi] = range_between(tin, stamped.front(), stamped.back());
+            EXPECT_GE(lo, level - depth - 0.5e-3) << "deeper than asked by " << level - depth - lo;
+            EXPECT_LE(hi, level - depth + 1e-3)
+                << "shallower than asked by " << hi - (level - depth);
+        }
+    }
+}
+
+// ---- Rake furrows -----------------------------------------------------------------------------
+
+// The rake (five round tines across a 12 cm head, 3 cm long) dragged straight at a constant
+// floor, at the editor's spacing (a quarter of its radius), leaves five continuous furrows:
+// along the middle of each tine's path the sand stands at the floor, the tine tips' (black,
+// the profile's lowest) height, within a twentieth of the depth, and 2 mm to either side within
+// a fifth. Its strokes left rows of studs:
+// - the inner contour I, enforced whole at the sand's height because the rake's edges stand
+//   above the sand, had points only every 25 mm (about the tine pitch), and its back edge's
+//   straight chords crossed the previous stamp's furrows at the height of the sand between
+//   them, walling each furrow off at every stamp (the sand at the surface there: a variation
+//   of the whole depth);
+// - 15 mm apart, the stamps left the tines' flanks (shorter than their 18 mm middle)
+//   scalloped: 2 mm beside the middle line the sand rose up to 6.6 mm between stamps, and the
+//   middle line itself up to 0.9 mm; a stroke now keeps to the tool's max_stroke_spacing(),
+//   half its shortest tip (9 mm): 1.6 mm and 0.3 mm.
+// Oracles: the flat level, the floor, and the volume (with extrusion exactly kept; without,
+// what the reports say). Through apply_stroke, and a Stroke fed point by point (the editor).
+TEST(Stroke, ARakeStrokeLeavesContinuousFurrows) {
+    const double level = 0.1;
+    const double depth = 0.01;
+    const Vec2 from{0.2, 0.45};
+    const Vec2 to{0.8, 0.55};
+    const Vec2 d = (to - from) / distance(from, to);
+    const Vec2 across{-d.y, d.x};
+    for (const bool extrude : {false, true}) {
+        SCOPED_TRACE(extrude ? "extrusion on" : "extrusion off");
+        ToolSpec spec = load_tool_asset("rake");
+        spec.extrude = extrude;
+        const Tool tool = Tool::build(spec);
+        Tin tin = Tin::random_points(test::kUnitSquare, 40000, 43, [=](Vec2) { return level; });
+        SculptContext context(tin.domain());
+        StrokeSettings settings;
+        settings.spacing = 0.25 * tool.radius();
+        settings.depth_mode = DepthMode::Absolute;
+        settings.depth = level - depth;
+        EXPECT_EQ(Stroke(tool, settings).spacing(), tool.max_stroke_spacing());
+        const double v0 = tin.volume();
+        StampReport r;
+        if (extrude) {
+            const std::vector<Vec2> path = {from, to};
+            r = apply_stroke(tin, tool, path, settings, context);
+        } else {
+            Stroke stroke(tool, settings);
+            for (int k = 0; k <= 60; ++k) {
+                for (const StrokeStamp& s :
+                     stroke.add_point(tin, lerp(from, to, k / 60.0), context))
+                    r.accumulate(s.report);
+            }
+            for (const StrokeStamp& s : stroke.finish(tin, context))
+                r.accumulate(s.report);
+        }
+        EXPECT_TRUE(mesh_is_sound(tin));
+        EXPECT_NEAR(tin.volume() - v0, r.volume_change, 1e-12);
+        if (extrude) {
+            EXPECT_NEAR(tin.volume(), v0, 1e-12);
+        }
+        // The tines' middles, 0, +-24 and +-48 mm across the head (the image's five pegs), and
+        // 2 mm to either side, across the middle half of their tips' 8 mm width, whose steep
+        // sides the terrain's triangles approximate less closely.
+        const double length = distance(from, to);
+        for (const double tine : {-0.048, -0.024, 0.0, 0.024, 0.048}) {
+            for (const double beside : {-0.002, 0.0, 0.002}) {
+                SCOPED_TRACE("tine at " + std::to_string(tine) + ", " + std::to_string(beside));
+                const auto [lo, hi] = height_range_along(tin, from + across * (tine + beside), d,
+                                                         0.03, length - 0.03);
+                EXPECT_GE(lo, level - depth - 1e-4);
+                EXPECT_LE(hi, level - depth + (beside == 0.0 ? 0.05 : 0.2) * depth)
+                    << "the furrow rises " << hi - (level - depth) << " m above its floor";
+            }
+        }
     }
 }
 
