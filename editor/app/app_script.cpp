@@ -3,6 +3,13 @@
 
 #include "app.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "tool_palette.hpp"
+#include "tools/falloff.hpp"
+
 namespace sandtin::editor {
 
 // ---- Script ---------------------------------------------------------------------------------
@@ -82,9 +89,9 @@ void App::set_physics(const std::string& name) {
     if (name != "auto" && name != "cpu" && name != "gpu")
         throw std::runtime_error("script: physics must be auto, cpu or gpu, not '" + name + "'");
     if (name == settings_.physics) return;
-    end_action();
+    sculpting_.close_level(doc_);
     settings_.physics = name;
-    attach_physics(true);
+    attach_solver(true);
 }
 
 void App::set_falloff(const std::string& name) {
@@ -93,18 +100,6 @@ void App::set_falloff(const std::string& name) {
             "script: falloff must be constant, linear, smooth or gaussian, not '" + name + "'");
     }
     settings_.brush_falloff = name;
-}
-
-void App::set_scene_field(const std::string& path) {
-    if (path.size() >= sizeof(path_buf_))
-        throw std::runtime_error("the path is longer than the Scene field holds");
-    std::snprintf(path_buf_, sizeof(path_buf_), "%s", path.c_str());
-}
-
-void App::set_import_field(const std::string& path) {
-    if (path.size() >= sizeof(import_buf_))
-        throw std::runtime_error("the path is longer than the Heightmap field holds");
-    std::snprintf(import_buf_, sizeof(import_buf_), "%s", path.c_str());
 }
 
 std::optional<std::pair<double, double>> App::widget_centre(const std::string& name) const {
@@ -156,35 +151,98 @@ void App::queue_key(int glfw_key, bool ctrl) {
     });
 }
 
+void App::queue_widget_click(const std::string& name, bool ctrl, const std::string& why_missing) {
+    // Waits, frame after frame, for the control to be on screen and to stop moving.
+    auto waited = std::make_shared<int>(0);
+    auto at = std::make_shared<std::pair<double, double>>(-1.0, -1.0);
+    input_steps_.push_back([this, name, why_missing, waited, at] {
+        if (const auto c = widget_centre(name)) {
+            *at = *c;
+            return true;
+        }
+        if (++*waited > kWidgetWaitFrames)
+            throw std::runtime_error("script: no control '" + name + "' on screen after " +
+                                     std::to_string(kWidgetWaitFrames) + " frames" +
+                                     (why_missing.empty() ? "" : ": " + why_missing));
+        return false;
+    });
+    queue_click([at] { return *at; }, GLFW_MOUSE_BUTTON_LEFT, ctrl);
+}
+
 void App::run_script_op(const nlohmann::json& op) {
-    int w = 0, h = 0;
-    glfwGetWindowSize(window_, &w, &h);
     const std::string kind = op.at("op").get<std::string>();
+    if (kind == "set")
+        run_setting_op(op);
+    else if (kind == "tool" || kind == "click" || kind == "drag" || kind == "press" ||
+             kind == "move" || kind == "hover" || kind == "release" || kind == "key" ||
+             kind == "type" || kind == "scroll" || kind == "close")
+        queue_pointer_op(kind, op);
+    else if (kind == "recovery" || kind == "discard" || kind == "overwrite")
+        queue_prompt_op(kind, op);
+    else
+        run_document_op(kind, op);
+}
+
+void App::run_setting_op(const nlohmann::json& op) {
+    const double size = settings_.scene_size;
+    for (const auto& [k2, v] : op.items()) {
+        if (k2 == "op")
+            continue;
+        else if (k2 == "radius")
+            settings_.tool_radius = kToolRadiusRange.clamp(v.get<double>(), size);
+        else if (k2 == "depth")
+            settings_.tool_depth = kToolDepthRange.clamp(v.get<double>(), size);
+        else if (k2 == "material")
+            settings_.material =
+                std::clamp(v.get<int>(), 0, static_cast<int>(doc_.materials().size()) - 1);
+        else if (k2 == "erosion")
+            settings_.erosion_running = v.get<bool>();
+        else if (k2 == "wireframe")
+            settings_.overlay_wireframe = v.get<bool>();
+        else if (k2 == "slope")
+            settings_.overlay_slope = v.get<bool>();
+        else if (k2 == "pour_volume")
+            settings_.pour_volume = kPourVolumeRange.clamp(v.get<double>(), size);
+        else if (k2 == "brush_strength")
+            settings_.brush_strength = kBrushStrengthRange.clamp(v.get<double>(), size);
+        else if (k2 == "brush_blend")
+            settings_.brush_blend = kBrushBlendRange.clamp(v.get<double>(), size);
+        else if (k2 == "falloff")
+            set_falloff(v.get<std::string>());
+        else if (k2 == "simplify_tolerance")
+            doc_.context().settings.simplify.tolerance = settings_.simplify_tolerance =
+                kSimplifyToleranceRange.clamp(v.get<double>(), size);
+        else if (k2 == "steps")
+            settings_.erosion_steps =
+                static_cast<int>(kErosionStepsRange.clamp(v.get<int>(), size));
+        else if (k2 == "relocation_radius")
+            settings_.relocation_radius = kRelocationRadiusRange.clamp(v.get<double>(), size);
+        else if (k2 == "physics")
+            set_physics(v.get<std::string>());
+        else if (k2 == "scene_path")
+            set_scene_field(v.get<std::string>());
+        else if (k2 == "import_path")
+            set_import_field(v.get<std::string>());
+        else
+            throw std::runtime_error("script: unknown setting '" + k2 + "'");
+    }
+}
+
+void App::queue_pointer_op(const std::string& kind, const nlohmann::json& op) {
+    int w = 0, h = 0;
+    window_->window_size(w, h);
     auto px = [&](const nlohmann::json& p) {
         return std::pair<double, double>{p.at(0).get<double>() * w, p.at(1).get<double>() * h};
     };
-    // A widget's centre, found when the step runs: it waits for the control to be on screen.
-    auto widget = [this](const std::string& name, const std::string& why_missing = {}) {
-        auto waited = std::make_shared<int>(0);
-        return [this, name, why_missing, waited]() -> std::pair<double, double> {
-            if (const auto c = widget_centre(name)) return *c;
-            if (++*waited > kWidgetWaitFrames)
-                throw std::runtime_error("script: no control '" + name + "' on screen after " +
-                                         std::to_string(kWidgetWaitFrames) + " frames" +
-                                         (why_missing.empty() ? "" : ": " + why_missing));
-            return {-1.0, -1.0};
-        };
-    };
-    // A click at a control waits, frame after frame, for the control to appear.
-    auto click_widget = [&](const std::string& name, bool ctrl,
-                            const std::string& why_missing = {}) {
-        auto find = widget(name, why_missing);
-        auto at = std::make_shared<std::pair<double, double>>(-1.0, -1.0);
-        input_steps_.push_back([this, find, at] {
-            *at = find();
-            return at->first >= 0.0;
+    const std::string b = op.value("button", "left");
+    const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
+                       : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
+                                       : GLFW_MOUSE_BUTTON_LEFT;
+    auto step = [this](std::function<void()> send) {
+        input_steps_.push_back([send = std::move(send)] {
+            send();
+            return true;
         });
-        queue_click([at] { return *at; }, GLFW_MOUSE_BUTTON_LEFT, ctrl);
     };
     if (kind == "tool") {
         // Through the tool's key, as an artist picks it.
@@ -192,67 +250,12 @@ void App::run_script_op(const nlohmann::json& op) {
         const std::optional<int> tool = tool_named(name);
         if (!tool) throw std::runtime_error("script: unknown tool '" + name + "'");
         queue_key(kTools[*tool].key, false);
-    } else if (kind == "panels") {
-        open_panels_ = op.at("open").get<bool>();
-    } else if (kind == "set") {
-        nlohmann::json j = op;
-        j.erase("op");
-        const double size = settings_.scene_size;
-        for (auto& [k2, v] : j.items()) {
-            if (k2 == "radius")
-                settings_.tool_radius = kToolRadiusRange.clamp(v.get<double>(), size);
-            else if (k2 == "depth")
-                settings_.tool_depth = kToolDepthRange.clamp(v.get<double>(), size);
-            else if (k2 == "material")
-                settings_.material =
-                    std::clamp(v.get<int>(), 0, static_cast<int>(doc_.materials.size()) - 1);
-            else if (k2 == "erosion")
-                settings_.erosion_running = v.get<bool>();
-            else if (k2 == "wireframe")
-                settings_.overlay_wireframe = v.get<bool>();
-            else if (k2 == "slope")
-                settings_.overlay_slope = v.get<bool>();
-            else if (k2 == "pour_volume")
-                settings_.pour_volume = kPourVolumeRange.clamp(v.get<double>(), size);
-            else if (k2 == "brush_strength")
-                settings_.brush_strength = kBrushStrengthRange.clamp(v.get<double>(), size);
-            else if (k2 == "brush_blend")
-                settings_.brush_blend = kBrushBlendRange.clamp(v.get<double>(), size);
-            else if (k2 == "falloff")
-                set_falloff(v.get<std::string>());
-            else if (k2 == "simplify_tolerance")
-                doc_.context->settings.simplify.tolerance = settings_.simplify_tolerance =
-                    kSimplifyToleranceRange.clamp(v.get<double>(), size);
-            else if (k2 == "steps")
-                settings_.erosion_steps =
-                    static_cast<int>(kErosionStepsRange.clamp(v.get<int>(), size));
-            else if (k2 == "relocation_radius")
-                settings_.relocation_radius = kRelocationRadiusRange.clamp(v.get<double>(), size);
-            else if (k2 == "physics")
-                set_physics(v.get<std::string>());
-            else if (k2 == "scene_path")
-                set_scene_field(v.get<std::string>());
-            else if (k2 == "import_path")
-                set_import_field(v.get<std::string>());
-            else
-                throw std::runtime_error("script: unknown setting '" + k2 + "'");
-        }
+    } else if (kind == "click" && op.contains("widget")) {
+        queue_widget_click(op.at("widget").get<std::string>(), op.value("ctrl", false), {});
     } else if (kind == "click") {
-        const std::string b = op.value("button", "left");
-        const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
-                           : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
-                                           : GLFW_MOUSE_BUTTON_LEFT;
-        if (op.contains("widget")) {
-            click_widget(op.at("widget").get<std::string>(), op.value("ctrl", false));
-        } else {
-            const auto p = px(op.at("at"));
-            queue_click([p] { return p; }, button, op.value("ctrl", false));
-        }
+        const auto p = px(op.at("at"));
+        queue_click([p] { return p; }, button, op.value("ctrl", false));
     } else if (kind == "drag") {
-        const std::string b = op.value("button", "left");
-        const int button = b == "right"    ? GLFW_MOUSE_BUTTON_RIGHT
-                           : b == "middle" ? GLFW_MOUSE_BUTTON_MIDDLE
-                                           : GLFW_MOUSE_BUTTON_LEFT;
         const auto& path = op.at("path");
         if (path.size() < 2) throw std::runtime_error("script: a drag needs two points");
         const int steps = std::max(1, op.value("steps", 20));
@@ -268,90 +271,75 @@ void App::run_script_op(const nlohmann::json& op) {
         pts.push_back(px(path.back()));
         // Pointer to the start, button down, the motion (every event delivered before the
         // next frame, as a quick hand's), button up.
-        input_steps_.push_back([this, p = pts[0]] {
-            x_input_->move_to(p.first, p.second);
-            return true;
-        });
-        input_steps_.push_back([this, button] {
-            x_input_->button(button, true);
-            return true;
-        });
-        input_steps_.push_back([this, pts] {
+        step([this, p = pts[0]] { x_input_->move_to(p.first, p.second); });
+        step([this, button] { x_input_->button(button, true); });
+        step([this, pts] {
             for (std::size_t i = 1; i < pts.size(); ++i)
                 x_input_->move_to(pts[i].first, pts[i].second);
-            return true;
         });
-        input_steps_.push_back([this, button] {
-            x_input_->button(button, false);
-            return true;
-        });
+        step([this, button] { x_input_->button(button, false); });
     } else if (kind == "press" || kind == "move" || kind == "hover") {
-        std::function<std::pair<double, double>()> where;
         if (op.contains("widget")) {
-            where = widget(op.at("widget").get<std::string>());
+            const std::string name = op.at("widget").get<std::string>();
+            auto waited = std::make_shared<int>(0);
+            input_steps_.push_back([this, name, waited] {
+                const auto c = widget_centre(name);
+                if (!c && ++*waited > kWidgetWaitFrames)
+                    throw std::runtime_error("script: no control '" + name + "' on screen");
+                if (c) x_input_->move_to(c->first, c->second);
+                return c.has_value();
+            });
         } else {
             const auto p = px(op.at("at"));
-            where = [p] { return p; };
+            step([this, p] { x_input_->move_to(p.first, p.second); });
         }
-        const bool press = kind == "press";
-        input_steps_.push_back([this, where] {
-            const auto p = where();
-            if (p.first < 0.0) return false;
-            x_input_->move_to(p.first, p.second);
-            return true;
-        });
-        if (press) {
-            input_steps_.push_back([this] {
-                x_input_->button(GLFW_MOUSE_BUTTON_LEFT, true);
-                return true;
-            });
-        }
+        if (kind == "press") step([this] { x_input_->button(GLFW_MOUSE_BUTTON_LEFT, true); });
     } else if (kind == "release") {
-        input_steps_.push_back([this] {
-            x_input_->button(GLFW_MOUSE_BUTTON_LEFT, false);
-            return true;
-        });
+        step([this] { x_input_->button(GLFW_MOUSE_BUTTON_LEFT, false); });
     } else if (kind == "key") {
         queue_key(glfw_key_named(op.at("key").get<std::string>()), op.value("ctrl", false));
     } else if (kind == "type") {
         const std::string text = op.at("text").get<std::string>();
-        input_steps_.push_back([this, text] {
+        step([this, text] {
             for (char c : text)
                 x_input_->type(c);
-            return true;
         });
     } else if (kind == "scroll") {
         const long clicks = std::lround(op.at("steps").get<double>());
-        input_steps_.push_back([this, clicks] {
+        step([this, clicks] {
             for (long i = 0; i < std::labs(clicks); ++i)
                 x_input_->wheel(clicks > 0);
-            return true;
         });
     } else if (kind == "close") {
-        input_steps_.push_back([this] {
-            x_input_->request_close();
-            return true;
-        });
-    } else if (kind == "recovery") {
-        const std::string choice = op.at("choice").get<std::string>();
+        step([this] { x_input_->request_close(); });
+    }
+}
+
+void App::queue_prompt_op(const std::string& kind, const nlohmann::json& op) {
+    const std::string choice = op.at("choice").get<std::string>();
+    if (kind == "recovery") {
         if (choice != "recover" && choice != "discard")
             throw std::runtime_error("script: recovery choice must be recover or discard");
-        click_widget(choice == "recover" ? "recovery/Recover" : "recovery/Discard", false,
-                     "there is no autosave to recover or discard");
+        queue_widget_click(choice == "recover" ? "recovery/Recover" : "recovery/Discard", false,
+                           "there is no autosave to recover or discard");
     } else if (kind == "discard") {
-        const std::string choice = op.at("choice").get<std::string>();
         if (choice != "save" && choice != "discard" && choice != "cancel")
             throw std::runtime_error("script: discard choice must be save, discard or cancel");
-        click_widget(choice == "save"      ? "unsaved/Save"
-                     : choice == "discard" ? "unsaved/Discard"
-                                           : "unsaved/Cancel",
-                     false, "no unsaved edits wait to be discarded");
-    } else if (kind == "overwrite") {
-        const std::string choice = op.at("choice").get<std::string>();
+        queue_widget_click(choice == "save"      ? "unsaved/Save"
+                           : choice == "discard" ? "unsaved/Discard"
+                                                 : "unsaved/Cancel",
+                           false, "no unsaved edits wait to be discarded");
+    } else {
         if (choice != "replace" && choice != "cancel")
             throw std::runtime_error("script: overwrite choice must be replace or cancel");
-        click_widget(choice == "replace" ? "overwrite/Replace" : "overwrite/Cancel", false,
-                     "no save waits to replace a file");
+        queue_widget_click(choice == "replace" ? "overwrite/Replace" : "overwrite/Cancel", false,
+                           "no save waits to replace a file");
+    }
+}
+
+void App::run_document_op(const std::string& kind, const nlohmann::json& op) {
+    if (kind == "panels") {
+        open_panels_ = op.at("open").get<bool>();
     } else if (kind == "camera") {
         // Absolute orbit angles (radians) and a zoom in wheel steps from frame-to-fit, which
         // frames the terrain as seen from those angles.
@@ -364,7 +352,7 @@ void App::run_script_op(const nlohmann::json& op) {
         const int nw = op.at("size").at(0).get<int>(), nh = op.at("size").at(1).get<int>();
         if (nw < 64 || nh < 64 || nw > 8192 || nh > 8192)
             throw std::runtime_error("script: resize wants 64..8192 pixels a side");
-        glfwSetWindowSize(window_, nw, nh);
+        glfwSetWindowSize(window_->glfw(), nw, nh);
     } else if (kind == "haptics") {
         // Connects the simulated pen (as the panel's Connect button does) or disconnects.
         if (op.value("connect", true)) {
@@ -380,7 +368,7 @@ void App::run_script_op(const nlohmann::json& op) {
         auto waited = std::make_shared<int>(0);
         input_steps_.push_back([this, most, waited] {
             if (!erosion_runs() ||
-                (doc_.physics->at_rest() && open_level_.empty() && !physics_kick_))
+                (!sculpting_.wants_to_erode(doc_) && sculpting_.open_level().empty()))
                 return true;
             if (++*waited > most)
                 throw std::runtime_error("script: the sand did not rest within " +
@@ -393,9 +381,9 @@ void App::run_script_op(const nlohmann::json& op) {
     } else if (kind == "material") {
         // As the Materials panel: angles in degrees, linear RGB colour.
         const int index = op.value("index", settings_.material);
-        if (index < 0 || index >= static_cast<int>(doc_.materials.size()))
+        if (index < 0 || index >= static_cast<int>(doc_.materials().size()))
             throw std::runtime_error("script: there is no material " + std::to_string(index));
-        Material m = doc_.materials.all()[static_cast<std::size_t>(index)];
+        Material m = doc_.materials().all()[static_cast<std::size_t>(index)];
         constexpr double kDeg = 3.14159265358979323846 / 180.0;
         if (op.contains("repose_dry")) m.repose_dry = op["repose_dry"].get<double>() * kDeg;
         if (op.contains("repose_moist")) m.repose_wet = op["repose_moist"].get<double>() * kDeg;
@@ -410,12 +398,13 @@ void App::run_script_op(const nlohmann::json& op) {
     } else if (kind == "save") {
         save(op.at("path").get<std::string>());
     } else if (kind == "export") {
-        export_to(op.at("path").get<std::string>());
+        sculpting_.close_level(doc_);
+        doc_.export_to(op.at("path").get<std::string>());
     } else if (kind == "autosave") {
         // A script that asks for an autosave gets autosaving as an interactive session has it
         // (otherwise scripted runs leave no autosave files behind).
         autosave_in_script_ = true;
-        end_action();
+        sculpting_.close_level(doc_);
         keep_unsaved_edits();
     } else {
         throw std::runtime_error("script: unknown op '" + kind + "'");

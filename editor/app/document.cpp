@@ -1,54 +1,232 @@
 #include "document.hpp"
 
-#include <cmath>
-#include <random>
-#include <vector>
+#include <stdexcept>
+#include <utility>
 
-#include "tin/flat_bedrock.hpp"
+#include <nlohmann/json.hpp>
+
+#include "default_sandbox.hpp"
+#include "io/heightmap_import.hpp"
+#include "io/import_grid.hpp"
+#include "io/session_name.hpp"
+#include "io/session_terrain.hpp"
 
 namespace sandtin::editor {
 
-/// A new sandbox: 1 m x 1 m of sand 2 to 10 cm deep over a flat bedrock, with two crossing dune
-/// trains and wind ripples, and a band of moist sand along the south edge. Random points (no
-/// cocircular quads inside, so undo restores the exact triangulation), 40 000 of them: about
-/// 5 mm apart, fine enough for the ripples.
-Tin default_sandbox() {
-    const Rect domain{{0.0, 0.0}, {1.0, 1.0}};
-    auto height = [](Vec2 p) {
-        const double dunes = 0.018 * std::sin(8.0 * p.x + 2.2 * std::sin(3.5 * p.y)) +
-                             0.008 * std::cos(11.0 * p.y - 4.0 * p.x);
-        const double ripples =
-            0.0015 * std::sin(95.0 * p.x + 25.0 * p.y + 6.0 * std::sin(5.0 * p.y));
-        return 0.06 + dunes + ripples;
-    };
-    // Random interior points, plus points every 5 mm along the border so the dunes reach the
-    // edge (with only the corners there, long slivers would join the dunes to straight edges).
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<Vec2> points;
-    for (int i = 0; i < 40000; ++i)
-        points.push_back({u(rng), u(rng)});
-    constexpr int kBorder = 200;
-    for (int i = 0; i <= kBorder; ++i) {
-        const double t = static_cast<double>(i) / kBorder;
-        points.insert(points.end(), {{t, 0.0}, {t, 1.0}, {0.0, t}, {1.0, t}});
+// ---- Making one ---------------------------------------------------------------------------
+
+Document Document::make(Tin t, Generation next_generation, const std::filesystem::path& p,
+                        MaterialTable table, std::string metadata) {
+    Document d;
+    d.materials_ = std::move(table);
+    d.metadata_json_ = std::move(metadata);
+    d.tin_ = std::make_unique<Tin>(std::move(t));
+    d.context_ = std::make_unique<SculptContext>(d.tin_->domain());
+    d.context_->set_next_generation(next_generation);
+    d.solver_ = make_cpu_erosion(*d.tin_, d.materials_);
+    d.history_ = std::make_unique<History>(*d.tin_);
+    d.path_ = p;
+    return d;
+}
+
+Document Document::sandbox() {
+    return make(default_sandbox(), 1, {}, MaterialTable::presets(), "{}");
+}
+
+Document Document::open(const std::filesystem::path& path) {
+    const Session s = load_session(path);
+    Document d = make(session_terrain(s, path), s.next_generation, path,
+                      materials_or_presets(s.metadata_json), s.metadata_json);
+    d.erosion_held_ = true;
+    return d;
+}
+
+Document Document::imported(const std::filesystem::path& heightmap) {
+    ImportResult r = import_heightmap(heightmap, ImportOptions{});
+    // The import record, as `sandtin import` writes it.
+    Document d = make(std::move(r.tin), 1, {}, MaterialTable::presets(),
+                      nlohmann::json{{"import", to_json(r.report)}}.dump());
+    d.erosion_held_ = true;
+    d.dirty_ = true;  // on no disk yet
+    return d;
+}
+
+Document Document::recovered(const std::filesystem::path& scene) {
+    const Session s = recover_autosave(scene);
+    Document d = make(Tin::from_snapshot(s.terrain), s.next_generation, scene,
+                      materials_or_presets(s.metadata_json), s.metadata_json);
+    d.erosion_held_ = true;
+    d.dirty_ = true;  // the scene's file does not hold these edits
+    return d;
+}
+
+Document::Document(Document&& o) noexcept
+    : path_(std::move(o.path_)),
+      tin_(std::move(o.tin_)),
+      context_(std::move(o.context_)),
+      solver_(std::move(o.solver_)),
+      history_(std::move(o.history_)),
+      undo_log_(std::move(o.undo_log_)),
+      materials_(std::move(o.materials_)),
+      materials_version_(o.materials_version_),
+      metadata_json_(std::move(o.metadata_json_)),
+      dirty_(o.dirty_),
+      erosion_held_(o.erosion_held_),
+      autosave_schedule_(o.autosave_schedule_) {}
+
+Document& Document::operator=(Document&& o) noexcept {
+    if (this == &o) return *this;
+    close();
+    path_ = std::move(o.path_);
+    tin_ = std::move(o.tin_);
+    context_ = std::move(o.context_);
+    solver_ = std::move(o.solver_);
+    history_ = std::move(o.history_);
+    undo_log_ = std::move(o.undo_log_);
+    materials_ = std::move(o.materials_);
+    // Views compare versions: a new document's table is new to them, whatever its count.
+    materials_version_ = o.materials_version_ + materials_version_ + 1;
+    metadata_json_ = std::move(o.metadata_json_);
+    dirty_ = o.dirty_;
+    erosion_held_ = o.erosion_held_;
+    autosave_schedule_ = o.autosave_schedule_;
+    return *this;
+}
+
+Document::~Document() {
+    close();
+}
+
+void Document::close() {
+    history_.reset();
+    solver_.reset();
+    context_.reset();
+    tin_.reset();
+}
+
+void Document::replace_solver(const std::function<std::unique_ptr<Erosion>(Tin&)>& make_solver) {
+    solver_.reset();  // the old one lets go of the TIN (and its GPU objects) first
+    solver_ = make_solver(*tin_);
+}
+
+// ---- Undo ---------------------------------------------------------------------------------
+
+void Document::record_level(const std::string& label) {
+    if (history_->record(label)) {
+        undo_log_.push_terrain(label);
+        mark_edited(std::chrono::steady_clock::now());
     }
-    std::vector<double> heights;
-    heights.reserve(points.size());
-    for (Vec2 p : points)
-        heights.push_back(height(p));
-    Tin tin = Tin::from_points(domain, points, heights);
-    lay_flat_bedrock(tin, 0.02);
-    const VertexArrays& va = tin.vertices();
-    for (std::uint32_t i = 0; i < va.size(); ++i) {
-        if (!va.alive[i]) continue;
-        const VertexId v{i};
-        if (va.position[i].y < 0.18 + 0.04 * std::sin(9.0 * va.position[i].x)) {
-            tin.set_material(v, 1);
-            tin.set_moisture(v, 0.3f);
-        }
+}
+
+UndoOutcome Document::undo() {
+    UndoOutcome out;
+    const std::optional<UndoLog::Entry> entry = undo_log_.undo();
+    if (!entry) {
+        out.message = "nothing to undo";
+        return out;
     }
-    return tin;
+    out.done = true;
+    mark_edited(std::chrono::steady_clock::now());
+    if (!entry->terrain) {
+        apply_materials(entry->before);
+        out.message = "undo " + entry->label;
+        return out;
+    }
+    const HistoryStep step = history_->undo();
+    out.done = step.done;
+    out.message = step.done ? "undo " + step.label : "nothing to undo";
+    if (step.done && !step.report.exact()) {
+        out.message += " (approximate: " + std::to_string(step.report.unrestored.size()) +
+                       " vertices could not be restored)";
+    }
+    out.restored_erosion = step.done && step.label == kErosionLevel;
+    return out;
+}
+
+UndoOutcome Document::redo() {
+    UndoOutcome out;
+    const std::optional<UndoLog::Entry> entry = undo_log_.redo();
+    if (!entry) {
+        out.message = "nothing to redo";
+        return out;
+    }
+    out.done = true;
+    mark_edited(std::chrono::steady_clock::now());
+    if (!entry->terrain) {
+        apply_materials(entry->after);
+        out.message = "redo " + entry->label;
+        return out;
+    }
+    const HistoryStep step = history_->redo();
+    out.done = step.done;
+    out.message = step.done ? "redo " + step.label : "nothing to redo";
+    return out;
+}
+
+void Document::apply_materials(MaterialTable table) {
+    materials_ = std::move(table);
+    ++materials_version_;
+    // The solver re-reads the angles of repose and looks at every vertex again.
+    solver_->set_materials(materials_);
+}
+
+void Document::edit_material(int index, const Material& material) {
+    std::vector<Material> all = materials_.all();
+    if (index < 0 || index >= static_cast<int>(all.size()))
+        throw std::runtime_error("there is no material " + std::to_string(index));
+    all[static_cast<std::size_t>(index)] = material;
+    const MaterialTable before = materials_;
+    apply_materials(MaterialTable(std::move(all)));
+    undo_log_.push_materials(before, materials_);
+    mark_edited(std::chrono::steady_clock::now());
+}
+
+// ---- Files --------------------------------------------------------------------------------
+
+Session Document::session() const {
+    Session s;
+    s.terrain = tin_->snapshot();
+    s.next_generation = context_->peek_generation();
+    s.metadata_json = session_metadata(materials_, metadata_json_);
+    return s;
+}
+
+void Document::save(const std::filesystem::path& path) {
+    // The rule `sandtin` applies to its -o: a session never takes another format's name (the
+    // document would then carry that name, and Ctrl+S write there again).
+    if (const std::optional<std::string> problem = session_name_problem(path))
+        throw std::runtime_error("'" + path.string() + "': " + *problem +
+                                 " (Export writes meshes and maps)");
+    save_session_clearing_autosave(path, session());
+    path_ = path;
+    dirty_ = false;
+    autosave_schedule_.saved(std::chrono::steady_clock::now());
+}
+
+ExportReport Document::export_to(const std::filesystem::path& path) const {
+    // The defaults `sandtin export` takes from the session: the import grid while the terrain
+    // lies on it, and the georeference; the colours are the live table's.
+    ExportOptions options;
+    apply_import_defaults(*tin_, metadata_json_, options);
+    options.palette = export_palette(materials_);
+    return export_terrain(*tin_, path, export_format_for(path), options);
+}
+
+void Document::mark_edited(std::chrono::steady_clock::time_point now) {
+    dirty_ = true;
+    autosave_schedule_.edited(now);
+}
+
+void Document::autosave_if_due(AutosaveWriter& writer, std::chrono::steady_clock::time_point now) {
+    if (path_.empty() || !autosave_schedule_.due(now)) return;
+    writer.submit(path_, session());
+    autosave_schedule_.saved(now);
+}
+
+bool Document::keep_in_autosave(AutosaveWriter& writer) {
+    if (!dirty_ || path_.empty()) return false;
+    writer.submit(path_, session());
+    return true;
 }
 
 }  // namespace sandtin::editor

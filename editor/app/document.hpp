@@ -1,90 +1,139 @@
 #pragma once
-// The terrain being edited and everything whose lifetime follows it (sculpt context, physics,
-// undo history), plus the default sandbox a new document starts from.
+// One scene being edited: its terrain, sculpting context, solver, undo history and material
+// table, and where it is saved. Everything here follows the scene's lifetime, and nothing here
+// draws or asks: the GPU's views of the terrain (terrain_view.hpp) and the panels read it, and
+// the app decides when to call its operations (after a prompt, on a shortcut or a button).
+//
+// Document operations: make one (a new sandbox, a file, a heightmap, an autosave), save it,
+// export it, undo and redo, edit its materials. A Document is movable: its parts live on the
+// heap, so the history's and the solver's references to the TIN stay valid.
 
-#include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "erosion.hpp"
 #include "history/history.hpp"
+#include "io/autosave.hpp"
+#include "io/autosave_writer.hpp"
+#include "io/export_terrain.hpp"
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "tools/sculpt_context.hpp"
+#include "undo_log.hpp"
 
 namespace sandtin::editor {
 
-/// The terrain being edited and everything that follows its lifetime. Movable: the parts live
-/// on the heap, so the history's and the physics' references to the TIN stay valid.
-struct Document {
-    std::filesystem::path path;  ///< empty: untitled (new, or imported from a heightmap)
-    std::unique_ptr<Tin> tin;
-    std::unique_ptr<SculptContext> context;
-    std::unique_ptr<Erosion> physics;  ///< CPU here; the app may switch it to the GPU
-    std::unique_ptr<History> history;
-    MaterialTable materials = MaterialTable::presets();
-    /// The metadata the terrain came with (an import record, another tool's keys); saves keep
-    /// it, with the materials replaced.
-    std::string metadata_json = "{}";
-    bool dirty = false;
-    /// An opened, imported or recovered terrain is not eroded until the artist presses Run
-    /// (an elevation model would otherwise start melting as it appears); a new sandbox is.
-    bool erosion_held = false;
-
-    Document() = default;
-    Document(Document&&) = default;
-    /// Tears this document down (in the order its parts depend on each other) first.
-    Document& operator=(Document&& other) noexcept {
-        if (this != &other) {
-            close();
-            path = std::move(other.path);
-            tin = std::move(other.tin);
-            context = std::move(other.context);
-            physics = std::move(other.physics);
-            history = std::move(other.history);
-            materials = std::move(other.materials);
-            metadata_json = std::move(other.metadata_json);
-            dirty = other.dirty;
-            erosion_held = other.erosion_held;
-        }
-        return *this;
-    }
-    ~Document() { close(); }
-
-    /// A document over terrain `t` with its material table (presets for a new or imported
-    /// terrain) and the metadata it came with, at `p` (empty: untitled).
-    static Document make(Tin t, Generation next_generation, const std::filesystem::path& p,
-                         MaterialTable table = MaterialTable::presets(),
-                         std::string metadata = "{}") {
-        Document d;
-        d.materials = std::move(table);
-        d.metadata_json = std::move(metadata);
-        d.tin = std::make_unique<Tin>(std::move(t));
-        d.context = std::make_unique<SculptContext>(d.tin->domain());
-        d.context->set_next_generation(next_generation);
-        d.physics = make_cpu_erosion(*d.tin, d.materials);
-        d.history = std::make_unique<History>(*d.tin);
-        d.path = p;
-        return d;
-    }
-    /// Drops the parts that refer to the TIN before the TIN.
-    void close() {
-        history.reset();
-        physics.reset();
-        context.reset();
-        tin.reset();
-    }
-    Session session() const {
-        Session s;
-        s.terrain = tin->snapshot();
-        s.next_generation = context->peek_generation();
-        s.metadata_json = session_metadata(materials, metadata_json);
-        return s;
-    }
+/// What an undo or redo did, for the status line.
+struct UndoOutcome {
+    bool done = false;
+    std::string message;  ///< "undo stroke (Ball)", "nothing to undo", ...
+    /// The level was erosion alone: what it restored is not at rest, and erosion running on
+    /// would slide it straight back (the caller pauses it).
+    bool restored_erosion = false;
 };
 
-/// A new sandbox: 1 m x 1 m of sand with dunes, ripples and a band of moist sand (see
-/// document.cpp).
-Tin default_sandbox();
+class Document {
+  public:
+    /// The undo level of sand the erosion moved with no gesture of the artist's before it.
+    static constexpr const char* kErosionLevel = "erosion";
+
+    /// A new 1 m sandbox (default_sandbox()), untitled; it erodes once sculpted.
+    static Document sandbox();
+    /// The session at `path`, with its material table; held (erosion waits for Run). Throws
+    /// on a file that does not load, before anything else is touched.
+    static Document open(const std::filesystem::path& path);
+    /// A heightmap meshed as `sandtin import` meshes it: untitled, unsaved and held, with the
+    /// import record in its metadata (exports read its grid and georeference).
+    static Document imported(const std::filesystem::path& heightmap);
+    /// The autosave of the scene at `scene`, as that scene (edited since it was saved); held.
+    static Document recovered(const std::filesystem::path& scene);
+
+    Document() = default;
+    Document(Document&&) noexcept;
+    /// Tears this document down first, in the order its parts depend on each other.
+    Document& operator=(Document&& other) noexcept;
+    ~Document();
+    Document(const Document&) = delete;
+    Document& operator=(const Document&) = delete;
+
+    // ---- State ---------------------------------------------------------------------------
+    /// False only for a default-constructed (empty) document.
+    bool has_terrain() const { return tin_ != nullptr; }
+    const std::filesystem::path& path() const { return path_; }
+    bool untitled() const { return path_.empty(); }
+    /// Edits not yet saved to the scene's file.
+    bool dirty() const { return dirty_; }
+    /// An opened, imported or recovered terrain is not eroded until the artist presses Run (an
+    /// elevation model would otherwise start melting as it appears).
+    bool erosion_held() const { return erosion_held_; }
+    void release_erosion() { erosion_held_ = false; }
+
+    Tin& tin() { return *tin_; }
+    const Tin& tin() const { return *tin_; }
+    SculptContext& context() { return *context_; }
+    Erosion& solver() { return *solver_; }
+    const Erosion& solver() const { return *solver_; }
+    /// Replaces the solver (the Erosion panel's CPU/GPU switch); the old one goes first.
+    void replace_solver(const std::function<std::unique_ptr<Erosion>(Tin&)>& make);
+    const History& history() const { return *history_; }
+    const UndoLog& undo_log() const { return undo_log_; }
+    const MaterialTable& materials() const { return materials_; }
+    /// Bumped whenever the material table changes (an edit, its undo): views that colour
+    /// the terrain by it rebuild then.
+    std::uint64_t materials_version() const { return materials_version_; }
+    const std::string& metadata() const { return metadata_json_; }
+
+    // ---- Operations ----------------------------------------------------------------------
+    /// The edits since the last level become one undo level named `label` (nothing when the
+    /// terrain did not change); the document is then dirty.
+    void record_level(const std::string& label);
+    UndoOutcome undo();
+    UndoOutcome redo();
+    /// The Materials panel's edit of material `index` (throws for an index the table lacks):
+    /// one undo level. Every vertex is looked at again by the solver.
+    void edit_material(int index, const Material& material);
+
+    /// Writes the scene to `path` atomically and makes it the scene's file: not under another
+    /// format's name (a .png, an .obj), and its autosave goes. Throws naming the problem.
+    void save(const std::filesystem::path& path);
+    /// The terrain as `sandtin export` writes it (format from the extension), with the
+    /// materials as they are now, unsaved edits included. Throws on failure.
+    ExportReport export_to(const std::filesystem::path& path) const;
+    /// The session a save or an autosave writes.
+    Session session() const;
+    /// Edits were made: the scene needs saving, and an autosave once the interval passed.
+    void mark_edited(std::chrono::steady_clock::time_point now);
+    /// Submits an autosave to `writer` when one is due (a scene with a file, edited a minute
+    /// ago); `now` the caller's clock.
+    void autosave_if_due(AutosaveWriter& writer, std::chrono::steady_clock::time_point now);
+    /// Unsaved edits of a scene with a file go to its autosave now (closing, replacing it).
+    /// True when something was submitted.
+    bool keep_in_autosave(AutosaveWriter& writer);
+
+  private:
+    static Document make(Tin t, Generation next_generation, const std::filesystem::path& p,
+                         MaterialTable table, std::string metadata);
+    void apply_materials(MaterialTable table);
+    /// Drops the parts that refer to the TIN before the TIN.
+    void close();
+
+    std::filesystem::path path_;
+    std::unique_ptr<Tin> tin_;
+    std::unique_ptr<SculptContext> context_;
+    std::unique_ptr<Erosion> solver_;
+    std::unique_ptr<History> history_;
+    UndoLog undo_log_;  ///< terrain levels (history_) and material edits, in order
+    MaterialTable materials_ = MaterialTable::presets();
+    std::uint64_t materials_version_ = 0;
+    /// The metadata the terrain came with (an import record, another tool's keys); saves keep
+    /// it, with the materials replaced.
+    std::string metadata_json_ = "{}";
+    bool dirty_ = false;
+    bool erosion_held_ = false;
+    AutosaveSchedule autosave_schedule_{std::chrono::seconds(60)};
+};
 
 }  // namespace sandtin::editor

@@ -6,8 +6,6 @@
 namespace sandtin::editor {
 
 void WidgetMap::begin_frame() {
-    before_last_ = std::move(last_);
-    last_ = std::move(drawing_);
     drawing_.clear();
 }
 
@@ -21,6 +19,26 @@ void WidgetMap::note(const std::string& name) {
     if (item.GetWidth() <= 0.0f || item.GetHeight() <= 0.0f) return;
     const bool enabled = (GImGui->LastItemData.InFlags & ImGuiItemFlags_Disabled) == 0;
     drawing_[name] = WidgetRect{item.Min.x, item.Min.y, item.Max.x, item.Max.y, enabled};
+}
+
+void WidgetMap::end_frame() {
+    before_last_ = std::move(last_);
+    last_ = std::move(drawing_);
+    drawing_.clear();
+    windows_.clear();
+    for (const ImGuiWindow* w : GImGui->Windows) {
+        if (!w->Active || w->Hidden) continue;
+        if ((w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_Modal)) != 0) continue;
+        windows_.push_back({w->Pos.x, w->Pos.y, w->Pos.x + w->Size.x, w->Pos.y + w->Size.y, true});
+    }
+}
+
+bool WidgetMap::covers(double x, double y) const {
+    for (const WidgetRect& r : windows_) {
+        if (x >= double{r.x0} && x < double{r.x1} && y >= double{r.y0} && y < double{r.y1})
+            return true;
+    }
+    return false;
 }
 
 std::optional<WidgetRect> WidgetMap::find(const std::string& name) const {

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,15 +24,24 @@ struct WidgetRect {
 
 class WidgetMap {
   public:
-    /// Starts a frame: what the previous frame noted becomes the map to look things up in.
+    /// Starts a frame's notes.
     void begin_frame();
     /// Call right after the ImGui item `name` (inside its window). Items scrolled out of
     /// sight or clipped away are not noted (a pointer cannot reach them).
     void note(const std::string& name);
+    /// Ends a frame (call after ImGui::Render): what it noted becomes the map to look things up
+    /// in, and where ImGui's windows are is noted (the panels, the Stats window, an open
+    /// combo's list), but not tooltips, which take no clicks, nor modal prompts, whose owner
+    /// knows better whether they are still open.
+    void end_frame();
+    /// Whether the point (window pixels) lies on a window the last frame drew. Unlike
+    /// ImGui's WantCaptureMouse this can be asked of events that arrive before the next frame,
+    /// where the pointer is then, not where it was.
+    bool covers(double x, double y) const;
     /// Call when the tooltip `text` is shown this frame.
     void note_tooltip(const std::string& text) { tooltip_ = text; }
 
-    /// The control `name` as the last complete frame drew it.
+    /// The control `name` as the last frame drew it.
     std::optional<WidgetRect> find(const std::string& name) const;
     /// Whether `name` was drawn at the same place in the last two frames (a window that just
     /// appeared is still sizing itself in its first frame).
@@ -44,6 +54,7 @@ class WidgetMap {
 
   private:
     std::map<std::string, WidgetRect> drawing_, last_, before_last_;
+    std::vector<WidgetRect> windows_;
     std::string tooltip_;
 };
 

@@ -255,6 +255,9 @@ TEST_F(EditorXvfb, TypedOutOfRangeValuesAreClampedInEverySlider) {
                R"("}, {"op": "key", "key": "enter"}, {"op": "wait", "frames": 1})";
     };
     const fs::path scene = kWork / "typed.sandtin";
+    // A small flat terrain: every frame is cheap, and the stroke at the end has sand to cut.
+    const fs::path small = kWork / "typed-in.sandtin";
+    save_flat_scene(small, 1.0, unit_square_points(800, 5), 0.05);
     // (Digits only: ImGui reads an integer slider's text with %d, which takes "1e9" as 1.)
     for (const char* text : {"-1000", "999999999"}) {
         // Erosion off: a 10 degree repose and a 1 mm r_S (the low ends) would otherwise refine
@@ -272,9 +275,9 @@ TEST_F(EditorXvfb, TypedOutOfRangeValuesAreClampedInEverySlider) {
                   {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10},
                   {"op": "save_settings"}, {"op": "wait", "frames": 2}])";
         const std::string settings = fresh_settings(std::string("typed") + text);
-        const EditorRun r =
-            run_editor(std::string("typed") + text, ops,
-                       "--size 1280x1500 --save-after " + scene.string() + settings);
+        const EditorRun r = run_editor(
+            std::string("typed") + text, ops,
+            small.string() + " --size 1280x1500 --save-after " + scene.string() + settings);
         ASSERT_EQ(r.exit_code, 0) << text << ": " << r.log;
         EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
         const bool low = text[0] == '-';
@@ -423,15 +426,19 @@ TEST_F(EditorXvfb, OneStrokeAndItsSettlingAreOneUndoLevelAndUndoKeepsTheErosionR
     const fs::path first = kWork / "levels-first.sandtin", undone = kWork / "levels-undone.sandtin";
     const std::string stroke = R"({"op": "drag", "path": [[0.5, 0.55], [0.7, 0.5]], "steps": 20},
                                   {"op": "settle", "frames": 1500})";
-    const EditorRun r =
-        run_editor("levels",
-                   R"([{"op": "set", "erosion": true, "steps": 200}, {"op": "tool", "name": "Ball"},
-            {"op": "set", "radius": 0.05, "depth": 0.02}, )" +
-                       stroke + R"(, {"op": "save", "path": ")" + first.string() + R"("},
+    // Flat sand 5 cm deep on a coarser terrain than the sandbox (a few thousand points): the
+    // strokes' walls slide and settle within seconds. Opened, so Run lets it erode.
+    const fs::path scene = kWork / "levels.sandtin";
+    save_flat_scene(scene, 1.0, unit_square_points(4000, 11), 0.05);
+    const EditorRun r = run_editor(
+        "levels",
+        R"([{"op": "set", "erosion": true, "steps": 200}, {"op": "click", "widget": "Run"},
+            {"op": "tool", "name": "Ball"}, {"op": "set", "radius": 0.05, "depth": 0.02}, )" +
+            stroke + R"(, {"op": "save", "path": ")" + first.string() + R"("},
             {"op": "drag", "path": [[0.5, 0.4], [0.7, 0.35]], "steps": 20},
             {"op": "settle", "frames": 1500}, {"op": "key", "key": "z", "ctrl": true},
             {"op": "wait", "frames": 3}])",
-                   "--save-after " + undone.string() + fresh_settings("levels"));
+        scene.string() + " --save-after " + undone.string() + fresh_settings("levels"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     // Two strokes, each with its settling, were two levels; one undone leaves one.
     EXPECT_EQ(r.stats.at("undo_levels").get<int>(), 1) << r.log;

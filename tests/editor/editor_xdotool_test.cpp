@@ -157,13 +157,39 @@ class LiveEditor {
         }
         return std::nullopt;
     }
-    /// A hand's click on the control: the pointer over it first, then the button.
+    /// A hand's click on the control: the pointer over it first, then the button, held a
+    /// moment. A prompt's button is clicked once the prompt has settled where it shows, and the
+    /// click is done once the prompt is gone (an editor busy with what the click asked for
+    /// takes no shortcuts while a prompt is open, as with a hand).
     void click(const std::string& name) const {
+        const bool prompt = name.find('/') != std::string::npos;
+        if (prompt) widget(name);
+        if (prompt) std::this_thread::sleep_for(500ms);  // a popup places itself in 2 frames
         const auto at = widget(name);
         ASSERT_TRUE(at) << "no '" << name << "' on screen: " << log();
         move(at->first, at->second);
-        xdotool("click 1");
-        std::this_thread::sleep_for(500ms);
+        xdotool("mousedown 1");
+        std::this_thread::sleep_for(100ms);
+        xdotool("mouseup 1");
+        if (prompt) {
+            EXPECT_TRUE(gone(name)) << "the prompt of '" << name << "' stayed: " << log();
+        } else {
+            std::this_thread::sleep_for(500ms);
+        }
+    }
+    /// Waits until `name` is no longer on screen.
+    bool gone(const std::string& name, std::chrono::seconds wait = 60s) const {
+        const auto until = std::chrono::steady_clock::now() + wait;
+        while (std::chrono::steady_clock::now() < until) {
+            std::ifstream in(map_);
+            try {
+                if (!nlohmann::json::parse(in).contains(name)) return true;
+            } catch (const std::exception&) {
+                // Being written.
+            }
+            std::this_thread::sleep_for(100ms);
+        }
+        return false;
     }
     void move(int x, int y) const {
         xdotool("mousemove --window " + window() + " " + std::to_string(x) + " " +

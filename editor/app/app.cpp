@@ -1,203 +1,57 @@
-// Set-up, document operations and the main loop of the editor.
+// Set-up, the loops, and what a scripted run writes at its end.
 
 #include "app.hpp"
-#include "io/session_name.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+#include "default_sandbox.hpp"
+#include "formats/png_image.hpp"
+#include "tool_palette.hpp"
 #include "util/atomic_file.hpp"
 #include "util/json_document.hpp"
 
 namespace sandtin::editor {
 
-namespace {
-
-App* app_of(GLFWwindow* w) {
-    return static_cast<App*>(glfwGetWindowUserPointer(w));
-}
-
-// An exception must not cross GLFW (C code): each handler runs guarded, and an error in it is
-// shown on the status line.
-void on_button(GLFWwindow* w, int b, int action, int mods) {
-    App* app = app_of(w);
-    app->note_event();
-    double x = 0.0, y = 0.0;
-    glfwGetCursorPos(w, &x, &y);
-    (void)mods;
-    const bool down = action == GLFW_PRESS;
-    // A press over a panel is the panel's (ImGui saw the pointer there in the last frame); a
-    // release always reaches the app, which ends whatever the press began.
-    if (down && ImGui::GetIO().WantCaptureMouse) return;
-    app->guarded("the tool stopped", [&] { app->mouse_button(b, down, x, y); });
-}
-void on_cursor(GLFWwindow* w, double x, double y) {
-    App* app = app_of(w);
-    app->note_event();
-    app->guarded("the tool stopped", [&] { app->mouse_move(x, y); });
-}
-void on_wheel(GLFWwindow* w, double, double dy) {
-    app_of(w)->note_event();
-    if (ImGui::GetIO().WantCaptureMouse) return;
-    app_of(w)->scroll(dy);
-}
-void on_key(GLFWwindow* w, int key, int, int action, int mods) {
-    App* app = app_of(w);
-    app->note_event();
-    // A held key repeats only undo and redo: a repeated Ctrl+N or Ctrl+O would replace the
-    // document again for as long as the key stays down.
-    const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-    const bool repeats = ctrl && (key == GLFW_KEY_Z || key == GLFW_KEY_Y);
-    if (action != GLFW_PRESS && !(action == GLFW_REPEAT && repeats)) return;
-    // Keys go to a text field being typed into (a path, a value typed into a slider). Not
-    // WantCaptureKeyboard: ImGui decides that when a frame starts, and a key that follows the
-    // click closing a prompt would find the prompt still there and be swallowed. The app
-    // itself ignores shortcuts while a prompt waits (App::key).
-    if (ImGui::GetIO().WantTextInput) return;
-    app->guarded("the key's command failed", [&] { app->key(key, ctrl); });
-}
-
-// Events that only ImGui or the window itself act on still ask for a frame (typing into a
-// field, focus, exposure, resizing): the loop's timed waits tell them from a plain timeout.
-void on_char(GLFWwindow* w, unsigned int) {
-    app_of(w)->note_event();
-}
-void on_focus(GLFWwindow* w, int) {
-    app_of(w)->note_event();
-}
-void on_cursor_enter(GLFWwindow* w, int) {
-    app_of(w)->note_event();
-}
-void on_refresh(GLFWwindow* w) {
-    app_of(w)->note_event();
-}
-void on_framebuffer_size(GLFWwindow* w, int, int) {
-    app_of(w)->note_event();
-}
-void on_iconify(GLFWwindow* w, int) {
-    app_of(w)->note_event();
-}
-
-}  // namespace
 
 // ---- Set-up -------------------------------------------------------------------------------
 
+App::~App() {
+    // The force loop fades the force out before the window goes; nothing the GPU may still
+    // read is destroyed before it is idle; the document's GPU solver and the terrain's views
+    // go before the device.
+    haptics_.reset();
+    if (window_) window_->wait_idle();
+    doc_ = Document();
+    view_.reset();
+    x_input_.reset();
+    window_.reset();
+}
+
 Document App::initial_document() {
-    if (options_.scene.empty()) return Document::make(default_sandbox(), 1, {});
+    if (options_.scene.empty()) return Document::sandbox();
     if (!std::filesystem::exists(options_.scene)) {
         throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
     }
-    const Session s = load_session(options_.scene);
-    Document d =
-        Document::make(session_terrain(s, options_.scene), s.next_generation, options_.scene,
-                       materials_or_presets(s.metadata_json), s.metadata_json);
-    d.erosion_held = true;
+    Document d = Document::open(options_.scene);
     // An autosave newer than the scene: the prompt asks.
     if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
         recovery_for_ = options_.scene;
     return d;
 }
 
-void App::init_window_and_gpu() {
-    if (glfwInit() != GLFW_TRUE) {
-        throw std::runtime_error(
-            "cannot open a window: no display (set DISPLAY, or run under "
-            "xvfb-run -s '-screen 0 1280x720x24')");
-    }
-    glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
-    window_ = glfwCreateWindow(options_.width, options_.height, "sandtin", nullptr, nullptr);
-    if (window_ == nullptr) throw std::runtime_error("glfwCreateWindow failed");
-    glfwSetWindowUserPointer(window_, this);
-    glfwSetMouseButtonCallback(window_, on_button);
-    glfwSetCursorPosCallback(window_, on_cursor);
-    glfwSetScrollCallback(window_, on_wheel);
-    glfwSetKeyCallback(window_, on_key);
-    // Installed before ImGui's backend, which chains to the ones it replaces.
-    glfwSetCharCallback(window_, on_char);
-    glfwSetWindowFocusCallback(window_, on_focus);
-    glfwSetCursorEnterCallback(window_, on_cursor_enter);
-    glfwSetWindowRefreshCallback(window_, on_refresh);
-    glfwSetFramebufferSizeCallback(window_, on_framebuffer_size);
-    glfwSetWindowIconifyCallback(window_, on_iconify);
-
-    gpu::ContextOptions o;
-    std::uint32_t n = 0;
-    const char** ext = glfwGetRequiredInstanceExtensions(&n);
-    if (ext == nullptr) throw std::runtime_error("GLFW finds no Vulkan surface support");
-    o.instance_extensions.assign(ext, ext + n);
-    GLFWwindow* win = window_;
-    o.make_surface = [win](VkInstance instance) {
-        VkSurfaceKHR surface = VK_NULL_HANDLE;
-        if (glfwCreateWindowSurface(instance, win, nullptr, &surface) != VK_SUCCESS)
-            return VkSurfaceKHR{VK_NULL_HANDLE};
-        return surface;
-    };
-    o.validation = options_.validation;
-    context_ = std::make_unique<gpu::VulkanContext>(o);
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    swapchain_ = std::make_unique<Swapchain>(
-        *context_, VkExtent2D{static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h)},
-        settings_.vsync);
-    renderer_ = std::make_unique<render::TerrainRenderer>(*context_, swapchain_->render_pass());
-    mesh_ = std::make_unique<render::TerrainMesh>(doc_.materials);
+void App::report(const std::string& message) {
+    status_ = message;
+    // The session's messages, for the stats a scripted run writes (the line shows the last).
+    if (messages_.size() < 1000) messages_.push_back(message);
+    if (std::getenv("SANDTIN_EDITOR_TRACE") != nullptr)
+        std::fprintf(stderr, "sandtin-editor: %s\n", message.c_str());
 }
 
-void App::init_imgui() {
-    const VkDevice device = context_->device();
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16};
-    VkDescriptorPoolCreateInfo pool{};
-    pool.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-    pool.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
-    pool.maxSets = 16;
-    pool.poolSizeCount = 1;
-    pool.pPoolSizes = &size;
-    VkDescriptorPool handle = VK_NULL_HANDLE;
-    gpu::check(vkCreateDescriptorPool(device, &pool, nullptr, &handle), "vkCreateDescriptorPool");
-    imgui_pool_ = gpu::UniqueDescriptorPool(device, handle);
-
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;  // panel layout is fixed; settings live in our file
-    ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForVulkan(window_, true);
-    ImGui_ImplVulkan_InitInfo info{};
-    info.Instance = context_->instance();
-    info.PhysicalDevice = context_->physical_device();
-    info.Device = device;
-    info.QueueFamily = context_->queue_family();
-    info.Queue = context_->queue();
-    info.DescriptorPool = handle;
-    info.MinImageCount = 2;
-    info.ImageCount = std::max(2u, swapchain_->image_count());
-    info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
-    ImGui_ImplVulkan_Init(&info, swapchain_->render_pass());
-    context_->submit_and_wait([](VkCommandBuffer cb) { ImGui_ImplVulkan_CreateFontsTexture(cb); });
-    ImGui_ImplVulkan_DestroyFontUploadObjects();
-    imgui_ready_ = true;
+std::uint64_t App::gpu_work() {
+    return window_->swapchain().submissions() + view_->gpu_work(doc_) +
+           doc_.solver().gpu_dispatches();
 }
-
-void App::shutdown() {
-    haptics_.reset();  // the loop fades the force out before the window goes
-    if (swapchain_) swapchain_->wait_idle();
-    if (context_) vkDeviceWaitIdle(context_->device());
-    if (imgui_ready_) {
-        ImGui_ImplVulkan_Shutdown();
-        ImGui_ImplGlfw_Shutdown();
-        ImGui::DestroyContext();
-        imgui_ready_ = false;
-    }
-    // The normal map and the GPU mirrors hold device objects: they go before the device too.
-    normal_map_.reset();
-    own_mirror_.reset();
-    if (doc_.physics && doc_.physics->backend() == ErosionBackend::Gpu) doc_.physics.reset();
-    renderer_.reset();
-    imgui_pool_.reset();
-    swapchain_.reset();
-    context_.reset();
-    x_input_.reset();  // restores the X server's auto-repeat while the connection lives
-    if (window_ != nullptr) glfwDestroyWindow(window_);
-    window_ = nullptr;
-    glfwTerminate();
-}
-
-// ---- Main loop ------------------------------------------------------------------------------
 
 void App::save_settings_reporting() {
     // Tried once per change: a settings file that cannot be written (a read-only home) must
@@ -212,12 +66,11 @@ void App::save_settings_reporting() {
 
 LoopState App::loop_state() const {
     LoopState state;
-    glfwGetFramebufferSize(window_, &state.framebuffer_width, &state.framebuffer_height);
+    window_->framebuffer_size(state.framebuffer_width, state.framebuffer_height);
     state.redraw_pending = redraw_frames_ > 0;
     state.dragging = left_down_;
-    state.prompt_open =
-        recovery_for_.has_value() || pending_replacement_ != nullptr || pending_overwrite_;
-    state.eroding = settings_.erosion_running && (physics_kick_ || !doc_.physics->at_rest());
+    state.prompt_open = prompt_open();
+    state.eroding = erosion_runs() && sculpting_.wants_to_erode(doc_);
     state.haptics_connected = haptics_ != nullptr;
     return state;
 }
@@ -246,7 +99,7 @@ void App::interactive_loop() {
         // haptic device, a readout frame now and then: frame_policy.hpp).
         if (!wait_for_events(loop_state(), kWaitForEvent)) continue;
         int w = 0, h = 0;
-        glfwGetFramebufferSize(window_, &w, &h);
+        window_->framebuffer_size(w, h);
         if (!can_draw(w, h)) continue;  // minimised since the wait began
         frame(false);
         publish_widget_map();
@@ -294,11 +147,11 @@ int App::run() {
             script_.push_back(op);
     }
     Document first = initial_document();
-    if (!options_.scene.empty())
-        std::snprintf(path_buf_, sizeof(path_buf_), "%s", options_.scene.c_str());
-    init_window_and_gpu();
-    init_imgui();
-    if (options_.scripted()) x_input_ = std::make_unique<XInput>(window_);
+    if (!options_.scene.empty()) set_scene_field(options_.scene.string());
+    window_ = std::make_unique<EditorWindow>(options_.width, options_.height, options_.validation,
+                                             settings_.vsync, this, install_callbacks);
+    view_ = std::make_unique<TerrainView>(window_->context(), window_->renderer());
+    if (options_.scripted()) x_input_ = std::make_unique<XInput>(window_->glfw());
     const std::string settings_problem = status_;
     status_.clear();
     install_document(std::move(first), "");
@@ -309,7 +162,7 @@ int App::run() {
         if (!part.empty()) start += (start.empty() ? "" : "; ") + part;
     }
     report(start);
-    std::fprintf(stderr, "sandtin-editor: %s\n", context_->describe().c_str());
+    std::fprintf(stderr, "sandtin-editor: %s\n", window_->context().describe().c_str());
 
     int exit_code = 0;
     std::vector<std::string> output_failures;
@@ -324,7 +177,7 @@ int App::run() {
             if (options_.idle_seconds > 0.0) idle_measurement(idle_submissions, idle_gpu_work);
         } else {
             interactive_loop();
-            end_action();
+            sculpting_.close_level(doc_);
             keep_unsaved_edits();  // closing with unsaved edits: they wait in the autosave
         }
     } catch (const std::exception&) {
@@ -337,18 +190,17 @@ int App::run() {
         throw;
     }
 
-    const std::uint64_t validation = context_->validation_message_count();
+    const std::uint64_t validation = window_->context().validation_message_count();
     if (!options_.stats.empty()) write_stats(idle_submissions, idle_gpu_work);
     for (const std::string& failure : output_failures)
         std::fprintf(stderr, "sandtin-editor: %s\n", failure.c_str());
     if (!output_failures.empty()) exit_code = 1;
     if (validation > 0) {
-        for (const std::string& m : context_->validation_messages())
+        for (const std::string& m : window_->context().validation_messages())
             std::fprintf(stderr, "validation: %s\n", m.c_str());
         exit_code = 3;
     }
     if (!options_.scripted() && !(settings_ == saved_settings_)) save_settings_reporting();
-    shutdown();
     return exit_code;
 }
 
@@ -369,9 +221,9 @@ void App::scripted_loop() {
             if (!input_steps_.empty()) run_input_step();
             if (trace)
                 std::fprintf(stderr, "sandtin-editor: op %zu %s -> %zu vertices\n", script_pos_,
-                             script_[script_pos_ - 1].dump().c_str(), doc_.tin->vertex_count());
+                             script_[script_pos_ - 1].dump().c_str(), doc_.tin().vertex_count());
         } else {
-            end_action();
+            sculpting_.close_level(doc_);
             ++frames_after_script;
         }
         const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
@@ -384,7 +236,7 @@ void App::scripted_loop() {
 
 void App::idle_measurement(std::uint64_t& submissions, std::uint64_t& work) {
     // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
-    const std::uint64_t before = swapchain_->submissions();
+    const std::uint64_t before = window_->swapchain().submissions();
     const std::uint64_t work_before = gpu_work();
     const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
     settings_.erosion_running = false;
@@ -396,13 +248,13 @@ void App::idle_measurement(std::uint64_t& submissions, std::uint64_t& work) {
         frame(false);
         if (redraw_frames_ > 0) --redraw_frames_;
     }
-    submissions = swapchain_->submissions() - before;
+    submissions = window_->swapchain().submissions() - before;
     work = gpu_work() - work_before;
 }
 
 void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_work) {
     nlohmann::json s;
-    s["device"] = context_->device_name();
+    s["device"] = window_->context().device_name();
     s["frames"] = times_.frame.size();
     s["frame_ms_median"] = StageTimes::median(times_.frame);
     s["tool_ms_median"] = StageTimes::median(times_.tool);
@@ -413,35 +265,35 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
             ? 0.0
             : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
     s["physics_ms_median"] = StageTimes::median(times_.physics);
-    s["physics"] = doc_.physics->backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
+    s["physics"] = doc_.solver().backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
     s["erosion_status"] = erosion_status();
     s["erosion_running"] = erosion_runs();
     s["mesh_ms_median"] = StageTimes::median(times_.mesh);
     s["upload_ms_median"] = StageTimes::median(times_.upload);
     s["bake_ms_median"] = StageTimes::median(times_.bake);
-    s["normal_map_bakes"] = normal_map_bakes_;
-    s["normal_map_texels_baked"] = normal_map_ ? normal_map_->texels_baked() : 0;
+    s["normal_map_bakes"] = view_->normal_map_bakes();
+    s["normal_map_texels_baked"] = view_->normal_map() ? view_->normal_map()->texels_baked() : 0;
     s["render_ms_median"] = StageTimes::median(times_.render);
     s["fps"] =
         StageTimes::median(times_.frame) > 0 ? 1000.0 / StageTimes::median(times_.frame) : 0.0;
-    s["vertices"] = doc_.tin->vertex_count();
-    s["triangles"] = doc_.tin->triangle_count();
-    s["undo_levels"] = undo_log_.levels();
-    s["submissions"] = swapchain_->submissions();
-    s["bytes_uploaded"] = renderer_->bytes_uploaded();
-    s["mesh_updates"] = mesh_updates_;
-    s["mesh_rebuilds"] = mesh_rebuilds_;
-    s["mesh_vertices_recomputed"] = mesh_recomputed_;
+    s["vertices"] = doc_.tin().vertex_count();
+    s["triangles"] = doc_.tin().triangle_count();
+    s["undo_levels"] = doc_.undo_log().levels();
+    s["submissions"] = window_->swapchain().submissions();
+    s["bytes_uploaded"] = window_->renderer().bytes_uploaded();
+    s["mesh_updates"] = view_->mesh_updates();
+    s["mesh_rebuilds"] = view_->mesh_rebuilds();
+    s["mesh_vertices_recomputed"] = view_->vertices_recomputed();
     s["idle_submissions"] = idle_submissions;
     s["idle_gpu_work"] = idle_gpu_work;
-    s["validation_messages"] = context_->validation_message_count();
+    s["validation_messages"] = window_->context().validation_message_count();
     s["layout_overflow_px"] = layout_.overflow_px();
     s["layout_hidden_px"] = layout_.hidden_px();
     s["status"] = status_;
     s["messages"] = messages_;
-    s["scene_path"] = doc_.path.string();
+    s["scene_path"] = doc_.path().string();
     s["scene_field"] = std::string(path_buf_);
-    s["dirty"] = doc_.dirty;
+    s["dirty"] = doc_.dirty();
     s["tooltip"] = widgets_.last_tooltip();
     s["settings"] = {{"tool_radius", settings_.tool_radius},
                      {"tool_depth", settings_.tool_depth},
@@ -469,9 +321,9 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     if (cursor_) s["cursor"] = {cursor_->x, cursor_->y, cursor_->z};
     double px = 0, py = 0;
     int w = 0, h = 0;
-    glfwGetWindowSize(window_, &w, &h);
+    window_->window_size(w, h);
     if (cursor_) {
-        const Vec2 c = doc_.tin->domain().centre();
+        const Vec2 c = doc_.tin().domain().centre();
         if (camera_.project({cursor_->x - c.x, cursor_->y - c.y, cursor_->z}, w, h, px, py))
             s["cursor_pixel"] = {px, py};
     }
@@ -490,7 +342,7 @@ std::vector<std::string> App::write_outputs() {
     }
     if (!options_.screenshot.empty()) {
         try {
-            write_png(options_.screenshot, swapchain_->screenshot());
+            write_png(options_.screenshot, window_->swapchain().screenshot());
         } catch (const std::exception& e) {
             failures.push_back("cannot write the screenshot: " + std::string(e.what()));
         }

@@ -1,0 +1,169 @@
+#include "terrain_view.hpp"
+
+#include <algorithm>
+
+namespace sandtin::editor {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+TerrainView::TerrainView(gpu::VulkanContext& context, render::TerrainRenderer& renderer)
+    : context_(context), renderer_(renderer) {}
+
+TerrainView::~TerrainView() = default;
+
+void TerrainView::rebuild(Document& doc) {
+    // Everything built for the old terrain goes; the renderer forgets its buffers, so nothing
+    // of that terrain stays in memory it draws from.
+    normal_map_.reset();
+    own_mirror_.reset();
+    renderer_.drop_mesh();
+    mesh_ = std::make_unique<render::TerrainMesh>(doc.materials());
+    materials_version_ = doc.materials_version();
+    fanout_ = std::make_unique<ChangeFanout>(doc.tin());
+    active_.clear();
+    active_ids_.clear();
+    active_flipped_.clear();
+    stale_ = true;
+    contrast_stale_ = true;
+    // The mesh, the mirror and the normal map exist before anything draws.
+    update(doc, [] {});
+}
+
+void TerrainView::solver_replaced(Document& doc) {
+    normal_map_.reset();  // it may refer to the old solver's mirror
+    update_normal_map(doc);
+}
+
+gpu::TinMirror* TerrainView::mirror(Document& doc) {
+    if (gpu::TinMirror* m = doc.solver().mirror()) {
+        own_mirror_.reset();
+        return m;
+    }
+    if (!own_mirror_) own_mirror_ = std::make_unique<gpu::TinMirror>(context_, doc.materials());
+    return own_mirror_.get();
+}
+
+ChangeSet TerrainView::take_for_mirror() {
+    return fanout_->take(ChangeFanout::Mirror);
+}
+
+ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_idle) {
+    ViewUpdate out;
+    if (doc.materials_version() != materials_version_) {
+        // Colours and slope ratios of every vertex.
+        mesh_->set_materials(doc.materials());
+        if (own_mirror_) own_mirror_->set_materials(doc.materials());
+        materials_version_ = doc.materials_version();
+        stale_ = true;
+    }
+    // The journal says what changed; nothing changed means no recomputation and no upload.
+    const ChangeSet changes = fanout_->take(ChangeFanout::Mesh);
+    if (!stale_ && changes.empty() && active_flipped_.empty() && normal_map_) return out;
+    const auto t0 = Clock::now();
+    mesh_->set_active(active_);
+    const render::MeshUpdate update =
+        stale_ ? mesh_->rebuild(doc.tin()) : mesh_->update(doc.tin(), changes, active_flipped_);
+    active_flipped_.clear();
+    stale_ = false;
+    ++mesh_updates_;
+    mesh_recomputed_ += count_in_ranges(update.vertices);
+    if (update.resized) ++mesh_rebuilds_;
+    out.mesh_ms = ms_since(t0);
+    const auto t1 = Clock::now();
+    wait_idle();
+    const std::uint64_t before = renderer_.bytes_uploaded();
+    renderer_.upload(*mesh_, update);
+    out.upload_bytes = renderer_.bytes_uploaded() - before;
+    update_contrast_range(doc.tin());
+    out.upload_ms = ms_since(t1);
+    const auto t2 = Clock::now();
+    update_normal_map(doc);
+    out.bake_ms = ms_since(t2);
+    return out;
+}
+
+void TerrainView::update_normal_map(Document& doc) {
+    gpu::TinMirror* m = mirror(doc);
+    // Edits the GPU solver has not seen yet (erosion paused, or tools after its step): the
+    // mirror takes them now, and the solver looks at those vertices on its next step.
+    const gpu::SyncStats synced = m->sync(doc.tin(), take_for_mirror());
+    if (doc.solver().mirror() != nullptr && !synced.dirty_vertices.empty()) {
+        std::vector<VertexId> ids;
+        ids.reserve(synced.dirty_vertices.size());
+        for (std::uint32_t v : synced.dirty_vertices)
+            ids.push_back(VertexId{v});
+        doc.solver().activate(ids);
+    }
+    const ChangeSet dirty = fanout_->take(ChangeFanout::NormalMap);
+    if (!normal_map_ || &normal_map_->mirror() != m) {
+        normal_map_ = std::make_unique<render::TerrainNormalMap>(*m, doc.tin().domain());
+        renderer_.set_normal_map(normal_map_->view(), normal_map_->sampler());
+        ++normal_map_bakes_;
+    } else if (const auto texels = normal_map_->rebake(doc.tin(), dirty)) {
+        ++normal_map_bakes_;
+        normal_map_texels_ = std::uint64_t{texels->width()} * texels->height();
+    }
+}
+
+void TerrainView::update_contrast_range(const Tin& tin) {
+    // The contrast curve stretches the 2nd..98th percentile of the heights over the full
+    // range (the seeds' histogram stretch). O(n): refreshed at most twice a second.
+    if (!contrast_stale_ && Clock::now() - contrast_at_ < std::chrono::milliseconds(500)) return;
+    const VertexArrays& va = tin.vertices();
+    std::vector<double> h;
+    h.reserve(tin.vertex_count());
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (va.alive[i]) h.push_back(va.height[i]);
+    }
+    if (h.size() < 2) return;
+    const auto at = [&](double q) {
+        auto it = h.begin() + static_cast<long>(q * static_cast<double>(h.size() - 1));
+        std::nth_element(h.begin(), it, h.end());
+        return *it;
+    };
+    contrast_low_ = at(0.02);
+    contrast_high_ = std::max(at(0.98), contrast_low_ + 1e-4);
+    contrast_at_ = Clock::now();
+    contrast_stale_ = false;
+}
+
+void TerrainView::set_active(std::span<const VertexId> active) {
+    // Clear the old flags, set the new ones; the mesh recomputes only the flags that flipped.
+    for (VertexId v : active_ids_) {
+        active_[v.index()] = 0;
+        active_flipped_.push_back(v);
+    }
+    active_ids_.clear();
+    for (VertexId v : active) {
+        if (v.index() >= active_.size()) active_.resize(v.index() + 1 + active_.size() / 2, 0);
+        if (!active_[v.index()]) {
+            active_[v.index()] = 1;
+            active_ids_.push_back(v);
+            active_flipped_.push_back(v);
+        }
+    }
+}
+
+void TerrainView::clear_active() {
+    for (VertexId v : active_ids_) {
+        active_[v.index()] = 0;
+        active_flipped_.push_back(v);
+    }
+    active_ids_.clear();
+}
+
+std::uint64_t TerrainView::gpu_work(Document& doc) {
+    gpu::TinMirror* m = doc.solver().mirror();
+    if (m == nullptr) m = own_mirror_.get();
+    return normal_map_bakes_ + (m != nullptr ? m->staging().batches_submitted() : 0);
+}
+
+}  // namespace sandtin::editor

@@ -1,0 +1,93 @@
+#pragma once
+// The terrain as the GPU shows it: the render mesh and the renderer's buffers, the GPU mirror
+// the normal map is baked from, the baked normal map, the active-vertex overlay and the
+// contrast curve's range. Built whole for a document (nothing of another terrain stays in it)
+// and updated each frame from the TIN's change journal: nothing changed, nothing recomputed,
+// nothing uploaded.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "change_fanout.hpp"
+#include "document.hpp"
+#include "gpu/render/normal_map.hpp"
+#include "gpu/render/terrain_mesh.hpp"
+#include "gpu/render/terrain_renderer.hpp"
+#include "gpu/tin_mirror.hpp"
+#include "gpu/vulkan_context.hpp"
+
+namespace sandtin::editor {
+
+/// What one update did and took (milliseconds), for the Stats window.
+struct ViewUpdate {
+    double mesh_ms = 0.0, upload_ms = 0.0, bake_ms = 0.0;
+    std::uint64_t upload_bytes = 0;
+};
+
+class TerrainView {
+  public:
+    /// `renderer` draws what this view uploads; both outlive it.
+    TerrainView(gpu::VulkanContext& context, render::TerrainRenderer& renderer);
+    ~TerrainView();
+    TerrainView(const TerrainView&) = delete;
+    TerrainView& operator=(const TerrainView&) = delete;
+
+    /// Tears down everything built for the previous terrain and builds the mesh, the mirror
+    /// and the normal map of `doc`'s (the GPU must be idle). Safe in the middle of a frame:
+    /// the next draw sees only the new terrain.
+    void rebuild(Document& doc);
+    /// The solver was replaced (its mirror, when it brought one, with it): the normal map is
+    /// baked again from the mirror there is now (the GPU must be idle).
+    void solver_replaced(Document& doc);
+    /// Brings the mesh, its buffers, the mirror and the normal map up to the TIN (the GPU must
+    /// not be reading the buffers). `wait_idle` is called before the buffers are written.
+    ViewUpdate update(Document& doc, const std::function<void()>& wait_idle);
+    /// The vertices the erosion moved in its last frame: the active overlay shows them.
+    void set_active(std::span<const VertexId> active);
+    /// Clears the active overlay (the erosion stopped).
+    void clear_active();
+
+    /// Heights (m) the contrast curve stretches over its range.
+    double contrast_low() const { return contrast_low_; }
+    double contrast_high() const { return contrast_high_; }
+    const render::TerrainMesh& mesh() const { return *mesh_; }
+    const render::TerrainNormalMap* normal_map() const { return normal_map_.get(); }
+    /// GPU work so far: normal-map bakes and mirror upload batches (an idle editor adds none).
+    std::uint64_t gpu_work(Document& doc);
+    /// The TIN's changes for the mirror the GPU solver syncs (its change source).
+    ChangeSet take_for_mirror();
+    std::uint64_t normal_map_bakes() const { return normal_map_bakes_; }
+    std::uint64_t last_texels_baked() const { return normal_map_texels_; }
+    std::uint64_t mesh_updates() const { return mesh_updates_; }
+    std::uint64_t mesh_rebuilds() const { return mesh_rebuilds_; }
+    std::uint64_t vertices_recomputed() const { return mesh_recomputed_; }
+
+  private:
+    void update_normal_map(Document& doc);
+    void update_contrast_range(const Tin& tin);
+    gpu::TinMirror* mirror(Document& doc);
+
+    gpu::VulkanContext& context_;
+    render::TerrainRenderer& renderer_;
+    std::uint64_t materials_version_ = ~std::uint64_t{0};
+    std::unique_ptr<render::TerrainMesh> mesh_;
+    /// The one consumer of the TIN's change journal; the mesh and the GPU mirror take from it.
+    std::unique_ptr<ChangeFanout> fanout_;
+    /// The TIN on the GPU for the normal-map bake while the CPU erodes (the GPU solver brings
+    /// its own mirror, which the bake then shares).
+    std::unique_ptr<gpu::TinMirror> own_mirror_;
+    std::unique_ptr<render::TerrainNormalMap> normal_map_;
+    bool stale_ = true;                     ///< the mesh is rebuilt whole at the next update
+    std::vector<std::uint8_t> active_;      ///< by VertexId: moved in the erosion's last frame
+    std::vector<VertexId> active_ids_;      ///< those flagged now
+    std::vector<VertexId> active_flipped_;  ///< flags that changed since the last update
+    double contrast_low_ = 0.0, contrast_high_ = 0.1;
+    std::chrono::steady_clock::time_point contrast_at_{};
+    bool contrast_stale_ = true;
+    std::uint64_t normal_map_bakes_ = 0, normal_map_texels_ = 0;
+    std::uint64_t mesh_updates_ = 0, mesh_rebuilds_ = 0, mesh_recomputed_ = 0;
+};
+
+}  // namespace sandtin::editor
