@@ -264,7 +264,13 @@ StampReport stamp(Tin& tin, const Tool& tool, const ToolPlacement& at, SculptCon
     std::vector<Vec2> rim;
     std::vector<double> rim_h;
     const double min_spacing = 0.25 * tool.shape().gap;
-    inner = drape_inner(tin, inner, frame, dig, tol, min_spacing, hint);
+    // I follows the sand the tool stands above to the coarser of the rim's tolerance and the
+    // simplifier's: a floor the simplifier's volume-conserving shifts left a hair below the
+    // tool (re-working a trail) is no sand to follow, and chasing it at the rim's 1 % of a small
+    // tool's radius made a 10^5-stamp stroke's vertices grow without end.
+    inner = drape_inner(tin, inner, frame, dig,
+                        std::max(tool.rim_tolerance(), context.settings.simplify.tolerance),
+                        min_spacing, hint);
     std::size_t rim_crossings = 0;
     sample_rim(tin, outer, tool.rim_tolerance(), min_spacing, hint, rim, rim_h, rim_crossings);
     std::vector<double> inner_terrain(inner.size());

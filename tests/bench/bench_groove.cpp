@@ -1,5 +1,6 @@
 #include "bench_groove.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -262,7 +263,9 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     j["tool"] = {{"name", spec.name},
                  {"bounding_radius", tool.shape().bounding_radius},
                  {"bottom", kBottom},
-                 {"spacing", kSpacing}};
+                 // A stroke keeps to the tool's own limit (Tool::max_stroke_spacing: the
+                 // rake's 9 mm).
+                 {"spacing", std::min(kSpacing, tool.max_stroke_spacing())}};
     if (config.tool.empty()) {
         j["tool"]["radius"] = spec.radius;
         j["tool"]["control_points"] = spec.control_points;
