@@ -14,6 +14,7 @@
 #include "haptics/force_loop.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_editor.hpp"
+#include "haptics/loop_jitter.hpp"
 #include "haptics/udp_device.hpp"
 
 namespace sandtin::haptics {
@@ -35,6 +36,7 @@ struct UdpServeOptions {
 
 struct UdpServeResult {
     ForceLoopReport loop;
+    JitterSummary jitter;  ///< where the loop's ticks' time went (loop_diagnostics.hpp)
     UdpDeviceCounters device;
     HapticRecording recording;
     std::size_t stamps = 0;
