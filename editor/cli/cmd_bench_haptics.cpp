@@ -18,15 +18,15 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "haptics/cpu_wake_latency.hpp"
+#include "haptics/diagnostics/cpu_wake_latency.hpp"
+#include "haptics/diagnostics/loop_diagnostics.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
+#include "haptics/diagnostics/sched_sampler.hpp"
+#include "haptics/diagnostics/spin_probe.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_session.hpp"
-#include "haptics/loop_diagnostics.hpp"
-#include "haptics/os_counters.hpp"
 #include "haptics/realtime_thread.hpp"
-#include "haptics/sched_sampler.hpp"
 #include "haptics/simulated_device.hpp"
-#include "haptics/spin_probe.hpp"
 #include "tools/tool_json.hpp"
 
 namespace sandtin::cli {

@@ -4,8 +4,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 #include "haptics/live_session.hpp"
-#include "haptics/loop_diagnostics.hpp"
 #include "tools/tool_json.hpp"
 
 namespace sandtin::haptics {

@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "haptics/diagnostics/loop_jitter.hpp"
 #include "haptics/force_loop.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_editor.hpp"
-#include "haptics/loop_jitter.hpp"
 #include "haptics/udp_device.hpp"
 
 namespace sandtin::haptics {

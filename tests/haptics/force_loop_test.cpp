@@ -10,8 +10,8 @@
 #include <thread>
 
 #include "flat_snapshot.hpp"
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 #include "haptics/force_loop.hpp"
-#include "haptics/loop_diagnostics.hpp"
 #include "haptics/simulated_device.hpp"
 
 namespace sandtin::haptics {

@@ -13,8 +13,8 @@
 #include <new>
 #include <thread>
 
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 #include "haptics/force_loop.hpp"
-#include "haptics/loop_diagnostics.hpp"
 #include "haptics/simulated_device.hpp"
 
 namespace {

@@ -1,17 +1,28 @@
 #pragma once
-// The force loop's OS jitter diagnostics, attached to it as its LoopObserver: the phases of
-// every tick (loop_jitter.hpp), to attribute late ticks, and the loop thread's scheduler
-// counters and page faults from just before the first tick to just after the last
-// (os_counters.hpp). `sandtin bench haptics` and `sandtin haptics serve` attach them; the loop
-// itself runs without them.
+// engine/haptics/diagnostics: the OS jitter diagnostics of the force loop. They measure what
+// the operating system and the machine did to the loop thread, so a late tick can be
+// attributed instead of guessed at, and take no part in a tick's force:
+//  - LoopDiagnostics (here), attached to a ForceLoop as its LoopObserver: the phases of every
+//    tick (loop_jitter.hpp) and the loop thread's scheduler counters and page faults from just
+//    before the first tick to just after the last (os_counters.hpp);
+//  - SchedSampler (sched_sampler.hpp): a low-rate thread that watches the kernel's run queue
+//    and the hypervisor's steal time, to match late ticks against;
+//  - run_spin_probe (spin_probe.hpp): the machine's own jitter, with no loop at all;
+//  - CpuWakeLatencyHold (cpu_wake_latency.hpp): keeps idle CPUs from sleeping deeply while a
+//    run is measured.
+// Dependencies point from this room to the loop, never back: to its observer interface and
+// clock (haptics/loop_observer.hpp), its config (haptics/force_loop.hpp, for the period that
+// makes a tick late) and its thread set-up (haptics/realtime_thread.hpp, for the probe). The
+// loop runs, and is tested, without this room; `sandtin bench haptics` and `sandtin haptics
+// serve` attach it.
 
 #include <cstddef>
 #include <vector>
 
+#include "haptics/diagnostics/loop_jitter.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
 #include "haptics/force_loop.hpp"
-#include "haptics/loop_jitter.hpp"
 #include "haptics/loop_observer.hpp"
-#include "haptics/os_counters.hpp"
 
 namespace sandtin::haptics {
 

@@ -1,4 +1,4 @@
-#include "haptics/loop_diagnostics.hpp"
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 
 namespace sandtin::haptics {
 
