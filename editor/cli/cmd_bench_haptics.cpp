@@ -13,17 +13,20 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "haptics/diagnostics/cpu_wake_latency.hpp"
+#include "haptics/diagnostics/loop_diagnostics.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
+#include "haptics/diagnostics/sched_sampler.hpp"
+#include "haptics/diagnostics/spin_probe.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_session.hpp"
-#include "haptics/os_counters.hpp"
 #include "haptics/realtime_thread.hpp"
-#include "haptics/sched_sampler.hpp"
 #include "haptics/simulated_device.hpp"
-#include "haptics/spin_probe.hpp"
 #include "tools/tool_json.hpp"
 
 namespace sandtin::cli {
@@ -189,7 +192,6 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     config.realtime.timer_slack = !args.has("--no-timer-slack");
     config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
     config.absolute_sleep = !args.has("--relative-sleep");
-    config.hold_cpu_wake_latency = args.has("--wake-latency-zero");
     // The backup tick thread (force_loop.hpp) is on by default with 2+ CPUs: on this VM the
     // timer wake-ups of one CPU are sometimes milliseconds late, and the other CPU covers them.
     // It covers the primary's CPU only from another CPU, so unless told otherwise the primary
@@ -199,10 +201,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
         if (config.realtime.cpu < 0) config.realtime.cpu = cpus - 1;
         config.backup_cpu = config.realtime.cpu == 0 ? 1 : 0;
     }
-    config.late_tick_capacity = 256;
     int simulation_pinned = -1;
     if (pin && pin_this_thread(0) == 0) simulation_pinned = 0;
-    ForceLoop loop(device, config);
+    LoopDiagnostics diagnostics(config, 256);
+    ForceLoop loop(device, config, &diagnostics);
     LiveSession session(editor, loop);
 
     std::vector<double> step_ms;
@@ -210,6 +212,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     std::size_t stamps = 0;
     const std::vector<std::int64_t> steal_before = read_cpu_steal_ns();
     const auto t0 = std::chrono::steady_clock::now();
+    // While the loop runs, every CPU's wake-up latency is held at 0 when asked (idle CPUs poll
+    // instead of halting; cpu_wake_latency.hpp). Machine-wide while held.
+    std::optional<CpuWakeLatencyHold> wake_latency;
+    if (args.has("--wake-latency-zero")) wake_latency.emplace(0);
     loop.start();
     std::optional<SchedSampler> sampler;
     if (!args.has("--no-sampler")) {
@@ -236,6 +242,9 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
         }
     }
     loop.stop();
+    const bool wake_latency_held = wake_latency && wake_latency->held();
+    const std::string wake_latency_error = wake_latency ? wake_latency->error() : std::string();
+    wake_latency.reset();
     if (sampler) sampler->stop();
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -269,10 +278,9 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                      {"backup_thread", config.backup_thread},
                      {"backup_cpu", config.backup_cpu},
                      {"ticks_by_backup", report.ticks_by_backup},
-                     {"cpu_wake_latency_zero", report.cpu_wake_latency_held},
+                     {"cpu_wake_latency_zero", wake_latency_held},
                      {"refused", g.refused}};
-    if (!report.cpu_wake_latency_error.empty())
-        j["realtime"]["refused_wake_latency"] = report.cpu_wake_latency_error;
+    if (!wake_latency_error.empty()) j["realtime"]["refused_wake_latency"] = wake_latency_error;
     j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
     j["period_ms"] = {{"p50", report.periods.p50_ms},
                       {"p99", report.periods.p99_ms},
@@ -288,7 +296,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     j["snapshots_taken"] = report.snapshots_taken;
 
     // Where the time went.
-    const JitterSummary& js = report.jitter;
+    const JitterSummary js = diagnostics.jitter();
     j["jitter"] = {{"max_work_ms", ms(js.max_work_ns)},
                    {"max_wake_late_ms", ms(js.max_wake_late_ns)},
                    {"max_spin_gap_ms", ms(js.max_spin_gap_ns)},
@@ -300,17 +308,17 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                    {"late_by_work", js.late_by_work},
                    {"late_by_wakeup", js.late_by_wakeup},
                    {"late_by_spin_gap", js.late_by_spin_gap}};
-    j["loop_thread_during_ticks"] = counters_json(report.during_ticks);
+    j["loop_thread_during_ticks"] = counters_json(diagnostics.during_ticks());
     nlohmann::json steal = nlohmann::json::array();
     for (std::size_t c = 0; c < std::min(steal_before.size(), steal_after.size()); ++c)
         steal.push_back(ms(steal_after[c] - steal_before[c]));
     j["steal_ms_per_cpu"] = steal;
     std::int64_t late_total = 0;
-    for (const TickPhases& t : loop.late_ticks())
+    for (const TickPhases& t : diagnostics.late_ticks())
         late_total += t.period_ns - static_cast<std::int64_t>(1e9 / rate);
     j["late_ticks_total_excess_ms"] = ms(late_total);
     nlohmann::json late = nlohmann::json::array();
-    const std::vector<TickPhases>& late_ticks = loop.late_ticks();
+    const std::vector<TickPhases>& late_ticks = diagnostics.late_ticks();
     // The worst first; the list is capped so the report stays readable.
     std::vector<TickPhases> worst(late_ticks.begin(), late_ticks.end());
     std::sort(worst.begin(), worst.end(),

@@ -158,7 +158,7 @@ int run_haptics(const std::vector<std::string>& raw) {
                       {"max", r.loop.periods.max_ms}};
     j["overruns"] = r.loop.periods.overruns;
     // Where late ticks' time went (loop_jitter.hpp); "work" includes the device's socket I/O.
-    const auto& jitter = r.loop.jitter;
+    const auto& jitter = r.jitter;
     j["late_ticks"] = {{"over_ms", r.loop.periods.target_ms * 1.5},
                        {"count", jitter.late_ticks},
                        {"by_work", jitter.late_by_work},

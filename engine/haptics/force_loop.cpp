@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace sandtin::haptics {
 
@@ -16,9 +17,7 @@ std::int64_t monotonic_ns() {
         .count();
 }
 
-namespace {
-
-std::int64_t checked_period(const ForceLoopConfig& c) {
+std::int64_t loop_period_ns(const ForceLoopConfig& c) {
     if (!(c.rate_hz > 0.0) || !(c.rate_hz <= kMaxLoopRateHz)) {
         throw std::invalid_argument("force loop: rate_hz must be in (0, 4000], got " +
                                     std::to_string(c.rate_hz));
@@ -29,6 +28,8 @@ std::int64_t checked_period(const ForceLoopConfig& c) {
     if (c.stop_ramp_ns < 0) throw std::invalid_argument("force loop: stop_ramp_ns must be >= 0");
     return period;
 }
+
+namespace {
 
 ForceLoopConfig with_rate(ForceLoopConfig c) {
     c.renderer.rate_hz = c.rate_hz;
@@ -50,12 +51,12 @@ void sleep_until_ns(std::int64_t t, bool absolute) {
 
 }  // namespace
 
-ForceLoop::ForceLoop(HapticDevice& device, ForceLoopConfig config)
+ForceLoop::ForceLoop(HapticDevice& device, ForceLoopConfig config, LoopObserver* observer)
     : device_(device),
       config_(with_rate(config)),
-      period_ns_(checked_period(config_)),
-      periods_(period_ns_),
-      jitter_(period_ns_ * 3 / 2, config_.late_tick_capacity) {
+      observer_(observer),
+      period_ns_(loop_period_ns(config_)),
+      periods_(period_ns_) {
     ForceRenderer check(config_.renderer);  // validates the renderer settings now
     records_.reserve(config_.record_capacity);
 }
@@ -68,7 +69,6 @@ void ForceLoop::start() {
     if (thread_.joinable() || opened_) throw std::logic_error("force loop: already started");
     device_.open();
     opened_ = true;
-    if (config_.hold_cpu_wake_latency) wake_latency_ = std::make_unique<CpuWakeLatencyHold>(0);
     stop_requested_.store(false);
     running_.store(true, std::memory_order_release);
     thread_ = std::thread([this] { run(); });
@@ -78,11 +78,6 @@ void ForceLoop::stop() {
     stop_requested_.store(true, std::memory_order_release);
     if (thread_.joinable()) thread_.join();
     running_.store(false, std::memory_order_release);
-    if (wake_latency_) {
-        report_.cpu_wake_latency_held = wake_latency_->held();
-        report_.cpu_wake_latency_error = wake_latency_->error();
-        wake_latency_.reset();
-    }
     if (opened_) {
         device_.close();
         opened_ = false;
@@ -126,7 +121,7 @@ void ForceLoop::run() {
     s.report.realtime = s.report.realtime_grant.fifo;
     thread_id_.store(static_cast<int>(gettid()), std::memory_order_release);
     periods_.clear();
-    jitter_.clear();
+    if (observer_ != nullptr) observer_->thread_started();
     deadline_.store(monotonic_ns() + period_ns_, std::memory_order_relaxed);
     finished_.store(false, std::memory_order_relaxed);
     token_.store(0, std::memory_order_release);
@@ -141,11 +136,10 @@ void ForceLoop::run() {
         });
     }
     // After starting the backup: creating a thread faults in the primary, before any tick.
-    const ThreadCounters counters_before = read_this_thread_counters();
+    if (observer_ != nullptr) observer_->ticks_starting();
     wait_and_tick(s, false);
     if (backup.joinable()) backup.join();
-    s.report.during_ticks = difference(read_this_thread_counters(), counters_before);
-    s.report.jitter = jitter_.summary();
+    if (observer_ != nullptr) observer_->ticks_ended();
     report_ = s.report;
     running_.store(false, std::memory_order_release);
 }
@@ -197,11 +191,13 @@ bool ForceLoop::run_tick(TickState& s, std::uint64_t tick, std::int64_t now, std
     }
     if (tick > 0) {
         periods_.add(now - s.previous_start);
-        phases.start_ns = now;
-        phases.period_ns = now - s.previous_start;
-        phases.lateness_ns = now - deadline;
-        phases.cpu = current_cpu();
-        jitter_.add(phases);
+        if (observer_ != nullptr) {
+            phases.start_ns = now;
+            phases.period_ns = now - s.previous_start;
+            phases.lateness_ns = now - deadline;
+            phases.cpu = current_cpu();
+            observer_->ticked(phases);
+        }
     }
     s.previous_start = now;
     if (backup) ++s.report.ticks_by_backup;

@@ -14,23 +14,19 @@
 //
 // The tick path makes no system call other than reading the clock and the absolute-time sleep
 // (clock_nanosleep TIMER_ABSTIME), and never allocates (records and statistics are
-// preallocated). Each tick's phases (loop_jitter.hpp) are measured so late ticks can be
-// attributed; the thread's scheduler counters and page faults are read just before the first
-// and just after the last tick (os_counters.hpp).
+// preallocated). Each tick's phases (how long the sleep overslept, the longest gap in the spin,
+// the previous tick's work; loop_observer.hpp) go to an observer when one is attached: the OS
+// jitter diagnostics (diagnostics/loop_diagnostics.hpp) attribute late ticks with them.
 
 #include <atomic>
 #include <cstdint>
-#include <memory>
-#include <string>
 #include <thread>
 #include <vector>
 
-#include "haptics/cpu_wake_latency.hpp"
 #include "haptics/force_renderer.hpp"
 #include "haptics/haptic_device.hpp"
 #include "haptics/haptic_snapshot.hpp"
-#include "haptics/loop_jitter.hpp"
-#include "haptics/os_counters.hpp"
+#include "haptics/loop_observer.hpp"
 #include "haptics/period_stats.hpp"
 #include "haptics/realtime_thread.hpp"
 #include "haptics/triple_buffer.hpp"
@@ -59,9 +55,6 @@ struct ForceLoopConfig {
     /// Sleep with clock_nanosleep(TIMER_ABSTIME) (true) or std::this_thread::sleep_until,
     /// which sleeps a relative interval computed from a clock read (false; for comparison).
     bool absolute_sleep = true;
-    /// While the loop runs, ask the kernel to keep every CPU's wake-up latency at 0 (idle CPUs
-    /// poll instead of halting; cpu_wake_latency.hpp). Machine-wide while held: opt in.
-    bool hold_cpu_wake_latency = false;
     /// A second, backup thread that sleeps until `backup_margin_ns` after each deadline and
     /// takes the tick if the primary has not started it (its wake-up came late). Ticks are
     /// handed between the two through one atomic token, so exactly one runs each tick and
@@ -74,9 +67,11 @@ struct ForceLoopConfig {
     /// Pin the backup to this CPU (-1: not pinned). It only helps when it cannot share the
     /// primary's CPU, so pin both (realtime.cpu and this) to different CPUs.
     int backup_cpu = -1;
-    /// Keep the phases of this many late ticks (period > 1.5 periods), preallocated.
-    std::size_t late_tick_capacity = 64;
 };
+
+/// The period of a loop with `config` (ns). Throws std::invalid_argument, as ForceLoop's
+/// constructor does, for a rate outside (0, 4000] Hz, a spin >= one period or a negative ramp.
+std::int64_t loop_period_ns(const ForceLoopConfig& config);
 
 /// One tick, as the simulation sees it and as recordings store it.
 struct TickRecord {
@@ -99,23 +94,15 @@ struct ForceLoopReport {
     std::uint64_t force_jumps_over_half_newton = 0;
     std::uint64_t stale_ticks = 0;
     std::uint64_t snapshots_taken = 0;
-    RealtimeGrant realtime_grant;  ///< what the thread's set-up got
-    bool cpu_wake_latency_held = false;
-    std::string cpu_wake_latency_error;  ///< why it was not held, when asked
-    JitterSummary jitter;                ///< where the ticks' time went
-    /// The loop thread's scheduler counters and faults from just before the first tick to
-    /// just after the last (the stop ramp included).
-    ThreadCounters during_ticks;
+    RealtimeGrant realtime_grant;       ///< what the thread's set-up got
     std::uint64_t ticks_by_backup = 0;  ///< ticks the backup thread ran (backup_thread)
 };
-
-/// Monotonic clock in nanoseconds (steady_clock).
-std::int64_t monotonic_ns();
 
 class ForceLoop {
   public:
     /// Throws std::invalid_argument for a rate outside (0, 4000] Hz or a spin >= one period.
-    ForceLoop(HapticDevice& device, ForceLoopConfig config);
+    /// `observer`, when given, sees every run (loop_observer.hpp); it must outlive the loop.
+    ForceLoop(HapticDevice& device, ForceLoopConfig config, LoopObserver* observer = nullptr);
     ~ForceLoop();
     ForceLoop(const ForceLoop&) = delete;
     ForceLoop& operator=(const ForceLoop&) = delete;
@@ -136,8 +123,6 @@ class ForceLoop {
     // ---- After stop() ----
     ForceLoopReport report() const;
     const std::vector<TickRecord>& records() const { return records_; }
-    /// The first late_tick_capacity ticks whose period exceeded 1.5 periods.
-    const std::vector<TickPhases>& late_ticks() const { return jitter_.late_ticks(); }
 
     /// The loop thread's kernel thread id once it runs (0 before), for observers.
     int thread_id() const { return thread_id_.load(std::memory_order_acquire); }
@@ -155,6 +140,7 @@ class ForceLoop {
 
     HapticDevice& device_;
     ForceLoopConfig config_;
+    LoopObserver* observer_;
     std::int64_t period_ns_;
     TripleBuffer<HapticSnapshot> snapshots_;
     TripleBuffer<TickRecord> ticks_;
@@ -170,10 +156,8 @@ class ForceLoop {
     std::atomic<bool> finished_{false};
     std::thread thread_;
     bool opened_ = false;
-    std::unique_ptr<CpuWakeLatencyHold> wake_latency_;  // while running, when asked
     // Owned by the loop thread while it runs; read after join.
     PeriodStats periods_;
-    JitterStats jitter_;
     std::vector<TickRecord> records_;
     ForceLoopReport report_;
 };

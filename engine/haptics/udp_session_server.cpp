@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 #include "haptics/live_session.hpp"
 #include "tools/tool_json.hpp"
 
@@ -24,7 +25,8 @@ UdpServeResult serve_udp_session(Tin& tin, SculptContext& context, const UdpServ
         loop_config.record_capacity =
             static_cast<std::size_t>(std::min(o.max_seconds, 600.0) * loop_config.rate_hz + 16.0);
     }
-    ForceLoop loop(device, loop_config);
+    LoopDiagnostics diagnostics(loop_config);
+    ForceLoop loop(device, loop_config, &diagnostics);
     LiveSession session(editor, loop);
     loop.start();
     if (o.on_listening) o.on_listening(device.port());
@@ -47,6 +49,7 @@ UdpServeResult serve_udp_session(Tin& tin, SculptContext& context, const UdpServ
     result.stamps += session.step().edit.stamps;  // the last tick the loop published
     loop.stop();
     result.loop = loop.report();
+    result.jitter = diagnostics.jitter();
     result.device = device.counters();
     result.simulation_steps = session.steps();
     result.recording =

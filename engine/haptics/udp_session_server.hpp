@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "haptics/diagnostics/loop_jitter.hpp"
 #include "haptics/force_loop.hpp"
 #include "haptics/haptic_recording.hpp"
 #include "haptics/live_editor.hpp"
@@ -35,6 +36,7 @@ struct UdpServeOptions {
 
 struct UdpServeResult {
     ForceLoopReport loop;
+    JitterSummary jitter;  ///< where the loop's ticks' time went (loop_diagnostics.hpp)
     UdpDeviceCounters device;
     HapticRecording recording;
     std::size_t stamps = 0;

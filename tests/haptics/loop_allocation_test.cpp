@@ -2,7 +2,7 @@
 // operator new with one that counts per thread, and a device wrapper (whose read() runs on the
 // loop thread) notes the count at every tick. Between its first and last tick no loop thread's
 // count may move, while the simulation side publishes snapshots and polls ticks, and the loop
-// records every tick and keeps late-tick phases.
+// records every tick and its diagnostics keep late-tick phases.
 // Its own executable, because replacing operator new is global to the program.
 
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include <new>
 #include <thread>
 
+#include "haptics/diagnostics/loop_diagnostics.hpp"
 #include "haptics/force_loop.hpp"
 #include "haptics/simulated_device.hpp"
 
@@ -78,10 +79,11 @@ void check_ticks_never_allocate(bool backup) {
     config.spin_ns = 50'000;
     config.try_realtime = false;
     config.record_capacity = trajectory.samples.size();
-    config.late_tick_capacity = trajectory.samples.size();  // every tick may be "late" here
     config.backup_thread = backup;
     config.backup_margin_ns = 0;  // it races the primary for every tick
-    ForceLoop loop(device, config);
+    // Every tick may be "late" here.
+    LoopDiagnostics diagnostics(config, trajectory.samples.size());
+    ForceLoop loop(device, config, &diagnostics);
     HapticSnapshot s;
     s.control_count = 3;
     s.control[0] = {0.45, 0.5};

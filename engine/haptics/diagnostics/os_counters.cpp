@@ -1,4 +1,4 @@
-#include "haptics/os_counters.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
 
 #include <fcntl.h>
 #include <sys/resource.h>

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "haptics/os_counters.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
 #include "haptics/realtime_thread.hpp"
 
 namespace sandtin::haptics {

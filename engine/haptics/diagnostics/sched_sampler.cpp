@@ -1,4 +1,4 @@
-#include "haptics/sched_sampler.hpp"
+#include "haptics/diagnostics/sched_sampler.hpp"
 
 #include <fcntl.h>
 #include <time.h>
@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "haptics/force_loop.hpp"
-#include "haptics/os_counters.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
+#include "haptics/loop_observer.hpp"
 
 namespace sandtin::haptics {
 

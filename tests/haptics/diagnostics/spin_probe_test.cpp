@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "haptics/spin_probe.hpp"
+#include "haptics/diagnostics/spin_probe.hpp"
 
 namespace sandtin::haptics {
 namespace {

@@ -1,4 +1,4 @@
-#include "haptics/spin_probe.hpp"
+#include "haptics/diagnostics/spin_probe.hpp"
 
 #include <time.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "haptics/force_loop.hpp"
+#include "haptics/loop_observer.hpp"
 
 namespace sandtin::haptics {
 

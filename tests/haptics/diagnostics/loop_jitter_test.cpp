@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "haptics/loop_jitter.hpp"
+#include "haptics/diagnostics/loop_jitter.hpp"
 
 namespace sandtin::haptics {
 namespace {

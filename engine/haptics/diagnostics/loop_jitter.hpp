@@ -10,27 +10,17 @@
 //    deadline. A spinning SCHED_FIFO thread is only interrupted by interrupts, higher-priority
 //    kernel threads or the hypervisor, so a gap of more than a few microseconds is time the
 //    machine, not the loop, took: the hwlatdetect measurement, over the spin's share of time.
-// JitterStats keeps the maxima and the first few late ticks with their phases. It never
-// allocates after construction, so it can run in the tick path.
+// The loop hands them over as TickPhases (loop_observer.hpp); JitterStats keeps their maxima
+// and the first few late ticks with their phases. It never allocates after construction, so it can
+// run in the tick path.
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
-namespace sandtin::haptics {
+#include "haptics/loop_observer.hpp"
 
-/// One tick's timing. Times are monotonic nanoseconds.
-struct TickPhases {
-    std::uint64_t tick = 0;
-    std::int64_t start_ns = 0;      ///< when the tick started (the spin ended)
-    std::int64_t period_ns = 0;     ///< start - previous start
-    std::int64_t lateness_ns = 0;   ///< start - deadline, >= 0
-    std::int64_t work_ns = 0;       ///< the previous tick's body
-    bool slept = false;             ///< false when the previous body ended past the sleep point
-    std::int64_t wake_late_ns = 0;  ///< sleep returned this long after its planned end; 0 if !slept
-    std::int64_t spin_gap_ns = 0;   ///< largest gap between consecutive clock reads in the spin
-    int cpu = -1;                   ///< CPU the tick started on (-1 unknown)
-};
+namespace sandtin::haptics {
 
 /// Which phase of a late tick took the time: the largest of work, wake lateness, spin gap.
 enum class LateCause : std::uint8_t { Work, Wakeup, SpinGap };

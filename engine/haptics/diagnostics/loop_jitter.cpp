@@ -1,4 +1,4 @@
-#include "haptics/loop_jitter.hpp"
+#include "haptics/diagnostics/loop_jitter.hpp"
 
 #include <algorithm>
 #include <stdexcept>

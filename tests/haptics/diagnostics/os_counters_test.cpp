@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/mman.h>
 
-#include "haptics/os_counters.hpp"
+#include "haptics/diagnostics/os_counters.hpp"
 
 namespace sandtin::haptics {
 namespace {

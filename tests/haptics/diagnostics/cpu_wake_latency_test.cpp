@@ -13,7 +13,7 @@
 
 #include <unistd.h>
 
-#include "haptics/cpu_wake_latency.hpp"
+#include "haptics/diagnostics/cpu_wake_latency.hpp"
 
 namespace sandtin::haptics {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "haptics/sched_sampler.hpp"
+#include "haptics/diagnostics/sched_sampler.hpp"
 
 namespace sandtin::haptics {
 namespace {

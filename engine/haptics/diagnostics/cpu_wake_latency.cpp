@@ -1,4 +1,4 @@
-#include "haptics/cpu_wake_latency.hpp"
+#include "haptics/diagnostics/cpu_wake_latency.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
