@@ -25,24 +25,12 @@ namespace sandtin {
 
 using detail::CdtPlus;
 using detail::kNoId;
+using detail::NoEventScope;
 using detail::SlotRecord;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
 namespace {
-
-/// Routes no events at all: used for bulk builds and destruction, so that a Tin built or
-/// destroyed inside another Tin's edit never writes into the other's journal.
-class NoEventScope {
-  public:
-    NoEventScope() : previous_(detail::t_events) { detail::t_events = nullptr; }
-    ~NoEventScope() { detail::t_events = previous_; }
-    NoEventScope(const NoEventScope&) = delete;
-    NoEventScope& operator=(const NoEventScope&) = delete;
-
-  private:
-    detail::TdsEvents* previous_;
-};
 
 detail::Point to_point(Vec2 p) {
     return {p.x, p.y};

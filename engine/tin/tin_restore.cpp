@@ -20,22 +20,12 @@ namespace sandtin {
 
 using detail::CdtPlus;
 using detail::kNoId;
+using detail::NoEventScope;
 using detail::SlotRecord;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
 namespace {
-
-class NoEvents {
-  public:
-    NoEvents() : previous_(detail::t_events) { detail::t_events = nullptr; }
-    ~NoEvents() { detail::t_events = previous_; }
-    NoEvents(const NoEvents&) = delete;
-    NoEvents& operator=(const NoEvents&) = delete;
-
-  private:
-    detail::TdsEvents* previous_;
-};
 
 [[noreturn]] void corrupt(const std::string& what) {
     throw std::runtime_error("invalid terrain data: " + what);
@@ -101,7 +91,7 @@ void check_free_list(const std::vector<std::uint32_t>& free_list, std::uint32_t 
 }  // namespace
 
 Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
-    NoEvents quiet;
+    NoEventScope quiet;
     const Rect& d = s.domain;
     if (!(is_finite(d.min) && is_finite(d.max) && d.width() > 0.0 && d.height() > 0.0)) {
         corrupt("domain is not a finite rectangle with positive size");

@@ -93,6 +93,19 @@ class EventScope {
     TdsEvents* previous_;
 };
 
+/// Scope that routes no events at all: for bulk builds, restores and destruction, so that a Tin
+/// built or destroyed inside another Tin's edit never writes into the other's journal.
+class NoEventScope {
+  public:
+    NoEventScope() : previous_(t_events) { t_events = nullptr; }
+    ~NoEventScope() { t_events = previous_; }
+    NoEventScope(const NoEventScope&) = delete;
+    NoEventScope& operator=(const NoEventScope&) = delete;
+
+  private:
+    TdsEvents* previous_;
+};
+
 template <class Gt, class Vb = CGAL::Triangulation_vertex_base_2<Gt>>
 class TinVertexBase : public Vb {
   public:
