@@ -18,51 +18,26 @@
 #include "geom/polygon_inclusion.hpp"
 #include "tin/detail/cgal_tin.hpp"
 #include "tin/detail/hole_triangulation.hpp"
+#include "tin/detail/impl_helpers.hpp"
 #include "util/compensated_sum.hpp"
 #include "util/visit_marks.hpp"
 
 namespace sandtin {
 
 using detail::CdtPlus;
+using detail::describe;
 using detail::kNoId;
+using detail::near_line;
 using detail::NoEventScope;
+using detail::require;
+using detail::require_inside;
 using detail::SlotRecord;
+using detail::to_point;
+using detail::triangle_area;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
 namespace {
-
-detail::Point to_point(Vec2 p) {
-    return {p.x, p.y};
-}
-
-double triangle_area(Vec2 a, Vec2 b, Vec2 c) {
-    return 0.5 * cross(b - a, c - a);
-}
-
-void require(bool condition, const char* message) {
-    if (!condition) throw std::invalid_argument(message);
-}
-
-std::string describe(Vec2 p) {
-    std::ostringstream s;
-    s.precision(17);
-    s << "(" << p.x << ", " << p.y << ")";
-    return s.str();
-}
-
-void require_inside(const Rect& domain, Vec2 p, const char* what) {
-    // Messages are built only on failure: this runs once per inserted point.
-    if (!is_finite(p)) {
-        throw std::invalid_argument(std::string(what) + ": coordinates " + describe(p) +
-                                    " are not finite");
-    }
-    if (!domain.contains(p)) {
-        throw std::invalid_argument(std::string(what) + ": point " + describe(p) +
-                                    " lies outside the terrain domain [" + describe(domain.min) +
-                                    ", " + describe(domain.max) + "]");
-    }
-}
 
 std::uint64_t splitmix64(std::uint64_t& state) {
     std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
@@ -1087,21 +1062,6 @@ void walk_faces_along(const Tin::Impl& m, Vec2 a, Vec2 b, LocateHint* hint, Visi
     }
 }
 
-/// Whether p lies within sqrt(snap2) of the line through a and b.
-bool near_line(Vec2 a, Vec2 b, Vec2 p, double snap2) {
-    const double c = cross(b - a, p - a);
-    return c * c <= snap2 * length_squared(b - a);
-}
-
-/// Ids of the constraints whose bounding boxes meet `box`, ascending: every constraint whose
-/// polyline meets the box is among them. Read from the grid of constraint bounds, so a tool
-/// pays for the constraints near its footprint, not for every constraint in the terrain.
-std::vector<std::uint32_t> constraints_meeting_box(const Tin::Impl& m, const Rect& box) {
-    std::vector<std::uint32_t> ids;
-    m.constraint_boxes.query(box, ids);
-    return ids;
-}
-
 }  // namespace
 
 std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHint* hint) const {
@@ -1335,7 +1295,7 @@ std::vector<std::array<Vec2, 2>> Tin::constrained_segments(const Rect& box,
                                                            Generation older_than) const {
     const Impl& m = *impl_;
     std::vector<std::array<Vec2, 2>> out;
-    for (const std::uint32_t id : constraints_meeting_box(m, box)) {
+    for (const std::uint32_t id : m.constraints_meeting_box(box)) {
         const detail::ConstraintEntry& e = m.constraints[id];
         if (e.generation >= older_than) continue;
         std::uint32_t previous = kNoId;
@@ -2298,7 +2258,7 @@ std::size_t Tin::release_constraints(const ReleaseFilter& filter, VolumePolicy p
     std::vector<std::uint32_t> candidates;
     if (!filter.inside_polygon.empty() || !filter.touching_polygon.empty()) {
         candidates =
-            constraints_meeting_box(m, filter.inside_polygon.empty() ? touch_box : inside_box);
+            m.constraints_meeting_box(filter.inside_polygon.empty() ? touch_box : inside_box);
     } else {
         for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
             if (m.constraints[id].alive) candidates.push_back(id);

@@ -14,6 +14,7 @@
 
 #include "tin/detail/cgal_tin.hpp"
 #include "tin/detail/half_edge_twins.hpp"
+#include "tin/detail/impl_helpers.hpp"
 #include "util/compensated_sum.hpp"
 
 namespace sandtin {
@@ -22,6 +23,7 @@ using detail::CdtPlus;
 using detail::kNoId;
 using detail::NoEventScope;
 using detail::SlotRecord;
+using detail::triangle_area;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
@@ -37,10 +39,6 @@ std::vector<std::uint32_t> handout_order(const IdAllocator& a) {
     const auto& pending = a.pending_list();
     out.insert(out.end(), pending.rbegin(), pending.rend());
     return out;
-}
-
-double triangle_area(Vec2 a, Vec2 b, Vec2 c) {
-    return 0.5 * cross(b - a, c - a);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 // Private to engine/tin: the CGAL types behind Tin and its implementation state. Only the
-// tin_*.cpp translation units include this header, which keeps CGAL's compile cost in them.
+// translation units of engine/tin include this header, which keeps CGAL's compile cost in them.
 //
 // Change tracking works through CGAL's own object lifetimes. Our vertex and face bases hook
 // their constructors, destructors and the TDS mutators (set_vertex, set_constraint, reorient,
@@ -35,6 +35,10 @@ namespace sandtin::detail {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
+
+inline Point to_point(Vec2 p) {
+    return {p.x, p.y};
+}
 
 inline constexpr std::uint32_t kNoId = std::numeric_limits<std::uint32_t>::max();
 
@@ -458,6 +462,14 @@ struct Tin::Impl {
     BoxGrid constraint_boxes;
     void file_constraint(std::uint32_t id) { constraint_boxes.insert(id, constraints[id].bounds); }
     void unfile_constraint(std::uint32_t id) { constraint_boxes.erase(id, constraints[id].bounds); }
+    /// Ids of the constraints whose bounding boxes meet `box`, ascending: every constraint whose
+    /// polyline meets the box is among them. Read from the grid of constraint bounds, so a tool
+    /// pays for the constraints near its footprint, not for every constraint in the terrain.
+    std::vector<std::uint32_t> constraints_meeting_box(const Rect& box) const {
+        std::vector<std::uint32_t> ids;
+        constraint_boxes.query(box, ids);
+        return ids;
+    }
 
     /// Constraints by when they are next due for Tin::expire_constraints(): first when their
     /// generation falls below the limit, then (if they could not go) after a wait that
