@@ -20,6 +20,7 @@
 #include "tin/detail/edit_finisher.hpp"
 #include "tin/detail/hole_triangulation.hpp"
 #include "tin/detail/impl_helpers.hpp"
+#include "tin/detail/walks.hpp"
 #include "util/compensated_sum.hpp"
 #include "util/visit_marks.hpp"
 
@@ -28,27 +29,24 @@ namespace sandtin {
 using detail::CdtPlus;
 using detail::describe;
 using detail::EditFinisher;
+using detail::face_at;
+using detail::finite_location;
+using detail::FiniteLocation;
 using detail::kNoId;
 using detail::near_line;
 using detail::NoEventScope;
 using detail::require;
 using detail::require_inside;
 using detail::SlotRecord;
+using detail::start_face;
 using detail::to_point;
 using detail::triangle_area;
+using detail::update_hint;
+using detail::walk_faces;
+using detail::walk_faces_along;
+using detail::walk_to;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
-
-namespace {
-
-std::uint64_t splitmix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-}  // namespace
 
 // ---- Impl helpers -------------------------------------------------------------------------
 
@@ -144,84 +142,6 @@ void Tin::Impl::finish_bulk_build() {
             journal_slots.mark(s);
     }
 }
-
-namespace {
-
-Fh jump_start_face(const Tin::Impl& m, Vec2 p) {
-    // Mücke et al.'s jump-and-walk: start from the closest of ~n^(1/3) sampled vertices.
-    const std::uint32_t capacity = m.events.vertex_ids.capacity();
-    const std::uint32_t live = m.events.vertex_ids.live();
-    if (live == 0) return Fh();
-    const int samples = std::clamp(static_cast<int>(std::cbrt(static_cast<double>(live))), 1, 256);
-    std::uint64_t state = std::hash<double>{}(p.x) * 31u + std::hash<double>{}(p.y);
-    std::uint32_t best = kNoId;
-    double best_d2 = std::numeric_limits<double>::infinity();
-    for (int tries = 0, found = 0; found < samples && tries < samples * 8; ++tries) {
-        const auto id = static_cast<std::uint32_t>(splitmix64(state) % capacity);
-        if (m.events.vertex_of_id[id] == nullptr) continue;
-        ++found;
-        const double d2 = length_squared(m.va.position[id] - p);
-        if (d2 < best_d2) {
-            best_d2 = d2;
-            best = id;
-        }
-    }
-    return best == kNoId ? Fh() : m.handle(best)->face();
-}
-
-Fh start_face(const Tin::Impl& m, Vec2 p, const LocateHint* hint) {
-    if (hint != nullptr && m.alive(hint->vertex)) return m.handle(hint->vertex)->face();
-    return jump_start_face(m, p);
-}
-
-/// A finite face containing the located point, with the point's barycentric coordinates.
-struct FiniteLocation {
-    Fh face;
-    std::array<std::uint32_t, 3> corners{};
-    std::array<double, 3> weights{};
-};
-
-FiniteLocation finite_location(const Tin::Impl& m, Vec2 p, CdtPlus::Locate_type lt, Fh f, int li) {
-    if (m.cdt.is_infinite(f)) {
-        // On the border the walk may report the outer face; the neighbour across the
-        // finite edge (EDGE) or any finite incident face (VERTEX) holds the point too.
-        if (lt == CdtPlus::EDGE) {
-            f = f->neighbor(li);
-        } else {
-            const Vh v = f->vertex(li);
-            auto fc = m.cdt.incident_faces(v);
-            while (m.cdt.is_infinite(fc))
-                ++fc;
-            f = fc;
-        }
-    }
-    FiniteLocation out;
-    out.face = f;
-    std::array<Vec2, 3> c;
-    for (int i = 0; i < 3; ++i) {
-        out.corners[static_cast<std::size_t>(i)] = f->vertex(i)->id;
-        c[static_cast<std::size_t>(i)] = m.va.position[f->vertex(i)->id];
-    }
-    const double area2 = cross(c[1] - c[0], c[2] - c[0]);
-    double w0 = cross(c[1] - p, c[2] - p) / area2;
-    double w1 = cross(c[2] - p, c[0] - p) / area2;
-    // Exactly on a vertex or edge, rounding can make a weight a hair negative.
-    w0 = std::clamp(w0, 0.0, 1.0);
-    w1 = std::clamp(w1, 0.0, 1.0 - w0);
-    out.weights = {w0, w1, 1.0 - w0 - w1};
-    return out;
-}
-
-void update_hint(LocateHint* hint, const FiniteLocation& loc) {
-    if (hint == nullptr) return;
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < 3; ++i) {
-        if (loc.weights[i] > loc.weights[best]) best = i;
-    }
-    hint->vertex = VertexId{loc.corners[best]};
-}
-
-}  // namespace
 
 // ---- Construction -------------------------------------------------------------------------
 
@@ -498,21 +418,6 @@ std::vector<std::array<VertexId, 3>> Tin::triangles() const {
     return out;
 }
 
-namespace {
-
-/// CGAL's walk from `start` to p (in the domain), then the finite face holding it: nullopt
-/// outside the triangulation. Reports the kind of location in `lt`.
-std::optional<FiniteLocation> walk_to(const Tin::Impl& m, Vec2 p, Fh start,
-                                      CdtPlus::Locate_type& lt) {
-    int li = 0;
-    const Fh f = m.cdt.locate(to_point(p), lt, li, start);
-    if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL)
-        return std::nullopt;
-    return finite_location(m, p, lt, f, li);
-}
-
-}  // namespace
-
 Location Tin::locate(Vec2 p, LocateHint* hint) const {
     Location out;
     const Impl& m = *impl_;
@@ -693,61 +598,6 @@ bool triangle_meets_disc(Vec2 a, Vec2 b, Vec2 c, Vec2 centre, double radius) {
     return distance_to_segment(centre, a, b) <= radius ||
            distance_to_segment(centre, b, c) <= radius ||
            distance_to_segment(centre, c, a) <= radius;
-}
-
-/// Breadth-first walk over finite faces. `enter(face)` decides whether a face belongs to the
-/// region; `cross(face, i)` whether the walk may step over edge i. Calls visit(face) once per
-/// face in the region.
-template <class Enter, class Cross, class Visit>
-void walk_faces(const Tin::Impl& m, std::span<const Fh> starts, Enter&& enter, Cross&& cross_edge,
-                Visit&& visit) {
-    static thread_local VisitMarks seen;
-    static thread_local std::vector<Fh> queue;
-    seen.clear();
-    seen.reserve_ids(m.events.face_of_slot.size());
-    queue.clear();
-    for (Fh f : starts) {
-        if (m.cdt.is_infinite(f) || seen.contains(f->slot) || !enter(f)) continue;
-        seen.mark(f->slot);
-        queue.push_back(f);
-    }
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-        const Fh f = queue[head];
-        visit(f);
-        for (int i = 0; i < 3; ++i) {
-            const Fh g = f->neighbor(i);
-            if (m.cdt.is_infinite(g) || seen.contains(g->slot) || !cross_edge(f, i) || !enter(g)) {
-                continue;
-            }
-            seen.mark(g->slot);
-            queue.push_back(g);
-        }
-    }
-}
-
-Fh face_at(const Tin::Impl& m, Vec2 p, LocateHint* hint) {
-    CdtPlus::Locate_type lt;
-    int li = 0;
-    const Fh f = m.cdt.locate(to_point(p), lt, li, start_face(m, p, hint));
-    if (lt == CdtPlus::OUTSIDE_CONVEX_HULL || lt == CdtPlus::OUTSIDE_AFFINE_HULL) return Fh();
-    const FiniteLocation loc = finite_location(m, p, lt, f, li);
-    update_hint(hint, loc);
-    return loc.face;
-}
-
-/// Walks the finite faces the segment a-b crosses, from the one holding a, calling
-/// visit(face) until it returns true (it has seen b) or the walk leaves the hull. Each face is
-/// met at most once, so the walk is bounded by the face count.
-template <class Visit>
-void walk_faces_along(const Tin::Impl& m, Vec2 a, Vec2 b, LocateHint* hint, Visit&& visit) {
-    auto lfc = m.cdt.line_walk(to_point(a), to_point(b), face_at(m, a, hint));
-    if (lfc.is_empty()) return;
-    const auto done = lfc;
-    for (std::size_t step = 0; step <= m.cdt.number_of_faces(); ++step) {
-        if (m.cdt.is_infinite(lfc)) return;
-        if (visit(Fh(lfc))) return;
-        if (++lfc == done) return;
-    }
 }
 
 }  // namespace
