@@ -525,4 +525,13 @@ ValidationReport Tin::validate(bool recompute_lumped_areas) const {
     return r;
 }
 
+std::string ValidationReport::summary() const {
+    std::string s;
+    for (const std::string& p : problems) {
+        s += p;
+        s += '\n';
+    }
+    return s;
+}
+
 }  // namespace sandtin

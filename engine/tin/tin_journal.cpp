@@ -1,61 +1,18 @@
-// Tin: construction, queries and edits over CGAL's constrained Delaunay triangulation.
-// See tin/detail/cgal_tin.hpp for how CGAL object lifetimes feed the change journal.
+// Tin: attributes and the change journal. The attribute setters change vertices outside edits
+// and record them; take_changes() and the vertex change feeds hand what changed to their
+// consumers (the GPU mirror, the physics).
 
-#include <CGAL/Spatial_sort_traits_adapter_2.h>
-#include <CGAL/property_map.h>
-#include <CGAL/spatial_sort.h>
-
-#include <algorithm>
 #include <cmath>
-#include <iterator>
-#include <limits>
-#include <random>
-#include <sstream>
 #include <stdexcept>
+#include <string>
 
-#include "geom/plane_fit.hpp"
-#include "geom/polygon.hpp"
-#include "geom/polygon_inclusion.hpp"
 #include "tin/detail/cgal_tin.hpp"
-#include "tin/detail/edit_finisher.hpp"
-#include "tin/detail/hole_triangulation.hpp"
 #include "tin/detail/impl_helpers.hpp"
-#include "tin/detail/walks.hpp"
 #include "util/compensated_sum.hpp"
-#include "util/visit_marks.hpp"
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::describe;
-using detail::EditFinisher;
-using detail::face_at;
-using detail::finite_location;
-using detail::FiniteLocation;
-using detail::kNoId;
-using detail::near_line;
-using detail::NoEventScope;
 using detail::require;
-using detail::require_inside;
-using detail::SlotRecord;
-using detail::start_face;
-using detail::to_point;
-using detail::triangle_area;
-using detail::update_hint;
-using detail::walk_faces;
-using detail::walk_faces_along;
-using detail::walk_to;
-using Vh = Tin::Impl::Vh;
-using Fh = Tin::Impl::Fh;
-
-std::string ValidationReport::summary() const {
-    std::string s;
-    for (const std::string& p : problems) {
-        s += p;
-        s += '\n';
-    }
-    return s;
-}
 
 // ---- Attributes ---------------------------------------------------------------------------
 
@@ -106,6 +63,28 @@ void Tin::set_moisture(VertexId v, float moisture) {
 void Tin::set_slide(VertexId v, Vec2f slide) {
     require(std::isfinite(slide.x) && std::isfinite(slide.y), "set_slide: offset is not finite");
     set_attribute(*impl_, v, impl_->va.slide, slide, "set_slide");
+}
+
+void Tin::set_heights(std::span<const VertexId> vertices, std::span<const double> heights) {
+    Impl& m = *impl_;
+    require(vertices.size() == heights.size(),
+            "set_heights: vertices and heights differ in length");
+    VertexArrays& va = m.va;
+    CompensatedSum change;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const std::uint32_t id = vertices[i].value;
+        const double h = heights[i];
+        if (!m.alive(vertices[i]) || !std::isfinite(h)) {
+            throw std::invalid_argument("set_heights: dead vertex or non-finite height at entry " +
+                                        std::to_string(i));
+        }
+        if (va.height[id] == h) continue;
+        change.add(va.lumped_area[id] * (h - va.height[id]));
+        va.height[id] = h;
+        if (va.bedrock[id] > h) va.bedrock[id] = h;
+        m.note_attribute(id);
+    }
+    m.volume_ledger.add(change.value());
 }
 
 // ---- Journal ------------------------------------------------------------------------------
@@ -161,28 +140,6 @@ VertexChanges Tin::take_vertex_changes(std::uint32_t subscription) {
     for (std::uint32_t id : f.topology.take())
         out.topology.push_back(VertexId{id});
     return out;
-}
-
-void Tin::set_heights(std::span<const VertexId> vertices, std::span<const double> heights) {
-    Impl& m = *impl_;
-    require(vertices.size() == heights.size(),
-            "set_heights: vertices and heights differ in length");
-    VertexArrays& va = m.va;
-    CompensatedSum change;
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-        const std::uint32_t id = vertices[i].value;
-        const double h = heights[i];
-        if (!m.alive(vertices[i]) || !std::isfinite(h)) {
-            throw std::invalid_argument("set_heights: dead vertex or non-finite height at entry " +
-                                        std::to_string(i));
-        }
-        if (va.height[id] == h) continue;
-        change.add(va.lumped_area[id] * (h - va.height[id]));
-        va.height[id] = h;
-        if (va.bedrock[id] > h) va.bedrock[id] = h;
-        m.note_attribute(id);
-    }
-    m.volume_ledger.add(change.value());
 }
 
 }  // namespace sandtin
