@@ -17,13 +17,8 @@
 
 namespace sandtin {
 
-using detail::describe;
-using detail::kNoId;
-using detail::NoEventScope;
-using detail::require;
-using detail::require_inside;
-using detail::SlotRecord;
-using detail::to_point;
+using detail::describe, detail::kNoId, detail::NoEventScope, detail::require,
+    detail::require_inside, detail::SlotRecord, detail::to_point;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 

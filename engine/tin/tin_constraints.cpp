@@ -13,10 +13,7 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::EditFinisher;
-using detail::kNoId;
-using detail::require;
+using detail::CdtPlus, detail::EditFinisher, detail::kNoId, detail::require;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 

@@ -16,12 +16,8 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::near_line;
-using detail::start_face;
-using detail::to_point;
-using detail::walk_faces_along;
-using Vh = Tin::Impl::Vh;
+using detail::CdtPlus, detail::near_line, detail::start_face, detail::to_point,
+    detail::walk_faces_along;
 using Fh = Tin::Impl::Fh;
 
 namespace {

@@ -13,16 +13,9 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::describe;
-using detail::EditFinisher;
-using detail::finite_location;
-using detail::FiniteLocation;
-using detail::near_line;
-using detail::require;
-using detail::require_inside;
-using detail::start_face;
-using detail::to_point;
+using detail::CdtPlus, detail::describe, detail::EditFinisher, detail::finite_location,
+    detail::FiniteLocation, detail::near_line, detail::require, detail::require_inside,
+    detail::start_face, detail::to_point;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 

@@ -13,8 +13,7 @@
 
 namespace sandtin {
 
-using detail::EditFinisher;
-using detail::kNoId;
+using detail::EditFinisher, detail::kNoId;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 

@@ -16,9 +16,7 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::EditFinisher;
-using detail::require;
+using detail::CdtPlus, detail::EditFinisher, detail::require;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 

@@ -21,11 +21,8 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::kNoId;
-using detail::NoEventScope;
-using detail::SlotRecord;
-using detail::triangle_area;
+using detail::CdtPlus, detail::kNoId, detail::NoEventScope, detail::SlotRecord,
+    detail::triangle_area;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
