@@ -15,18 +15,9 @@
 
 namespace sandtin {
 
-using detail::CdtPlus;
-using detail::face_at;
-using detail::finite_location;
-using detail::FiniteLocation;
-using detail::require;
-using detail::SlotRecord;
-using detail::start_face;
-using detail::to_point;
-using detail::update_hint;
-using detail::walk_faces;
-using detail::walk_faces_along;
-using detail::walk_to;
+using detail::CdtPlus, detail::face_at, detail::finite_location, detail::FiniteLocation,
+    detail::require, detail::SlotRecord, detail::start_face, detail::to_point, detail::update_hint,
+    detail::walk_faces, detail::walk_faces_along, detail::walk_to;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
@@ -278,41 +269,46 @@ bool triangle_meets_disc(Vec2 a, Vec2 b, Vec2 c, Vec2 centre, double radius) {
            distance_to_segment(centre, c, a) <= radius;
 }
 
+bool face_meets_disc(const Tin::Impl& m, Fh f, Vec2 centre, double radius) {
+    return triangle_meets_disc(m.va.position[f->vertex(0)->id], m.va.position[f->vertex(1)->id],
+                               m.va.position[f->vertex(2)->id], centre, radius);
+}
+
+/// Calls visit(face) once for each finite face that meets the disc (constrained edges do not
+/// stop the walk). The walk starts from the face under the centre clamped into the domain, so
+/// discs overlapping the border still find their faces.
+template <class Visit>
+void walk_disc(const Tin::Impl& m, Vec2 centre, double radius, LocateHint* hint, Visit&& visit) {
+    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
+                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
+    if (distance(start, centre) > radius) return;
+    const Fh f = face_at(m, start, hint);
+    if (f == Fh()) return;
+    const std::array<Fh, 1> starts = {f};
+    walk_faces(
+        m, starts, [&](Fh g) { return face_meets_disc(m, g, centre, radius); },
+        [](Fh, int) { return true; }, visit);
+}
+
 }  // namespace
 
 std::vector<VertexId> Tin::vertices_in_disc(Vec2 centre, double radius, LocateHint* hint) const {
     const Impl& m = *impl_;
     std::vector<VertexId> out;
     if (!is_finite(centre) || !(radius >= 0.0)) return out;
-    // Start from the face under the centre clamped into the domain, so discs overlapping the
-    // border still find their vertices.
-    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
-                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
-    if (distance(start, centre) > radius) return out;
-    const Fh f = face_at(m, start, hint);
-    if (f == Fh()) return out;
     const double r2 = radius * radius;
     static thread_local VisitMarks taken;
     taken.clear();
     taken.reserve_ids(m.events.vertex_of_id.size());
-    const std::array<Fh, 1> starts = {f};
-    walk_faces(
-        m, starts,
-        [&](Fh g) {
-            return triangle_meets_disc(m.va.position[g->vertex(0)->id],
-                                       m.va.position[g->vertex(1)->id],
-                                       m.va.position[g->vertex(2)->id], centre, radius);
-        },
-        [](Fh, int) { return true; },
-        [&](Fh g) {
-            for (int i = 0; i < 3; ++i) {
-                const std::uint32_t id = g->vertex(i)->id;
-                if (!taken.contains(id) && length_squared(m.va.position[id] - centre) <= r2) {
-                    taken.mark(id);
-                    out.push_back(VertexId{id});
-                }
+    walk_disc(m, centre, radius, hint, [&](Fh g) {
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t id = g->vertex(i)->id;
+            if (!taken.contains(id) && length_squared(m.va.position[id] - centre) <= r2) {
+                taken.mark(id);
+                out.push_back(VertexId{id});
             }
-        });
+        }
+    });
     return out;
 }
 
@@ -456,40 +452,21 @@ std::vector<std::array<VertexId, 2>> Tin::edges_longer_than(Vec2 centre, double 
     const Impl& m = *impl_;
     std::vector<std::array<VertexId, 2>> out;
     if (!is_finite(centre) || !(radius >= 0.0) || !(max_length > 0.0)) return out;
-    const Vec2 start{std::clamp(centre.x, m.domain.min.x, m.domain.max.x),
-                     std::clamp(centre.y, m.domain.min.y, m.domain.max.y)};
-    if (distance(start, centre) > radius) return out;
-    const Fh f = face_at(m, start, hint);
-    if (f == Fh()) return out;
     const double l2 = max_length * max_length;
-    const std::array<Fh, 1> starts = {f};
-    walk_faces(
-        m, starts,
-        [&](Fh g) {
-            return triangle_meets_disc(m.va.position[g->vertex(0)->id],
-                                       m.va.position[g->vertex(1)->id],
-                                       m.va.position[g->vertex(2)->id], centre, radius);
-        },
-        [](Fh, int) { return true; },
-        [&](Fh g) {
-            for (int i = 0; i < 3; ++i) {
-                const std::uint32_t a = g->vertex(CdtPlus::ccw(i))->id;
-                const std::uint32_t b = g->vertex(CdtPlus::cw(i))->id;
-                // Each interior edge is seen from both faces; report it from the face whose
-                // slot is smaller (or from its only finite face).
-                const Fh n = g->neighbor(i);
-                if (!m.cdt.is_infinite(n) && n->slot < g->slot) {
-                    if (triangle_meets_disc(m.va.position[n->vertex(0)->id],
-                                            m.va.position[n->vertex(1)->id],
-                                            m.va.position[n->vertex(2)->id], centre, radius)) {
-                        continue;
-                    }
-                }
-                if (length_squared(m.va.position[a] - m.va.position[b]) > l2) {
-                    out.push_back({VertexId{a}, VertexId{b}});
-                }
+    walk_disc(m, centre, radius, hint, [&](Fh g) {
+        for (int i = 0; i < 3; ++i) {
+            const std::uint32_t a = g->vertex(CdtPlus::ccw(i))->id;
+            const std::uint32_t b = g->vertex(CdtPlus::cw(i))->id;
+            // Each interior edge is seen from both faces; report it from the face whose slot is
+            // smaller (or from its only finite face).
+            const Fh n = g->neighbor(i);
+            if (!m.cdt.is_infinite(n) && n->slot < g->slot && face_meets_disc(m, n, centre, radius))
+                continue;
+            if (length_squared(m.va.position[a] - m.va.position[b]) > l2) {
+                out.push_back({VertexId{a}, VertexId{b}});
             }
-        });
+        }
+    });
     return out;
 }
 
