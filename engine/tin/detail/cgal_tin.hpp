@@ -1,6 +1,6 @@
 #pragma once
 // Private to engine/tin: the CGAL types behind Tin and its implementation state. Only the
-// tin_*.cpp translation units include this header, which keeps CGAL's compile cost in them.
+// translation units of engine/tin include this header, which keeps CGAL's compile cost in them.
 //
 // Change tracking works through CGAL's own object lifetimes. Our vertex and face bases hook
 // their constructors, destructors and the TDS mutators (set_vertex, set_constraint, reorient,
@@ -35,6 +35,10 @@ namespace sandtin::detail {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_2;
+
+inline Point to_point(Vec2 p) {
+    return {p.x, p.y};
+}
 
 inline constexpr std::uint32_t kNoId = std::numeric_limits<std::uint32_t>::max();
 
@@ -88,6 +92,19 @@ class EventScope {
     ~EventScope() { t_events = previous_; }
     EventScope(const EventScope&) = delete;
     EventScope& operator=(const EventScope&) = delete;
+
+  private:
+    TdsEvents* previous_;
+};
+
+/// Scope that routes no events at all: for bulk builds, restores and destruction, so that a Tin
+/// built or destroyed inside another Tin's edit never writes into the other's journal.
+class NoEventScope {
+  public:
+    NoEventScope() : previous_(t_events) { t_events = nullptr; }
+    ~NoEventScope() { t_events = previous_; }
+    NoEventScope(const NoEventScope&) = delete;
+    NoEventScope& operator=(const NoEventScope&) = delete;
 
   private:
     TdsEvents* previous_;
@@ -247,82 +264,21 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
     /// error away from it.
     double snap_distance = 0.0;
 
-    Vertex_handle intersect(Face_handle f, int i, Vertex_handle vaa, Vertex_handle vbb) override {
-        const Vertex_handle vcc = f->vertex(cw(i));
-        const Vertex_handle vdd = f->vertex(ccw(i));
-        if (snap_distance > 0.0) {
-            // Where a-b crosses c-d, in double precision: only to decide the snap.
-            const Point& pa = vaa->point();
-            const Point& pb = vbb->point();
-            const Point& pc = vcc->point();
-            const Point& pd = vdd->point();
-            const double ax = pa.x(), ay = pa.y(), bx = pb.x(), by = pb.y();
-            const double cx = pc.x(), cy = pc.y(), dx = pd.x(), dy = pd.y();
-            const double denom = (bx - ax) * (dy - cy) - (by - ay) * (dx - cx);
-            if (denom != 0.0) {
-                const double t = ((cx - ax) * (dy - cy) - (cy - ay) * (dx - cx)) / denom;
-                const double px = ax + t * (bx - ax);
-                const double py = ay + t * (by - ay);
-                const double s2 = snap_distance * snap_distance;
-                auto near = [&](Vertex_handle v) {
-                    const double ex = v->point().x() - px;
-                    const double ey = v->point().y() - py;
-                    return ex * ex + ey * ey <= s2;
-                };
-                for (const Vertex_handle v : {vcc, vdd}) {
-                    if (near(v)) {
-                        // As CGAL does when its rounded crossing falls on c or d.
-                        insert_subconstraint(vcc, vdd);
-                        return v;
-                    }
-                }
-                for (const Vertex_handle v : {vaa, vbb}) {
-                    if (near(v)) {
-                        // An end of a-b lies on c-d up to rounding (a point inserted a hair off a
-                        // constrained edge): c-d is split there, as CGAL does when its limit
-                        // crossing is a or b. A new vertex at the crossing would sit an ulp from
-                        // v, and the two would form a vertical step that sand cannot level.
-                        Cdt::remove_constrained_edge(f, i);
-                        hierarchy.split_constraint(vcc, vdd, v);
-                        insert_subconstraint(vcc, v);
-                        insert_subconstraint(v, vdd);
-                        return v;
-                    }
-                }
-            }
-        }
-        return Base::intersect(f, i, vaa, vbb);
-    }
+    /// CGAL's hook where the constraint being inserted, vaa-vbb, crosses the constrained edge
+    /// (f, i); returns the vertex at the crossing.
+    Vertex_handle intersect(Face_handle f, int i, Vertex_handle vaa, Vertex_handle vbb) override;
 
     /// Constrains a polyline through existing vertices. CGAL's polyline insertion takes points
     /// and re-inserts them, and re-inserting an existing point runs flip_around(), which can
     /// flip away an edge that a later segment of the same restore needs. `thread` passes the
     /// constraint through vertices within snap_distance of it (thread_through_near_vertices);
     /// a restore, which rebuilds a triangulation as it was saved, does not.
-    Constraint_id insert_polyline(const std::vector<Vertex_handle>& vs, bool thread = true) {
-        Constraint_id id = hierarchy.insert_constraint(vs[0], vs[1]);
-        insert_subconstraint(vs[0], vs[1]);
-        for (std::size_t j = 1; j + 1 < vs.size(); ++j) {
-            hierarchy.append_constraint(id, vs[j], vs[j + 1]);
-            insert_subconstraint(vs[j], vs[j + 1]);
-        }
-        if (thread && snap_distance > 0.0) thread_through_near_vertices(id);
-        return id;
-    }
+    Constraint_id insert_polyline(const std::vector<Vertex_handle>& vs, bool thread = true);
 
   private:
     /// The apex of the triangle (f, i) when it lies on the edge opposite it up to snapping
     /// (on_segment_up_to_snap), else a null handle.
-    Vertex_handle near_apex(Face_handle f, int i) const {
-        const Vertex_handle c = f->vertex(i);
-        if (is_infinite(c)) return {};
-        const Point& pu = f->vertex(cw(i))->point();
-        const Point& pw = f->vertex(ccw(i))->point();
-        const Point& pc = c->point();
-        const bool on = on_segment_up_to_snap(pw.x() - pu.x(), pw.y() - pu.y(), pc.x() - pu.x(),
-                                              pc.y() - pu.y(), snap_distance * snap_distance);
-        return on ? c : Vertex_handle();
-    }
+    Vertex_handle near_apex(Face_handle f, int i) const;
 
     /// A constrained edge u-w with a vertex c a rounding error off it (a midpoint that an edge
     /// bisection put a hair off the segment, before the segment was constrained again by a
@@ -332,40 +288,7 @@ class CdtPlus : public CGAL::Constrained_triangulation_plus_2<Cdt> {
     /// r_S = 1 cm: such a sliver made c's long edge to u unsplittable (every split point folded
     /// the sliver over), so sand could never reach c and the terrain came to rest with edges up
     /// to 3.5e4 times steeper than repose (a 2 cm step over 1 um).
-    void thread_through_near_vertices(Constraint_id id) {
-        std::vector<std::pair<Vertex_handle, Vertex_handle>> work;
-        Vertex_handle previous;
-        for (const Vertex_handle v : vertices_in_constraint(id)) {
-            if (previous != Vertex_handle()) work.emplace_back(previous, v);
-            previous = v;
-        }
-        while (!work.empty()) {
-            const auto [u, w] = work.back();
-            work.pop_back();
-            Face_handle f;
-            int i = 0;
-            if (!is_edge(u, w, f, i) || !is_constrained(Edge(f, i))) continue;
-            // On the domain's border the edge stays whatever happens to the constraint.
-            if (is_infinite(f) || is_infinite(f->neighbor(i))) continue;
-            Vertex_handle c = near_apex(f, i);
-            if (c == Vertex_handle()) {
-                const Face_handle g = f->neighbor(i);
-                const int j = mirror_index(f, i);
-                c = near_apex(g, j);
-                if (c != Vertex_handle()) {
-                    f = g;
-                    i = j;
-                }
-            }
-            if (c == Vertex_handle()) continue;
-            Cdt::remove_constrained_edge(f, i);
-            hierarchy.split_constraint(u, w, c);
-            insert_subconstraint(u, c);
-            insert_subconstraint(c, w);
-            work.emplace_back(u, c);
-            work.emplace_back(c, w);
-        }
-    }
+    void thread_through_near_vertices(Constraint_id id);
 
   public:
 };
@@ -445,6 +368,14 @@ struct Tin::Impl {
     BoxGrid constraint_boxes;
     void file_constraint(std::uint32_t id) { constraint_boxes.insert(id, constraints[id].bounds); }
     void unfile_constraint(std::uint32_t id) { constraint_boxes.erase(id, constraints[id].bounds); }
+    /// Ids of the constraints whose bounding boxes meet `box`, ascending: every constraint whose
+    /// polyline meets the box is among them. Read from the grid of constraint bounds, so a tool
+    /// pays for the constraints near its footprint, not for every constraint in the terrain.
+    std::vector<std::uint32_t> constraints_meeting_box(const Rect& box) const {
+        std::vector<std::uint32_t> ids;
+        constraint_boxes.query(box, ids);
+        return ids;
+    }
 
     /// Constraints by when they are next due for Tin::expire_constraints(): first when their
     /// generation falls below the limit, then (if they could not go) after a wait that
