@@ -13,7 +13,6 @@
 
 namespace sandtin::editor {
 
-
 // ---- Set-up -------------------------------------------------------------------------------
 
 App::~App() {
@@ -22,10 +21,19 @@ App::~App() {
     // go before the device.
     haptics_.reset();
     if (window_) window_->wait_idle();
+    release_terrain();
     doc_ = Document();
     view_.reset();
     x_input_.reset();
     window_.reset();
+}
+
+void App::release_terrain() {
+    // The GPU solver relaxes on the view's mirror, and the view reads the TIN's journal: the
+    // solver goes first, then what the view built on the TIN, then (the caller) the TIN.
+    if (!doc_.has_terrain()) return;
+    doc_.drop_solver();
+    if (view_) view_->release();
 }
 
 Document App::initial_document() {
@@ -49,8 +57,8 @@ void App::report(const std::string& message) {
 }
 
 std::uint64_t App::gpu_work() {
-    return window_->swapchain().submissions() + view_->gpu_work(doc_) +
-           doc_.solver().gpu_dispatches();
+    return window_->swapchain().submissions() + view_->gpu_work() +
+           doc_.solver().device_dispatches();
 }
 
 void App::save_settings_reporting() {
@@ -265,7 +273,7 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
             ? 0.0
             : static_cast<double>(*std::max_element(times_.tool.begin(), times_.tool.end()));
     s["physics_ms_median"] = StageTimes::median(times_.physics);
-    s["physics"] = doc_.solver().backend() == ErosionBackend::Gpu ? "gpu" : "cpu";
+    s["physics"] = to_string(doc_.solver().device());
     s["erosion_status"] = erosion_status();
     s["erosion_running"] = erosion_runs();
     s["mesh_ms_median"] = StageTimes::median(times_.mesh);

@@ -187,6 +187,9 @@ class App {
     /// Gives the document the solver the Erosion panel asks for (CPU or GPU). `switched`: the
     /// new solver looks at every vertex once and the status line says where it runs.
     void attach_solver(bool switched);
+    /// Lets go of the current terrain in the order its users depend on each other (the solver,
+    /// then the views), before the document is replaced or destroyed.
+    void release_terrain();
     /// The Erosion panel's choice resolved on this device: Auto is the GPU on a hardware GPU
     /// and the CPU on a software device (gpu/device_selection.hpp).
     bool gpu_physics_wanted() const;

@@ -45,6 +45,7 @@ void App::install_document(Document next, const std::string& message) {
     // done with it; then the old document goes (its GPU solver with it), and everything built
     // for its terrain is built again for the new one before anything draws.
     window_->wait_idle();
+    release_terrain();
     doc_ = std::move(next);
     cursor_.reset();
     erosion_active_ = 0;

@@ -13,6 +13,7 @@
 #include "erosion_status.hpp"
 #include "gpu/device_selection.hpp"
 #include "gpu/gpu_error.hpp"
+#include "gpu/make_relaxation_solver.hpp"
 #include "tool_palette.hpp"
 
 namespace sandtin::editor {
@@ -27,7 +28,7 @@ bool App::gpu_physics_wanted() const {
 }
 
 std::string App::physics_placement_text() const {
-    const bool gpu = doc_.solver().backend() == ErosionBackend::Gpu;
+    const bool gpu = doc_.solver().device() == SolverDevice::Gpu;
     std::string text = std::string("relaxation on the ") + (gpu ? "GPU" : "CPU");
     if (settings_.physics == "auto" && window_) {
         const gpu::VulkanContext& c = window_->context();
@@ -39,37 +40,34 @@ std::string App::physics_placement_text() const {
 }
 
 void App::attach_solver(bool switched) {
-    const ErosionBackend want = gpu_physics_wanted() ? ErosionBackend::Gpu : ErosionBackend::Cpu;
-    if (doc_.solver().backend() == want) return;
-    // The solver being replaced (and the normal map baked from its mirror) may still be in use.
+    const SolverDevice want = gpu_physics_wanted() ? SolverDevice::Gpu : SolverDevice::Cpu;
+    if (doc_.solver().device() == want) return;
+    // The solver being replaced may still have GPU work in flight.
     window_->wait_idle();
     const MaterialTable materials = doc_.materials();
-    const auto cpu = [&](Tin& tin) { return make_cpu_erosion(tin, materials); };
-    if (want == ErosionBackend::Gpu) {
-        try {
-            TerrainView* view = view_.get();
-            gpu::VulkanContext& context = window_->context();
-            doc_.replace_solver([&](Tin& tin) {
-                return make_gpu_erosion(tin, context, materials,
-                                        [view] { return view->take_for_mirror(); });
-            });
-        } catch (const gpu::GpuError& e) {
-            gpu_physics_failed_ = true;  // not tried again this session
-            report(std::string("GPU erosion unavailable, using the CPU: ") + e.what());
-            doc_.replace_solver(cpu);
-        }
-    } else {
-        doc_.replace_solver(cpu);
+    const TalusSettings settings = doc_.solver().settings();
+    const auto make = [&](SolverDevice device) {
+        // The GPU solver relaxes on the terrain view's mirror: the TIN is on the GPU once.
+        return [&, device](Tin& tin) {
+            return gpu::make_relaxation_solver(
+                tin, materials, settings,
+                gpu::RelaxationPlacement{.device = device,
+                                         .mirror = &view_->mirror(),
+                                         .slide_gain = gpu::kEditorSlideGain});
+        };
+    };
+    try {
+        doc_.replace_solver(make(want));
+    } catch (const gpu::GpuError& e) {
+        gpu_physics_failed_ = true;  // not tried again this session
+        report(std::string("GPU erosion unavailable, using the CPU: ") + e.what());
+        doc_.replace_solver(make(SolverDevice::Cpu));
     }
     if (switched) {
         doc_.solver().activate_all();
         report(physics_placement_text());
     }
     sculpting_.kick();
-    // The normal map went with the old solver's mirror: it is baked again now, so a frame
-    // drawn after this (the panel's switch is pressed in the middle of one) samples a map
-    // that exists.
-    view_->solver_replaced(doc_);
 }
 
 void App::toggle_erosion() {

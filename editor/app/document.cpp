@@ -10,6 +10,7 @@
 #include "io/import_grid.hpp"
 #include "io/session_name.hpp"
 #include "io/session_terrain.hpp"
+#include "physics/sand_physics.hpp"
 
 namespace sandtin::editor {
 
@@ -23,7 +24,10 @@ Document Document::make(Tin t, Generation next_generation, const std::filesystem
     d.tin_ = std::make_unique<Tin>(std::move(t));
     d.context_ = std::make_unique<SculptContext>(d.tin_->domain());
     d.context_->set_next_generation(next_generation);
-    d.solver_ = make_cpu_erosion(*d.tin_, d.materials_);
+    // The editor's consumers (the render mesh, the mirror, the normal map) read the journal
+    // through readers of their own: a default reader nobody takes would keep every dead id.
+    d.tin_->set_track_changes(false);
+    d.solver_ = std::make_unique<SandPhysics>(*d.tin_, d.materials_);
     d.history_ = std::make_unique<History>(*d.tin_);
     d.path_ = p;
     return d;
@@ -104,7 +108,8 @@ void Document::close() {
     tin_.reset();
 }
 
-void Document::replace_solver(const std::function<std::unique_ptr<Erosion>(Tin&)>& make_solver) {
+void Document::replace_solver(
+    const std::function<std::unique_ptr<RelaxationSolver>(Tin&)>& make_solver) {
     solver_.reset();  // the old one lets go of the TIN (and its GPU objects) first
     solver_ = make_solver(*tin_);
 }

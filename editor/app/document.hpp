@@ -14,13 +14,13 @@
 #include <optional>
 #include <string>
 
-#include "erosion.hpp"
 #include "history/history.hpp"
 #include "io/autosave.hpp"
 #include "io/autosave_writer.hpp"
 #include "io/export_terrain.hpp"
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
+#include "physics/terrain_solver.hpp"
 #include "tools/sculpt_context.hpp"
 #include "undo_log.hpp"
 
@@ -74,10 +74,13 @@ class Document {
     Tin& tin() { return *tin_; }
     const Tin& tin() const { return *tin_; }
     SculptContext& context() { return *context_; }
-    Erosion& solver() { return *solver_; }
-    const Erosion& solver() const { return *solver_; }
+    RelaxationSolver& solver() { return *solver_; }
+    const RelaxationSolver& solver() const { return *solver_; }
+    /// Destroys the solver ahead of the document (it may relax on a mirror that must go before
+    /// the TIN does); solver() is invalid until replace_solver().
+    void drop_solver() { solver_.reset(); }
     /// Replaces the solver (the Erosion panel's CPU/GPU switch); the old one goes first.
-    void replace_solver(const std::function<std::unique_ptr<Erosion>(Tin&)>& make);
+    void replace_solver(const std::function<std::unique_ptr<RelaxationSolver>(Tin&)>& make);
     const History& history() const { return *history_; }
     const UndoLog& undo_log() const { return undo_log_; }
     const MaterialTable& materials() const { return materials_; }
@@ -123,7 +126,7 @@ class Document {
     std::filesystem::path path_;
     std::unique_ptr<Tin> tin_;
     std::unique_ptr<SculptContext> context_;
-    std::unique_ptr<Erosion> solver_;
+    std::unique_ptr<RelaxationSolver> solver_;
     std::unique_ptr<History> history_;
     UndoLog undo_log_;  ///< terrain levels (history_) and material edits, in order
     MaterialTable materials_ = MaterialTable::presets();

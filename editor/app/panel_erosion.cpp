@@ -26,7 +26,7 @@ void App::panel_erosion() {
                      static_cast<int>(kErosionStepsRange.hi), "%d", ImGuiSliderFlags_AlwaysClamp);
     ui("Steps/frame", "Relaxation iterations per frame");
     // Auto, CPU or GPU; Auto says where it resolved on this device.
-    const bool on_gpu = doc_.solver().backend() == ErosionBackend::Gpu;
+    const bool on_gpu = doc_.solver().device() == SolverDevice::Gpu;
     const std::string auto_label = std::string("Auto (") + (on_gpu ? "GPU" : "CPU") + ")###Auto";
     std::string choice = settings_.physics;
     if (ImGui::RadioButton(auto_label.c_str(), choice == "auto")) choice = "auto";

@@ -209,7 +209,7 @@ void Sculpting::reset() {
 
 ErosionFrame Sculpting::erode(Document& doc, const EditorSettings& settings, double budget_ms) {
     ErosionFrame frame;
-    Erosion& solver = doc.solver();
+    RelaxationSolver& solver = doc.solver();
     // The solver learns about edits when it steps (its journal reader): an edit kicks it.
     if (!kick_ && solver.at_rest()) return frame;
     kick_ = false;
@@ -222,7 +222,7 @@ ErosionFrame Sculpting::erode(Document& doc, const EditorSettings& settings, dou
     // Up to the chosen iterations, but within a time budget so the editor stays responsive
     // while a large region slides. The GPU solver batches the iterations into few
     // submissions itself, each followed by the read-back of the heights into the TIN.
-    if (solver.backend() == ErosionBackend::Gpu) {
+    if (solver.device() == SolverDevice::Gpu) {
         solver.step(settings.erosion_steps, &frame.changed);
     } else {
         for (int i = 0; i < settings.erosion_steps; ++i) {

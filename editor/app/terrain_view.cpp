@@ -19,15 +19,24 @@ TerrainView::TerrainView(gpu::VulkanContext& context, render::TerrainRenderer& r
 
 TerrainView::~TerrainView() = default;
 
-void TerrainView::rebuild(Document& doc) {
-    // Everything built for the old terrain goes; the renderer forgets its buffers, so nothing
-    // of that terrain stays in memory it draws from.
+void TerrainView::release() {
+    // The renderer forgets its buffers, so nothing of that terrain stays in memory it draws
+    // from; the readers close on the TIN while it still exists.
     normal_map_.reset();
-    own_mirror_.reset();
+    normal_map_changes_.reset();
+    mirror_.reset();
+    mesh_changes_.reset();
     renderer_.drop_mesh();
+    mesh_.reset();
+}
+
+void TerrainView::rebuild(Document& doc) {
+    release();  // everything built for the old terrain goes
     mesh_ = std::make_unique<render::TerrainMesh>(doc.materials());
     materials_version_ = doc.materials_version();
-    fanout_ = std::make_unique<ChangeFanout>(doc.tin());
+    mesh_changes_ = std::make_unique<ChangeReader>(doc.tin());
+    mirror_ = std::make_unique<gpu::TinMirror>(context_, doc.tin(), doc.materials());
+    normal_map_changes_ = std::make_unique<ChangeReader>(doc.tin());
     active_.clear();
     active_ids_.clear();
     active_flipped_.clear();
@@ -37,35 +46,17 @@ void TerrainView::rebuild(Document& doc) {
     update(doc, [] {});
 }
 
-void TerrainView::solver_replaced(Document& doc) {
-    normal_map_.reset();  // it may refer to the old solver's mirror
-    update_normal_map(doc);
-}
-
-gpu::TinMirror* TerrainView::mirror(Document& doc) {
-    if (gpu::TinMirror* m = doc.solver().mirror()) {
-        own_mirror_.reset();
-        return m;
-    }
-    if (!own_mirror_) own_mirror_ = std::make_unique<gpu::TinMirror>(context_, doc.materials());
-    return own_mirror_.get();
-}
-
-ChangeSet TerrainView::take_for_mirror() {
-    return fanout_->take(ChangeFanout::Mirror);
-}
-
 ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_idle) {
     ViewUpdate out;
     if (doc.materials_version() != materials_version_) {
         // Colours and slope ratios of every vertex.
         mesh_->set_materials(doc.materials());
-        if (own_mirror_) own_mirror_->set_materials(doc.materials());
+        mirror_->set_materials(doc.materials());
         materials_version_ = doc.materials_version();
         stale_ = true;
     }
     // The journal says what changed; nothing changed means no recomputation and no upload.
-    const ChangeSet changes = fanout_->take(ChangeFanout::Mesh);
+    const ChangeSet changes = mesh_changes_->take();
     if (!stale_ && changes.empty() && active_flipped_.empty() && normal_map_) return out;
     const auto t0 = Clock::now();
     mesh_->set_active(active_);
@@ -91,20 +82,12 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
 }
 
 void TerrainView::update_normal_map(Document& doc) {
-    gpu::TinMirror* m = mirror(doc);
-    // Edits the GPU solver has not seen yet (erosion paused, or tools after its step): the
-    // mirror takes them now, and the solver looks at those vertices on its next step.
-    const gpu::SyncStats synced = m->sync(doc.tin(), take_for_mirror());
-    if (doc.solver().mirror() != nullptr && !synced.dirty_vertices.empty()) {
-        std::vector<VertexId> ids;
-        ids.reserve(synced.dirty_vertices.size());
-        for (std::uint32_t v : synced.dirty_vertices)
-            ids.push_back(VertexId{v});
-        doc.solver().activate(ids);
-    }
-    const ChangeSet dirty = fanout_->take(ChangeFanout::NormalMap);
-    if (!normal_map_ || &normal_map_->mirror() != m) {
-        normal_map_ = std::make_unique<render::TerrainNormalMap>(*m, doc.tin().domain());
+    // The mirror takes what changed since its last sync, whoever synced it last (a GPU
+    // solver's step syncs it too; the solver wakes what changed through a feed of its own).
+    mirror_->sync();
+    const ChangeSet dirty = normal_map_changes_->take();
+    if (!normal_map_) {
+        normal_map_ = std::make_unique<render::TerrainNormalMap>(*mirror_, doc.tin().domain());
         renderer_.set_normal_map(normal_map_->view(), normal_map_->sampler());
         ++normal_map_bakes_;
     } else if (const auto texels = normal_map_->rebake(doc.tin(), dirty)) {
@@ -160,10 +143,8 @@ void TerrainView::clear_active() {
     active_ids_.clear();
 }
 
-std::uint64_t TerrainView::gpu_work(Document& doc) {
-    gpu::TinMirror* m = doc.solver().mirror();
-    if (m == nullptr) m = own_mirror_.get();
-    return normal_map_bakes_ + (m != nullptr ? m->staging().batches_submitted() : 0);
+std::uint64_t TerrainView::gpu_work() const {
+    return normal_map_bakes_ + (mirror_ ? mirror_->staging().batches_submitted() : 0);
 }
 
 }  // namespace sandtin::editor

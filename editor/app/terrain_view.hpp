@@ -1,22 +1,23 @@
 #pragma once
 // The terrain as the GPU shows it: the render mesh and the renderer's buffers, the GPU mirror
-// the normal map is baked from, the baked normal map, the active-vertex overlay and the
-// contrast curve's range. Built whole for a document (nothing of another terrain stays in it)
-// and updated each frame from the TIN's change journal: nothing changed, nothing recomputed,
-// nothing uploaded.
+// (which the normal map is baked from and the GPU solver relaxes on), the baked normal map, the
+// active-vertex overlay and the contrast curve's range. Built whole for a document (nothing of
+// another terrain stays in it) and updated each frame from the TIN's change journal, each of
+// the mesh, the mirror and the normal map through a reader of its own: nothing changed, nothing
+// recomputed, nothing uploaded.
 
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "change_fanout.hpp"
 #include "document.hpp"
 #include "gpu/render/normal_map.hpp"
 #include "gpu/render/terrain_mesh.hpp"
 #include "gpu/render/terrain_renderer.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "gpu/vulkan_context.hpp"
+#include "tin/change_reader.hpp"
 
 namespace sandtin::editor {
 
@@ -35,12 +36,16 @@ class TerrainView {
     TerrainView& operator=(const TerrainView&) = delete;
 
     /// Tears down everything built for the previous terrain and builds the mesh, the mirror
-    /// and the normal map of `doc`'s (the GPU must be idle). Safe in the middle of a frame:
-    /// the next draw sees only the new terrain.
+    /// and the normal map of `doc`'s (the GPU must be idle, and no solver may still relax on
+    /// the old mirror). Safe in the middle of a frame: the next draw sees only the new terrain.
     void rebuild(Document& doc);
-    /// The solver was replaced (its mirror, when it brought one, with it): the normal map is
-    /// baked again from the mirror there is now (the GPU must be idle).
-    void solver_replaced(Document& doc);
+    /// Drops everything built for the current terrain (its readers of the TIN's journal, the
+    /// mirror, the normal map and the renderer's buffers), before that terrain goes. No solver
+    /// may still relax on the mirror, and the GPU must be idle.
+    void release();
+    /// The TIN on the GPU, for a GPU solver to relax on (it syncs it before each step; the
+    /// view syncs it before each bake). Exists after rebuild().
+    gpu::TinMirror& mirror() { return *mirror_; }
     /// Brings the mesh, its buffers, the mirror and the normal map up to the TIN (the GPU must
     /// not be reading the buffers). `wait_idle` is called before the buffers are written.
     ViewUpdate update(Document& doc, const std::function<void()>& wait_idle);
@@ -55,9 +60,7 @@ class TerrainView {
     const render::TerrainMesh& mesh() const { return *mesh_; }
     const render::TerrainNormalMap* normal_map() const { return normal_map_.get(); }
     /// GPU work so far: normal-map bakes and mirror upload batches (an idle editor adds none).
-    std::uint64_t gpu_work(Document& doc);
-    /// The TIN's changes for the mirror the GPU solver syncs (its change source).
-    ChangeSet take_for_mirror();
+    std::uint64_t gpu_work() const;
     std::uint64_t normal_map_bakes() const { return normal_map_bakes_; }
     std::uint64_t last_texels_baked() const { return normal_map_texels_; }
     std::uint64_t mesh_updates() const { return mesh_updates_; }
@@ -67,17 +70,14 @@ class TerrainView {
   private:
     void update_normal_map(Document& doc);
     void update_contrast_range(const Tin& tin);
-    gpu::TinMirror* mirror(Document& doc);
 
     gpu::VulkanContext& context_;
     render::TerrainRenderer& renderer_;
     std::uint64_t materials_version_ = ~std::uint64_t{0};
     std::unique_ptr<render::TerrainMesh> mesh_;
-    /// The one consumer of the TIN's change journal; the mesh and the GPU mirror take from it.
-    std::unique_ptr<ChangeFanout> fanout_;
-    /// The TIN on the GPU for the normal-map bake while the CPU erodes (the GPU solver brings
-    /// its own mirror, which the bake then shares).
-    std::unique_ptr<gpu::TinMirror> own_mirror_;
+    std::unique_ptr<ChangeReader> mesh_changes_;        ///< the mesh's reader of the journal
+    std::unique_ptr<gpu::TinMirror> mirror_;            ///< syncs from a reader of its own
+    std::unique_ptr<ChangeReader> normal_map_changes_;  ///< the bake's dirty rectangle
     std::unique_ptr<render::TerrainNormalMap> normal_map_;
     bool stale_ = true;                     ///< the mesh is rebuilt whole at the next update
     std::vector<std::uint8_t> active_;      ///< by VertexId: moved in the erosion's last frame

@@ -71,8 +71,8 @@ double cpu_rate(const Tin& tin, const gpu::TinMirror& mirror, int threads, int i
 
 nlohmann::json bench_size(gpu::VulkanContext& ctx, std::size_t vertices, int iterations) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), vertices, 99, rough);
-    gpu::TinMirror mirror(ctx);
-    mirror.sync(tin);
+    gpu::TinMirror mirror(ctx, tin);
+    mirror.sync();
     nlohmann::json j;
     j["vertices"] = tin.vertex_count();
     j["iterations"] = iterations;
@@ -81,8 +81,8 @@ nlohmann::json bench_size(gpu::VulkanContext& ctx, std::size_t vertices, int ite
 
     // GPU, wall clock (submission + wait), then again with per-kernel timestamps.
     for (bool profile : {false, true}) {
-        gpu::TinMirror m(ctx);
-        m.sync(tin);
+        gpu::TinMirror m(ctx, tin);
+        m.sync();
         gpu::GpuRelaxationSettings gs;
         gs.profile = profile;
         gpu::GpuRelaxation relax(m, gs);
@@ -118,8 +118,8 @@ nlohmann::json bench_size(gpu::VulkanContext& ctx, std::size_t vertices, int ite
 nlohmann::json bench_upload(gpu::VulkanContext& ctx, std::size_t vertices, int stamps) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), vertices, 7,
                                  [](Vec2 p) { return 0.2 + 0.05 * p.x; });
-    gpu::TinMirror mirror(ctx);
-    const gpu::SyncStats first = mirror.sync(tin);
+    gpu::TinMirror mirror(ctx, tin);
+    const gpu::SyncStats first = mirror.sync();
     SculptContext context(tin.domain());
     ToolSpec spec;
     spec.radius = 0.04;
@@ -129,7 +129,7 @@ nlohmann::json bench_upload(gpu::VulkanContext& ctx, std::size_t vertices, int s
     for (int i = 0; i < stamps; ++i) {
         const Vec2 at{0.2 + 0.6 * (i % 4) / 3.0, 0.3 + 0.4 * (i / 4 % 2)};
         stamp(tin, tool, ToolPlacement{at, 0.0, 0.15}, context);
-        bytes.push_back(static_cast<double>(mirror.sync(tin).bytes));
+        bytes.push_back(static_cast<double>(mirror.sync().bytes));
     }
     std::sort(bytes.begin(), bytes.end());
     const double median = bytes[bytes.size() / 2];

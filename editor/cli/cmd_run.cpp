@@ -9,7 +9,7 @@
 #include "commands.hpp"
 #include "gpu/device_selection.hpp"
 #include "gpu/gpu_error.hpp"
-#include "gpu/gpu_sand_physics.hpp"
+#include "gpu/make_relaxation_solver.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "haptics/recording_replay.hpp"
 #include "io/script.hpp"
@@ -85,23 +85,19 @@ int run_run(const std::vector<std::string>& raw) {
         }
     }
     const std::string physics = gpu_context ? "gpu" : "cpu";
-    PhysicsBackendFactory backend;
+    RelaxationSolverFactory make_solver;
     if (gpu_context) {
-        backend = [&gpu_context](Tin& t, const TalusSettings& s, const MaterialTable& materials) {
-            auto p = std::make_shared<gpu::GpuSandPhysics>(t, *gpu_context, materials, s);
-            PhysicsBackend b;
-            b.settings = [p]() -> TalusSettings& { return p->settings(); };
-            b.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
-            b.run_to_rest = [p](int n, std::vector<VertexId>* c) { return p->run_to_rest(n, c); };
-            b.activate_all = [p] { p->activate_all(); };
-            b.exact_volume = false;  // float heights: each erosion reports its rounding drift
-            return b;
+        make_solver = [&gpu_context](Tin& t, const TalusSettings& s, const MaterialTable& m) {
+            return gpu::make_relaxation_solver(
+                t, m, s,
+                gpu::RelaxationPlacement{.device = SolverDevice::Gpu,
+                                         .context = gpu_context.get()});
         };
     }
 
     Session session;
     TinOptions options;
-    options.track_changes = physics == "gpu";  // the GPU mirror follows the change journal
+    options.track_changes = false;  // the GPU mirror reads the journal with a reader of its own
     Tin tin = [&] {
         if (args.has("-i")) {
             session = load_session(args.text("-i"));
@@ -117,7 +113,7 @@ int run_run(const std::vector<std::string>& raw) {
     SculptContext context(tin.domain());
     context.set_next_generation(session.next_generation);
     const double volume_before = tin.volume();
-    const nlohmann::json steps = run_script(script, tin, context, backend, &session);
+    const nlohmann::json steps = run_script(script, tin, context, make_solver, &session);
     for (const nlohmann::json& step : steps) {
         if (const auto w = step.find("warning"); w != step.end() && w->is_string()) {
             std::cerr << "sandtin run: warning: " << w->get<std::string>() << "\n";

@@ -17,23 +17,34 @@ GpuRelaxationSettings relaxation_settings(const TalusSettings& s, double slide_g
     return g;
 }
 
-}  // namespace
-
-GpuSandPhysics::GpuSandPhysics(Tin& tin, VulkanContext& context, MaterialTable materials,
-                               TalusSettings settings, double slide_gain, ChangeSource source)
-    : tin_(tin),
-      settings_(settings),
-      source_(std::move(source)),
-      mirror_(context, std::move(materials)),
-      relax_((mirror_.sync(tin, take_changes()), mirror_),
-             relaxation_settings(settings_, slide_gain)) {}
-
-ChangeSet GpuSandPhysics::take_changes() {
-    return source_ ? source_() : tin_.take_changes();
+// The relaxation reads the mirror's buffers from its construction on: the mirror is synced first.
+TinMirror& synced(TinMirror& mirror) {
+    mirror.sync();
+    return mirror;
 }
 
-void GpuSandPhysics::set_materials(MaterialTable materials) {
-    mirror_.set_materials(std::move(materials));
+}  // namespace
+
+GpuSandPhysics::GpuSandPhysics(Tin& tin, VulkanContext& context, const MaterialTable& materials,
+                               TalusSettings settings, double slide_gain)
+    : own_mirror_(std::make_unique<TinMirror>(context, tin, materials)),
+      mirror_(*own_mirror_),
+      tin_(tin),
+      settings_(settings),
+      changes_(tin),
+      relax_(synced(mirror_), relaxation_settings(settings_, slide_gain)) {}
+
+GpuSandPhysics::GpuSandPhysics(TinMirror& mirror, TalusSettings settings, double slide_gain)
+    : mirror_(mirror),
+      tin_(mirror.tin()),
+      settings_(settings),
+      changes_(tin_),
+      relax_(synced(mirror_), relaxation_settings(settings_, slide_gain)) {}
+
+GpuSandPhysics::~GpuSandPhysics() = default;
+
+void GpuSandPhysics::set_materials(const MaterialTable& materials) {
+    mirror_.set_materials(materials);
     activate_all();
 }
 
@@ -51,10 +62,13 @@ void GpuSandPhysics::activate_all() {
 void GpuSandPhysics::sync() {
     const double gain = relax_.settings().slide_gain;
     relax_.settings() = relaxation_settings(settings_, gain);
-    const SyncStats s = mirror_.sync(tin_, take_changes());
+    const SyncStats s = mirror_.sync();
     last_sync_bytes_ = s.bytes;
-    // Whatever changed on the CPU side (tools, write-backs, refinement) may now have excess.
-    relax_.activate(s.dirty_vertices);
+    // Whatever changed on the CPU side since the last step (tools, undo, write-backs,
+    // refinement) may now have excess, whoever synced the mirror in between.
+    const VertexChanges changed = changes_.take();
+    activate(changed.attributes);
+    activate(changed.topology);
     relax_.activate(pending_);
     pending_.clear();
 }

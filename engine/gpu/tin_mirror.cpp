@@ -61,8 +61,12 @@ uint32_t element_size(EdgeBuffer) {
     return 4;
 }
 
-TinMirror::TinMirror(VulkanContext& context, MaterialTable materials, VkDeviceSize staging_bytes)
-    : context_(context), materials_(std::move(materials)), ring_(context, staging_bytes) {
+TinMirror::TinMirror(VulkanContext& context, Tin& tin, MaterialTable materials,
+                     VkDeviceSize staging_bytes)
+    : context_(context),
+      changes_(tin),
+      materials_(std::move(materials)),
+      ring_(context, staging_bytes) {
     if (materials_.size() == 0) throw GpuError("TinMirror: the material table is empty");
 }
 
@@ -240,19 +244,9 @@ void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows) {
     }
 }
 
-SyncStats TinMirror::sync(Tin& tin) {
-    if (!tin.tracks_changes()) {
-        throw GpuError(
-            "TinMirror::sync: the TIN does not track changes (TinOptions::track_changes)");
-    }
-    return sync(tin, tin.take_changes());
-}
-
-SyncStats TinMirror::sync(Tin& tin, const ChangeSet& changes) {
-    if (!tin.tracks_changes()) {
-        throw GpuError(
-            "TinMirror::sync: the TIN does not track changes (TinOptions::track_changes)");
-    }
+SyncStats TinMirror::sync() {
+    Tin& tin = changes_.tin();
+    const ChangeSet changes = changes_.take();
     SyncStats stats;
     std::vector<uint32_t> rows;
     std::vector<uint32_t> dirty;  // vertices to report (activation)
@@ -295,12 +289,6 @@ SyncStats TinMirror::sync(Tin& tin, const ChangeSet& changes) {
     const VertexArrays& va = tin.vertices();
     std::vector<IdRange> vranges = changes.vertices;
     std::vector<IdRange> sranges = changes.triangles;
-    if (first_sync_) {
-        // Everything, whatever the journal says: it reports everything only on its very first
-        // take, and another mirror may have taken that one.
-        vranges = {IdRange{0, static_cast<uint32_t>(va.size())}};
-        sranges = {IdRange{0, tin.slot_capacity()}};
-    }
     if (materials_dirty_) {
         vranges = {IdRange{0, static_cast<uint32_t>(va.size())}};
         materials_dirty_ = false;

@@ -1,5 +1,6 @@
 #pragma once
-// The GPU copy of the TIN, fed by its change journal (Tin::take_changes): only dirty vertex
+// The GPU copy of the TIN, fed by a change reader of its own (tin/change_reader.hpp, so it never
+// takes changes from another consumer): only dirty vertex
 // ranges, dirty triangle slots and the adjacency rows around them are uploaded, through a
 // staging ring. Buffers are indexed exactly like the CPU arrays and grow by reallocation (×1.5,
 // old contents copied on the GPU), so growth never re-uploads from the CPU.
@@ -36,6 +37,7 @@
 #include "gpu/staging_ring.hpp"
 #include "physics/adjacency_graph.hpp"
 #include "physics/material.hpp"
+#include "tin/change_reader.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin::gpu {
@@ -71,21 +73,20 @@ struct SyncStats {
 
 class TinMirror {
   public:
-    // `materials` gives tan(angle of repose) per vertex; `staging_bytes` sizes the ring.
-    TinMirror(VulkanContext& context, MaterialTable materials = MaterialTable::presets(),
+    // Mirrors `tin`, which must outlive it and stay where it is. `materials` gives tan(angle of
+    // repose) per vertex; `staging_bytes` sizes the ring. Nothing is uploaded before sync().
+    TinMirror(VulkanContext& context, Tin& tin, MaterialTable materials = MaterialTable::presets(),
               VkDeviceSize staging_bytes = VkDeviceSize{8} << 20);
     ~TinMirror();
     TinMirror(const TinMirror&) = delete;
     TinMirror& operator=(const TinMirror&) = delete;
 
-    // Uploads what changed since the previous sync (everything the first time). The TIN must
-    // track changes and, from then on, this mirror must be the only consumer of
-    // take_changes(). Submits the copies without waiting.
-    SyncStats sync(Tin& tin);
-    // The same, from a ChangeSet the caller already took from the TIN (when several consumers
-    // share the journal, e.g. the editor's render mesh and this mirror). `changes` must cover
-    // everything since the previous sync.
-    SyncStats sync(Tin& tin, const ChangeSet& changes);
+    // Uploads what changed in the TIN since the previous sync (everything the first time), from
+    // the mirror's own change reader. Submits the copies without waiting. Whoever needs the
+    // mirror current calls it (the GPU physics before a step, the editor before a bake): a
+    // second call with nothing changed uploads nothing.
+    SyncStats sync();
+    Tin& tin() const { return changes_.tin(); }
     // Materials changed: tan_alpha of every live vertex is re-uploaded at the next sync.
     void set_materials(MaterialTable materials);
 
@@ -121,6 +122,7 @@ class TinMirror {
     void upload_rows(const Tin& tin, const std::vector<uint32_t>& rows);
 
     VulkanContext& context_;
+    ChangeReader changes_;
     MaterialTable materials_;
     StagingRing ring_;
     AdjacencyGraph graph_;

@@ -110,7 +110,14 @@ struct VulkanContext::DebugMessenger {
 
 VulkanContext::VulkanContext(const ContextOptions& options)
     : max_dispatch_groups_x_(options.max_dispatch_groups_x) {
-    // --- instance ---------------------------------------------------------------------------
+    create_instance(options);
+    const std::vector<std::string> device_extensions = wanted_device_extensions(options);
+    choose_physical_device(options, device_extensions);
+    create_device(device_extensions);
+}
+
+// The instance, with the validation layer and its messenger when asked for, and the surface.
+void VulkanContext::create_instance(const ContextOptions& options) {
     uint32_t loader_version = VK_API_VERSION_1_0;
     if (vkEnumerateInstanceVersion(&loader_version) != VK_SUCCESS ||
         loader_version < VK_API_VERSION_1_2) {
@@ -183,21 +190,26 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         if (surface == VK_NULL_HANDLE) throw GpuError("the surface callback returned no surface");
         surface_ = UniqueSurface(instance, surface);
     }
+}
 
-    // --- physical device ----------------------------------------------------------------------
+std::vector<std::string> VulkanContext::wanted_device_extensions(const ContextOptions& options) {
+    std::vector<std::string> wanted = options.device_extensions;
+    if (options.make_surface) wanted.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    return wanted;
+}
+
+// The device the options, SANDTIN_DEVICE or the ranking pick among those that can run sandtin.
+void VulkanContext::choose_physical_device(const ContextOptions& options,
+                                           const std::vector<std::string>& wanted_device_exts) {
     uint32_t count = 0;
-    const VkResult er = vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    const VkResult er = vkEnumeratePhysicalDevices(instance_.get(), &count, nullptr);
     if (er != VK_SUCCESS || count == 0) throw GpuUnavailable("no Vulkan physical device found");
     std::vector<VkPhysicalDevice> devices(count);
-    check(vkEnumeratePhysicalDevices(instance, &count, devices.data()),
+    check(vkEnumeratePhysicalDevices(instance_.get(), &count, devices.data()),
           "vkEnumeratePhysicalDevices");
     devices.resize(count);
-
-    std::vector<std::string> wanted_device_exts = options.device_extensions;
-    if (options.make_surface) wanted_device_exts.emplace_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    std::sort(wanted_device_exts.begin(), wanted_device_exts.end());
-    wanted_device_exts.erase(std::unique(wanted_device_exts.begin(), wanted_device_exts.end()),
-                             wanted_device_exts.end());
 
     std::vector<DeviceCandidate> candidates;
     for (VkPhysicalDevice pd : devices) {
@@ -242,8 +254,11 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &fc, families.data());
         timestamp_valid_bits_ = families[queue_family_].timestampValidBits;
     }
+}
 
-    // --- logical device -----------------------------------------------------------------------
+// The logical device with the optional features the device has, its queue, and the pool and
+// fence of one-shot submissions.
+void VulkanContext::create_device(const std::vector<std::string>& wanted_device_exts) {
     VkPhysicalDeviceVulkan12Features have12{};
     have12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
     VkPhysicalDeviceFeatures2 have{};

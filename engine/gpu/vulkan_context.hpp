@@ -118,6 +118,13 @@ class VulkanContext {
   private:
     struct DebugMessenger;
 
+    // The construction's steps, in order.
+    void create_instance(const ContextOptions& options);
+    static std::vector<std::string> wanted_device_extensions(const ContextOptions& options);
+    void choose_physical_device(const ContextOptions& options,
+                                const std::vector<std::string>& wanted_device_exts);
+    void create_device(const std::vector<std::string>& wanted_device_exts);
+
     // Declared first so they outlive the instance: the layer may still report while the
     // instance is destroyed.
     std::atomic<uint64_t> validation_count_{0};

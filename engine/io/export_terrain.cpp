@@ -155,6 +155,103 @@ const char* to_string(ExportFormat f) {
     return "?";
 }
 
+namespace {
+
+/// A height, normal or albedo map of the terrain.
+void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const ExportOptions& o,
+                ExportReport& report) {
+    const Rect d = tin.domain();
+    const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
+    const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
+    report.map_width = grid.width;
+    report.map_height = grid.height;
+    report.map_spacing = grid.spacing();
+    if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
+        const MapImage heights = bake_height_map(tin, grid);
+        // Both spacings: rounding a side to whole cells spaces the rows differently from
+        // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
+        // one spacing would stretch the terrain.
+        const double cell = report.map_spacing.x;
+        const double cell_height = report.map_spacing.y;
+        if (format == ExportFormat::HeightPng) {
+            report.height_step = height_png_range(heights) / 65535.0;
+            write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
+        } else {
+            write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
+        }
+    } else if (format == ExportFormat::NormalPng) {
+        write(out,
+              encode_normal_png(bake_normal_map(tin, grid, o.normal_mode),
+                                {report.map_spacing, o.georeference}),
+              report);
+    } else {
+        write(out,
+              encode_albedo_png(bake_albedo_map(tin, grid, o.palette),
+                                {report.map_spacing, o.georeference}),
+              report);
+    }
+}
+
+/// The mesh's bounds into the report. Every mesh format stores 32-bit floats: a coordinate
+/// beyond their range would be written as infinity, so that is an error naming the coordinate.
+void measure_bounds(const ExportMesh& mesh, ExportReport& report) {
+    report.min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+    report.max = report.min * -1.0;
+    for (const Vec3& p : mesh.positions) {
+        report.min = {std::min(report.min.x, p.x), std::min(report.min.y, p.y),
+                      std::min(report.min.z, p.z)};
+        report.max = {std::max(report.max.x, p.x), std::max(report.max.y, p.y),
+                      std::max(report.max.z, p.z)};
+    }
+
+    for (const double c :
+         {report.min.x, report.min.y, report.min.z, report.max.x, report.max.y, report.max.z}) {
+        if (!(std::abs(c) <= static_cast<double>(std::numeric_limits<float>::max()))) {
+            std::ostringstream what;
+            what << "export: the mesh reaches a coordinate of " << c
+                 << " (in the output's units), beyond the 32-bit floats mesh files store; check "
+                    "the terrain's heights and --base";
+            throw std::invalid_argument(what.str());
+        }
+    }
+}
+
+/// The OBJ, its MTL and its textures, written as one save: a failure leaves none.
+void write_obj(const ExportMesh& mesh, const GltfTextures& textures, bool with_textures,
+               const fs::path& out, const ExportOptions& o, ExportReport& report) {
+    const fs::path dir = out.parent_path();
+    // The companions' names go into the OBJ and MTL as bare words (mtllib, map_Kd),
+    // which readers split at white space: "my scene.mtl" would read as two names.
+    std::string stem = out.stem().string();
+    std::replace_if(
+        stem.begin(), stem.end(), [](unsigned char c) { return std::isspace(c) != 0; }, '_');
+    const std::string mtl = stem + ".mtl";
+    ObjMaterial material;
+    material.colour = o.palette.colours.front();
+    if (with_textures) {
+        material.albedo_texture = stem + "_albedo.png";
+        material.normal_texture = stem + "_normal.png";
+    }
+    // The mesh, its material and its textures as one save: a failure leaves none.
+    const std::string obj_text = encode_obj(mesh, mtl);
+    const std::string mtl_text = encode_mtl(material);
+    const auto bytes = [](const std::string& t) {
+        return std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(t.data()),
+                                             t.size());
+    };
+    std::vector<FileToWrite> files{{out, bytes(obj_text)}, {dir / mtl, bytes(mtl_text)}};
+    if (with_textures) {
+        files.push_back({dir / material.albedo_texture, textures.albedo_png});
+        files.push_back({dir / material.normal_texture, textures.normal_png});
+    }
+    write_files_atomically(files);
+    for (const FileToWrite& f : files)
+        report.files.push_back(f.path);
+}
+
+}  // namespace
+
 ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat format,
                             const ExportOptions& o) {
     const auto start = std::chrono::steady_clock::now();
@@ -163,6 +260,12 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     const Rect d = tin.domain();
     if (o.palette.colours.empty())
         throw std::invalid_argument("export: the palette has no colours");
+    const auto finish = [&] {
+        report.ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        return report;
+    };
 
     if (!is_mesh(format)) {
         if (o.max_error || o.base != BaseKind::None || o.up) {
@@ -170,41 +273,9 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                 "export: --max-error, --base, --skirt and --up apply to "
                 "meshes, not maps");
         }
-        const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
-        const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
-        report.map_width = grid.width;
-        report.map_height = grid.height;
-        report.map_spacing = grid.spacing();
-        if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
-            const MapImage heights = bake_height_map(tin, grid);
-            // Both spacings: rounding a side to whole cells spaces the rows differently from
-            // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
-            // one spacing would stretch the terrain.
-            const double cell = report.map_spacing.x;
-            const double cell_height = report.map_spacing.y;
-            if (format == ExportFormat::HeightPng) {
-                report.height_step = height_png_range(heights) / 65535.0;
-                write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
-            } else {
-                write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
-            }
-        } else if (format == ExportFormat::NormalPng) {
-            write(out,
-                  encode_normal_png(bake_normal_map(tin, grid, o.normal_mode),
-                                    {report.map_spacing, o.georeference}),
-                  report);
-        } else {
-            write(out,
-                  encode_albedo_png(bake_albedo_map(tin, grid, o.palette),
-                                    {report.map_spacing, o.georeference}),
-                  report);
-        }
-        report.ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        return report;
+        export_map(tin, out, format, o, report);
+        return finish();
     }
-
     const bool gltf = format == ExportFormat::Gltf || format == ExportFormat::Glb;
     const UpAxis up = o.up.value_or(format == ExportFormat::Obj || gltf ? UpAxis::Y : UpAxis::Z);
     if (gltf && up != UpAxis::Y) {
@@ -225,28 +296,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     mesh.georeference = o.georeference;
     report.vertices = mesh.positions.size();
     report.triangles = mesh.triangles.size();
-    report.min = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-    report.max = report.min * -1.0;
-    for (const Vec3& p : mesh.positions) {
-        report.min = {std::min(report.min.x, p.x), std::min(report.min.y, p.y),
-                      std::min(report.min.z, p.z)};
-        report.max = {std::max(report.max.x, p.x), std::max(report.max.y, p.y),
-                      std::max(report.max.z, p.z)};
-    }
-
-    // Every mesh format stores 32-bit floats: a coordinate beyond their range would be written
-    // as infinity.
-    for (const double c :
-         {report.min.x, report.min.y, report.min.z, report.max.x, report.max.y, report.max.z}) {
-        if (!(std::abs(c) <= static_cast<double>(std::numeric_limits<float>::max()))) {
-            std::ostringstream what;
-            what << "export: the mesh reaches a coordinate of " << c
-                 << " (in the output's units), beyond the 32-bit floats mesh files store; check "
-                    "the terrain's heights and --base";
-            throw std::invalid_argument(what.str());
-        }
-    }
+    measure_bounds(mesh, report);
 
     // Textures come from the original terrain: simplification changes geometry, not looks.
     GltfTextures textures;
@@ -268,38 +318,9 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     }
 
     switch (format) {
-        case ExportFormat::Obj: {
-            const fs::path dir = out.parent_path();
-            // The companions' names go into the OBJ and MTL as bare words (mtllib, map_Kd),
-            // which readers split at white space: "my scene.mtl" would read as two names.
-            std::string stem = out.stem().string();
-            std::replace_if(
-                stem.begin(), stem.end(), [](unsigned char c) { return std::isspace(c) != 0; },
-                '_');
-            const std::string mtl = stem + ".mtl";
-            ObjMaterial material;
-            material.colour = o.palette.colours.front();
-            if (with_textures) {
-                material.albedo_texture = stem + "_albedo.png";
-                material.normal_texture = stem + "_normal.png";
-            }
-            // The mesh, its material and its textures as one save: a failure leaves none.
-            const std::string obj_text = encode_obj(mesh, mtl);
-            const std::string mtl_text = encode_mtl(material);
-            const auto bytes = [](const std::string& t) {
-                return std::span<const std::uint8_t>(
-                    reinterpret_cast<const std::uint8_t*>(t.data()), t.size());
-            };
-            std::vector<FileToWrite> files{{out, bytes(obj_text)}, {dir / mtl, bytes(mtl_text)}};
-            if (with_textures) {
-                files.push_back({dir / material.albedo_texture, textures.albedo_png});
-                files.push_back({dir / material.normal_texture, textures.normal_png});
-            }
-            write_files_atomically(files);
-            for (const FileToWrite& f : files)
-                report.files.push_back(f.path);
+        case ExportFormat::Obj:
+            write_obj(mesh, textures, with_textures, out, o, report);
             break;
-        }
         case ExportFormat::Ply:
             write(out, encode_ply(mesh), report);
             break;
@@ -313,9 +334,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         default:
             break;
     }
-    report.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return report;
+    return finish();
 }
 
 nlohmann::json to_json(const ExportReport& r) {

@@ -94,38 +94,19 @@ struct SpatialReferenceDeleter {
     void operator()(void* srs) const { OSRDestroySpatialReference(srs); }
 };
 
-}  // namespace
+/// Which way a raster's rows and columns run in its file (sandtin's rasters are north-up).
+struct RasterOrientation {
+    bool south_first = false;  ///< the first row is the southern one
+    bool east_first = false;   ///< columns run west
+};
 
-HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::string& name,
-                            const RasterLimits& limits, bool nonfinite_as_nodata,
-                            bool pixel_size_override, bool z_scale_override) {
-    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
-    register_drivers();
-    GdalErrors errors;
-    const MemoryFile file(bytes);
-    const std::array<const char*, 3> drivers = {"GTiff", "COG", nullptr};
-    std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
-        file.path().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers.data(), nullptr, nullptr));
-    if (!dataset) {
-        throw std::runtime_error(name + ": cannot read as GeoTIFF: " + errors.message());
-    }
-    GDALDatasetH ds = dataset.get();
-    if (GDALGetRasterCount(ds) < 1) throw std::runtime_error(name + ": the GeoTIFF has no bands");
-    const int width = GDALGetRasterXSize(ds);
-    const int height = GDALGetRasterYSize(ds);
-    check_raster_size(static_cast<std::uint64_t>(std::max(width, 0)),
-                      static_cast<std::uint64_t>(std::max(height, 0)), name, limits);
-
-    HeightRaster r;
-    r.width = static_cast<std::uint32_t>(width);
-    r.height = static_cast<std::uint32_t>(height);
-    r.source_format = "geotiff";
-    r.source_bands = static_cast<std::uint32_t>(GDALGetRasterCount(ds));
+/// Cell size, spacing of the rows and georeference from the dataset's geotransform.
+RasterOrientation read_geotransform(GDALDatasetH ds, const std::string& name, int width, int height,
+                                    bool pixel_size_override, HeightRaster& r) {
+    RasterOrientation o;
     std::array<double, 6> gt{};
     // A raster whose first row is its southern one (gt[5] > 0), or whose columns run west
-    // (gt[1] < 0), is read in file order and then mirrored: sandtin's rasters are north-up.
-    bool south_first = false;
-    bool east_first = false;
+    // (gt[1] < 0), is read in file order and then mirrored.
     if (GDALGetGeoTransform(ds, gt.data()) == CE_None) {
         if (gt[2] != 0.0 || gt[4] != 0.0) {
             throw std::runtime_error(name +
@@ -144,14 +125,20 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         // Rows spaced unlike columns (a 10 x 15 m grid) are kept as such: the raster, and the
         // TIN built from it, space them apart by their own size.
         if (std::abs(dx - dy) > 1e-9 * dx) r.cell_height = dy;
-        south_first = gt[5] > 0.0;
-        east_first = gt[1] < 0.0;
+        o.south_first = gt[5] > 0.0;
+        o.east_first = gt[1] < 0.0;
         // The centres of the westmost column and the southmost row.
         r.georeference.known = true;
-        r.georeference.west = gt[0] + (east_first ? width - 0.5 : 0.5) * gt[1];
-        r.georeference.south = gt[3] + (south_first ? 0.5 : height - 0.5) * gt[5];
+        r.georeference.west = gt[0] + (o.east_first ? width - 0.5 : 0.5) * gt[1];
+        r.georeference.south = gt[3] + (o.south_first ? 0.5 : height - 0.5) * gt[5];
     }
-    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    return o;
+}
+
+/// The projection's units: the cell size in metres, and the heights' unit (the band's, else
+/// the vertical CRS's). Throws for degrees without a pixel-size override.
+std::string read_projection(GDALDatasetH ds, GDALRasterBandH band, const std::string& name,
+                            bool pixel_size_override, HeightRaster& r) {
     // Heights in the unit the band names, else the one a compound CRS's vertical part names.
     std::string vertical_unit =
         GDALGetRasterUnitType(band) != nullptr ? GDALGetRasterUnitType(band) : std::string();
@@ -183,17 +170,15 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         }
     }
     r.georeference.vertical_unit = vertical_unit;
-    double height_metres = 1.0;
-    if (!z_scale_override) {
-        const std::optional<double> unit = metres_per_unit(vertical_unit);
-        if (!unit) {
-            throw std::runtime_error(name + ": the GeoTIFF's heights are in '" + vertical_unit +
-                                     "', a unit sandtin does not know; give the z-scale that "
-                                     "turns them into metres");
-        }
-        height_metres = *unit;
-    }
+    return vertical_unit;
+}
 
+/// The band's samples as heights in metres, north-up, with the no-data cells marked.
+void read_samples(GDALRasterBandH band, const std::string& name, RasterOrientation orientation,
+                  double height_metres, bool nonfinite_as_nodata, const GdalErrors& errors,
+                  HeightRaster& r) {
+    const int width = static_cast<int>(r.width);
+    const int height = static_cast<int>(r.height);
     // Stored counts become heights in the band's unit through its scale and offset (an Int16
     // DEM in centimetres has scale 0.01). The no-data value is a stored count.
     int has_scale = 0;
@@ -218,7 +203,7 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
                      GDT_Float64, 0, 0) != CE_None) {
         throw std::runtime_error(name + ": cannot read the GeoTIFF's samples: " + errors.message());
     }
-    if (south_first) {
+    if (orientation.south_first) {
         for (std::size_t y = 0; y < r.height / 2; ++y) {
             std::swap_ranges(
                 r.heights.begin() + static_cast<std::ptrdiff_t>(y * r.width),
@@ -226,7 +211,7 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
                 r.heights.begin() + static_cast<std::ptrdiff_t>((r.height - 1 - y) * r.width));
         }
     }
-    if (east_first) {
+    if (orientation.east_first) {
         for (std::size_t y = 0; y < r.height; ++y) {
             const auto row = r.heights.begin() + static_cast<std::ptrdiff_t>(y * r.width);
             std::reverse(row, row + r.width);
@@ -253,6 +238,51 @@ HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::stri
         }
     }
     if (any_nodata) r.valid = std::move(valid);
+}
+
+}  // namespace
+
+HeightRaster decode_geotiff(std::span<const std::uint8_t> bytes, const std::string& name,
+                            const RasterLimits& limits, bool nonfinite_as_nodata,
+                            bool pixel_size_override, bool z_scale_override) {
+    if (bytes.empty()) throw std::runtime_error(name + ": file is empty");
+    register_drivers();
+    GdalErrors errors;
+    const MemoryFile file(bytes);
+    const std::array<const char*, 3> drivers = {"GTiff", "COG", nullptr};
+    std::unique_ptr<void, DatasetCloser> dataset(GDALOpenEx(
+        file.path().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, drivers.data(), nullptr, nullptr));
+    if (!dataset) {
+        throw std::runtime_error(name + ": cannot read as GeoTIFF: " + errors.message());
+    }
+    GDALDatasetH ds = dataset.get();
+    if (GDALGetRasterCount(ds) < 1) throw std::runtime_error(name + ": the GeoTIFF has no bands");
+    const int width = GDALGetRasterXSize(ds);
+    const int height = GDALGetRasterYSize(ds);
+    check_raster_size(static_cast<std::uint64_t>(std::max(width, 0)),
+                      static_cast<std::uint64_t>(std::max(height, 0)), name, limits);
+
+    HeightRaster r;
+    r.width = static_cast<std::uint32_t>(width);
+    r.height = static_cast<std::uint32_t>(height);
+    r.source_format = "geotiff";
+    r.source_bands = static_cast<std::uint32_t>(GDALGetRasterCount(ds));
+    const RasterOrientation orientation =
+        read_geotransform(ds, name, width, height, pixel_size_override, r);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    const std::string vertical_unit = read_projection(ds, band, name, pixel_size_override, r);
+    double height_metres = 1.0;
+    if (!z_scale_override) {
+        const std::optional<double> unit = metres_per_unit(vertical_unit);
+        if (!unit) {
+            throw std::runtime_error(name + ": the GeoTIFF's heights are in '" + vertical_unit +
+                                     "', a unit sandtin does not know; give the z-scale that "
+                                     "turns them into metres");
+        }
+        height_metres = *unit;
+    }
+
+    read_samples(band, name, orientation, height_metres, nonfinite_as_nodata, errors, r);
     return r;
 }
 

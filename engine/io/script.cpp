@@ -453,7 +453,7 @@ void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
 }  // namespace
 
 ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& context,
-                           bool with_physics, const PhysicsBackendFactory& backend,
+                           bool with_physics, const RelaxationSolverFactory& make_solver,
                            const Session* carried)
     : tin_(tin),
       context_(context),
@@ -468,187 +468,194 @@ ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& contex
     if (script.keep_generations) context.settings.keep_generations = *script.keep_generations;
     if (script.simplify) context.settings.simplify_after_edit = *script.simplify;
     // The physics follows the TIN from the start, so it sees every change the script makes.
-    if ((script.uses_physics || with_physics) && backend) {
-        backend_ = backend(tin, script.physics, materials_);
-    } else if (script.uses_physics || with_physics) {
-        physics_ = std::make_unique<SandPhysics>(tin, materials_, script.physics);
-        SandPhysics* p = physics_.get();
-        backend_.settings = [p]() -> TalusSettings& { return p->settings(); };
-        backend_.step = [p](int n, std::vector<VertexId>* c) { return p->step(n, c); };
-        backend_.run_to_rest = [p](int n, std::vector<VertexId>* c) {
-            return p->run_to_rest(n, c);
-        };
-        backend_.activate_all = [p] { p->activate_all(); };
+    if (script.uses_physics || with_physics) {
+        solver_ = make_solver ? make_solver(tin, script.physics, materials_)
+                              : std::make_unique<SandPhysics>(tin, materials_, script.physics);
     }
     // The terrain the script starts from (a loaded session, an imported elevation model) was
     // never relaxed by this physics: all of it is a candidate, or an `erode` would find nothing
     // active and report rest on walls far steeper than repose. Vertices already at rest leave
     // the active set after a few quiet iterations.
-    if (backend_.activate_all) backend_.activate_all();
+    if (solver_) solver_->activate_all();
 }
 
 ScriptRunner::~ScriptRunner() = default;
 
 nlohmann::json ScriptRunner::run(const ScriptStep& step) {
-    Tin& tin = tin_;
-    SculptContext& context = context_;
-    if (!backend_.step && step_uses_physics(step)) {
+    if (!solver_ && step_uses_physics(step)) {
         throw std::logic_error("ScriptRunner: step '" + step.op_name +
                                "' needs the physics, which this runner was created without");
     }
-    std::vector<VertexId> eroded;
-    // What float relaxation (the GPU) added or lost by rounding, m³. Every height it writes
-    // goes through the TIN's volume ledger, so reading the ledger around each physics call
-    // measures it without a pass over the terrain (a stroke erodes after every stamp).
-    double erosion_drift = 0.0;
-    auto physics_call = [&](int iterations, bool until_rest) {
-        const double ledger = tin.volume_ledger();
-        PhysicsStepReport r = until_rest ? backend_.run_to_rest(iterations, &eroded)
-                                         : backend_.step(iterations, &eroded);
-        if (!backend_.exact_volume) erosion_drift += tin.volume_ledger() - ledger;
-        return r;
-    };
-    // Relaxation, then the simplification of what it touched. Both conserve volume (the
-    // relaxation to its arithmetic's rounding).
-    auto erode = [&](int iterations, bool until_rest) {
-        eroded.clear();
-        PhysicsStepReport r = physics_call(iterations, until_rest);
-        context.simplifier.enqueue(eroded);
-        if (!context.settings.simplify_after_edit) return r;
-        const SimplifyReport simplified = context.simplifier.run(tin, context.settings.simplify);
-        if (until_rest && r.at_rest && simplified.removed > 0) {
-            // A removal re-triangulates its hole and shifts the hole's heights to keep the
-            // volume, so the edges it leaves may be up to ~2 d_m steeper over their length:
-            // on the short edges of a refined slope (r_S), several times the angle of repose
-            // (measured: 2.5 on a groove at r_S = 1 cm). "Until rest" means the terrain the
-            // step leaves is at rest, so those settle now; what that moves is queued for the
-            // next edit's simplification.
-            eroded.clear();
-            const PhysicsStepReport settle = physics_call(iterations, true);
-            context.simplifier.enqueue(eroded);
-            r.accumulate(settle);
-        }
-        return r;
-    };
+    erosion_drift_ = 0.0;
     const auto t0 = std::chrono::steady_clock::now();
-    nlohmann::json r = std::visit(
-        [&](const auto& op) -> nlohmann::json {
-            using T = std::decay_t<decltype(op)>;
-            if constexpr (std::is_same_v<T, StampOp>) {
-                ToolPlacement at{op.at, op.angle, op.depth};
-                if (op.depth_mode == DepthMode::Relative) {
-                    const Rect d = tin.domain();
-                    const Vec2 c{std::clamp(op.at.x, d.min.x, d.max.x),
-                                 std::clamp(op.at.y, d.min.y, d.max.y)};
-                    at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
-                }
-                const StampReport report = stamp(tin, *op.tool, at, context);
-                nlohmann::json j = stamp_json(report);
-                warn_if_nothing_stamped(j, report);
-                return j;
-            } else if constexpr (std::is_same_v<T, StrokeOp>) {
-                std::vector<StampReport> per;
-                PhysicsStepReport physics_total;
-                std::function<void(const StampReport&)> after_stamp;
-                if (op.erode_iterations > 0) {
-                    after_stamp = [&](const StampReport&) {
-                        physics_total.accumulate(erode(op.erode_iterations, false));
-                    };
-                }
-                const StampReport total =
-                    apply_stroke(tin, *op.tool, op.path, op.settings, context, &per, after_stamp);
-                nlohmann::json j = stamp_json(total);
-                j["stamps_applied"] = per.size();
-                warn_if_nothing_stamped(j, total);
-                if (op.erode_iterations > 0) {
-                    j["erosion_iterations"] = physics_total.iterations;
-                    j["erosion_ms"] = physics_total.ms;
-                    j["volume_change"] = j["volume_change"].get<double>() + erosion_drift;
-                }
-                return j;
-            } else if constexpr (std::is_same_v<T, ErodeOp>) {
-                const TalusSettings saved = backend_.settings();
-                if (op.settings) backend_.settings() = *op.settings;
-                const PhysicsStepReport pr =
-                    op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
-                backend_.settings() = saved;
-                return {{"iterations", pr.iterations},   {"vertex_updates", pr.vertex_updates},
-                        {"refined", pr.refined},         {"volume_moved", pr.volume_moved},
-                        {"at_rest", pr.at_rest},         {"erosion_ms", pr.ms},
-                        {"volume_change", erosion_drift}};
-            } else if constexpr (std::is_same_v<T, PourOp>) {
-                const double each =
-                    op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
-                double moved = 0.0;
-                for (Vec2 p : op.points) {
-                    const PourReport pr = op.remove
-                                              ? remove_sand(tin, p, each, op.settings, context)
-                                              : pour_sand(tin, p, each, op.settings, context);
-                    moved += pr.volume;
-                }
-                if (context.settings.simplify_after_edit)
-                    context.simplifier.run(tin, context.settings.simplify);
-                nlohmann::json j = {
-                    {"volume", moved}, {"points", op.points.size()}, {"volume_change", moved}};
-                warn_if_short(j, op.remove, op.volume, moved);
-                return j;
-            } else if constexpr (std::is_same_v<T, BrushOp>) {
-                BrushSettings settings = op.settings;
-                if (settings.kind == BrushKind::PaintMaterial) {
-                    if (settings.material >= materials_.size()) {
-                        std::string names;
-                        for (std::size_t m = 0; m < materials_.size(); ++m)
-                            names += (m ? ", " : "") + std::to_string(m) + " " +
-                                     materials_.all()[m].name;
-                        throw std::invalid_argument(
-                            "material " + std::to_string(settings.material) + ": the scene has " +
-                            std::to_string(materials_.size()) + " materials (" + names + ")");
-                    }
-                    settings.moisture =
-                        op.moisture.value_or(materials_.at(settings.material).default_moisture);
-                }
-                std::size_t changed = 0;
-                double dv = 0.0;
-                for (Vec2 p : op.points) {
-                    const BrushReport br = apply_brush(tin, p, settings, context);
-                    changed += br.vertices_changed;
-                    dv += br.volume_change;
-                }
-                return {{"dabs", op.points.size()},
-                        {"vertices_changed", changed},
-                        {"volume_change", dv}};
-            } else if constexpr (std::is_same_v<T, SimplifyOp>) {
-                SimplifySettings s = context.settings.simplify;
-                if (op.tolerance) s.tolerance = *op.tolerance;
-                // An explicit simplify tests every vertex, not only the queue.
-                for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
-                    if (tin.is_alive(VertexId{i})) context.simplifier.enqueue(VertexId{i});
-                }
-                const SimplifyReport sr = context.simplifier.run(tin, s);
-                // Removals shift their neighbours to conserve volume (VolumePolicy::Conserve);
-                // "retriangulation_volume" is what they changed before that compensation.
-                return {{"tested", sr.tested},
-                        {"removed", sr.removed},
-                        {"retriangulation_volume", sr.volume_change},
-                        {"max_retriangulation_volume", sr.max_volume_change},
-                        {"volume_change",
-                         s.volume_policy == VolumePolicy::Conserve ? 0.0 : sr.volume_change}};
-            } else if constexpr (std::is_same_v<T, SaveOp>) {
-                Session session = carried_;
-                session.terrain = tin.snapshot();
-                session.next_generation = context.peek_generation();
-                save_session(op.path, session);
-                return {{"file", op.path.string()}, {"volume_change", 0.0}};
-            } else {
-                return op.run(tin, context);
-            }
-        },
-        step.operation);
+    nlohmann::json r =
+        std::visit([&](const auto& op) -> nlohmann::json { return run_op(op); }, step.operation);
     r["op"] = step.op_name;
     r["line"] = step.line;
     r["ms"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return r;
+}
+
+PhysicsStepReport ScriptRunner::relax(int iterations, bool until_rest) {
+    // What float relaxation (the GPU) added or lost by rounding, m³. Every height it writes
+    // goes through the TIN's volume ledger, so reading the ledger around each physics call
+    // measures it without a pass over the terrain (a stroke erodes after every stamp).
+    const double ledger = tin_.volume_ledger();
+    PhysicsStepReport r = until_rest ? solver_->run_to_rest(iterations, &eroded_)
+                                     : solver_->step(iterations, &eroded_);
+    if (!solver_->conserves_volume_exactly()) erosion_drift_ += tin_.volume_ledger() - ledger;
+    return r;
+}
+
+PhysicsStepReport ScriptRunner::erode(int iterations, bool until_rest) {
+    // Relaxation, then the simplification of what it touched. Both conserve volume (the
+    // relaxation to its arithmetic's rounding).
+    SculptContext& context = context_;
+    eroded_.clear();
+    PhysicsStepReport r = relax(iterations, until_rest);
+    context.simplifier.enqueue(eroded_);
+    if (!context.settings.simplify_after_edit) return r;
+    const SimplifyReport simplified = context.simplifier.run(tin_, context.settings.simplify);
+    if (until_rest && r.at_rest && simplified.removed > 0) {
+        // A removal re-triangulates its hole and shifts the hole's heights to keep the
+        // volume, so the edges it leaves may be up to ~2 d_m steeper over their length:
+        // on the short edges of a refined slope (r_S), several times the angle of repose
+        // (measured: 2.5 on a groove at r_S = 1 cm). "Until rest" means the terrain the
+        // step leaves is at rest, so those settle now; what that moves is queued for the
+        // next edit's simplification.
+        eroded_.clear();
+        const PhysicsStepReport settle = relax(iterations, true);
+        context.simplifier.enqueue(eroded_);
+        r.accumulate(settle);
+    }
+    return r;
+}
+
+nlohmann::json ScriptRunner::run_op(const StampOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    ToolPlacement at{op.at, op.angle, op.depth};
+    if (op.depth_mode == DepthMode::Relative) {
+        const Rect d = tin.domain();
+        const Vec2 c{std::clamp(op.at.x, d.min.x, d.max.x), std::clamp(op.at.y, d.min.y, d.max.y)};
+        at.bottom = tin.height_at(c, &context.hint).value_or(0.0) - op.depth;
+    }
+    const StampReport report = stamp(tin, *op.tool, at, context);
+    nlohmann::json j = stamp_json(report);
+    warn_if_nothing_stamped(j, report);
+    return j;
+}
+
+nlohmann::json ScriptRunner::run_op(const StrokeOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    std::vector<StampReport> per;
+    PhysicsStepReport physics_total;
+    std::function<void(const StampReport&)> after_stamp;
+    if (op.erode_iterations > 0) {
+        after_stamp = [&](const StampReport&) {
+            physics_total.accumulate(erode(op.erode_iterations, false));
+        };
+    }
+    const StampReport total =
+        apply_stroke(tin, *op.tool, op.path, op.settings, context, &per, after_stamp);
+    nlohmann::json j = stamp_json(total);
+    j["stamps_applied"] = per.size();
+    warn_if_nothing_stamped(j, total);
+    if (op.erode_iterations > 0) {
+        j["erosion_iterations"] = physics_total.iterations;
+        j["erosion_ms"] = physics_total.ms;
+        j["volume_change"] = j["volume_change"].get<double>() + erosion_drift_;
+    }
+    return j;
+}
+
+nlohmann::json ScriptRunner::run_op(const ErodeOp& op) {
+    const TalusSettings saved = solver_->settings();
+    if (op.settings) solver_->settings() = *op.settings;
+    const PhysicsStepReport pr =
+        op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
+    solver_->settings() = saved;
+    return {{"iterations", pr.iterations},    {"vertex_updates", pr.vertex_updates},
+            {"refined", pr.refined},          {"volume_moved", pr.volume_moved},
+            {"at_rest", pr.at_rest},          {"erosion_ms", pr.ms},
+            {"volume_change", erosion_drift_}};
+}
+
+nlohmann::json ScriptRunner::run_op(const PourOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    const double each = op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
+    double moved = 0.0;
+    for (Vec2 p : op.points) {
+        const PourReport pr = op.remove ? remove_sand(tin, p, each, op.settings, context)
+                                        : pour_sand(tin, p, each, op.settings, context);
+        moved += pr.volume;
+    }
+    if (context.settings.simplify_after_edit)
+        context.simplifier.run(tin, context.settings.simplify);
+    nlohmann::json j = {{"volume", moved}, {"points", op.points.size()}, {"volume_change", moved}};
+    warn_if_short(j, op.remove, op.volume, moved);
+    return j;
+}
+
+nlohmann::json ScriptRunner::run_op(const BrushOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    BrushSettings settings = op.settings;
+    if (settings.kind == BrushKind::PaintMaterial) {
+        if (settings.material >= materials_.size()) {
+            std::string names;
+            for (std::size_t m = 0; m < materials_.size(); ++m)
+                names += (m ? ", " : "") + std::to_string(m) + " " + materials_.all()[m].name;
+            throw std::invalid_argument("material " + std::to_string(settings.material) +
+                                        ": the scene has " + std::to_string(materials_.size()) +
+                                        " materials (" + names + ")");
+        }
+        settings.moisture = op.moisture.value_or(materials_.at(settings.material).default_moisture);
+    }
+    std::size_t changed = 0;
+    double dv = 0.0;
+    for (Vec2 p : op.points) {
+        const BrushReport br = apply_brush(tin, p, settings, context);
+        changed += br.vertices_changed;
+        dv += br.volume_change;
+    }
+    return {{"dabs", op.points.size()}, {"vertices_changed", changed}, {"volume_change", dv}};
+}
+
+nlohmann::json ScriptRunner::run_op(const SimplifyOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    SimplifySettings s = context.settings.simplify;
+    if (op.tolerance) s.tolerance = *op.tolerance;
+    // An explicit simplify tests every vertex, not only the queue.
+    for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
+        if (tin.is_alive(VertexId{i})) context.simplifier.enqueue(VertexId{i});
+    }
+    const SimplifyReport sr = context.simplifier.run(tin, s);
+    // Removals shift their neighbours to conserve volume (VolumePolicy::Conserve);
+    // "retriangulation_volume" is what they changed before that compensation.
+    return {{"tested", sr.tested},
+            {"removed", sr.removed},
+            {"retriangulation_volume", sr.volume_change},
+            {"max_retriangulation_volume", sr.max_volume_change},
+            {"volume_change", s.volume_policy == VolumePolicy::Conserve ? 0.0 : sr.volume_change}};
+}
+
+nlohmann::json ScriptRunner::run_op(const SaveOp& op) {
+    Tin& tin = tin_;
+    SculptContext& context = context_;
+    Session session = carried_;
+    session.terrain = tin.snapshot();
+    session.next_generation = context.peek_generation();
+    save_session(op.path, session);
+    return {{"file", op.path.string()}, {"volume_change", 0.0}};
+}
+
+nlohmann::json ScriptRunner::run_op(const CustomOp& op) {
+    return op.run(tin_, context_);
 }
 
 Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
@@ -662,8 +669,8 @@ Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
 }
 
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
-                          const PhysicsBackendFactory& backend, const Session* carried) {
-    ScriptRunner runner(script, tin, context, false, backend, carried);
+                          const RelaxationSolverFactory& make_solver, const Session* carried) {
+    ScriptRunner runner(script, tin, context, false, make_solver, carried);
     nlohmann::json reports = nlohmann::json::array();
     const auto where = [&](std::size_t line) {
         return script.name.empty() ? "line " + std::to_string(line)
@@ -680,7 +687,8 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
             }
             reports.push_back(std::move(report));
         } catch (const std::invalid_argument& e) {
-            // Input that only the terrain shows to be bad: named by its line, like a parse error.
+            // Input that only the terrain shows to be bad: named by its line, like a parse
+            // error.
             throw std::invalid_argument(where(step.line) + ": operation " + std::to_string(i + 1) +
                                         " (" + step.op_name + "): " + e.what());
         }

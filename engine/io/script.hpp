@@ -35,6 +35,7 @@
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
+#include "physics/terrain_solver.hpp"
 #include "tin/tin.hpp"
 #include "tools/brushes.hpp"
 #include "tools/sand.hpp"
@@ -149,28 +150,11 @@ Script parse_script(std::string_view text, const std::string& name,
                     const std::filesystem::path& base_dir,
                     const std::vector<ScriptExtension>& extensions = {});
 
-class SandPhysics;
-
-/// The relaxation a script's erosion runs on: by default the CPU SandPhysics; `sandtin run
-/// --physics gpu` supplies the GPU one (engine/gpu/gpu_sand_physics.hpp) through these calls,
-/// which own its state.
-struct PhysicsBackend {
-    std::function<TalusSettings&()> settings;
-    std::function<PhysicsStepReport(int iterations, std::vector<VertexId>* changed)> step;
-    std::function<PhysicsStepReport(int max_iterations, std::vector<VertexId>* changed)>
-        run_to_rest;
-    /// Makes every vertex a candidate for the next step (the physics otherwise only looks at
-    /// what changed since it was created).
-    std::function<void()> activate_all;
-    /// True when the relaxation conserves volume to double rounding (the CPU physics), so an
-    /// erosion reports a volume change of 0. False for float arithmetic (the GPU): each erosion
-    /// then reports the drift the TIN's volume ledger shows across it.
-    bool exact_volume = true;
-};
-/// Creates a backend that follows `tin` from now on, with the script's settings and the scene's
-/// materials.
-using PhysicsBackendFactory = std::function<PhysicsBackend(Tin& tin, const TalusSettings& settings,
-                                                           const MaterialTable& materials)>;
+/// Creates the relaxation a script's erosion runs on, following `tin` from now on, with the
+/// script's settings and the scene's materials. Empty: the CPU reference (SandPhysics);
+/// `sandtin run --physics gpu` supplies the GPU one (gpu/make_relaxation_solver.hpp).
+using RelaxationSolverFactory = std::function<std::unique_ptr<RelaxationSolver>(
+    Tin& tin, const TalusSettings& settings, const MaterialTable& materials)>;
 
 /// Runs the steps of a script one at a time against a terrain, keeping the sand physics (which
 /// follows every change to the TIN) alive between steps. run_script is a loop over it; the
@@ -179,14 +163,14 @@ class ScriptRunner {
   public:
     /// Applies the script's settings to the context. The physics is created now, so it sees
     /// every change, when the script uses it or `with_physics` is set.
-    /// `backend` replaces the CPU physics when given. `carried`, when given, is the session the
+    /// `make_solver` replaces the CPU physics when given. `carried`, when given, is the session the
     /// terrain came from: its material table (io/scene_materials.hpp) is the one the physics
     /// and the paint brush use (the presets otherwise), and `save` checkpoints carry its
     /// metadata (scene name, tool settings, import report) and its chunks from newer versions,
     /// as the final output does; its terrain is not used. Throws JsonInputError for a material
     /// table in its metadata that is not valid.
     ScriptRunner(const Script& script, Tin& tin, SculptContext& context, bool with_physics = false,
-                 const PhysicsBackendFactory& backend = {}, const Session* carried = nullptr);
+                 const RelaxationSolverFactory& make_solver = {}, const Session* carried = nullptr);
     ~ScriptRunner();
     ScriptRunner(const ScriptRunner&) = delete;
     ScriptRunner& operator=(const ScriptRunner&) = delete;
@@ -195,15 +179,32 @@ class ScriptRunner {
     /// "volume_change" is the m³ the step added to the terrain by its own account).
     nlohmann::json run(const ScriptStep& step);
 
-    SandPhysics* physics() { return physics_.get(); }  ///< null with another backend
+    /// The relaxation, or null when the runner was created without physics.
+    RelaxationSolver* solver() { return solver_.get(); }
 
   private:
+    nlohmann::json run_op(const StampOp& op);
+    nlohmann::json run_op(const StrokeOp& op);
+    nlohmann::json run_op(const ErodeOp& op);
+    nlohmann::json run_op(const PourOp& op);
+    nlohmann::json run_op(const BrushOp& op);
+    nlohmann::json run_op(const SimplifyOp& op);
+    nlohmann::json run_op(const SaveOp& op);
+    nlohmann::json run_op(const CustomOp& op);
+    /// One call of the solver; the vertices it changed go to eroded_, its float drift (m³)
+    /// to erosion_drift_.
+    PhysicsStepReport relax(int iterations, bool until_rest);
+    /// Relaxation, then the simplification of what it touched (and, until rest, the settling
+    /// of what the simplification steepened).
+    PhysicsStepReport erode(int iterations, bool until_rest);
+
     Tin& tin_;
     SculptContext& context_;
     Session carried_;  ///< metadata and unknown chunks only; the terrain stays empty
     MaterialTable materials_;
-    std::unique_ptr<SandPhysics> physics_;
-    PhysicsBackend backend_;
+    std::unique_ptr<RelaxationSolver> solver_;
+    std::vector<VertexId> eroded_;  ///< vertices the current step's relaxation changed
+    double erosion_drift_ = 0.0;    ///< m³ the current step's float relaxation drifted
 };
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
@@ -211,7 +212,7 @@ class ScriptRunner {
 /// over the terrain's edge) has a "warning" string naming its line and operation. `carried`,
 /// when given, is the session the terrain came from (see ScriptRunner's constructor).
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
-                          const PhysicsBackendFactory& backend = {},
+                          const RelaxationSolverFactory& make_solver = {},
                           const Session* carried = nullptr);
 
 }  // namespace sandtin

@@ -7,16 +7,6 @@
 
 namespace sandtin {
 
-void PhysicsStepReport::accumulate(const PhysicsStepReport& o) {
-    iterations += o.iterations;
-    vertex_updates += o.vertex_updates;
-    changed += o.changed;
-    refined += o.refined;
-    volume_moved += o.volume_moved;
-    ms += o.ms;
-    at_rest = o.at_rest;
-}
-
 SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings,
                          VertexOrder order)
     : tin_(tin),
@@ -130,8 +120,8 @@ void SandPhysics::renumber() {
 
 SandPhysics::~SandPhysics() = default;
 
-void SandPhysics::set_materials(MaterialTable materials) {
-    materials_ = std::move(materials);
+void SandPhysics::set_materials(const MaterialTable& materials) {
+    materials_ = materials;
     // tan_alpha_ is per local id: under a renumbering (Jacobi's strips) local l is TIN id
     // numbering_.tin_id(l), not l.
     const VertexArrays& va = tin_.vertices();

@@ -21,22 +21,12 @@
 #include "physics/material.hpp"
 #include "physics/relocation_refinement.hpp"
 #include "physics/talus_solver.hpp"
+#include "physics/terrain_solver.hpp"
 #include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_change_feed.hpp"
 
 namespace sandtin {
-
-struct PhysicsStepReport {
-    int iterations = 0;              ///< iterations actually run (fewer when the sand came to rest)
-    std::size_t vertex_updates = 0;  ///< sum over iterations of the vertices processed
-    std::size_t changed = 0;         ///< sum over iterations of the vertices whose height changed
-    std::size_t refined = 0;         ///< vertices inserted to split long edges
-    double volume_moved = 0.0;       ///< m³
-    double ms = 0.0;
-    bool at_rest = false;
-    void accumulate(const PhysicsStepReport& o);
-};
 
 /// The numbering the relaxation runs in (see above).
 enum class VertexOrder : std::uint8_t {
@@ -49,34 +39,38 @@ enum class VertexOrder : std::uint8_t {
     Auto,
 };
 
-class SandPhysics {
+/// The CPU relaxation: the reference the GPU relaxation is checked against.
+class SandPhysics final : public RelaxationSolver {
   public:
     /// Subscribes to the TIN's changes; the TIN must outlive the physics.
     SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings = {},
                 VertexOrder order = VertexOrder::Auto);
-    ~SandPhysics();
+    ~SandPhysics() override;
     SandPhysics(const SandPhysics&) = delete;
     SandPhysics& operator=(const SandPhysics&) = delete;
 
-    TalusSettings& settings() { return solver_.settings(); }
+    SolverDevice device() const override { return SolverDevice::Cpu; }
+    bool conserves_volume_exactly() const override { return true; }
+    TalusSettings& settings() override { return solver_.settings(); }
     const MaterialTable& materials() const { return materials_; }
-    void set_materials(MaterialTable materials);
+    void set_materials(const MaterialTable& materials) override;
 
-    void activate(std::span<const VertexId> vertices);
+    void activate(std::span<const VertexId> vertices) override;
     /// Every live vertex becomes active (e.g. after loading a terrain that is not at rest).
-    void activate_all();
-    std::size_t active_count() const { return active_.size(); }
+    void activate_all() override;
+    std::size_t active_count() const override { return active_.size(); }
     /// True while vertex v is still being relaxed.
     bool is_active(VertexId v) const;
-    bool at_rest() const { return active_.empty(); }
+    bool at_rest() const override { return active_.empty(); }
 
     /// Runs up to `iterations` relaxation iterations (stops early at rest). Vertices whose
     /// height changed are appended to `changed` when given (the caller queues them for
     /// simplification, seed 003 §4 step 2d), and so are the vertices the relocation radius's
     /// refinement inserted (where no sand came after, they are flat ground to simplify).
-    PhysicsStepReport step(int iterations = 1, std::vector<VertexId>* changed = nullptr);
+    PhysicsStepReport step(int iterations = 1, std::vector<VertexId>* changed = nullptr) override;
     /// Iterates until nothing is active or `max_iterations` ran.
-    PhysicsStepReport run_to_rest(int max_iterations, std::vector<VertexId>* changed = nullptr);
+    PhysicsStepReport run_to_rest(int max_iterations,
+                                  std::vector<VertexId>* changed = nullptr) override;
 
     /// Splits the edges around `vertices` until none is longer than the relocation radius
     /// (the same refinement the relaxation asks for when sand meets a long edge), so a pour at

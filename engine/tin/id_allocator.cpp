@@ -1,5 +1,7 @@
 #include "tin/id_allocator.hpp"
 
+#include <iterator>
+
 namespace sandtin {
 
 std::uint32_t IdAllocator::allocate() {
@@ -23,6 +25,16 @@ void IdAllocator::flush_deferred() {
     // Hand out the lowest ids first: keeps the arrays dense at the front.
     free_.insert(free_.end(), pending_.rbegin(), pending_.rend());
     pending_.clear();
+}
+
+void IdAllocator::flush_deferred(std::size_t count) {
+    if (count >= pending_.size()) {
+        flush_deferred();
+        return;
+    }
+    const auto end = pending_.begin() + static_cast<std::ptrdiff_t>(count);
+    free_.insert(free_.end(), std::make_reverse_iterator(end), pending_.rend());
+    pending_.erase(pending_.begin(), end);
 }
 
 void IdAllocator::set_deferred_recycling(bool on) {

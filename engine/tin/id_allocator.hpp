@@ -1,8 +1,9 @@
 #pragma once
 // Dense integer ids with a free list. When deferred recycling is on, a freed id is only handed
-// out again after flush_deferred(): the change journal calls it when it reports the deaths, so a
-// consumer never sees an id die and be reborn within one batch of changes.
+// out again after flush_deferred(): the change journal calls it once its readers have seen the
+// deaths, so a consumer never sees an id die and be reborn within one batch of changes.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,9 @@ class IdAllocator {
     void release(std::uint32_t id);
     /// Makes ids released since the last flush available again.
     void flush_deferred();
+    /// Makes the `count` oldest of the ids released since the last flush available again (the
+    /// journal recycles an id once every reader has seen it die).
+    void flush_deferred(std::size_t count);
     void set_deferred_recycling(bool on);
 
     /// One past the largest id ever handed out; arrays indexed by id have this size.

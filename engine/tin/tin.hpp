@@ -40,8 +40,10 @@ namespace sandtin {
 class PolygonInclusion;
 
 struct TinOptions {
-    /// Record changes for take_changes(). While tracking is on, freed ids and slots are only
-    /// recycled after take_changes(), so turn it off when nothing consumes the journal.
+    /// Open the default change reader, which take_changes() reads. Like every range reader it
+    /// delays the recycling of dead ids and slots until it has taken their deaths, so turn it
+    /// off when nothing calls take_changes() (consumers with readers of their own, ChangeReader,
+    /// need no default reader).
     bool track_changes = true;
 };
 
@@ -391,10 +393,21 @@ class Tin {
     void set_slide(VertexId v, Vec2f slide);
 
     // ---- Change journal and snapshots ----------------------------------------------------
-    /// Dirty vertex and slot ranges since the last call (everything, the first time), then
-    /// recycles the ids and slots whose death it reported.
+    /// The default reader's dirty vertex and slot ranges since its last take (everything built,
+    /// the first time); no ranges when the TIN does not track changes. Dead ids and slots are
+    /// recycled once every open range reader has taken their deaths.
     ChangeSet take_changes();
     bool tracks_changes() const;
+    /// Opens or closes the default reader (closing it lets its unread deaths be recycled).
+    void set_track_changes(bool on);
+
+    /// A range reader of its own for a consumer that copies the TIN (the render mesh, the GPU
+    /// mirror, the normal map): take_changes(reader) reports what changed since that reader's
+    /// previous take, whatever other readers took; its first take reports everything. Prefer the
+    /// RAII ChangeReader (tin/change_reader.hpp).
+    std::uint32_t open_change_reader();
+    void close_change_reader(std::uint32_t reader);
+    ChangeSet take_changes(std::uint32_t reader);
 
     /// Inserted points within this distance (m) of an existing vertex reuse that vertex (which
     /// keeps its height), so rounding-level near-duplicates never make sliver triangles.
@@ -402,10 +415,10 @@ class Tin {
     double snap_distance() const;
     void set_snap_distance(double metres);
 
-    /// Opens an independent change channel for a consumer other than the GPU mirror (the
-    /// physics). It reports vertices whose height or attributes changed and vertices whose star
-    /// changed. Unlike take_changes() it never delays id recycling: a reported id only means
-    /// "look at this id again".
+    /// Opens a vertex feed for a consumer that follows vertices (the physics, the undo
+    /// recorder). It reports vertices whose height or attributes changed and vertices whose star
+    /// changed. Unlike a range reader it never delays id recycling: a reported id only means
+    /// "look at this id again". Prefer the RAII VertexChangeFeed.
     std::uint32_t subscribe_vertex_changes();
     void unsubscribe_vertex_changes(std::uint32_t subscription);
     VertexChanges take_vertex_changes(std::uint32_t subscription);

@@ -101,6 +101,7 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     impl->domain = domain;
     impl->constraint_boxes = BoxGrid(domain);
     impl->options = options;
+    impl->open_default_reader();
     impl->snap_distance = default_snap_distance(domain);
     impl->cdt.snap_distance = impl->snap_distance;
     Tin::Impl& m = *impl;
@@ -336,13 +337,11 @@ void Tin::Impl::finish_bulk_build() {
         r.corners = {a->id, b->id, c->id};
         slot_cache.push_back(r);
     }
-    if (options.track_changes) {
-        for (std::uint32_t id = 0; id < va.size(); ++id) {
-            if (va.alive[id]) journal_vertices.mark(id);
-        }
-        for (std::uint32_t s = 0; s < slot_cache.size(); ++s)
-            journal_slots.mark(s);
+    for (std::uint32_t id = 0; id < va.size(); ++id) {
+        if (va.alive[id]) journal.note_vertex(id);
     }
+    for (std::uint32_t s = 0; s < slot_cache.size(); ++s)
+        journal.note_slot(s);
 }
 
 }  // namespace sandtin

@@ -1,6 +1,6 @@
 // Tin: attributes and the change journal. The attribute setters change vertices outside edits
-// and record them; take_changes() and the vertex change feeds hand what changed to their
-// consumers (the GPU mirror, the physics).
+// and record them; the range readers (take_changes) and the vertex feeds hand what changed to
+// their consumers, each from a cursor of its own (detail/journal_readers.hpp).
 
 #include <cmath>
 #include <stdexcept>
@@ -89,55 +89,95 @@ void Tin::set_heights(std::span<const VertexId> vertices, std::span<const double
 
 // ---- Journal ------------------------------------------------------------------------------
 
-ChangeSet Tin::take_changes() {
-    Impl& m = *impl_;
+namespace {
+
+/// No ranges; the capacities and counts of now.
+ChangeSet counts_only(const Tin::Impl& m) {
     ChangeSet cs;
-    cs.vertices = merge_into_ranges(m.journal_vertices.take());
-    cs.triangles = merge_into_ranges(m.journal_slots.take());
     cs.vertex_capacity = m.events.vertex_ids.capacity();
     cs.slot_capacity = m.events.slots.capacity();
     cs.live_vertices = m.events.vertex_ids.live();
     cs.live_slots = m.live_triangles;
     cs.dead_slots = cs.slot_capacity - cs.live_slots;
-    // The deaths are reported: their ids and slots may now be reused.
-    m.events.vertex_ids.flush_deferred();
-    m.events.slots.flush_deferred();
     return cs;
 }
 
+ChangeSet take_reader(Tin::Impl& m, std::uint32_t reader) {
+    ChangeSet cs = counts_only(m);
+    detail::JournalReaders::Taken taken = m.journal.take(
+        reader, m.events.vertex_ids.pending_list().size(), m.events.slots.pending_list().size());
+    if (taken.everything) {
+        if (cs.vertex_capacity > 0) cs.vertices = {IdRange{0, cs.vertex_capacity}};
+        if (cs.slot_capacity > 0) cs.triangles = {IdRange{0, cs.slot_capacity}};
+    } else {
+        cs.vertices = merge_into_ranges(std::move(taken.vertices));
+        cs.triangles = merge_into_ranges(std::move(taken.slots));
+    }
+    // This reader has now seen the deaths it reports: those every reader has seen are recycled.
+    m.recycle_seen_deaths();
+    return cs;
+}
+
+}  // namespace
+
+ChangeSet Tin::take_changes() {
+    Impl& m = *impl_;
+    if (m.default_reader == Impl::kNoReader) return counts_only(m);
+    return take_reader(m, m.default_reader);
+}
+
 bool Tin::tracks_changes() const {
-    return impl_->options.track_changes;
+    return impl_->default_reader != Impl::kNoReader;
+}
+
+void Tin::set_track_changes(bool on) {
+    Impl& m = *impl_;
+    m.options.track_changes = on;
+    if (on) {
+        m.open_default_reader();
+    } else if (m.default_reader != Impl::kNoReader) {
+        m.journal.close_range_reader(m.default_reader);
+        m.default_reader = Impl::kNoReader;
+        m.recycle_seen_deaths();
+    }
+}
+
+std::uint32_t Tin::open_change_reader() {
+    return impl_->journal.open_range_reader(true);
+}
+
+void Tin::close_change_reader(std::uint32_t reader) {
+    Impl& m = *impl_;
+    if (reader == m.default_reader || !m.journal.is_open(reader)) return;
+    m.journal.close_range_reader(reader);
+    m.recycle_seen_deaths();
+}
+
+ChangeSet Tin::take_changes(std::uint32_t reader) {
+    Impl& m = *impl_;
+    if (!m.journal.is_open(reader)) {
+        throw std::invalid_argument("take_changes: change reader " + std::to_string(reader) +
+                                    " is not open");
+    }
+    return take_reader(m, reader);
 }
 
 std::uint32_t Tin::subscribe_vertex_changes() {
-    Impl& m = *impl_;
-    for (std::uint32_t i = 0; i < m.feeds.size(); ++i) {
-        if (!m.feeds[i].active) {
-            m.feeds[i].active = true;
-            return i;
-        }
-    }
-    m.feeds.emplace_back();
-    m.feeds.back().active = true;
-    return static_cast<std::uint32_t>(m.feeds.size() - 1);
+    return impl_->journal.subscribe_vertex_feed();
 }
 
 void Tin::unsubscribe_vertex_changes(std::uint32_t subscription) {
-    Impl& m = *impl_;
-    if (subscription >= m.feeds.size()) return;
-    m.feeds[subscription].active = false;
-    m.feeds[subscription].attributes.clear();
-    m.feeds[subscription].topology.clear();
+    impl_->journal.unsubscribe_vertex_feed(subscription);
 }
 
 VertexChanges Tin::take_vertex_changes(std::uint32_t subscription) {
-    Impl& m = *impl_;
+    auto [attributes, topology] = impl_->journal.take_vertex_feed(subscription);
     VertexChanges out;
-    if (subscription >= m.feeds.size() || !m.feeds[subscription].active) return out;
-    Impl::VertexFeed& f = m.feeds[subscription];
-    for (std::uint32_t id : f.attributes.take())
+    out.attributes.reserve(attributes.size());
+    for (std::uint32_t id : attributes)
         out.attributes.push_back(VertexId{id});
-    for (std::uint32_t id : f.topology.take())
+    out.topology.reserve(topology.size());
+    for (std::uint32_t id : topology)
         out.topology.push_back(VertexId{id});
     return out;
 }

@@ -159,6 +159,7 @@ void start_restore(Tin::Impl& m, const TinSnapshot& s, TinOptions options) {
     m.domain = d;
     m.constraint_boxes = BoxGrid(d);
     m.options = options;
+    m.open_default_reader();
     m.snap_distance = default_snap_distance(d);
     m.cdt.snap_distance = m.snap_distance;
     m.events.vertex_ids.restore(vertex_capacity, s.vertex_free_list);
@@ -359,13 +360,11 @@ void fill_caches(Tin::Impl& m, const std::vector<Fh>& faces, const TinSnapshot& 
     for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
         if (sv.alive[i]) m.va.lumped_area[i] = m.recompute_lumped_area(i);
     }
-    if (m.options.track_changes) {
-        for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-            if (sv.alive[i]) m.journal_vertices.mark(i);
-        }
-        for (std::uint32_t t = 0; t < slot_count; ++t)
-            m.journal_slots.mark(t);
+    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
+        if (sv.alive[i]) m.journal.note_vertex(i);
     }
+    for (std::uint32_t t = 0; t < slot_count; ++t)
+        m.journal.note_slot(t);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -16,6 +17,8 @@
 
 #include "editor_harness.hpp"
 #include "editor_settings.hpp"
+#include "sculpting.hpp"
+#include "tool_palette.hpp"
 #include "io/autosave.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/scene_materials.hpp"
@@ -468,6 +471,64 @@ TEST_F(EditorXvfb, AScriptedHoverShowsTheTooltipAndAClickOnThePanelNeverSculpts)
               "Radius of round tools (circle, ball), brushes and the pour");
     EXPECT_LT(surface_difference(tin_of(after), tin_of(before)), 1e-12)
         << "a click on the panel sculpted the terrain behind it";
+}
+
+// Item 6: one Foot click with Extrude on (the panel's default) on flat sand puts the sand it
+// displaced in a ridge along the sole. It used to heap it in a sunburst, 7-8 radial stripes up
+// to ~15 cm long. Oracles: the flat level (what rose is the ridge), the tool's extrusion width
+// (nothing rises farther than that from the print's outline, which the cut vertices trace to a
+// mesh spacing), and the volume, the same before and after.
+TEST_F(EditorXvfb, AFootClickWithExtrudeRaisesItsRidgeOnlyAlongTheSole) {
+    constexpr double kLevel = 0.1;
+    constexpr int kPoints = 40000;
+    const fs::path flat = kWork / "foot-flat.sandtin";
+    save_flat_scene(flat, 1.0, unit_square_points(kPoints, 17), kLevel);
+    const fs::path printed = kWork / "foot-printed.sandtin";
+    const std::string ops = R"([{"op": "set", "erosion": false, "simplify_tolerance": 0},
+        {"op": "tool", "name": "Foot"}, {"op": "wait", "frames": 1},
+        {"op": "click", "at": [0.5, 0.5]}, {"op": "save", "path": ")" +
+                            printed.string() + R"("}])";
+    const EditorRun r = run_editor("foot-extrude", ops, flat.string() + fresh_settings("foot"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    const Tin before = Tin::from_snapshot(load_session(flat).terrain);
+    const Tin after = Tin::from_snapshot(load_session(printed).terrain);
+    EXPECT_NEAR(after.volume(), before.volume(), 1e-9 * before.volume());
+
+    EditorSettings settings;
+    settings.tool = *tool_named("Foot");
+    settings.extrude = true;
+    settings.scene_size = 1.0;
+    const double width = build_tool(settings).extrusion_width();
+    ASSERT_GT(width, 0.0);
+    const double spacing = 1.0 / std::sqrt(static_cast<double>(kPoints));
+
+    std::vector<Vec2> cut, risen;
+    double highest = 0.0;
+    const VertexArrays& va = after.vertices();
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (!va.alive[i]) continue;
+        if (va.height[i] < kLevel - 1e-6) cut.push_back(va.position[i]);
+        if (va.height[i] > kLevel + 1e-6) {
+            risen.push_back(va.position[i]);
+            highest = std::max(highest, va.height[i] - kLevel);
+        }
+    }
+    ASSERT_GT(cut.size(), 50u) << "the foot printed nothing";
+    ASSERT_GT(risen.size(), 50u) << "no ridge: the displaced sand went nowhere";
+    std::size_t far = 0;
+    double farthest = 0.0;
+    for (Vec2 p : risen) {
+        double nearest = 1e300;
+        for (Vec2 q : cut)
+            nearest = std::min(nearest, distance(p, q));
+        farthest = std::max(farthest, nearest);
+        if (nearest > width + 2.0 * spacing) ++far;
+    }
+    EXPECT_EQ(far, 0u) << "sand rose up to " << farthest << " m from the print; the ridge is "
+                       << width << " m wide";
+    std::printf("[ info     ] foot ridge: %zu risen vertices, farthest %.4f m (width %.4f m), "
+                "highest %.4f m\n",
+                risen.size(), farthest, width, highest);
 }
 
 }  // namespace

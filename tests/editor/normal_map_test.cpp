@@ -48,8 +48,9 @@ double dunes(Vec2 p) {
 TEST_F(NormalMap, ARebakeChangesOnlyItsRectangleAndEqualsAFullBake) {
     const Rect domain{{0, 0}, {1, 1}};
     Tin tin = Tin::random_points(domain, 4000, 11, dunes);
-    gpu::TinMirror mirror(*ctx_);
-    mirror.sync(tin, tin.take_changes());
+    gpu::TinMirror mirror(*ctx_, tin);
+    mirror.sync();
+    tin.take_changes();  // the stroke's changes alone, next
     TerrainNormalMap map(mirror, domain, 256);
     ASSERT_EQ(map.grid().width, 256u);
     const std::vector<float> before = map.read_back();
@@ -61,13 +62,13 @@ TEST_F(NormalMap, ARebakeChangesOnlyItsRectangleAndEqualsAFullBake) {
     apply_stroke(tin, Tool::build(load_tool_asset("ball")),
                  std::vector<Vec2>{{0.30, 0.60}, {0.42, 0.66}}, ss, context);
     const ChangeSet changes = tin.take_changes();
-    mirror.sync(tin, changes);
+    mirror.sync();
     const std::optional<gpu::TexelRect> t = map.rebake(tin, changes);
     ASSERT_TRUE(t.has_value());
     const std::vector<float> after = map.read_back();
 
-    gpu::TinMirror fresh_mirror(*ctx_);
-    fresh_mirror.sync(tin);
+    gpu::TinMirror fresh_mirror(*ctx_, tin);
+    fresh_mirror.sync();
     const TerrainNormalMap fresh(fresh_mirror, domain, 256);
     const std::vector<float> oracle = fresh.read_back();
 
@@ -105,8 +106,8 @@ TEST_F(NormalMap, ATiltedPlaneBakesItsAnalyticNormalEverywhere) {
     const Rect domain{{-1, 2}, {3, 4}};  // not at the origin, 2:1
     const double gx = 0.3, gy = -0.2;
     Tin tin = Tin::random_points(domain, 500, 5, [&](Vec2 p) { return gx * p.x + gy * p.y; });
-    gpu::TinMirror mirror(*ctx_);
-    mirror.sync(tin);
+    gpu::TinMirror mirror(*ctx_, tin);
+    mirror.sync();
     const TerrainNormalMap map(mirror, domain, 128);
     ASSERT_EQ(map.grid().width, 128u);
     ASSERT_EQ(map.grid().height, 64u);

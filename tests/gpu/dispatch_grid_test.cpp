@@ -64,8 +64,8 @@ TEST_F(GpuTest, KernelsGiveTheSameBitsWhenTheirGroupsGoInRows) {
         Result r;
         Tin tin = Tin::random_points(kUnitSquare, 20000, 31,
                                      [](Vec2 p) { return testing::collapsing_cone(p); });
-        TinMirror mirror(c);
-        mirror.sync(tin);
+        TinMirror mirror(c, tin);
+        mirror.sync();
         SurfaceMaps maps(mirror);
         maps.compute_normals();
         r.vertex_normals = maps.read_vertex_normals();

@@ -84,8 +84,8 @@ void expect_mirror_equals_tin(const VulkanContext& ctx, const TinMirror& m, cons
 TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
     Tin tin = Tin::random_points(kUnitSquare, 3000, 17,
                                  [](Vec2 p) { return testing::collapsing_cone(p); });
-    TinMirror mirror(ctx(), MaterialTable::presets(), 64 << 10);  // small ring: wraps a lot
-    const SyncStats first = mirror.sync(tin);
+    TinMirror mirror(ctx(), tin, MaterialTable::presets(), 64 << 10);  // small ring: wraps a lot
+    const SyncStats first = mirror.sync();
     EXPECT_GT(first.bytes, 0u);
     expect_mirror_equals_tin(ctx(), mirror, tin);
     const uint64_t generation = mirror.generation();
@@ -102,7 +102,7 @@ TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
     const VertexId c = tin.insert_point({0.5, 0.8}, 0.3);
     const std::array<VertexId, 3> poly{a, b, c};
     tin.insert_constraint(poly, true, 1);
-    const SyncStats edit = mirror.sync(tin);
+    const SyncStats edit = mirror.sync();
     EXPECT_GT(edit.bytes, 0u);
     EXPECT_LT(edit.bytes, first.bytes / 4);
     expect_mirror_equals_tin(ctx(), mirror, tin);
@@ -115,7 +115,7 @@ TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
         const VertexId v = tin.locate({u(rng), u(rng)}).corners[1];
         tin.remove_vertex(v);
     }
-    const SyncStats grown = mirror.sync(tin);
+    const SyncStats grown = mirror.sync();
     EXPECT_TRUE(grown.reallocated);
     EXPECT_GT(mirror.generation(), generation);
     expect_mirror_equals_tin(ctx(), mirror, tin);
@@ -126,10 +126,10 @@ TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
 // uploads everything.
 TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {
     Tin tin = Tin::random_points(kUnitSquare, 2000, 19, [](Vec2 p) { return 0.3 * p.x * p.y; });
-    TinMirror first(ctx());
-    first.sync(tin);
-    TinMirror second(ctx());
-    const SyncStats s = second.sync(tin);
+    TinMirror first(ctx(), tin);
+    first.sync();
+    TinMirror second(ctx(), tin);
+    const SyncStats s = second.sync();
     EXPECT_GT(s.bytes, second.mirrored_bytes() / 2);
     expect_mirror_equals_tin(ctx(), second, tin);
 }
@@ -138,8 +138,8 @@ TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {
 // uploads less than 1 % of the mirrored bytes.
 TEST_F(GpuTest, OneStampOn1e6VerticesUploadsUnderOnePercentOfTheMirror) {
     Tin tin = Tin::random_points(kUnitSquare, 1000000, 23, [](Vec2 p) { return 0.2 + 0.05 * p.x; });
-    TinMirror mirror(ctx());
-    const SyncStats first = mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    const SyncStats first = mirror.sync();
     const uint64_t mirrored = mirror.mirrored_bytes();
     EXPECT_GE(first.bytes, mirrored / 2) << "the first sync uploads the whole terrain";
 
@@ -150,14 +150,14 @@ TEST_F(GpuTest, OneStampOn1e6VerticesUploadsUnderOnePercentOfTheMirror) {
     const Tool tool = Tool::build(spec);
     const StampReport r = stamp(tin, tool, ToolPlacement{{0.5, 0.5}, 0.0, 0.15}, context);
     ASSERT_TRUE(r.applied);
-    const SyncStats after = mirror.sync(tin);
+    const SyncStats after = mirror.sync();
     EXPECT_GT(after.bytes, 0u);
     EXPECT_LT(after.bytes, mirrored / 100) << after.bytes << " of " << mirrored;
     EXPECT_FALSE(after.reallocated);
     RecordProperty("stamp_upload_bytes", std::to_string(after.bytes));
     RecordProperty("mirrored_bytes", std::to_string(mirrored));
     // Nothing changed since: nothing is uploaded.
-    EXPECT_EQ(mirror.sync(tin).bytes, 0u);
+    EXPECT_EQ(mirror.sync().bytes, 0u);
     expect_mirror_equals_tin(ctx(), mirror, tin);
 }
 

@@ -93,8 +93,8 @@ Difference difference(const Tin& tin, const A& a, const B& b) {
 TEST_F(GpuTest, RelaxationMatchesCpuJacobiOn1e5VerticesOver1000Iterations) {
     Tin tin =
         Tin::random_points(kUnitSquare, 100000, 7, [](Vec2 p) { return collapsing_cone(p, 0.1); });
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxationSettings gs;
     gs.quiet_iterations = 3;
     // The seeds' rule, whose transfer grows from 0 at the trigger: float and double agree
@@ -133,8 +133,8 @@ TEST_F(GpuTest, RelaxationMatchesCpuJacobiOn1e5VerticesOver1000Iterations) {
 TEST_F(GpuTest, RandomisedRelaxationMatchesCpuJacobi) {
     Tin tin =
         Tin::random_points(kUnitSquare, 20000, 8, [](Vec2 p) { return collapsing_cone(p, 0.15); });
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxationSettings gs;
     gs.randomness = 0.4;
     gs.seed = 12345678901234ull;
@@ -159,8 +159,8 @@ TEST_F(GpuTest, RandomisedRelaxationMatchesCpuJacobi) {
 TEST_F(GpuTest, SettleMarginMatchesCpuJacobi) {
     Tin tin =
         Tin::random_points(kUnitSquare, 20000, 9, [](Vec2 p) { return collapsing_cone(p, 0.15); });
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxationSettings gs;
     gs.parameters.settle_margin = 0.05;
     GpuRelaxation gpu(mirror, gs);
@@ -196,8 +196,8 @@ TEST_F(GpuTest, RelaxationVolumeDriftOver1e4IterationsIsBelow1e6) {
         const double r = std::hypot(p.x - 0.5, p.y - 0.5);
         return std::max(0.0, 1.0 - 4.0 * r);  // a tall spike: spreads out slowly
     });
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxationSettings gs;
     gs.parameters.rest_tolerance = 1e-10;  // with half the usual damping: ~6 000 moving iterations
     gs.parameters.damping = 0.25;
@@ -225,8 +225,8 @@ TEST_F(GpuTest, VerticalSliversLetTheGpuComeToRest) {
     const VertexArrays& va = tin.vertices();
     ASSERT_GE(test::sliver_vertices(tin), scene.middle.size()) << "the scene has no slivers";
 
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxation gpu(mirror, {});
     gpu.activate(live_ids(tin));
     const double v0 = gpu_volume(gpu.read_heights(), tin);
@@ -252,8 +252,8 @@ TEST_F(GpuTest, VerticalSliversLetTheGpuComeToRest) {
 
 TEST_F(GpuTest, IdleTerrainRecordsZeroDispatches) {
     Tin tin = Tin::random_points(kUnitSquare, 2000, 5, [](Vec2 p) { return 0.1 * p.x; });
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     GpuRelaxation gpu(mirror, {});
     // Nothing activated: nothing recorded.
     EXPECT_EQ(gpu.run(10).dispatches, 0u);
@@ -269,7 +269,7 @@ TEST_F(GpuTest, IdleTerrainRecordsZeroDispatches) {
     EXPECT_EQ(gpu.dispatches_recorded(), before);
     EXPECT_TRUE(gpu.at_rest());
     // And the mirror uploads nothing for an untouched TIN.
-    EXPECT_EQ(mirror.sync(tin).bytes, 0u);
+    EXPECT_EQ(mirror.sync().bytes, 0u);
 }
 
 // Signed offset in (-0.5, 0.5] from a wrapped one in [0, 1).
@@ -281,8 +281,8 @@ TEST_F(GpuTest, TextureOffsetsMoveDownhillOnACollapsingSlopeAndStayZeroAtRest) {
     // A steep ramp falling towards +x (slope 1.5), flat beyond x = 0.6.
     Tin slope = Tin::random_points(kUnitSquare, 6000, 9,
                                    [](Vec2 p) { return 1.5 * std::max(0.0, 0.6 - p.x); });
-    TinMirror mirror(ctx());
-    mirror.sync(slope);
+    TinMirror mirror(ctx(), slope);
+    mirror.sync();
     GpuRelaxationSettings gs;
     gs.slide_gain = 1.0;
     GpuRelaxation gpu(mirror, gs);
@@ -307,8 +307,8 @@ TEST_F(GpuTest, TextureOffsetsMoveDownhillOnACollapsingSlopeAndStayZeroAtRest) {
 
     // A terrain at rest: no transport, so the offsets stay exactly zero.
     Tin rest = Tin::random_points(kUnitSquare, 3000, 4, [](Vec2 p) { return 0.2 * p.y; });
-    TinMirror mirror2(ctx());
-    mirror2.sync(rest);
+    TinMirror mirror2(ctx(), rest);
+    mirror2.sync();
     GpuRelaxation gpu2(mirror2, gs);
     gpu2.activate(live_ids(rest));
     gpu2.run(20);
@@ -330,8 +330,8 @@ TEST_F(GpuTest, SplitRequestsOfAWholeBatchAreAllKept) {
     const auto run = [&](int per_take) {
         Tin tin =
             Tin::random_points(kUnitSquare, 3000, 23, [](Vec2 p) { return collapsing_cone(p); });
-        TinMirror mirror(ctx());
-        mirror.sync(tin);
+        TinMirror mirror(ctx(), tin);
+        mirror.sync();
         GpuRelaxationSettings gs;
         gs.parameters.relocation_radius = 0.025;  // about half the edges are longer
         gs.quiet_iterations = 100;                // blocked vertices stay active through the batch

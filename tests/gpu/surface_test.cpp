@@ -23,8 +23,8 @@ double wavy(Vec2 p) {
 
 TEST_F(GpuTest, VertexNormalsMatchTheCpuWithin1e4) {
     Tin tin = Tin::random_points(kUnitSquare, 20000, 31, wavy);
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     SurfaceMaps maps(mirror);
     maps.compute_normals();
     const std::vector<Vec3> gpu = maps.read_vertex_normals();
@@ -66,8 +66,8 @@ TEST_F(GpuTest, CornerNormalsKeepCreasesAlongConstrainedEdges) {
         }
     }
     tin.insert_constraint(line, false, 1);
-    TinMirror mirror(ctx());
-    mirror.sync(tin);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
     SurfaceMaps maps(mirror);
     maps.compute_normals();
     const std::vector<Vec3> corner = maps.read_corner_normals();
@@ -107,8 +107,8 @@ TEST_F(GpuTest, BakedMapsMatchAnalyticPlaneAndSphericalCapAndTheCpuBake) {
     const double gx = 0.3, gy = -0.2;
     Tin plane =
         Tin::random_points(kUnitSquare, 2000, 3, [&](Vec2 p) { return 0.5 + gx * p.x + gy * p.y; });
-    TinMirror m1(ctx());
-    m1.sync(plane);
+    TinMirror m1(ctx(), plane);
+    m1.sync();
     SurfaceMaps s1(m1);
     s1.compute_normals();
     const MapGrid grid(kUnitSquare, 64, 48, SampleAt::Centres);
@@ -135,8 +135,8 @@ TEST_F(GpuTest, BakedMapsMatchAnalyticPlaneAndSphericalCapAndTheCpuBake) {
         return std::sqrt(R * R - r2) - (R - 0.3);
     };
     Tin sphere = Tin::regular_grid(kUnitSquare, 120, 120, cap);
-    TinMirror m2(ctx());
-    m2.sync(sphere);
+    TinMirror m2(ctx(), sphere);
+    m2.sync();
     SurfaceMaps s2(m2);
     s2.compute_normals();
     const MapGrid grid2(kUnitSquare, 100, 100, SampleAt::Corners);

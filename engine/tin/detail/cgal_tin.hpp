@@ -27,6 +27,7 @@
 
 #include "geom/box_grid.hpp"
 #include "tin/change_journal.hpp"
+#include "tin/detail/journal_readers.hpp"
 #include "tin/id_allocator.hpp"
 #include "tin/tin.hpp"
 #include "util/compensated_sum.hpp"
@@ -333,30 +334,30 @@ struct Tin::Impl {
     std::vector<detail::SlotRecord> slot_cache;
     std::uint32_t live_triangles = 0;
     CompensatedSum volume_ledger;  ///< running sum of every volume change (m³)
-    DirtySet journal_vertices;
-    DirtySet journal_slots;
-
-    /// Extra change channels (Tin::subscribe_vertex_changes): one per consumer.
-    struct VertexFeed {
-        bool active = false;
-        DirtySet attributes;
-        DirtySet topology;
-    };
-    std::vector<VertexFeed> feeds;
+    /// The change journal's readers; the default one (take_changes()) is open while
+    /// options.track_changes holds.
+    detail::JournalReaders journal;
+    static constexpr std::uint32_t kNoReader = ~std::uint32_t{0};
+    std::uint32_t default_reader = kNoReader;
+    /// Opens the default reader when options.track_changes asks for it. Before anything is
+    /// built: the builders mark what they create.
+    void open_default_reader() {
+        if (options.track_changes && default_reader == kNoReader)
+            default_reader = journal.open_range_reader(false);
+    }
+    /// Recycles the dead ids and slots every open range reader has seen die.
+    void recycle_seen_deaths() {
+        const detail::JournalReaders::Recyclable r = journal.recyclable(
+            events.vertex_ids.pending_list().size(), events.slots.pending_list().size());
+        events.vertex_ids.flush_deferred(r.vertices);
+        events.slots.flush_deferred(r.slots);
+        journal.recycled(r);
+    }
 
     /// A vertex's height or other attribute changed (or it was born or died).
-    void note_attribute(std::uint32_t id) {
-        if (options.track_changes) journal_vertices.mark(id);
-        for (VertexFeed& f : feeds) {
-            if (f.active) f.attributes.mark(id);
-        }
-    }
+    void note_attribute(std::uint32_t id) { journal.note_vertex(id); }
     /// A vertex's star (its triangles or neighbours) changed.
-    void note_topology(std::uint32_t id) {
-        for (VertexFeed& f : feeds) {
-            if (f.active) f.topology.mark(id);
-        }
-    }
+    void note_topology(std::uint32_t id) { journal.note_topology(id); }
 
     std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
     IdAllocator constraint_ids{false};

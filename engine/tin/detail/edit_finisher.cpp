@@ -157,7 +157,7 @@ void EditFinisher::update_slots(EditReport& local) {
             face != nullptr ? m.read_face(*static_cast<const Face*>(face)) : SlotRecord{};
         if (before == after) continue;
         ++local.triangles_changed;
-        if (m.options.track_changes) m.journal_slots.mark(slot);
+        m.journal.note_slot(slot);
         if (before.finite()) {
             --m.live_triangles;
             for (std::uint32_t c : before.corners)
@@ -265,18 +265,15 @@ void EditFinisher::level_slivers(std::uint32_t id, bool take_neighbour, VolumePo
     } while (++vc != done);
 }
 
-/// Clears the events of the edit; without change tracking, dead ids and slots are recycled at
-/// once.
+/// Clears the events of the edit; with no range reader open, dead ids and slots are recycled
+/// at once.
 void EditFinisher::end_edit() {
     Tin::Impl& m = impl_;
     affected_.clear();
     m.events.born_vertices.clear();
     prepared_born_ = 0;
     m.events.died_vertices.clear();
-    if (!m.options.track_changes) {
-        m.events.vertex_ids.flush_deferred();
-        m.events.slots.flush_deferred();
-    }
+    if (!m.journal.has_range_readers()) m.recycle_seen_deaths();
 }
 
 /// Adds `volume` m³ to the live vertices of `ids` by a uniform height shift. The bedrock is
