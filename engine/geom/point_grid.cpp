@@ -16,8 +16,11 @@ constexpr double kMaxCellsPerSide = 1024.0;
 PointGrid::PointGrid(std::span<const Vec2> points, double radius) {
     if (!(radius > 0.0) || !std::isfinite(radius)) return;
     Rect extent;
+    std::size_t finite_count = 0;
     for (const Vec2 p : points) {
-        if (is_finite(p)) extent.expand(p);
+        if (!is_finite(p)) continue;
+        extent.expand(p);
+        ++finite_count;
     }
     if (extent.empty()) return;
     radius_ = radius;
@@ -27,11 +30,18 @@ PointGrid::PointGrid(std::span<const Vec2> points, double radius) {
                                  std::max(extent.width(), extent.height()) / kMaxCellsPerSide);
     grid_ = UniformGrid::with_cells_per_metre(extent, 1.0 / side);
     if (!grid_.has_cells()) return;  // a density that overflows (a subnormal radius): no grid
-    points_ = PackedCells<Vec2>(grid_.cell_count(), [&](auto&& file) {
+    std::vector<Vec2> finite_points;
+    if (finite_count < points.size()) {
+        finite_points.reserve(finite_count);
         for (const Vec2 p : points) {
-            if (is_finite(p)) file(grid_.cell_of(p), p);
+            if (is_finite(p)) finite_points.push_back(p);
         }
-    });
+        points = finite_points;
+    }
+    std::vector<std::uint32_t> cell(points.size());  // at most 1024² cells
+    for (std::size_t i = 0; i < points.size(); ++i)
+        cell[i] = static_cast<std::uint32_t>(grid_.cell_of(points[i]));
+    points_ = PackedCells<Vec2>(grid_.cell_count(), cell, points);
 }
 
 bool PointGrid::has_near(Vec2 p) const {

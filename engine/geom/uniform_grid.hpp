@@ -166,6 +166,21 @@ class PackedCells {
         visit([&](std::size_t cell, const T& item) { items_[fill[cell]++] = item; });
     }
 
+    /// Files items[i] in cell cells[i] (< cell_count), one cell each (a stable counting sort);
+    /// cells and items have the same length.
+    PackedCells(std::size_t cell_count, std::span<const std::uint32_t> cells,
+                std::span<const T> items) {
+        start_.assign(cell_count + 1, 0);
+        for (const std::uint32_t c : cells)
+            ++start_[c + 1];
+        for (std::size_t c = 1; c < start_.size(); ++c)
+            start_[c] += start_[c - 1];
+        items_.resize(start_.back());
+        std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+        for (std::size_t i = 0; i < cells.size(); ++i)
+            items_[fill[cells[i]]++] = items[i];
+    }
+
     std::size_t cell_count() const { return start_.empty() ? 0 : start_.size() - 1; }
     /// The items filed in `cell`, in filing order.
     std::span<const T> operator[](std::size_t cell) const {

@@ -352,5 +352,35 @@ TEST(PackedCells, KeepsFilingOrderAndEmptyCells) {
     EXPECT_TRUE(nothing[2].empty());
 }
 
+TEST(PackedCells, ACountingSortOfOneCellItemsFilesAsTheVisitorDoes) {
+    std::mt19937_64 rng(20260314);
+    for (const std::size_t cell_count : {std::size_t{1}, std::size_t{5}, std::size_t{300}}) {
+        for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{1000}}) {
+            std::vector<std::uint32_t> cell(n);
+            std::vector<int> item(n);
+            std::uniform_int_distribution<std::uint32_t> pick(
+                0, static_cast<std::uint32_t>(cell_count - 1));
+            for (std::size_t i = 0; i < n; ++i) {
+                cell[i] = pick(rng);
+                item[i] = static_cast<int>(i);
+            }
+            const PackedCells<int> sorted(cell_count, cell, item);
+            const PackedCells<int> visited(cell_count, [&](auto&& file) {
+                for (std::size_t i = 0; i < n; ++i)
+                    file(cell[i], item[i]);
+            });
+            ASSERT_EQ(sorted.cell_count(), cell_count);
+            for (std::size_t c = 0; c < cell_count; ++c) {
+                std::vector<int> want;  // the items of cell c, in input order
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (cell[i] == c) want.push_back(item[i]);
+                }
+                EXPECT_EQ(std::vector<int>(sorted[c].begin(), sorted[c].end()), want);
+                EXPECT_EQ(std::vector<int>(visited[c].begin(), visited[c].end()), want);
+            }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace sandtin
