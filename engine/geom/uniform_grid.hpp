@@ -159,10 +159,7 @@ class PackedCells {
     PackedCells(std::size_t cell_count, Visit&& visit) {
         start_.assign(cell_count + 1, 0);
         visit([&](std::size_t cell, const T&) { ++start_[cell + 1]; });
-        for (std::size_t c = 1; c < start_.size(); ++c)
-            start_[c] += start_[c - 1];
-        items_.resize(start_.back());
-        std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+        std::vector<std::uint32_t> fill = counted();
         visit([&](std::size_t cell, const T& item) { items_[fill[cell]++] = item; });
     }
 
@@ -173,10 +170,7 @@ class PackedCells {
         start_.assign(cell_count + 1, 0);
         for (const std::uint32_t c : cells)
             ++start_[c + 1];
-        for (std::size_t c = 1; c < start_.size(); ++c)
-            start_[c] += start_[c - 1];
-        items_.resize(start_.back());
-        std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+        std::vector<std::uint32_t> fill = counted();
         for (std::size_t i = 0; i < cells.size(); ++i)
             items_[fill[cells[i]]++] = items[i];
     }
@@ -188,6 +182,15 @@ class PackedCells {
     }
 
   private:
+    /// With start_[c + 1] holding cell c's count: turns the counts into starts, sizes items_,
+    /// and returns each cell's next free slot.
+    std::vector<std::uint32_t> counted() {
+        for (std::size_t c = 1; c < start_.size(); ++c)
+            start_[c] += start_[c - 1];
+        items_.resize(start_.back());
+        return {start_.begin(), start_.end() - 1};
+    }
+
     std::vector<std::uint32_t> start_;  ///< cell c holds items_[start_[c] .. start_[c + 1])
     std::vector<T> items_;
 };
