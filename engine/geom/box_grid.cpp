@@ -1,9 +1,6 @@
 #include "geom/box_grid.hpp"
 
-#include "geom/grid_cell.hpp"
-
 #include <algorithm>
-#include <cmath>
 
 namespace sandtin {
 
@@ -15,33 +12,11 @@ constexpr std::size_t kMaxCellsPerBox = 64;
 
 }  // namespace
 
-BoxGrid::BoxGrid(const Rect& extent, std::uint32_t target_cells) {
-    const double w = extent.width();
-    const double h = extent.height();
-    if (extent.empty() || !(w > 0.0) || !(h > 0.0) || !std::isfinite(w) || !std::isfinite(h) ||
-        target_cells == 0) {
-        return;  // no cells: every box is wide
-    }
-    const double target = static_cast<double>(target_cells);
-    const double columns = std::clamp(std::round(std::sqrt(target * w / h)), 1.0, target);
-    const double rows = std::clamp(std::round(target / columns), 1.0, target);
-    extent_ = extent;
-    columns_ = static_cast<std::uint32_t>(columns);
-    rows_ = static_cast<std::uint32_t>(rows);
-    columns_per_metre_ = columns / w;
-    rows_per_metre_ = rows / h;
-    cells_.resize(static_cast<std::size_t>(columns_) * rows_);
-}
-
-BoxGrid::CellSpan BoxGrid::span_of(const Rect& box) const {
-    return {grid_cell(box.min.x, extent_.min.x, columns_per_metre_, columns_),
-            grid_cell(box.max.x, extent_.min.x, columns_per_metre_, columns_),
-            grid_cell(box.min.y, extent_.min.y, rows_per_metre_, rows_),
-            grid_cell(box.max.y, extent_.min.y, rows_per_metre_, rows_)};
-}
+BoxGrid::BoxGrid(const Rect& extent, std::uint32_t target_cells)
+    : grid_(UniformGrid::with_cell_count(extent, target_cells)), cells_(grid_.cell_count()) {}
 
 bool BoxGrid::is_wide(const Rect& box) const {
-    return columns_ == 0 || box.empty() || span_of(box).count() > kMaxCellsPerBox;
+    return !grid_.has_cells() || box.empty() || grid_.span_of(box).count() > kMaxCellsPerBox;
 }
 
 void BoxGrid::insert(std::uint32_t id, const Rect& box) {
@@ -50,11 +25,7 @@ void BoxGrid::insert(std::uint32_t id, const Rect& box) {
         wide_.push_back({id, box});
         return;
     }
-    const CellSpan s = span_of(box);
-    for (std::uint32_t y = s.y0; y <= s.y1; ++y) {
-        for (std::uint32_t x = s.x0; x <= s.x1; ++x)
-            cell(x, y).push_back({id, box});
-    }
+    grid_.for_each_cell(grid_.span_of(box), [&](std::size_t c) { cells_[c].push_back({id, box}); });
 }
 
 bool BoxGrid::erase(std::uint32_t id, const Rect& box) {
@@ -73,11 +44,7 @@ bool BoxGrid::erase(std::uint32_t id, const Rect& box) {
         return true;
     }
     if (!holds(id, box)) return false;
-    const CellSpan s = span_of(box);
-    for (std::uint32_t y = s.y0; y <= s.y1; ++y) {
-        for (std::uint32_t x = s.x0; x <= s.x1; ++x)
-            take(cell(x, y));
-    }
+    grid_.for_each_cell(grid_.span_of(box), [&](std::size_t c) { take(cells_[c]); });
     --size_;
     return true;
 }
@@ -88,15 +55,12 @@ void BoxGrid::query(const Rect& query, std::vector<std::uint32_t>& out) const {
     for (const Entry& e : wide_) {
         if (e.box.intersects(query)) out.push_back(e.id);
     }
-    if (columns_ != 0) {
-        const CellSpan s = span_of(query);
-        for (std::uint32_t y = s.y0; y <= s.y1; ++y) {
-            for (std::uint32_t x = s.x0; x <= s.x1; ++x) {
-                for (const Entry& e : cell(x, y)) {
-                    if (e.box.intersects(query)) out.push_back(e.id);
-                }
+    if (grid_.has_cells()) {
+        grid_.for_each_cell(grid_.span_of(query), [&](std::size_t c) {
+            for (const Entry& e : cells_[c]) {
+                if (e.box.intersects(query)) out.push_back(e.id);
             }
-        }
+        });
     }
     // A box spanning several of the query's cells was found in each of them.
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
@@ -109,13 +73,7 @@ bool BoxGrid::holds(std::uint32_t id, const Rect& box) const {
                            [&](const Entry& e) { return e.id == id && e.box == box; });
     };
     if (is_wide(box)) return has(wide_);
-    const CellSpan s = span_of(box);
-    for (std::uint32_t y = s.y0; y <= s.y1; ++y) {
-        for (std::uint32_t x = s.x0; x <= s.x1; ++x) {
-            if (!has(cell(x, y))) return false;
-        }
-    }
-    return true;
+    return !grid_.any_cell(grid_.span_of(box), [&](std::size_t c) { return !has(cells_[c]); });
 }
 
 }  // namespace sandtin

@@ -1,8 +1,9 @@
 #pragma once
 // An index of axis-aligned boxes by id that answers "which boxes meet this box?" in time
-// proportional to the query's neighbourhood, not to the number of boxes. A uniform grid over
-// a fixed extent lists in each cell the boxes that meet it; boxes that would span many cells
-// (a constraint drawn across the whole terrain) sit in one list that every query reads.
+// proportional to the query's neighbourhood, not to the number of boxes. A uniform grid over a
+// fixed extent (geom/uniform_grid.hpp) lists in each cell the boxes that meet it; boxes that
+// would span many cells (a constraint drawn across the whole terrain) sit in one list that
+// every query reads.
 // Insertions and erasures are cheap, so the index follows an edited set (the TIN's live
 // constraints) rather than being rebuilt.
 
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "geom/rect.hpp"
+#include "geom/uniform_grid.hpp"
 
 namespace sandtin {
 
@@ -42,27 +44,10 @@ class BoxGrid {
         std::uint32_t id;
         Rect box;
     };
-    struct CellSpan {
-        std::uint32_t x0, x1, y0, y1;
-        std::size_t count() const {
-            return static_cast<std::size_t>(x1 - x0 + 1) * static_cast<std::size_t>(y1 - y0 + 1);
-        }
-    };
-    CellSpan span_of(const Rect& box) const;
     bool is_wide(const Rect& box) const;
-    std::vector<Entry>& cell(std::uint32_t x, std::uint32_t y) {
-        return cells_[static_cast<std::size_t>(y) * columns_ + x];
-    }
-    const std::vector<Entry>& cell(std::uint32_t x, std::uint32_t y) const {
-        return cells_[static_cast<std::size_t>(y) * columns_ + x];
-    }
 
-    Rect extent_;
-    double columns_per_metre_ = 0.0;
-    double rows_per_metre_ = 0.0;
-    std::uint32_t columns_ = 0;
-    std::uint32_t rows_ = 0;
-    std::vector<std::vector<Entry>> cells_;  ///< row-major
+    UniformGrid grid_;
+    std::vector<std::vector<Entry>> cells_;  ///< by the grid's cell index
     std::vector<Entry> wide_;  ///< empty boxes, and boxes covering more than a few cells
     std::size_t size_ = 0;
 };

@@ -1,16 +1,15 @@
 #pragma once
 // nearest_edge for many points that only care about edges within a fixed reach (a ridge
-// beside a tool's rim, a wall between two contours). A uniform grid lists in each cell the
-// edges that come within the reach of it, in index order, so a query tests a handful of edges
-// instead of the whole subdivided contour. Within the reach its answers are nearest_edge's,
-// bit for bit (the same per-edge arithmetic, the same first-of-equals rule).
+// beside a tool's rim, a wall between two contours). A uniform grid (geom/uniform_grid.hpp)
+// lists in each cell the edges that come within the reach of it, in index order, so a query
+// tests a handful of edges instead of the whole subdivided contour. Within the reach its answers
+// are nearest_edge's, bit for bit (the same per-edge arithmetic, the same first-of-equals rule).
 
 #include <cstdint>
 #include <span>
-#include <vector>
 
 #include "geom/polygon.hpp"
-#include "geom/rect.hpp"
+#include "geom/uniform_grid.hpp"
 
 namespace sandtin {
 
@@ -25,13 +24,11 @@ class NearEdgeIndex {
 
   private:
     std::span<const Vec2> polygon_;
-    Rect grid_;  ///< the cells' extent: the polygon's box grown by the reach
-    double cells_per_metre_ = 0.0;
-    std::uint32_t columns_ = 0;
-    std::uint32_t rows_ = 0;
-    // Cell c lists edges cell_edge_[cell_start_[c] .. cell_start_[c + 1]), ascending.
-    std::vector<std::uint32_t> cell_start_;
-    std::vector<std::uint32_t> cell_edge_;
+    /// Over the polygon's box grown by the reach; no cells when the input is unusable.
+    UniformGrid grid_;
+    /// Per cell, the edges (edge i runs from vertex i to i + 1) that come within the reach of
+    /// it, ascending.
+    PackedCells<std::uint32_t> cell_edges_;
 };
 
 }  // namespace sandtin
