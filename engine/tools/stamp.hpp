@@ -1,16 +1,29 @@
 #pragma once
-// One stamp of a tool into the terrain, in the seeds' order (seed 000 §7.3, seed 003 §3.3,
-// seed 004 §3.4):
-//   1. release older constraints under the new footprint (and those past their lifetime);
-//   2. interpolate the terrain heights along the outer contour O, subdividing its edges until
-//      the rim follows the terrain within the tool's tolerance;
-//   3. constrain O (each segment its own constraint, tagged with the stamp's generation);
-//   4. constrain the inner contour I with its points at the tool's profile height (and where the
-//      tool stands above the sand, at the sand's, with the points its chords need to follow the
-//      sand there within the tolerance);
-//   5. set every vertex inside I to the profile, walking the faces inside the constrained I;
-//   6. remove inner vertices that became redundant (automatic simplification);
-//   7. optionally push the displaced volume into a ridge outside O (extrusion).
+// One stamp of a tool into the terrain (seed 000 §7.3, seed 003 §3.3, seed 004 §3.4). stamp()
+// places the contours in the world, clipped to the domain (a tool that misses changes nothing),
+// and runs these phases (tools/detail/stamp_phases.hpp):
+//   1. sample the contours (sample_contours): the terrain along the outer contour O, sampled
+//      until the rim follows it within the tool's tolerance; at the inner contour I, with the
+//      points its chords need where the tool stands above the sand; at a curved profile's
+//      interior samples;
+//   2. find the active segments (find_active_segments): the parts of I that would move sand and
+//      the parts of O next to them or crossed by an older constraint; none, and the stamp
+//      changes nothing;
+//   3. fence (fence_rim): on a terrain coarser than the tool, constrain the bent edges that
+//      inserting O would re-triangulate;
+//   4. clear (clear_replaced_sand): remove in bulk, on dense sand, the vertices the stamp would
+//      remove anyway;
+//   5. enforce O (enforce_rim): constrain O's active segments at the terrain's heights (each
+//      segment its own constraint, tagged with the stamp's generation);
+//   6. release (release_under_footprint): older constraints inside O, and those past their
+//      lifetime;
+//   7. enforce I (enforce_contour): constrain I's active segments at the imprint's heights;
+//   8. imprint (imprint_inside): set every vertex inside I to the profile, adding a curved
+//      profile's samples where the surface strays from it;
+//   9. clean the band (clean_band): empty the wall band between I and O of old vertices, or
+//      lower them to the wall, then even out slivers;
+//  10. simplify (simplify_footprint): remove the vertices inside O that became redundant;
+//  11. extrude (extrude): optionally push the displaced volume into a ridge outside O.
 
 #include <optional>
 #include <string>
@@ -51,9 +64,9 @@ struct StampReport {
     std::size_t edges_fenced = 0;
     SimplifyReport simplify;
     BulkRemoval cleared;       ///< sand removed in bulk before the contours (tin/bulk_removal.hpp)
-    double enforce_ms = 0.0;   ///< steps 1-5
-    double simplify_ms = 0.0;  ///< step 6
-    double extrude_ms = 0.0;   ///< step 7
+    double enforce_ms = 0.0;   ///< placing the contours and steps 1-9
+    double simplify_ms = 0.0;  ///< step 10
+    double extrude_ms = 0.0;   ///< step 11
 
     void accumulate(const StampReport& o);
 };
