@@ -221,6 +221,15 @@ class App {
     /// A control with a name: noted in the widget map, where scripted clicks and the xdotool
     /// test find it, then explained by `text` on hover.
     void ui(const std::string& name, const char* text);
+    /// A button of a two-answer prompt, named "<prompt>/<label>" in the widget map.
+    struct PromptButton {
+        const char* prompt;
+        const char* label;
+        const char* tip;
+    };
+    /// The prompt's two buttons side by side: true for `yes`, false for `no`, nullopt while
+    /// neither was clicked. An answer closes the popup.
+    std::optional<bool> answer_buttons(const PromptButton& yes, const PromptButton& no);
     float status_window_height() const;
     void status_window(float height);
     void panel_file();

@@ -124,47 +124,37 @@ void Document::record_level(const std::string& label) {
 }
 
 UndoOutcome Document::undo() {
+    return step_back_or_forward(true);
+}
+
+UndoOutcome Document::redo() {
+    return step_back_or_forward(false);
+}
+
+UndoOutcome Document::step_back_or_forward(bool back) {
+    const std::string verb = back ? "undo" : "redo";
     UndoOutcome out;
-    const std::optional<UndoLog::Entry> entry = undo_log_.undo();
+    const std::optional<UndoLog::Entry> entry = back ? undo_log_.undo() : undo_log_.redo();
     if (!entry) {
-        out.message = "nothing to undo";
+        out.message = "nothing to " + verb;
         return out;
     }
     out.done = true;
     mark_edited(std::chrono::steady_clock::now());
     if (!entry->terrain) {
-        apply_materials(entry->before);
-        out.message = "undo " + entry->label;
+        apply_materials(back ? entry->before : entry->after);
+        out.message = verb + " " + entry->label;
         return out;
     }
-    const HistoryStep step = history_->undo();
+    const HistoryStep step = back ? history_->undo() : history_->redo();
     out.done = step.done;
-    out.message = step.done ? "undo " + step.label : "nothing to undo";
+    out.message = step.done ? verb + " " + step.label : "nothing to " + verb;
     if (step.done && !step.report.exact()) {
         out.message += " (approximate: " + std::to_string(step.report.unrestored.size()) +
                        " vertices could not be restored)";
     }
-    out.restored_erosion = step.done && step.label == kErosionLevel;
-    return out;
-}
-
-UndoOutcome Document::redo() {
-    UndoOutcome out;
-    const std::optional<UndoLog::Entry> entry = undo_log_.redo();
-    if (!entry) {
-        out.message = "nothing to redo";
-        return out;
-    }
-    out.done = true;
-    mark_edited(std::chrono::steady_clock::now());
-    if (!entry->terrain) {
-        apply_materials(entry->after);
-        out.message = "redo " + entry->label;
-        return out;
-    }
-    const HistoryStep step = history_->redo();
-    out.done = step.done;
-    out.message = step.done ? "redo " + step.label : "nothing to redo";
+    // Undoing the erosion's own level puts back sand that would slide again at once.
+    out.restored_erosion = back && step.done && step.label == kErosionLevel;
     return out;
 }
 

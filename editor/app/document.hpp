@@ -117,6 +117,8 @@ class Document {
     bool keep_in_autosave(AutosaveWriter& writer);
 
   private:
+    /// Undo (`back`) or redo: a material edit or a terrain level of the history.
+    UndoOutcome step_back_or_forward(bool back);
     static Document make(Tin t, Generation next_generation, const std::filesystem::path& p,
                          MaterialTable table, std::string metadata);
     void apply_materials(MaterialTable table);

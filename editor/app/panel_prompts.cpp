@@ -38,6 +38,17 @@ void App::discard_prompt() {
     }
 }
 
+std::optional<bool> App::answer_buttons(const PromptButton& yes, const PromptButton& no) {
+    std::optional<bool> answer;
+    if (ImGui::Button(yes.label)) answer = true;
+    ui(std::string(yes.prompt) + "/" + yes.label, yes.tip);
+    ImGui::SameLine();
+    if (ImGui::Button(no.label)) answer = false;
+    ui(std::string(no.prompt) + "/" + no.label, no.tip);
+    if (answer) ImGui::CloseCurrentPopup();
+    return answer;
+}
+
 void App::overwrite_prompt() {
     if (!pending_overwrite_) return;
     ImGui::OpenPopup("Replace file?");
@@ -48,13 +59,9 @@ void App::overwrite_prompt() {
             ImGui::Text("%s already exists; this scene is not that file.", target.c_str());
         if (find_autosave(pending_overwrite_->path))
             ImGui::Text("Its autosave holds edits that were never saved; it goes too.");
-        std::optional<bool> replace;
-        if (ImGui::Button("Replace")) replace = true;
-        ui("overwrite/Replace", "Save this scene over that file");
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel")) replace = false;
-        ui("overwrite/Cancel", "Save nothing; type another name in the Scene field");
-        if (replace) ImGui::CloseCurrentPopup();
+        const std::optional<bool> replace = answer_buttons(
+            {"overwrite", "Replace", "Save this scene over that file"},
+            {"overwrite", "Cancel", "Save nothing; type another name in the Scene field"});
         ImGui::EndPopup();
         if (replace) {
             const PendingOverwrite pending = std::move(*pending_overwrite_);
@@ -72,13 +79,9 @@ void App::recovery_prompt() {
     ImGui::OpenPopup("Recover autosave?");
     if (ImGui::BeginPopupModal("Recover autosave?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("An autosave newer than %s exists.", recovery_for_->c_str());
-        std::optional<bool> recover;
-        if (ImGui::Button("Recover")) recover = true;
-        ui("recovery/Recover", "Load the autosave; save to keep it");
-        ImGui::SameLine();
-        if (ImGui::Button("Discard")) recover = false;
-        ui("recovery/Discard", "Delete the autosave and keep the scene as saved");
-        if (recover) ImGui::CloseCurrentPopup();
+        const std::optional<bool> recover = answer_buttons(
+            {"recovery", "Recover", "Load the autosave; save to keep it"},
+            {"recovery", "Discard", "Delete the autosave and keep the scene as saved"});
         ImGui::EndPopup();
         if (recover) answer_recovery(*recover);
     }

@@ -11,6 +11,7 @@
 #include "gpu/make_relaxation_solver.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "gpu_fixture.hpp"
+#include "gpu_scenes.hpp"
 #include "physics/physics_oracles.hpp"
 #include "tools/sand.hpp"
 #include "tools/stamp.hpp"
@@ -19,9 +20,9 @@
 namespace sandtin::gpu {
 namespace {
 
+using test::steepest_edge_ratio;
 using testing::GpuTest;
 using testing::kUnitSquare;
-using test::steepest_edge_ratio;
 
 Tin seam_scene() {
     return Tin::random_points(
