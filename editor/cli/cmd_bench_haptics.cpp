@@ -106,6 +106,93 @@ int run_spin_probe_bench(double seconds, bool pin, bool wake_latency_zero) {
     return 0;
 }
 
+/// The force loop's configuration from the command line: rate, spin, CPUs and the real-time
+/// measures. `pin`: the loop on the last CPU (the simulation takes the first).
+haptics::ForceLoopConfig loop_config(const Arguments& args, double rate, bool pin, int cpus) {
+    using namespace sandtin::haptics;
+    ForceLoopConfig config;
+    config.rate_hz = rate;
+    const double spin_us = args.number_or("--spin-us", 300.0);
+    if (!(spin_us >= 0.0) || spin_us * 1e-6 * rate >= 1.0)
+        throw UsageError("--spin-us must be in [0, one period)");
+    config.spin_ns = std::min<std::int64_t>(static_cast<std::int64_t>(spin_us * 1e3),
+                                            static_cast<std::int64_t>(0.5e9 / rate));
+    config.realtime.cpu = pin ? cpus - 1 : -1;
+    if (args.has("--loop-cpu")) {
+        if (pin) throw UsageError("--pin and --loop-cpu exclude each other");
+        config.realtime.cpu = static_cast<int>(args.count("--loop-cpu"));
+    }
+    config.realtime.lock_memory = args.has("--mlock");
+    config.realtime.timer_slack = !args.has("--no-timer-slack");
+    config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
+    config.absolute_sleep = !args.has("--relative-sleep");
+    // The backup tick thread (force_loop.hpp) is on by default with 2+ CPUs: on this VM the
+    // timer wake-ups of one CPU are sometimes milliseconds late, and the other CPU covers them.
+    // It covers the primary's CPU only from another CPU, so unless told otherwise the primary
+    // takes the last CPU and the backup the first. --no-backup measures the loop alone.
+    config.backup_thread = !args.has("--no-backup") && cpus >= 2;
+    if (config.backup_thread && cpus >= 2) {
+        if (config.realtime.cpu < 0) config.realtime.cpu = cpus - 1;
+        config.backup_cpu = config.realtime.cpu == 0 ? 1 : 0;
+    }
+    return config;
+}
+
+/// Where the loop's time went: its late ticks by phase and cause, the worst first (capped, so
+/// the report stays readable), each with the scheduler's view of its window when sampled.
+void report_jitter(const haptics::LoopDiagnostics& diagnostics,
+                   const haptics::ForceLoopReport& report, double rate,
+                   const std::optional<haptics::SchedSampler>& sampler, nlohmann::json& j) {
+    using namespace sandtin::haptics;
+    const JitterSummary js = diagnostics.jitter();
+    j["jitter"] = {{"max_work_ms", ms(js.max_work_ns)},
+                   {"max_wake_late_ms", ms(js.max_wake_late_ns)},
+                   {"max_spin_gap_ms", ms(js.max_spin_gap_ns)},
+                   {"wakes_after_deadline", js.wakes_after_deadline},
+                   {"spin_gaps_over_50us", js.long_spin_gaps},
+                   {"spin_gaps_over_50us_total_ms", ms(js.long_spin_gap_total_ns)},
+                   {"late_threshold_ms", report.periods.target_ms * 1.5},
+                   {"late_ticks", js.late_ticks},
+                   {"late_by_work", js.late_by_work},
+                   {"late_by_wakeup", js.late_by_wakeup},
+                   {"late_by_spin_gap", js.late_by_spin_gap}};
+    j["loop_thread_during_ticks"] = counters_json(diagnostics.during_ticks());
+    std::int64_t late_total = 0;
+    for (const TickPhases& t : diagnostics.late_ticks())
+        late_total += t.period_ns - static_cast<std::int64_t>(1e9 / rate);
+    j["late_ticks_total_excess_ms"] = ms(late_total);
+    nlohmann::json late = nlohmann::json::array();
+    const std::vector<TickPhases>& late_ticks = diagnostics.late_ticks();
+    // The worst first; the list is capped so the report stays readable.
+    std::vector<TickPhases> worst(late_ticks.begin(), late_ticks.end());
+    std::sort(worst.begin(), worst.end(),
+              [](const TickPhases& a, const TickPhases& b) { return a.period_ns > b.period_ns; });
+    for (std::size_t i = 0; i < std::min<std::size_t>(worst.size(), 12); ++i) {
+        const TickPhases& t = worst[i];
+        nlohmann::json e = {{"tick", t.tick},
+                            {"start_monotonic_ns", t.start_ns},
+                            {"period_ms", ms(t.period_ns)},
+                            {"cause", to_string(late_cause(t))},
+                            {"previous_work_ms", ms(t.work_ns)},
+                            {"slept", t.slept},
+                            {"wake_late_ms", ms(t.wake_late_ns)},
+                            {"spin_gap_ms", ms(t.spin_gap_ns)},
+                            {"cpu", t.cpu}};
+        if (sampler) {
+            const WindowAttribution a =
+                attribute_window(sampler->samples(), t.start_ns - t.period_ns, t.start_ns, t.cpu);
+            if (a.covered) {
+                e["observed_over_ms"] = ms(a.span_ns);
+                e["loop_run_queue_wait_ms"] = ms(a.run_delay_ns);
+                e["steal_on_cpu_ms"] = ms(a.steal_on_cpu_ns);
+                e["steal_all_cpus_ms"] = ms(a.steal_all_cpus_ns);
+            }
+        }
+        late.push_back(e);
+    }
+    j["late_ticks_worst_first"] = late;
+}
+
 }  // namespace
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
@@ -176,31 +263,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     circles.seconds = seconds;
     circles.surface = terrain.height;
     SimulatedDevice device = SimulatedDevice::replay(make_circle_trajectory(circles));
-    ForceLoopConfig config;
-    config.rate_hz = rate;
-    const double spin_us = args.number_or("--spin-us", 300.0);
-    if (!(spin_us >= 0.0) || spin_us * 1e-6 * rate >= 1.0)
-        throw UsageError("--spin-us must be in [0, one period)");
-    config.spin_ns = std::min<std::int64_t>(static_cast<std::int64_t>(spin_us * 1e3),
-                                            static_cast<std::int64_t>(0.5e9 / rate));
-    config.realtime.cpu = pin ? cpus - 1 : -1;
-    if (args.has("--loop-cpu")) {
-        if (pin) throw UsageError("--pin and --loop-cpu exclude each other");
-        config.realtime.cpu = static_cast<int>(args.count("--loop-cpu"));
-    }
-    config.realtime.lock_memory = args.has("--mlock");
-    config.realtime.timer_slack = !args.has("--no-timer-slack");
-    config.realtime.prefault_stack_bytes = args.has("--no-stack-prefault") ? 0 : 256 * 1024;
-    config.absolute_sleep = !args.has("--relative-sleep");
-    // The backup tick thread (force_loop.hpp) is on by default with 2+ CPUs: on this VM the
-    // timer wake-ups of one CPU are sometimes milliseconds late, and the other CPU covers them.
-    // It covers the primary's CPU only from another CPU, so unless told otherwise the primary
-    // takes the last CPU and the backup the first. --no-backup measures the loop alone.
-    config.backup_thread = !args.has("--no-backup") && cpus >= 2;
-    if (config.backup_thread && cpus >= 2) {
-        if (config.realtime.cpu < 0) config.realtime.cpu = cpus - 1;
-        config.backup_cpu = config.realtime.cpu == 0 ? 1 : 0;
-    }
+    ForceLoopConfig config = loop_config(args, rate, pin, cpus);
     int simulation_pinned = -1;
     if (pin && pin_this_thread(0) == 0) simulation_pinned = 0;
     LoopDiagnostics diagnostics(config, 256);
@@ -295,58 +358,11 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     j["stale_ticks"] = report.stale_ticks;
     j["snapshots_taken"] = report.snapshots_taken;
 
-    // Where the time went.
-    const JitterSummary js = diagnostics.jitter();
-    j["jitter"] = {{"max_work_ms", ms(js.max_work_ns)},
-                   {"max_wake_late_ms", ms(js.max_wake_late_ns)},
-                   {"max_spin_gap_ms", ms(js.max_spin_gap_ns)},
-                   {"wakes_after_deadline", js.wakes_after_deadline},
-                   {"spin_gaps_over_50us", js.long_spin_gaps},
-                   {"spin_gaps_over_50us_total_ms", ms(js.long_spin_gap_total_ns)},
-                   {"late_threshold_ms", report.periods.target_ms * 1.5},
-                   {"late_ticks", js.late_ticks},
-                   {"late_by_work", js.late_by_work},
-                   {"late_by_wakeup", js.late_by_wakeup},
-                   {"late_by_spin_gap", js.late_by_spin_gap}};
-    j["loop_thread_during_ticks"] = counters_json(diagnostics.during_ticks());
     nlohmann::json steal = nlohmann::json::array();
     for (std::size_t c = 0; c < std::min(steal_before.size(), steal_after.size()); ++c)
         steal.push_back(ms(steal_after[c] - steal_before[c]));
     j["steal_ms_per_cpu"] = steal;
-    std::int64_t late_total = 0;
-    for (const TickPhases& t : diagnostics.late_ticks())
-        late_total += t.period_ns - static_cast<std::int64_t>(1e9 / rate);
-    j["late_ticks_total_excess_ms"] = ms(late_total);
-    nlohmann::json late = nlohmann::json::array();
-    const std::vector<TickPhases>& late_ticks = diagnostics.late_ticks();
-    // The worst first; the list is capped so the report stays readable.
-    std::vector<TickPhases> worst(late_ticks.begin(), late_ticks.end());
-    std::sort(worst.begin(), worst.end(),
-              [](const TickPhases& a, const TickPhases& b) { return a.period_ns > b.period_ns; });
-    for (std::size_t i = 0; i < std::min<std::size_t>(worst.size(), 12); ++i) {
-        const TickPhases& t = worst[i];
-        nlohmann::json e = {{"tick", t.tick},
-                            {"start_monotonic_ns", t.start_ns},
-                            {"period_ms", ms(t.period_ns)},
-                            {"cause", to_string(late_cause(t))},
-                            {"previous_work_ms", ms(t.work_ns)},
-                            {"slept", t.slept},
-                            {"wake_late_ms", ms(t.wake_late_ns)},
-                            {"spin_gap_ms", ms(t.spin_gap_ns)},
-                            {"cpu", t.cpu}};
-        if (sampler) {
-            const WindowAttribution a =
-                attribute_window(sampler->samples(), t.start_ns - t.period_ns, t.start_ns, t.cpu);
-            if (a.covered) {
-                e["observed_over_ms"] = ms(a.span_ns);
-                e["loop_run_queue_wait_ms"] = ms(a.run_delay_ns);
-                e["steal_on_cpu_ms"] = ms(a.steal_on_cpu_ns);
-                e["steal_all_cpus_ms"] = ms(a.steal_all_cpus_ns);
-            }
-        }
-        late.push_back(e);
-    }
-    j["late_ticks_worst_first"] = late;
+    report_jitter(diagnostics, report, rate, sampler, j);
     if (sampler) {
         j["sampler"] = {{"available", sampler->available()},
                         {"samples", sampler->samples().size()},

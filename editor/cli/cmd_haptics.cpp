@@ -35,34 +35,10 @@ nlohmann::json read_tool_file(const std::filesystem::path& path) {
     return j;
 }
 
-}  // namespace
-
-int run_haptics(const std::vector<std::string>& raw) {
+/// The live session's options from the command line: the device's port, the loop's rate and
+/// backup thread, the time limit, the edit settings and the tool. Throws UsageError.
+haptics::UdpServeOptions serve_options(const Arguments& args) {
     using namespace sandtin::haptics;
-    const Arguments args(raw, {{"-o", 1},
-                               {"-i", 1},
-                               {"--size", 2},
-                               {"--height", 1},
-                               {"--points", 1},
-                               {"--seed", 1},
-                               {"--port", 1},
-                               {"--port-file", 1},
-                               {"--tool", 1},
-                               {"--tool-json", 1},
-                               {"--spacing", 1},
-                               {"--erode", 1},
-                               {"--relocation-radius", 1},
-                               {"--rate", 1},
-                               {"--max-seconds", 1},
-                               {"--record", 1},
-                               {"--backup", 0},
-                               {"--json", 0}});
-    args.require_positionals(1, kUsage);
-    if (args.positionals()[0] != "serve")
-        throw UsageError("unknown haptics command '" + args.positionals()[0] +
-                         "'\nusage: " + kUsage);
-    const std::string out = args.text("-o");
-
     UdpServeOptions options;
     const std::uint64_t port = args.count_or("--port", 0);
     if (port > 65535) throw UsageError("--port must be at most 65535");
@@ -102,6 +78,79 @@ int run_haptics(const std::vector<std::string>& raw) {
         options.tool = parse_json_document(args.text("--tool-json"), "--tool-json");
         if (!options.tool.is_object()) throw UsageError("--tool-json is not a JSON object");
     }
+
+    return options;
+}
+
+/// What the session did, as `sandtin haptics serve` reports it.
+nlohmann::json session_report(const haptics::UdpServeResult& r,
+                              const haptics::UdpServeOptions& options, const Tin& tin,
+                              const std::string& out, const Arguments& args) {
+    nlohmann::json j;
+    j["ticks"] = r.loop.ticks;
+    j["period_ms"] = {{"p50", r.loop.periods.p50_ms},
+                      {"p99", r.loop.periods.p99_ms},
+                      {"max", r.loop.periods.max_ms}};
+    j["overruns"] = r.loop.periods.overruns;
+    // Where late ticks' time went (loop_jitter.hpp); "work" includes the device's socket I/O.
+    const auto& jitter = r.jitter;
+    j["late_ticks"] = {{"over_ms", r.loop.periods.target_ms * 1.5},
+                       {"count", jitter.late_ticks},
+                       {"by_work", jitter.late_by_work},
+                       {"by_wakeup", jitter.late_by_wakeup},
+                       {"by_spin_gap", jitter.late_by_spin_gap},
+                       {"max_wake_late_ms", static_cast<double>(jitter.max_wake_late_ns) * 1e-6},
+                       {"max_spin_gap_ms", static_cast<double>(jitter.max_spin_gap_ns) * 1e-6},
+                       {"max_work_ms", static_cast<double>(jitter.max_work_ns) * 1e-6}};
+    j["realtime"] = {{"sched_fifo", r.loop.realtime_grant.fifo},
+                     {"refused", r.loop.realtime_grant.refused},
+                     {"backup_thread", options.loop.backup_thread},
+                     {"ticks_by_backup", r.loop.ticks_by_backup}};
+    j["force_n"] = {{"max", r.loop.max_force}, {"max_jump", r.loop.max_force_jump}};
+    j["device"] = {{"poses", r.device.poses},
+                   {"malformed", r.device.malformed},
+                   {"out_of_order", r.device.out_of_order},
+                   {"forces_sent", r.device.forces_sent},
+                   {"bye", r.device.bye},
+                   {"timed_out", r.device.timed_out}};
+    j["edits"] = r.recording.edits.size();
+    j["stamps"] = r.stamps;
+    j["time_limit_reached"] = r.time_limit_reached;
+    j["terrain"] = describe_terrain(tin);
+    j["file"] = out;
+    if (args.has("--record")) j["recording"] = args.text("--record");
+    return j;
+}
+
+}  // namespace
+
+int run_haptics(const std::vector<std::string>& raw) {
+    using namespace sandtin::haptics;
+    const Arguments args(raw, {{"-o", 1},
+                               {"-i", 1},
+                               {"--size", 2},
+                               {"--height", 1},
+                               {"--points", 1},
+                               {"--seed", 1},
+                               {"--port", 1},
+                               {"--port-file", 1},
+                               {"--tool", 1},
+                               {"--tool-json", 1},
+                               {"--spacing", 1},
+                               {"--erode", 1},
+                               {"--relocation-radius", 1},
+                               {"--rate", 1},
+                               {"--max-seconds", 1},
+                               {"--record", 1},
+                               {"--backup", 0},
+                               {"--json", 0}});
+    args.require_positionals(1, kUsage);
+    if (args.positionals()[0] != "serve")
+        throw UsageError("unknown haptics command '" + args.positionals()[0] +
+                         "'\nusage: " + kUsage);
+    const std::string out = args.text("-o");
+
+    UdpServeOptions options = serve_options(args);
 
     Session session;
     TinOptions tin_options;
@@ -151,39 +200,7 @@ int run_haptics(const std::vector<std::string>& raw) {
     session.next_generation = context.peek_generation();
     save_session(out, session);
 
-    nlohmann::json j;
-    j["ticks"] = r.loop.ticks;
-    j["period_ms"] = {{"p50", r.loop.periods.p50_ms},
-                      {"p99", r.loop.periods.p99_ms},
-                      {"max", r.loop.periods.max_ms}};
-    j["overruns"] = r.loop.periods.overruns;
-    // Where late ticks' time went (loop_jitter.hpp); "work" includes the device's socket I/O.
-    const auto& jitter = r.jitter;
-    j["late_ticks"] = {{"over_ms", r.loop.periods.target_ms * 1.5},
-                       {"count", jitter.late_ticks},
-                       {"by_work", jitter.late_by_work},
-                       {"by_wakeup", jitter.late_by_wakeup},
-                       {"by_spin_gap", jitter.late_by_spin_gap},
-                       {"max_wake_late_ms", static_cast<double>(jitter.max_wake_late_ns) * 1e-6},
-                       {"max_spin_gap_ms", static_cast<double>(jitter.max_spin_gap_ns) * 1e-6},
-                       {"max_work_ms", static_cast<double>(jitter.max_work_ns) * 1e-6}};
-    j["realtime"] = {{"sched_fifo", r.loop.realtime_grant.fifo},
-                     {"refused", r.loop.realtime_grant.refused},
-                     {"backup_thread", options.loop.backup_thread},
-                     {"ticks_by_backup", r.loop.ticks_by_backup}};
-    j["force_n"] = {{"max", r.loop.max_force}, {"max_jump", r.loop.max_force_jump}};
-    j["device"] = {{"poses", r.device.poses},
-                   {"malformed", r.device.malformed},
-                   {"out_of_order", r.device.out_of_order},
-                   {"forces_sent", r.device.forces_sent},
-                   {"bye", r.device.bye},
-                   {"timed_out", r.device.timed_out}};
-    j["edits"] = r.recording.edits.size();
-    j["stamps"] = r.stamps;
-    j["time_limit_reached"] = r.time_limit_reached;
-    j["terrain"] = describe_terrain(tin);
-    j["file"] = out;
-    if (args.has("--record")) j["recording"] = args.text("--record");
+    const nlohmann::json j = session_report(r, options, tin, out, args);
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";
     } else {

@@ -249,7 +249,6 @@ SyncStats TinMirror::sync() {
     const ChangeSet changes = changes_.take();
     SyncStats stats;
     std::vector<uint32_t> rows;
-    std::vector<uint32_t> dirty;  // vertices to report (activation)
     if (first_sync_) {
         origin_ = tin.domain().min;
         const VertexArrays& va = tin.vertices();
@@ -279,8 +278,6 @@ SyncStats TinMirror::sync() {
         }
         graph_.update(tin, star);
         rows = graph_.take_dirty_rows();
-        for (VertexId v : star)
-            if (tin.is_alive(v)) dirty.push_back(v.value);
     }
     const uint32_t edges = static_cast<uint32_t>(graph_.slot_count());
     grow(std::max<uint32_t>(changes.vertex_capacity, static_cast<uint32_t>(tin.vertices().size())),
@@ -297,8 +294,6 @@ SyncStats TinMirror::sync() {
         if (r.size() == 0) continue;
         upload_vertex_range(tin, r);
         ++stats.vertex_ranges;
-        for (uint32_t v = r.begin; v < r.end; ++v)
-            if (va.alive[v]) dirty.push_back(v);
     }
     for (const IdRange r : sranges) {
         const uint32_t n = r.size();
@@ -323,9 +318,6 @@ SyncStats TinMirror::sync() {
     ring_.flush();
     first_sync_ = false;
 
-    std::sort(dirty.begin(), dirty.end());
-    dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
-    stats.dirty_vertices = std::move(dirty);
     stats.bytes = ring_.take_frame_bytes();
     return stats;
 }

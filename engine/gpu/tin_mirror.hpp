@@ -68,7 +68,6 @@ struct SyncStats {
     uint32_t slot_ranges = 0;
     uint32_t rows = 0;                     // adjacency rows uploaded
     bool reallocated = false;              // some buffer grew
-    std::vector<uint32_t> dirty_vertices;  // live vertices whose data changed (activation)
 };
 
 class TinMirror {

@@ -37,11 +37,6 @@ void IdAllocator::flush_deferred(std::size_t count) {
     pending_.erase(pending_.begin(), end);
 }
 
-void IdAllocator::set_deferred_recycling(bool on) {
-    deferred_ = on;
-    if (!on) flush_deferred();
-}
-
 void IdAllocator::restore(std::uint32_t capacity, std::vector<std::uint32_t> free_list) {
     capacity_ = capacity;
     free_ = std::move(free_list);

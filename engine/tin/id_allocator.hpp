@@ -21,7 +21,6 @@ class IdAllocator {
     /// Makes the `count` oldest of the ids released since the last flush available again (the
     /// journal recycles an id once every reader has seen it die).
     void flush_deferred(std::size_t count);
-    void set_deferred_recycling(bool on);
 
     /// One past the largest id ever handed out; arrays indexed by id have this size.
     std::uint32_t capacity() const { return capacity_; }

@@ -337,6 +337,7 @@ void Tin::Impl::finish_bulk_build() {
         r.corners = {a->id, b->id, c->id};
         slot_cache.push_back(r);
     }
+    if (!journal.has_range_readers()) return;  // nobody to tell
     for (std::uint32_t id = 0; id < va.size(); ++id) {
         if (va.alive[id]) journal.note_vertex(id);
     }

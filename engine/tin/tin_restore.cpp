@@ -360,6 +360,7 @@ void fill_caches(Tin::Impl& m, const std::vector<Fh>& faces, const TinSnapshot& 
     for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
         if (sv.alive[i]) m.va.lumped_area[i] = m.recompute_lumped_area(i);
     }
+    if (!m.journal.has_range_readers()) return;  // nobody to tell
     for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
         if (sv.alive[i]) m.journal.note_vertex(i);
     }

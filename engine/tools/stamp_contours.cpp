@@ -31,6 +31,40 @@ double surface_or(const Tin& tin, Vec2 p, LocateHint* hint, double fallback) {
     return h ? *h : fallback;
 }
 
+/// Douglas-Peucker on one edge's section of `count` samples (position `t(k)` along the edge,
+/// height `h(k)`): marks in `keep` the samples that the chord between kept samples misses by
+/// more than `tolerance`, none closer than `min_dt` (in t) to a kept one. Only samples for which
+/// `candidate(k)` holds may be kept. `stack` is scratch.
+template <class Position, class Height, class Candidate>
+void keep_by_douglas_peucker(std::size_t count, Position t, Height h, Candidate candidate,
+                             double tolerance, double min_dt, std::vector<std::uint8_t>& keep,
+                             std::vector<std::pair<std::size_t, std::size_t>>& stack) {
+    stack.assign(1, {0, count - 1});
+    while (!stack.empty()) {
+        const auto [lo, hi] = stack.back();
+        stack.pop_back();
+        double worst = 0.0;
+        std::size_t at = lo;
+        for (std::size_t k = lo + 1; k < hi; ++k) {
+            if (!candidate(k)) continue;
+            const double f = (t(k) - t(lo)) / (t(hi) - t(lo));
+            const double chord = (1.0 - f) * h(lo) + f * h(hi);
+            const double dev = std::abs(h(k) - chord);
+            if (dev > worst) {
+                worst = dev;
+                at = k;
+            }
+        }
+        // A point closer than min_dt to a kept one would only make sliver triangles (tiny
+        // vertices slow the relaxation down to their own scale).
+        if (worst > tolerance && t(at) - t(lo) > min_dt && t(hi) - t(at) > min_dt) {
+            keep[at] = 1;
+            stack.emplace_back(lo, at);
+            stack.emplace_back(at, hi);
+        }
+    }
+}
+
 /// Drapes the closed polygon over the terrain: along each edge, the crossings with triangle
 /// edges where the surface bends by more than `tolerance` (Douglas-Peucker on the exact
 /// section), so the rim follows the terrain within the tolerance with as few points as that
@@ -52,32 +86,10 @@ void sample_rim(const Tin& tin, std::span<const Vec2> polygon, double tolerance,
         keep.assign(sec.size(), 0);
         keep.front() = 1;
         keep.back() = 1;
-        stack.clear();
-        stack.emplace_back(0, sec.size() - 1);
-        while (!stack.empty()) {
-            const auto [lo, hi] = stack.back();
-            stack.pop_back();
-            if (hi <= lo + 1) continue;
-            double worst = 0.0;
-            std::size_t at = lo;
-            for (std::size_t k = lo + 1; k < hi; ++k) {
-                const double t = (sec[k].first - sec[lo].first) / (sec[hi].first - sec[lo].first);
-                const double straight = (1.0 - t) * sec[lo].second + t * sec[hi].second;
-                const double dev = std::abs(sec[k].second - straight);
-                if (dev > worst) {
-                    worst = dev;
-                    at = k;
-                }
-            }
-            // A crossing closer than min_spacing to a kept point would only make sliver
-            // triangles (tiny vertices slow the relaxation down to their own scale).
-            if (worst > tolerance && sec[at].first - sec[lo].first > min_dt &&
-                sec[hi].first - sec[at].first > min_dt) {
-                keep[at] = 1;
-                stack.emplace_back(lo, at);
-                stack.emplace_back(at, hi);
-            }
-        }
+        keep_by_douglas_peucker(
+            sec.size(), [&](std::size_t k) { return sec[k].first; },
+            [&](std::size_t k) { return sec[k].second; }, [](std::size_t) { return true; },
+            tolerance, min_dt, keep, stack);
         for (std::size_t k = 0; k + 1 < sec.size(); ++k) {
             if (!keep[k]) continue;
             points.push_back(k == 0 ? a : lerp(a, b, sec[k].first));
@@ -124,29 +136,10 @@ std::vector<Vec2> drape_inner(const Tin& tin, std::span<const Vec2> inner, const
         if (!any_clear || samples.size() < 3) continue;
         const double min_dt = min_spacing / len;
         keep.assign(samples.size(), 0);
-        stack.assign(1, {0, samples.size() - 1});
-        while (!stack.empty()) {
-            const auto [lo, hi] = stack.back();
-            stack.pop_back();
-            double worst = 0.0;
-            std::size_t at = lo;
-            for (std::size_t k = lo + 1; k < hi; ++k) {
-                if (!samples[k].clear) continue;
-                const double f = (samples[k].t - samples[lo].t) / (samples[hi].t - samples[lo].t);
-                const double chord = (1.0 - f) * samples[lo].height + f * samples[hi].height;
-                const double dev = std::abs(samples[k].height - chord);
-                if (dev > worst) {
-                    worst = dev;
-                    at = k;
-                }
-            }
-            if (worst > tolerance && samples[at].t - samples[lo].t > min_dt &&
-                samples[hi].t - samples[at].t > min_dt) {
-                keep[at] = 1;
-                stack.emplace_back(lo, at);
-                stack.emplace_back(at, hi);
-            }
-        }
+        keep_by_douglas_peucker(
+            samples.size(), [&](std::size_t k) { return samples[k].t; },
+            [&](std::size_t k) { return samples[k].height; },
+            [&](std::size_t k) { return samples[k].clear; }, tolerance, min_dt, keep, stack);
         for (std::size_t k = 1; k + 1 < samples.size(); ++k) {
             if (keep[k]) out.push_back(lerp(a, b, samples[k].t));
         }

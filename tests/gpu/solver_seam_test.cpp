@@ -127,7 +127,7 @@ TEST_F(GpuTest, ASolverOnASharedMirrorSeesEditsWhoeverSyncedTheMirrorFirst) {
     dig_hole(alone);
     dig_hole(shared);
     const SyncStats taken = view_mirror.sync();  // the view, before the solver steps
-    EXPECT_FALSE(taken.dirty_vertices.empty());
+    EXPECT_GT(taken.vertex_ranges, 0u) << "the view's sync took the dig";
     const PhysicsStepReport ra = a->run_to_rest(20000);
     const PhysicsStepReport rb = b->run_to_rest(20000);
     EXPECT_GT(rb.volume_moved, 0.0) << "the solver slept through the dig";
