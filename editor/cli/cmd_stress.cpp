@@ -12,14 +12,15 @@ namespace sandtin::cli {
 
 namespace {
 constexpr const char* kUsage =
-    "sandtin stress [--seed S] [--ops N] [--points P] [--work-dir DIR] [--no-minimise] "
-    "[--repro FILE] [--json]";
+    "sandtin stress [--seed S] [--ops N] [--points P] [--check-every K] [--work-dir DIR] "
+    "[--no-minimise] [--repro FILE] [--json]";
 }
 
 int run_stress(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--seed", 1},
                                {"--ops", 1},
                                {"--points", 1},
+                               {"--check-every", 1},
                                {"--work-dir", 1},
                                {"--no-minimise", 0},
                                {"--repro", 1},
@@ -30,6 +31,10 @@ int run_stress(const std::vector<std::string>& raw) {
     options.operations = args.count_or("--ops", 1000);
     options.terrain_points = args.count_or("--points", 3000);
     if (options.terrain_points > 10'000'000) throw UsageError("--points must be at most 10000000");
+    // The triangulation's full validity check after every Kth operation (and every save and
+    // the last one); the other invariants after every operation.
+    options.full_check_every = args.count_or("--check-every", 1);
+    if (options.full_check_every == 0) throw UsageError("--check-every must be at least 1");
     options.work_dir = args.text_or("--work-dir", "");
     options.minimise = !args.has("--no-minimise");
     const bool json = args.has("--json");

@@ -36,6 +36,7 @@ class StressSession {
         std::optional<std::string> rejection;  ///< the parser refused the operation
         std::optional<InvariantViolation> violation;
         double volume_residual = 0.0;  ///< relative
+        bool fully_checked = false;    ///< the triangulation's full validity check ran
     };
 
     StressSession(const nlohmann::json& header, const std::filesystem::path& work_dir,
@@ -60,8 +61,12 @@ class StressSession {
 
     const Tin& tin() const { return tin_; }
 
-    Outcome apply(const nlohmann::json& op) {
+    /// Runs `op` and checks the invariants; the triangulation's full check only when
+    /// `triangulation` is full (a save is always fully checked: it is reloaded and compared).
+    Outcome apply(const nlohmann::json& op, TriangulationCheck triangulation) {
         Outcome out;
+        if (op.value("op", "") == "save") triangulation = TriangulationCheck::full;
+        out.fully_checked = triangulation == TriangulationCheck::full;
         const nlohmann::json one = {{"version", 1}, {"settings", settings_}, {"operations", {op}}};
         Script script;
         try {
@@ -87,7 +92,8 @@ class StressSession {
         // and its ranges must stay inside the arrays.
         const ChangeSet changes = tin_.take_changes();
         if ((out.violation = check_change_set(changes))) return out;
-        if ((out.violation = check_terrain_invariants(tin_, context_.peek_generation(), limits_)))
+        if ((out.violation = check_terrain_invariants(tin_, context_.peek_generation(), limits_,
+                                                      triangulation)))
             return out;
         const double after = tin_.volume();
         volume_ = after;  // recomputed from scratch once per operation, reused as the next before
@@ -169,7 +175,7 @@ std::optional<Replay> replay(const nlohmann::json& header, const std::vector<nlo
                              const std::filesystem::path& work_dir, const StressOptions& options) {
     StressSession session(header, work_dir, options);
     for (std::size_t k = 0; k < ops.size(); ++k) {
-        StressSession::Outcome o = session.apply(ops[k]);
+        StressSession::Outcome o = session.apply(ops[k], TriangulationCheck::full);
         if (o.violation) return Replay{k, *o.violation};
     }
     return std::nullopt;
@@ -230,6 +236,7 @@ nlohmann::json StressReport::to_json() const {
                         {"vertex_trace", vertex_trace},
                         {"rejections", rejections},
                         {"seconds", seconds},
+                        {"full_checks", full_checks},
                         {"max_vertices", max_vertices},
                         {"max_constraints", max_constraints},
                         {"final_vertices", final_vertices},
@@ -254,13 +261,18 @@ StressReport run_stress(const StressOptions& options,
     report.seed = options.seed;
     StressSession session(header, dir.path(), options);
     RandomOperations generator(options.seed, session.tin().domain(), kSaveName);
+    const std::size_t every = std::max<std::size_t>(options.full_check_every, 1);
     std::vector<nlohmann::json> ops;
     for (std::size_t k = 0; k < options.operations; ++k) {
         ops.push_back(generator.next(session.tin()));
         const std::string name = ops.back().value("op", "?");
         ++report.op_counts[name];
         const auto op_start = std::chrono::steady_clock::now();
-        StressSession::Outcome o = session.apply(ops.back());
+        const bool last = k + 1 == options.operations;
+        const TriangulationCheck depth =
+            last || (k + 1) % every == 0 ? TriangulationCheck::full : TriangulationCheck::skip;
+        StressSession::Outcome o = session.apply(ops.back(), depth);
+        report.full_checks += o.fully_checked ? 1 : 0;
         report.op_seconds[name] +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - op_start).count();
         ++report.operations_run;

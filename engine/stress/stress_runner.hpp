@@ -4,7 +4,9 @@
 // script that `sandtin run` replays.
 //
 // Invariants after every operation (see terrain_invariants.hpp for the structural ones):
-//  - the terrain is valid, finite, within bounds, with constraints from handed-out generations;
+//  - the terrain is finite, within bounds, with constraints from handed-out generations;
+//  - the triangulation is valid (Tin::check_valid), after every operation by default, or
+//    after every Nth, every save and the last one (StressOptions::full_check_every);
 //  - volume accounting: the terrain's volume, recomputed from scratch, changed by what the
 //    operation reported (erosion and simplification report zero: they conserve volume);
 //  - a saved session loads back to the same terrain, byte for byte once re-encoded;
@@ -31,6 +33,11 @@ struct StressOptions {
     std::size_t operations = 1000;
     std::size_t terrain_points = 3000;  ///< random points of the 1 m x 1 m starting terrain
     std::filesystem::path work_dir;     ///< where "save" operations write; a temporary one if empty
+    /// The triangulation's full validity check (O(n), most of a long session's time) runs
+    /// after every this many operations, after every save and after the last operation; the
+    /// other invariants run after every operation. 1 checks everything every time. A replay
+    /// while minimising a failure always checks every operation.
+    std::size_t full_check_every = 1;
     bool minimise = true;
     double minimise_seconds = 120.0;
     /// Relative volume tolerance per operation: |ΔV - reported| <= tol * (|V| + |reported| +
@@ -59,6 +66,7 @@ struct StressReport {
     std::vector<std::size_t> vertex_trace;
     std::map<std::string, std::size_t> rejections;  ///< first line of each distinct message
     double seconds = 0.0;
+    std::size_t full_checks = 0;  ///< operations after which the triangulation was fully checked
     std::size_t max_vertices = 0;
     std::size_t max_constraints = 0;
     std::size_t final_vertices = 0;

@@ -19,6 +19,11 @@ struct InvariantLimits {
     std::size_t max_constraints = 0;  ///< 0 = unbounded
 };
 
+/// Whether to run the triangulation's full validity check (Tin::check_valid: CGAL's structure,
+/// the Delaunay property, ids, slots, lumped areas), which is O(n) and dominates a long
+/// session's run time, or only the per-vertex and bookkeeping invariants.
+enum class TriangulationCheck { full, skip };
+
 struct InvariantViolation {
     std::string invariant;  ///< short name: "valid", "finite", "bedrock", "range",
                             ///< "valid", "generations", "bounded"
@@ -26,9 +31,10 @@ struct InvariantViolation {
 };
 
 /// The first violated invariant, or nullopt. `next_generation` is the generation the next
-/// stamp would get: every constraint must be older. O(n log n) for n vertices.
-std::optional<InvariantViolation> check_terrain_invariants(const Tin& tin,
-                                                           Generation next_generation,
-                                                           const InvariantLimits& limits);
+/// stamp would get: every constraint must be older. O(n log n) for n vertices with the full
+/// triangulation check, O(n) without it.
+std::optional<InvariantViolation> check_terrain_invariants(
+    const Tin& tin, Generation next_generation, const InvariantLimits& limits,
+    TriangulationCheck triangulation = TriangulationCheck::full);
 
 }  // namespace sandtin

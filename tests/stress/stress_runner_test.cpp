@@ -159,6 +159,43 @@ TEST(StressRunner, AnInjectedViolationIsMinimisedIntoAScriptThatReproducesIt) {
     EXPECT_GT(tin.constraint_count(), 1u);
 }
 
+TEST(StressRunner, TheFullTriangulationCheckRunsEveryKthOperationEverySaveAndAfterTheLast) {
+    StressOptions options = short_session(13, 30, 200, "every-1");
+    const StressReport every_one = run_stress(options);
+    ASSERT_FALSE(every_one.failure.has_value()) << every_one.to_json().dump(1);
+    EXPECT_EQ(every_one.full_checks, 30u);
+
+    options.work_dir = scratch_dir("every-7");
+    options.full_check_every = 7;
+    const StressReport every_seven = run_stress(options);
+    ASSERT_FALSE(every_seven.failure.has_value()) << every_seven.to_json().dump(1);
+    // After operations 7, 14, 21, 28 and 30, and after each save (which may coincide).
+    const std::size_t saves =
+        every_seven.op_counts.count("save") ? every_seven.op_counts.at("save") : 0;
+    EXPECT_GE(every_seven.full_checks, 5u);
+    EXPECT_LE(every_seven.full_checks, 5u + saves);
+    // Checking less does not change what the session does.
+    EXPECT_EQ(every_seven.vertex_trace, every_one.vertex_trace);
+    EXPECT_EQ(every_seven.final_vertices, every_one.final_vertices);
+}
+
+TEST(StressRunner, TheOtherInvariantsAreCheckedAfterEveryOperationWhateverTheStride) {
+    // The bound breaks at the first operation that leaves two constraints; a session that
+    // checks the triangulation only every 1000th operation must stop at the same one.
+    StressOptions options = short_session(5, 200, 200, "stride-1");
+    options.limits = InvariantLimits{.max_vertices = 0, .max_constraints = 1};
+    options.minimise = false;
+    const StressReport strict = run_stress(options);
+    options.work_dir = scratch_dir("stride-1000");
+    options.full_check_every = 1000;
+    const StressReport strided = run_stress(options);
+    ASSERT_TRUE(strict.failure.has_value());
+    ASSERT_TRUE(strided.failure.has_value());
+    EXPECT_EQ(strided.failure->invariant, "bounded");
+    EXPECT_EQ(strided.failure->operation, strict.failure->operation);
+    EXPECT_LT(strided.full_checks, strict.full_checks);
+}
+
 TEST(StressRunner, TheSameSeedGivesTheSameSession) {
     StressOptions options = short_session(21, 60, 200, "same-a");
     const StressReport a = run_stress(options);

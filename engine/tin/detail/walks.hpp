@@ -82,7 +82,11 @@ void walk_faces_along(const Tin::Impl& m, Vec2 a, Vec2 b, LocateHint* hint, Visi
     auto lfc = m.cdt.line_walk(to_point(a), to_point(b), face_at(m, a, hint));
     if (lfc.is_empty()) return;
     const auto done = lfc;
-    for (std::size_t step = 0; step <= m.cdt.number_of_faces(); ++step) {
+    // The data structure's face count (infinite faces included) is a stored size; the
+    // triangulation's finite count circulates the hull each time it is asked, which on a
+    // terrain with a long border made this loop condition most of a section's cost.
+    const std::size_t face_bound = m.cdt.tds().number_of_faces();
+    for (std::size_t step = 0; step <= face_bound; ++step) {
         if (m.cdt.is_infinite(lfc)) return;
         if (visit(FaceHandle(lfc))) return;
         if (++lfc == done) return;
