@@ -71,6 +71,7 @@ void StagingRing::upload(VkBuffer dst, VkDeviceSize dst_offset, const void* data
         }
         std::memcpy(static_cast<unsigned char*>(ring_.mapped()) + phys, src, chunk);
         pending_[dst].push_back(VkBufferCopy{phys, dst_offset, chunk});
+        ++frame_regions_;
         head_ += chunk;
         src += chunk;
         dst_offset += chunk;
@@ -140,6 +141,10 @@ void StagingRing::wait_idle() {
 
 uint64_t StagingRing::take_frame_bytes() {
     return std::exchange(frame_bytes_, 0);
+}
+
+uint64_t StagingRing::take_frame_regions() {
+    return std::exchange(frame_regions_, 0);
 }
 
 }  // namespace sandtin::gpu

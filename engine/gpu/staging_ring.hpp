@@ -42,6 +42,9 @@ class StagingRing {
     uint64_t total_bytes() const { return total_bytes_; }
     // Bytes staged since the previous call.
     uint64_t take_frame_bytes();
+    // Copy regions queued since the previous call (each costs the driver, and the validation
+    // layer, work of its own).
+    uint64_t take_frame_regions();
     uint64_t batches_submitted() const { return batches_; }
 
   private:
@@ -65,6 +68,7 @@ class StagingRing {
     uint64_t tail_ = 0;
     uint64_t total_bytes_ = 0;
     uint64_t frame_bytes_ = 0;
+    uint64_t frame_regions_ = 0;
     uint64_t batches_ = 0;
 };
 

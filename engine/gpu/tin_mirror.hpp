@@ -63,11 +63,12 @@ enum class EdgeBuffer : uint32_t { Target, Reverse, Length, EdgeFlags, Count };
 
 // What one sync() did.
 struct SyncStats {
-    uint64_t bytes = 0;  // staged for upload
+    uint64_t bytes = 0;         // staged for upload
+    uint64_t copy_regions = 0;  // buffer copy regions those bytes went in
     uint32_t vertex_ranges = 0;
     uint32_t slot_ranges = 0;
-    uint32_t rows = 0;                     // adjacency rows uploaded
-    bool reallocated = false;              // some buffer grew
+    uint32_t rows = 0;         // adjacency rows uploaded
+    bool reallocated = false;  // some buffer grew
 };
 
 class TinMirror {

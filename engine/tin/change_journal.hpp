@@ -2,6 +2,7 @@
 // The change journal: which vertex ids and triangle slots changed since the last
 // take_changes(). The GPU mirror uploads exactly these ranges.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,14 @@ struct IdRange {
 /// `max_gap` + 1 are merged too (gap 0 = exact), which a GPU uploader can use to trade a few
 /// clean bytes for fewer copy regions.
 std::vector<IdRange> merge_into_ranges(std::vector<std::uint32_t> ids, std::uint32_t max_gap = 0);
+
+/// Joins sorted, disjoint ranges whose gap is at most `max_gap` ids (the gap's ids are then
+/// covered too), then, while more than `max_ranges` remain, the ranges across the smallest
+/// remaining gaps: the fewest extra ids for at most `max_ranges` ranges. An uploader trades a
+/// few clean ids for fewer copy regions: scattered edits give thousands of short ranges, and
+/// each costs a copy region per buffer.
+std::vector<IdRange> coalesce_ranges(const std::vector<IdRange>& ranges, std::uint32_t max_gap,
+                                     std::size_t max_ranges = SIZE_MAX);
 
 /// Total number of ids covered by the ranges.
 std::uint64_t count_in_ranges(const std::vector<IdRange>& ranges);

@@ -122,6 +122,48 @@ TEST_F(GpuTest, MirrorEqualsTinAfterEditsConstraintsAndGrowth) {
     EXPECT_EQ(mirror.total_uploaded_bytes(), first.bytes + edit.bytes + grown.bytes);
 }
 
+// Scattered edits (erosion moves sand on thousands of separate vertices a frame) upload in a
+// few copy regions, not one per vertex and buffer: the validation layer, and drivers, pay for
+// each region (31 450 in one editor frame before ranges were coalesced).
+TEST_F(GpuTest, ScatteredEditsUploadInFewCopyRegions) {
+    Tin tin = Tin::random_points(kUnitSquare, 20000, 29, [](Vec2 p) { return 0.1 * p.x; });
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
+    const uint64_t mirrored = mirror.mirrored_bytes();
+    // Every 8th live vertex: 2 500 ranges of one id each in the journal.
+    std::size_t edited = 0;
+    for (uint32_t i = 0; i < tin.vertex_capacity(); i += 8) {
+        if (!tin.is_alive(VertexId{i})) continue;
+        tin.set_height(VertexId{i}, tin.height(VertexId{i}) + 0.001);
+        ++edited;
+    }
+    ASSERT_GT(edited, 2000u);
+    const SyncStats scattered = mirror.sync();
+    // One range per vertex would be one region per vertex buffer each: over 20 000.
+    EXPECT_LT(scattered.copy_regions, 100u) << scattered.copy_regions;
+    EXPECT_LT(scattered.bytes, mirrored) << "the gaps are short, not the whole mirror";
+    expect_mirror_equals_tin(ctx(), mirror, tin);
+
+    // Every 40th vertex: 500 ranges with gaps too wide to join for free. The mirror keeps at
+    // most 256 vertex ranges a sync (nine buffers each), joining the narrowest gaps.
+    for (uint32_t i = 0; i < tin.vertex_capacity(); i += 40) {
+        if (tin.is_alive(VertexId{i})) tin.set_height(VertexId{i}, tin.height(VertexId{i}) - 0.001);
+    }
+    const SyncStats sparse = mirror.sync();
+    EXPECT_LE(sparse.copy_regions, 256u * 9u) << sparse.copy_regions;
+    EXPECT_LT(sparse.bytes, mirrored);
+    expect_mirror_equals_tin(ctx(), mirror, tin);
+
+    // Two edits far apart stay two ranges: the gap is bounded, nothing between is copied.
+    tin.set_height(VertexId{0}, tin.height(VertexId{0}) + 0.001);
+    const auto last = static_cast<uint32_t>(tin.vertex_capacity() - 1);
+    ASSERT_TRUE(tin.is_alive(VertexId{last}));
+    tin.set_height(VertexId{last}, tin.height(VertexId{last}) + 0.001);
+    const SyncStats two = mirror.sync();
+    EXPECT_LT(two.bytes, mirrored / 100) << two.bytes << " of " << mirrored;
+    expect_mirror_equals_tin(ctx(), mirror, tin);
+}
+
 // A mirror created after another one took the journal's first (complete) report still
 // uploads everything.
 TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {

@@ -312,6 +312,48 @@ TEST(Ranges, MergeSimpleCases) {
     EXPECT_EQ((IdRange{3, 8}).size(), 5u);
 }
 
+// Coalescing exact ranges across gaps must give what merging the ids with that gap gives (an
+// independent path: merge_into_ranges works on the ids themselves).
+TEST(Ranges, CoalescingExactRangesEqualsMergingTheIdsWithTheGap) {
+    EXPECT_TRUE(coalesce_ranges({}, 5).empty());
+    EXPECT_EQ(coalesce_ranges({{0, 2}, {4, 6}}, 1), (std::vector<IdRange>{{0, 2}, {4, 6}}));
+    EXPECT_EQ(coalesce_ranges({{0, 2}, {4, 6}}, 2), (std::vector<IdRange>{{0, 6}}));
+    EXPECT_EQ(coalesce_ranges({{0xFFFFFFF0u, 0xFFFFFFF1u}, {0xFFFFFFFDu, 0xFFFFFFFEu}}, 64),
+              (std::vector<IdRange>{{0xFFFFFFF0u, 0xFFFFFFFEu}}));
+    std::mt19937_64 rng = test::test_rng(37);
+    for (int trial = 0; trial < 500; ++trial) {
+        const auto gap = static_cast<std::uint32_t>(rng() % 70);
+        const std::uint32_t universe = 1 + static_cast<std::uint32_t>(rng() % 2000);
+        std::vector<std::uint32_t> ids;
+        const std::size_t n = rng() % 300;
+        for (std::size_t i = 0; i < n; ++i)
+            ids.push_back(static_cast<std::uint32_t>(rng() % universe));
+        const std::vector<IdRange> exact = merge_into_ranges(ids, 0);
+        ASSERT_EQ(coalesce_ranges(exact, gap), merge_into_ranges(ids, gap))
+            << "trial " << trial << " gap " << gap;
+        // With a cap: at most that many ranges, covering every id, and no more extra ids than
+        // the brute-force best (join the smallest gaps first).
+        const std::size_t cap = 1 + rng() % 20;
+        const std::vector<IdRange> capped = coalesce_ranges(exact, gap, cap);
+        const std::vector<IdRange> loose = merge_into_ranges(ids, gap);
+        ASSERT_LE(capped.size(), std::max<std::size_t>(cap, 1)) << "trial " << trial;
+        ASSERT_EQ(capped.size(), std::min(loose.size(), cap)) << "trial " << trial;
+        std::vector<std::uint64_t> gaps;
+        for (std::size_t i = 1; i < loose.size(); ++i)
+            gaps.push_back(std::uint64_t{loose[i].begin} - loose[i - 1].end);
+        std::sort(gaps.begin(), gaps.end());
+        std::uint64_t best = count_in_ranges(loose);
+        for (std::size_t i = 0; i + cap < loose.size(); ++i)
+            best += gaps[i];
+        ASSERT_EQ(count_in_ranges(capped), best) << "trial " << trial;
+        for (std::uint32_t id : ids) {
+            ASSERT_TRUE(std::any_of(capped.begin(), capped.end(),
+                                    [&](IdRange r) { return r.begin <= id && id < r.end; }))
+                << "trial " << trial;
+        }
+    }
+}
+
 TEST(Ranges, MergeMatchesBruteForce) {
     std::mt19937_64 rng = test::test_rng(31);
     for (int trial = 0; trial < 500; ++trial) {
