@@ -31,7 +31,8 @@ commands:
   demo    the default batch job: build the default scene, run a stroke, print its stats
 
 sandtin <command> --help prints the command's usage, sandtin --version the version; README.md has every option, its default
-and its unit. Errors go to stderr and the exit code is non-zero.
+and its unit. Errors go to stderr and the exit code is non-zero. On a terminal, import, export, run,
+stress and bench draw their progress on stderr.
 )";
 
 }  // namespace
