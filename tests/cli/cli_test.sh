@@ -288,8 +288,37 @@ scenario_demo() {
     abs_le "$(json demo.out /volume)" "$expected" 1e-9 "demo volume accounted for"
     # The stroke dug: the reported change is negative and larger than the pour.
     holds "demo dug" "a < 0" "$(json demo.out /steps/0/volume_change)"
-    expect_ok demo_plain demo || return
+    # The result is saved, by default in the current directory, and the JSON says where.
+    check_eq "demo file" "$(json demo.out /file)" sandtin-demo.sandtin
+    expect_ok demo_info info sandtin-demo.sandtin --json || return
+    check_eq "demo result valid" "$(json demo_info.out /valid)" true
+    check_eq "demo result vertices" "$(json demo_info.out /vertices)" "$(json demo.out /vertices)"
+
+    # Without --json: a short summary for a person, not a JSON document.
+    expect_ok demo_plain demo -o "my demo.sandtin" || return
     grep -q "sandtin demo" demo_plain.out || fail "plain demo output lacks its title"
+    if "$JSON_GET" demo_plain.out /valid >/dev/null 2>&1 || grep -q '^{' demo_plain.out; then
+        fail "plain demo output is JSON: $(head -c 300 demo_plain.out)"
+    fi
+    holds "plain demo is short" "a <= 15" "$(wc -l <demo_plain.out)"
+    grep -q "^  vertices  *$(json demo.out /vertices)$" demo_plain.out ||
+        fail "plain demo lacks the vertex count: $(cat demo_plain.out)"
+    grep -q "relief" demo_plain.out || fail "plain demo lacks the relief: $(cat demo_plain.out)"
+    grep -q "^wrote my demo.sandtin$" demo_plain.out ||
+        fail "plain demo does not say where it wrote: $(cat demo_plain.out)"
+    [[ -s "my demo.sandtin" ]] || fail "demo -o wrote no file"
+    # The command that opens the result: the editor beside this sandtin, the path quoted.
+    local editor
+    editor="$(dirname "$(dirname "$SANDTIN")")/app/sandtin-editor"
+    local command
+    command=$(grep -A1 "^open it in the editor:" demo_plain.out | tail -n 1 | sed 's/^  //')
+    if [[ -x "$editor" ]]; then
+        check_eq "editor command" "$command" "$editor 'my demo.sandtin'"
+    else
+        check_eq "editor command" "$command" "sandtin-editor 'my demo.sandtin'"
+    fi
+    [[ -s demo_plain.err ]] && fail "plain demo wrote to a piped stderr: $(cat demo_plain.err)"
+    expect_error demo_bad_out "sandtin export" demo -o demo.png
 }
 
 # sandtin run: a good script in both forms, from a script terrain and from an input session.
