@@ -101,9 +101,25 @@ Falloff parse_falloff(JsonFields& f, const char* fallback) {
     return *falloff_named(f.choice("falloff", fallback, kFalloffNames));
 }
 
+/// The tool of a stamp or stroke. "extrude" may stand on the operation, as a shorthand for the
+/// tool's own field (where the README first put it, and where an artist reaching for "a stroke
+/// that extrudes" looks); given in both places it must agree. extrusion_width stays the tool's.
 std::shared_ptr<const Tool> parse_tool(JsonFields& f, const std::filesystem::path& base_dir) {
     const nlohmann::json& t = f.required("tool");
-    const ToolSpec spec = parse_tool_spec(t, base_dir, f.context() + ": tool");
+    ToolSpec spec = parse_tool_spec(t, base_dir, f.context() + ": tool");
+    if (f.has("extrude")) {
+        const bool on_op = f.boolean("extrude", false);
+        const auto in_tool = t.find("extrude");
+        if (in_tool != t.end() && in_tool->is_boolean() && in_tool->get<bool>() != on_op) {
+            f.fail(std::string("field 'extrude' is ") + (on_op ? "true" : "false") +
+                   " on the operation but 'tool.extrude' is " + (on_op ? "false" : "true") +
+                   "; give it in one place");
+        }
+        spec.extrude = on_op;
+    }
+    if (f.has("extrusion_width")) {
+        f.fail_field("extrusion_width", "is a field of the tool: put it in \"tool\"");
+    }
     try {
         return std::make_shared<const Tool>(Tool::build(spec));
     } catch (const std::exception& e) {
