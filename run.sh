@@ -19,4 +19,9 @@ echo "  xvfb-run -a -s '-screen 0 1280x720x24' build/editor/app/sandtin-editor \
 echo "    assets/scenes/default.sandtin --script docs/scripts/sculpt.json --frames 30 \\"
 echo "    --screenshot editor.png"
 echo "run.sh: running the default batch job (sandtin demo)"
-exec build/editor/cli/sandtin demo "$@"
+# The demo's result goes into build/ (ignored by git) unless the arguments name another -o.
+demo_output=(-o build/sandtin-demo.sandtin)
+for arg in "$@"; do
+  [[ "$arg" == "-o" ]] && demo_output=()
+done
+exec build/editor/cli/sandtin demo "${demo_output[@]}" "$@"

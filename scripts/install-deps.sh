@@ -14,8 +14,9 @@ packages=(
   # GPU, window and UI (X11, XRandR and XTest headers: scripted runs send real X input)
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers glslang-tools glslang-dev
   libglfw3-dev libimgui-dev libstb-dev libx11-dev libxrandr-dev libxtst-dev
-  # tests: GoogleTest, a virtual X server for the editor tests
-  libgtest-dev libgmock-dev xvfb xauth xdotool
+  # tests: GoogleTest, a virtual X server for the editor tests, and util-linux's `script`
+  # (bsdutils: a pseudo-terminal for the CLI's progress lines)
+  libgtest-dev libgmock-dev xvfb xauth xdotool bsdutils
   # fuzzing and sanitizers: clang with libFuzzer and its runtimes
   clang-14 libclang-rt-14-dev
 )

@@ -5,9 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_common.hpp"
+#include "io/progress.hpp"
 
 namespace sandtin::bench {
 
-nlohmann::json bench_history(const BenchConfig& config);
+/// `progress` hears the terrain's construction and each round of stroke, undo and redo.
+nlohmann::json bench_history(const BenchConfig& config, const ProgressCallback& progress = {});
 
 }  // namespace sandtin::bench

@@ -8,6 +8,7 @@
 #include "bench_import.hpp"
 #include "bench_tin.hpp"
 #include "commands.hpp"
+#include "progress_line.hpp"
 
 namespace sandtin::cli {
 
@@ -30,6 +31,13 @@ int run_bench(const std::vector<std::string>& raw) {
         if (which != "groove") throw UsageError("--tool applies to 'bench groove' only");
         config.tool = args.text("--tool");
     }
+    if (which != "tin" && which != "groove" && which != "import" && which != "history") {
+        throw UsageError("unknown benchmark '" + which +
+                         "' (available: tin, groove, import, history, erosion, gpu, haptics)");
+    }
+    // tin, groove and import (tests/bench) report no sections: their line shows the elapsed
+    // time at the start and at the end only.
+    ProgressLine progress("bench " + which);
     nlohmann::json result;
     if (which == "tin") {
         result = bench::bench_tin(config);
@@ -37,12 +45,10 @@ int run_bench(const std::vector<std::string>& raw) {
         result = bench::bench_groove(config);
     } else if (which == "import") {
         result = bench::bench_import(config);
-    } else if (which == "history") {
-        result = bench::bench_history(config);
     } else {
-        throw UsageError("unknown benchmark '" + which +
-                         "' (available: tin, groove, import, history, erosion, gpu, haptics)");
+        result = bench::bench_history(config, progress.callback());
     }
+    progress.finish();
     std::cout << result.dump(2) << "\n";
     return 0;
 }

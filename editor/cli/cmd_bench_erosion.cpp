@@ -23,6 +23,7 @@
 #include <functional>
 #include <iostream>
 #include <numbers>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -33,6 +34,7 @@
 #include "physics/grid_erosion.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_kernel_avx512.hpp"
+#include "progress_line.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin::cli {
@@ -589,12 +591,24 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
     args.require_positionals(1,
                              "sandtin bench erosion [--quick] [--json] [--out DIR] [--throughput]");
     const bool quick = args.has("--quick");
+    ProgressLine progress("bench erosion");
+    // Progress counts sections (one run of a scene at a resolution, or a throughput table).
+    std::size_t sections = 0;
+    std::size_t sections_done = 0;
+    const auto section = [&](const std::string& name) {
+        progress.report(
+            {static_cast<double>(sections_done++) / static_cast<double>(sections), name});
+    };
     if (args.has("--throughput")) {
         // Only the Jacobi throughput (issue 4's 10⁶-vertex figure), 5 runs per thread count.
+        sections = 2;
         nlohmann::json j;
         j["bench"] = "erosion";
+        section("Jacobi throughput");
         j["jacobi_throughput"] = jacobi_throughputs(quick, 5);
+        section("sand physics throughput");
         j["sand_physics_throughput"] = sand_physics_throughputs(quick, 5);
+        progress.finish();
         std::cout << j.dump(2) << "\n";
         return 0;
     }
@@ -605,22 +619,34 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         quick ? std::vector<double>{0.04} : std::vector<double>{0.04, 0.02, 0.01};
     const std::vector<int> grid_n =
         quick ? std::vector<int>{32} : std::vector<int>{32, 64, 128, 256};
-    for (double rs : tin_rs)
-        rows.push_back(median_of(repeats, [&] { return tin_cone(rs); }));
-    for (int n : grid_n)
-        rows.push_back(median_of(repeats, [&] { return grid_cone(n); }));
-
-    // Dunes: the finest grid is the reference.
-    const int ref_n = quick ? 64 : 256;
-    GridRun ref = grid_dunes(ref_n);
-    const GridErosion& ref_grid = *ref.grid;
-    const HeightAt reference = [&](Vec2 p) { return ref_grid.height_at(p); };
     const std::vector<std::size_t> tin_points =
         quick ? std::vector<std::size_t>{1000} : std::vector<std::size_t>{2000, 8000, 32000};
     const std::vector<int> dune_n = quick ? std::vector<int>{16} : std::vector<int>{32, 64, 128};
-    for (std::size_t pts : tin_points)
+    // The runs, the dunes' reference grid and the two throughput tables.
+    sections = tin_rs.size() + grid_n.size() + 1 + tin_points.size() + dune_n.size() + 2;
+    for (double rs : tin_rs) {
+        std::ostringstream stage;
+        stage << "cone on the TIN, r_S " << rs << " m";
+        section(stage.str());
+        rows.push_back(median_of(repeats, [&] { return tin_cone(rs); }));
+    }
+    for (int n : grid_n) {
+        section("cone on a " + std::to_string(n) + "² grid");
+        rows.push_back(median_of(repeats, [&] { return grid_cone(n); }));
+    }
+
+    // Dunes: the finest grid is the reference.
+    const int ref_n = quick ? 64 : 256;
+    section("dunes: the " + std::to_string(ref_n) + "² reference grid");
+    GridRun ref = grid_dunes(ref_n);
+    const GridErosion& ref_grid = *ref.grid;
+    const HeightAt reference = [&](Vec2 p) { return ref_grid.height_at(p); };
+    for (std::size_t pts : tin_points) {
+        section("dunes on a " + std::to_string(pts) + "-point TIN");
         rows.push_back(median_of(repeats, [&] { return tin_dunes(pts, reference); }));
+    }
     for (int n : dune_n) {
+        section("dunes on a " + std::to_string(n) + "² grid");
         rows.push_back(median_of(repeats, [&] {
             GridRun g = grid_dunes(n);
             measure_error(
@@ -666,8 +692,11 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         target["met"] = false;
     }
     j["cone_target"] = target;
+    section("Jacobi throughput");
     j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
+    section("sand physics throughput");
     j["sand_physics_throughput"] = sand_physics_throughputs(quick, 3);
+    progress.finish();
 
     if (args.has("--out")) {
         const std::filesystem::path dir = args.text("--out");

@@ -19,6 +19,7 @@
 #include "gpu/vulkan_context.hpp"
 #include "physics/active_set.hpp"
 #include "physics/talus_solver.hpp"
+#include "progress_line.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool.hpp"
 
@@ -163,11 +164,19 @@ int run_bench_gpu(const std::vector<std::string>& raw) {
     out["device_name"] = ctx->device_name();
     out["device_type"] = ctx->device_type();
     out["quick"] = quick;
+    // Progress by section; the 10⁶-vertex relaxation is the long one.
+    ProgressLine progress("bench gpu");
     nlohmann::json sizes = nlohmann::json::array();
+    progress.report({0.0, quick ? "relaxation on 2·10⁴ vertices" : "relaxation on 10⁵ vertices"});
     sizes.push_back(bench_size(*ctx, quick ? 20000 : 100000, quick ? 5 : 20));
-    if (!quick) sizes.push_back(bench_size(*ctx, 1000000, 5));
+    if (!quick) {
+        progress.report({0.2, "relaxation on 10⁶ vertices"});
+        sizes.push_back(bench_size(*ctx, 1000000, 5));
+    }
     out["relaxation"] = sizes;
+    progress.report({quick ? 0.5 : 0.8, "uploads after stamps"});
     out["upload"] = bench_upload(*ctx, quick ? 100000 : 1000000, 8);
+    progress.finish();
     out["target_gpu_updates_per_s_at_1e6"] = 2e9;
     out["note"] =
         "vertex-updates/s = active vertices processed per second; the GPU target applies to a "

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "bench_history.hpp"
@@ -9,9 +10,11 @@
 
 namespace sandtin::bench {
 
-nlohmann::json bench_history(const BenchConfig& config) {
+nlohmann::json bench_history(const BenchConfig& config, const ProgressCallback& progress) {
     const std::size_t points = config.quick ? 100000 : 1000000;
     const int repeats = config.quick ? 3 : 7;
+    // Building the terrain and attaching the history take about as long as the rounds.
+    if (progress) progress({0.0, "building the terrain and its history"});
     const Rect domain{{0.0, 0.0}, {1.0, 1.0}};
     Tin tin = Tin::random_points(domain, points, 11, [](Vec2 p) {
         return 0.05 + 0.02 * std::sin(7.0 * p.x) * std::cos(5.0 * p.y);
@@ -35,6 +38,11 @@ nlohmann::json bench_history(const BenchConfig& config) {
     std::size_t changed = 0;
     bool exact = true;
     for (int r = 0; r < repeats; ++r) {
+        if (progress) {
+            const std::string stage = "stroke, undo and redo, round " + std::to_string(r + 1) +
+                                      " of " + std::to_string(repeats);
+            progress({0.5 + 0.5 * r / repeats, stage});
+        }
         // A fresh stroke each round (a new generation), as an artist would draw it.
         if (r > 0) history.undo();
         apply_stroke(tin, tool, path, settings, context);
@@ -56,6 +64,7 @@ nlohmann::json bench_history(const BenchConfig& config) {
         redo_cpu_ms.push_back(rc.ms());
         exact = exact && undo.report.exact() && redo.report.exact();
     }
+    if (progress) progress({1.0, "done"});
     nlohmann::json out;
     out["benchmark"] = "history";
     out["vertices"] = tin.vertex_count();

@@ -11,6 +11,7 @@
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
+#include "progress_line.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::cli {
@@ -116,8 +117,10 @@ int run_export(const std::vector<std::string>& raw) {
     // The colours the scene was sculpted with, recoloured materials included.
     options.palette = export_palette(materials_or_presets(session.metadata_json));
     ExportReport report;
+    ProgressLine progress("export " + std::filesystem::path(out).filename().string());
     try {
-        report = export_terrain(tin, out, format, options);
+        report = export_terrain(tin, out, format, options, progress.callback());
+        progress.finish();
     } catch (const std::invalid_argument& e) {
         // An option the user gave is a usage error (exit 2); a default the session file supplied
         // is bad data in that file (exit 1).

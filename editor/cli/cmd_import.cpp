@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "io/heightmap_import.hpp"
 #include "io/session_file.hpp"
+#include "progress_line.hpp"
 #include "session_output.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
@@ -77,7 +78,11 @@ int run_import(const std::vector<std::string>& raw) {
         options.read.limits.max_height = static_cast<std::uint32_t>(h);
     }
 
-    const ImportResult result = import_heightmap(args.positionals()[0], options);
+    ProgressLine progress("import " +
+                          std::filesystem::path(args.positionals()[0]).filename().string());
+    const ImportResult result =
+        import_heightmap(args.positionals()[0], options, progress.callback());
+    progress.finish();
     if (result.report.source_bands > 1) {
         std::cerr << "sandtin import: warning: " << args.positionals()[0] << " has "
                   << result.report.source_bands

@@ -15,6 +15,7 @@
 #include "io/script.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
+#include "progress_line.hpp"
 #include "session_output.hpp"
 #include "terrain_report.hpp"
 #include "util/atomic_file.hpp"
@@ -113,7 +114,10 @@ int run_run(const std::vector<std::string>& raw) {
     SculptContext context(tin.domain());
     context.set_next_generation(session.next_generation);
     const double volume_before = tin.volume();
-    const nlohmann::json steps = run_script(script, tin, context, make_solver, &session);
+    ProgressLine progress("run " + script_path.filename().string());
+    const nlohmann::json steps =
+        run_script(script, tin, context, make_solver, &session, progress.callback());
+    progress.finish();
     for (const nlohmann::json& step : steps) {
         if (const auto w = step.find("warning"); w != step.end() && w->is_string()) {
             std::cerr << "sandtin run: warning: " << w->get<std::string>() << "\n";

@@ -2,10 +2,13 @@
 // a minimal reproducing script.
 
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <string>
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "progress_line.hpp"
 #include "stress/stress_runner.hpp"
 
 namespace sandtin::cli {
@@ -38,9 +41,22 @@ int run_stress(const std::vector<std::string>& raw) {
     options.work_dir = args.text_or("--work-dir", "");
     options.minimise = !args.has("--no-minimise");
     const bool json = args.has("--json");
-    const StressReport report = run_stress(options, [&](std::size_t done) {
-        if (!json && done % 1000 == 0) std::cerr << "  " << done << " operations\n";
-    });
+    ProgressLine progress("stress seed " + std::to_string(options.seed));
+    std::function<void(std::size_t)> after_operation;
+    if (const ProgressCallback draw = progress.callback()) {
+        after_operation = [draw, &options](std::size_t done) {
+            const std::string stage =
+                "operation " + std::to_string(done) + " of " + std::to_string(options.operations);
+            draw({static_cast<double>(done) / static_cast<double>(options.operations), stage});
+        };
+    }
+    const StressReport report = run_stress(options, after_operation);
+    // A failure stops the session early: the line ends where it stopped, not at 100 %.
+    if (report.failure) {
+        progress.stop();
+    } else {
+        progress.finish();
+    }
     if (report.failure && args.has("--repro")) {
         std::ofstream(args.text("--repro")) << report.failure->script.dump(2) << "\n";
     }

@@ -28,10 +28,12 @@ commands:
                               sandtin haptics serve -o out.sandtin [--port P] [--record R]
   stress  random operations, invariants checked after each:
                               sandtin stress [--seed S] [--ops N] [--json]
-  demo    the default batch job: build the default scene, run a stroke, print its stats
+  demo    the default batch job: sculpt the default scene, save the result, say how to open it:
+                              sandtin demo [-o out.sandtin] [--json]
 
 sandtin <command> --help prints the command's usage, sandtin --version the version; README.md has every option, its default
-and its unit. Errors go to stderr and the exit code is non-zero.
+and its unit. Errors go to stderr and the exit code is non-zero. On a terminal, import, export, run,
+stress and bench draw their progress on stderr.
 )";
 
 }  // namespace

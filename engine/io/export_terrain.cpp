@@ -82,7 +82,8 @@ MapGrid texture_grid(const Rect& d, const ExportOptions& o) {
 }
 
 /// The terrain re-meshed by greedy insertion within max_error of its samples on `grid`.
-GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
+GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error,
+                      const ProgressCallback& progress) {
     HeightRaster raster;
     raster.width = grid.width;
     raster.height = grid.height;
@@ -93,7 +94,7 @@ GreedyResult simplify(const Tin& tin, const MapGrid& grid, double max_error) {
     raster.heights = bake_height_map(tin, grid).values;
     raster.source_format = "tin";
     // The raster's domain is the TIN's up to the rounding of (n - 1) * cell.
-    return greedy_tin(raster, {max_error, 0});
+    return greedy_tin(raster, {max_error, 0}, progress);
 }
 
 void write(const fs::path& p, std::span<const std::uint8_t> bytes, ExportReport& report) {
@@ -159,15 +160,21 @@ namespace {
 
 /// A height, normal or albedo map of the terrain.
 void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const ExportOptions& o,
-                ExportReport& report) {
+                ExportReport& report, const ProgressCallback& progress) {
     const Rect d = tin.domain();
     const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
     const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
     report.map_width = grid.width;
     report.map_height = grid.height;
     report.map_spacing = grid.spacing();
+    // Baking samples the terrain at every texel: most of a map's time; encoding compresses.
+    if (progress) progress({0.0, "baking the map"});
+    const auto encoding = [&] {
+        if (progress) progress({0.6, "encoding and writing the map"});
+    };
     if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
         const MapImage heights = bake_height_map(tin, grid);
+        encoding();
         // Both spacings: rounding a side to whole cells spaces the rows differently from
         // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
         // one spacing would stretch the terrain.
@@ -180,15 +187,13 @@ void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const 
             write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
         }
     } else if (format == ExportFormat::NormalPng) {
-        write(out,
-              encode_normal_png(bake_normal_map(tin, grid, o.normal_mode),
-                                {report.map_spacing, o.georeference}),
-              report);
+        const MapImage normals = bake_normal_map(tin, grid, o.normal_mode);
+        encoding();
+        write(out, encode_normal_png(normals, {report.map_spacing, o.georeference}), report);
     } else {
-        write(out,
-              encode_albedo_png(bake_albedo_map(tin, grid, o.palette),
-                                {report.map_spacing, o.georeference}),
-              report);
+        const MapImage colours = bake_albedo_map(tin, grid, o.palette);
+        encoding();
+        write(out, encode_albedo_png(colours, {report.map_spacing, o.georeference}), report);
     }
 }
 
@@ -253,7 +258,7 @@ void write_obj(const ExportMesh& mesh, const GltfTextures& textures, bool with_t
 }  // namespace
 
 ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat format,
-                            const ExportOptions& o) {
+                            const ExportOptions& o, const ProgressCallback& progress) {
     const auto start = std::chrono::steady_clock::now();
     ExportReport report;
     report.format = format;
@@ -261,6 +266,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     if (o.palette.colours.empty())
         throw std::invalid_argument("export: the palette has no colours");
     const auto finish = [&] {
+        if (progress) progress({1.0, "done"});
         report.ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                 .count();
@@ -273,7 +279,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
                 "export: --max-error, --base, --skirt and --up apply to "
                 "meshes, not maps");
         }
-        export_map(tin, out, format, o, report);
+        export_map(tin, out, format, o, report, progress);
         return finish();
     }
     const bool gltf = format == ExportFormat::Gltf || format == ExportFormat::Glb;
@@ -287,11 +293,20 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     mesh_options.base = o.base;
     mesh_options.base_depth = o.base_depth;
 
+    // Shares of the job: simplification (a greedy import of the baked heights) and the two
+    // texture bakes are the long stages when they run; the mesh, encoding and writing share
+    // the rest.
+    const bool with_textures = o.textures && (format == ExportFormat::Obj || gltf);
+    const double simplified_at = o.max_error ? 0.4 : 0.0;
+    const double mesh_at = simplified_at + 0.1 * (1.0 - simplified_at);
+    const double textures_at = with_textures ? mesh_at + 0.6 * (1.0 - mesh_at) : mesh_at;
     std::optional<GreedyResult> simplified;
     if (o.max_error) {
-        simplified = simplify(tin, corner_grid(d, o), *o.max_error);
+        simplified = simplify(tin, corner_grid(d, o), *o.max_error,
+                              progress_part(progress, 0.0, simplified_at));
         report.simplified = simplified->stats;
     }
+    if (progress) progress({simplified_at, "building the mesh"});
     ExportMesh mesh = build_export_mesh(simplified ? simplified->tin : tin, mesh_options);
     mesh.georeference = o.georeference;
     report.vertices = mesh.positions.size();
@@ -301,14 +316,15 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
     // Textures come from the original terrain: simplification changes geometry, not looks.
     GltfTextures textures;
     textures.base_colour = o.palette.colours.front();
-    const bool with_textures = o.textures && (format == ExportFormat::Obj || gltf);
     if (with_textures) {
+        if (progress) progress({mesh_at, "baking the albedo texture"});
         const MapGrid grid = texture_grid(d, o);
         report.map_width = grid.width;
         report.map_height = grid.height;
         report.map_spacing = grid.spacing();
         const TexelFrame frame{report.map_spacing, o.georeference};
         textures.albedo_png = encode_albedo_png(bake_albedo_map(tin, grid, o.palette), frame);
+        if (progress) progress({(mesh_at + textures_at) / 2.0, "baking the normal texture"});
         // In the mesh's own tangent frame, as glTF's normalTexture (and OBJ importers reading
         // map_Bump) expect: the terrain's normals relative to the exported mesh's.
         textures.normal_png = encode_normal_png(
@@ -317,6 +333,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
             frame);
     }
 
+    if (progress) progress({textures_at, "encoding and writing the mesh"});
     switch (format) {
         case ExportFormat::Obj:
             write_obj(mesh, textures, with_textures, out, o, report);

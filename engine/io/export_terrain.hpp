@@ -20,6 +20,7 @@
 #include "io/export_mesh.hpp"
 #include "io/export_palette.hpp"
 #include "io/greedy_tin.hpp"
+#include "io/progress.hpp"
 #include "maps/albedo_map.hpp"
 #include "maps/normal_map.hpp"
 
@@ -90,8 +91,11 @@ struct ExportReport {
 
 /// Writes `out` (and its companions). Throws std::invalid_argument for bad options and
 /// std::runtime_error naming the file when writing fails; files already written stay.
+/// `progress` (io/progress.hpp) hears each stage: simplification, the mesh, baking each map,
+/// encoding and writing.
 ExportReport export_terrain(const Tin& tin, const std::filesystem::path& out, ExportFormat format,
-                            const ExportOptions& options = {});
+                            const ExportOptions& options = {},
+                            const ProgressCallback& progress = {});
 
 nlohmann::json to_json(const ExportReport& report);
 

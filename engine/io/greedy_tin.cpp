@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -204,6 +205,48 @@ SampleTriangle canonical(SampleTriangle t) {
     return t;
 }
 
+/// How far a greedy insertion has come, for progress reports. The insertion does not know how
+/// many points it will need, so the share done is estimated from the worst error left: on a
+/// smooth surface linear interpolation's error falls with the square of the spacing, and the
+/// points grow with its inverse square, so the points needed at error e grow as 1 / e and the
+/// share done at worst error e is about (1/e - 1/e0) / (1/bound - 1/e0), e0 the first worst
+/// error. A point limit gives points / limit, and the points placed over the samples are a
+/// floor that also covers a bound of 0. Reported only every kEvery insertions, and never
+/// decreasing (the worst error may rise for a step).
+class GreedyProgress {
+  public:
+    GreedyProgress(const ProgressCallback& progress, const GreedyOptions& options,
+                   std::size_t samples)
+        : progress_(progress), options_(options), samples_(static_cast<double>(samples)) {}
+
+    /// After an insertion: `worst` is the worst error left, `points` the vertices now.
+    void inserted(double worst, std::size_t points) {
+        if (!progress_) return;
+        if (first_error_ == 0.0) first_error_ = worst;
+        if (++insertions_ % kEvery != 0) return;
+        double f = static_cast<double>(points) / samples_;
+        if (options_.max_points != 0)
+            f = std::max(f, static_cast<double>(points) / static_cast<double>(options_.max_points));
+        if (options_.max_error > 0.0 && worst < first_error_) {
+            f = std::max(f, (1.0 / worst - 1.0 / first_error_) /
+                                (1.0 / options_.max_error - 1.0 / first_error_));
+        }
+        done_ = std::max(done_, std::min(f, 0.999));
+        char stage[96];
+        std::snprintf(stage, sizeof stage, "refining: %zu points, error %.2g m", points, worst);
+        progress_({done_, stage});
+    }
+
+  private:
+    static constexpr std::size_t kEvery = 256;
+    const ProgressCallback& progress_;
+    const GreedyOptions& options_;
+    double samples_;
+    double first_error_ = 0.0;
+    double done_ = 0.0;
+    std::size_t insertions_ = 0;
+};
+
 /// Phase 1: greedy insertion on the lattice Delaunay triangulation, free of any TIN
 /// bookkeeping. Returns the chosen points.
 class LatticeGreedy {
@@ -218,9 +261,10 @@ class LatticeGreedy {
     }
 
     /// Returns whether the bound holds (false when max_points stopped it).
-    bool run(double max_error, std::size_t max_points) {
+    bool run(double max_error, std::size_t max_points, GreedyProgress& progress) {
         while (const auto top = queue_.top()) {
             if (top->first <= max_error) return true;
+            progress.inserted(top->first, dt_.point_count());
             if (max_points != 0 && dt_.point_count() >= max_points) return false;
             const std::uint32_t t = top->second;
             const std::uint32_t sample = queue_.sample(t);
@@ -363,7 +407,8 @@ class TinGreedy {
 
 }  // namespace
 
-GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options) {
+GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options,
+                        const ProgressCallback& progress) {
     if (!(std::isfinite(options.max_error) && options.max_error >= 0.0)) {
         throw std::invalid_argument(
             "greedy insertion: the maximum error must be a finite "
@@ -376,8 +421,14 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
     check_raster(raster, "greedy insertion");
     const auto start = std::chrono::steady_clock::now();
 
+    // A rough split of the work: the insertion is most of it, the measurement one pass.
+    const ProgressCallback insertion = progress_part(progress, 0.0, 0.85);
+    GreedyProgress insertion_progress(insertion, options, raster.size());
+    if (insertion) insertion({0.0, "refining: scanning the raster"});
     LatticeGreedy lattice(raster);
-    const bool lattice_reached = lattice.run(options.max_error, options.max_points);
+    const bool lattice_reached =
+        lattice.run(options.max_error, options.max_points, insertion_progress);
+    if (progress) progress({0.85, "building the TIN"});
     const LatticeDelaunay& dt = lattice.triangulation();
     std::vector<Vec2> positions;
     std::vector<double> heights;
@@ -396,10 +447,12 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
     // After a point-limit stop phase 1's triangles are not all within the bound: rescan all.
     const std::vector<SampleTriangle> settled =
         lattice_reached ? lattice.sample_triangles() : std::vector<SampleTriangle>{};
+    if (progress) progress({0.88, "checking the TIN against the raster"});
     TinGreedy fix_up(raster, tin, settled);
     const std::size_t fix_ups = fix_up.run(options.max_error, options.max_points, reached);
     const double build_ms = elapsed_ms(start);
 
+    if (progress) progress({0.9, "measuring the error of every sample"});
     GreedyStats stats = measure_tin_error(tin, raster);
     stats.reached_error = reached;
     stats.build_ms = build_ms;
@@ -413,6 +466,7 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
         // The incremental bookkeeping and the independent pass disagree: a bug, not bad input.
         throw std::logic_error("greedy insertion: the final TIN misses the error bound");
     }
+    if (progress) progress({1.0, "done"});
     return {std::move(tin), stats};
 }
 

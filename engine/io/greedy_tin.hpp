@@ -25,6 +25,7 @@
 #include <cstdint>
 
 #include "io/heightmap_raster.hpp"
+#include "io/progress.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -57,8 +58,11 @@ struct GreedyResult {
 /// 1..3, and std::runtime_error (via check_raster) for an invalid raster. The raster's no-data
 /// samples must have been filled (fill_nodata) so the corners have heights. The TIN tracks
 /// changes (its journal is what phase 2 runs on), so its first take_changes() reports
-/// everything, as for any new TIN.
-GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options);
+/// everything, as for any new TIN. `progress` (io/progress.hpp) hears the insertion, the
+/// build of the TIN and the final measurement; the share of the insertion done is estimated
+/// from the worst error left (see GreedyProgress in greedy_tin.cpp).
+GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options,
+                        const ProgressCallback& progress = {});
 
 /// Maximum error and RMSD of any TIN over the raster's domain against the raster's valid
 /// samples, each sample measured once. The TIN must cover raster.domain().

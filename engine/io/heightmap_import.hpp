@@ -18,6 +18,7 @@
 #include "io/greedy_tin.hpp"
 #include "io/heightmap_png.hpp"
 #include "io/heightmap_raster.hpp"
+#include "io/progress.hpp"
 
 namespace sandtin {
 
@@ -66,7 +67,9 @@ struct ImportResult {
     ImportReport report;
 };
 
-ImportResult import_heightmap(const std::filesystem::path& path, const ImportOptions& options);
+/// `progress` (io/progress.hpp) hears the reading of the file and the greedy insertion.
+ImportResult import_heightmap(const std::filesystem::path& path, const ImportOptions& options,
+                              const ProgressCallback& progress = {});
 
 /// The report as JSON: source, format, raster {width, height, cell_size, cell_height,
 /// nodata_samples}, georeference {west, south, crs, horizontal_unit, vertical_unit} when known,

@@ -101,9 +101,25 @@ Falloff parse_falloff(JsonFields& f, const char* fallback) {
     return *falloff_named(f.choice("falloff", fallback, kFalloffNames));
 }
 
+/// The tool of a stamp or stroke. "extrude" may stand on the operation, as a shorthand for the
+/// tool's own field (where the README first put it, and where an artist reaching for "a stroke
+/// that extrudes" looks); given in both places it must agree. extrusion_width stays the tool's.
 std::shared_ptr<const Tool> parse_tool(JsonFields& f, const std::filesystem::path& base_dir) {
     const nlohmann::json& t = f.required("tool");
-    const ToolSpec spec = parse_tool_spec(t, base_dir, f.context() + ": tool");
+    ToolSpec spec = parse_tool_spec(t, base_dir, f.context() + ": tool");
+    if (f.has("extrude")) {
+        const bool on_op = f.boolean("extrude", false);
+        const auto in_tool = t.find("extrude");
+        if (in_tool != t.end() && in_tool->is_boolean() && in_tool->get<bool>() != on_op) {
+            f.fail(std::string("field 'extrude' is ") + (on_op ? "true" : "false") +
+                   " on the operation but 'tool.extrude' is " + (on_op ? "false" : "true") +
+                   "; give it in one place");
+        }
+        spec.extrude = on_op;
+    }
+    if (f.has("extrusion_width")) {
+        f.fail_field("extrusion_width", "is a field of the tool: put it in \"tool\"");
+    }
     try {
         return std::make_shared<const Tool>(Tool::build(spec));
     } catch (const std::exception& e) {
@@ -444,6 +460,13 @@ void warn_if_nothing_stamped(nlohmann::json& j, const StampReport& total) {
         "or the terrain already holds its imprint";
 }
 
+/// About how many stamps a stroke places: one per spacing along its path (the tool's own limit
+/// when that is shorter), and its start. Only progress reports use it.
+double expected_stamp_count(const StrokeOp& op) {
+    return path_length(op.path) / std::min(op.settings.spacing, op.tool->max_stroke_spacing()) +
+           1.0;
+}
+
 /// A pour or removal that moved less than asked says how much and why.
 void warn_if_short(nlohmann::json& j, bool remove, double asked, double moved) {
     if (const std::optional<std::string> w = short_pour_warning(remove, asked, moved))
@@ -481,15 +504,18 @@ ScriptRunner::ScriptRunner(const Script& script, Tin& tin, SculptContext& contex
 
 ScriptRunner::~ScriptRunner() = default;
 
-nlohmann::json ScriptRunner::run(const ScriptStep& step) {
+nlohmann::json ScriptRunner::run(const ScriptStep& step, const ProgressCallback& progress) {
     if (!solver_ && step_uses_physics(step)) {
         throw std::logic_error("ScriptRunner: step '" + step.op_name +
                                "' needs the physics, which this runner was created without");
     }
     erosion_drift_ = 0.0;
     const auto t0 = std::chrono::steady_clock::now();
+    // Read only while this step runs; every step sets its own.
+    step_progress_ = progress ? &progress : nullptr;
     nlohmann::json r =
         std::visit([&](const auto& op) -> nlohmann::json { return run_op(op); }, step.operation);
+    step_progress_ = nullptr;
     r["op"] = step.op_name;
     r["line"] = step.line;
     r["ms"] =
@@ -532,6 +558,11 @@ PhysicsStepReport ScriptRunner::erode(int iterations, bool until_rest) {
     return r;
 }
 
+void ScriptRunner::report_points_done(std::size_t done, std::size_t total) const {
+    if (step_progress_)
+        (*step_progress_)({static_cast<double>(done) / static_cast<double>(total), {}});
+}
+
 nlohmann::json ScriptRunner::run_op(const StampOp& op) {
     Tin& tin = tin_;
     SculptContext& context = context_;
@@ -553,9 +584,15 @@ nlohmann::json ScriptRunner::run_op(const StrokeOp& op) {
     std::vector<StampReport> per;
     PhysicsStepReport physics_total;
     std::function<void(const StampReport&)> after_stamp;
-    if (op.erode_iterations > 0) {
+    // Progress counts stamps against the count the path's length and spacing promise.
+    const double expected_stamps = step_progress_ ? expected_stamp_count(op) : 0.0;
+    std::size_t stamped = 0;
+    if (op.erode_iterations > 0 || step_progress_) {
         after_stamp = [&](const StampReport&) {
-            physics_total.accumulate(erode(op.erode_iterations, false));
+            if (op.erode_iterations > 0)
+                physics_total.accumulate(erode(op.erode_iterations, false));
+            if (step_progress_)
+                (*step_progress_)({std::min(++stamped / expected_stamps, 0.99), {}});
         };
     }
     const StampReport total =
@@ -588,10 +625,12 @@ nlohmann::json ScriptRunner::run_op(const PourOp& op) {
     SculptContext& context = context_;
     const double each = op.volume / static_cast<double>(std::max<std::size_t>(op.points.size(), 1));
     double moved = 0.0;
-    for (Vec2 p : op.points) {
+    for (std::size_t k = 0; k < op.points.size(); ++k) {
+        const Vec2 p = op.points[k];
         const PourReport pr = op.remove ? remove_sand(tin, p, each, op.settings, context)
                                         : pour_sand(tin, p, each, op.settings, context);
         moved += pr.volume;
+        report_points_done(k + 1, op.points.size());
     }
     if (context.settings.simplify_after_edit)
         context.simplifier.run(tin, context.settings.simplify);
@@ -617,10 +656,11 @@ nlohmann::json ScriptRunner::run_op(const BrushOp& op) {
     }
     std::size_t changed = 0;
     double dv = 0.0;
-    for (Vec2 p : op.points) {
-        const BrushReport br = apply_brush(tin, p, settings, context);
+    for (std::size_t k = 0; k < op.points.size(); ++k) {
+        const BrushReport br = apply_brush(tin, op.points[k], settings, context);
         changed += br.vertices_changed;
         dv += br.volume_change;
+        report_points_done(k + 1, op.points.size());
     }
     return {{"dabs", op.points.size()}, {"vertices_changed", changed}, {"volume_change", dv}};
 }
@@ -669,17 +709,29 @@ Tin make_script_terrain(const ScriptTerrain& t, TinOptions options) {
 }
 
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
-                          const RelaxationSolverFactory& make_solver, const Session* carried) {
+                          const RelaxationSolverFactory& make_solver, const Session* carried,
+                          const ProgressCallback& progress) {
     ScriptRunner runner(script, tin, context, false, make_solver, carried);
     nlohmann::json reports = nlohmann::json::array();
     const auto where = [&](std::size_t line) {
         return script.name.empty() ? "line " + std::to_string(line)
                                    : script.name + ":" + std::to_string(line);
     };
-    for (std::size_t i = 0; i < script.steps.size(); ++i) {
+    const std::size_t n = script.steps.size();
+    for (std::size_t i = 0; i < n; ++i) {
         const ScriptStep& step = script.steps[i];
+        ProgressCallback step_progress;
+        const std::string stage = progress ? "operation " + std::to_string(i + 1) + " of " +
+                                                 std::to_string(n) + " (" + step.op_name + ")"
+                                           : std::string();
+        if (progress) {
+            progress({static_cast<double>(i) / static_cast<double>(n), stage});
+            step_progress = [&](const Progress& p) {
+                progress({(static_cast<double>(i) + p.fraction) / static_cast<double>(n), stage});
+            };
+        }
         try {
-            nlohmann::json report = runner.run(step);
+            nlohmann::json report = runner.run(step, step_progress);
             // A warning names its operation as an error would, so the artist finds it.
             if (const auto w = report.find("warning"); w != report.end() && w->is_string()) {
                 *w = where(step.line) + ": operation " + std::to_string(i + 1) + " (" +
@@ -693,6 +745,7 @@ nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context
                                         " (" + step.op_name + "): " + e.what());
         }
     }
+    if (progress) progress({1.0, "done"});
     return reports;
 }
 

@@ -32,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/progress.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
@@ -177,7 +178,9 @@ class ScriptRunner {
 
     /// Runs one step; returns its JSON report ("op", "line", "ms" and the op's own fields;
     /// "volume_change" is the m³ the step added to the terrain by its own account).
-    nlohmann::json run(const ScriptStep& step);
+    /// `progress` (io/progress.hpp) hears the step's own fractions: a stroke's stamps, a
+    /// pour's or a brush's points; other steps report nothing inside.
+    nlohmann::json run(const ScriptStep& step, const ProgressCallback& progress = {});
 
     /// The relaxation, or null when the runner was created without physics.
     RelaxationSolver* solver() { return solver_.get(); }
@@ -191,6 +194,8 @@ class ScriptRunner {
     nlohmann::json run_op(const SimplifyOp& op);
     nlohmann::json run_op(const SaveOp& op);
     nlohmann::json run_op(const CustomOp& op);
+    /// Tells the current step's progress that `done` of its `total` points are placed.
+    void report_points_done(std::size_t done, std::size_t total) const;
     /// One call of the solver; the vertices it changed go to eroded_, its float drift (m³)
     /// to erosion_drift_.
     PhysicsStepReport relax(int iterations, bool until_rest);
@@ -205,14 +210,17 @@ class ScriptRunner {
     std::unique_ptr<RelaxationSolver> solver_;
     std::vector<VertexId> eroded_;  ///< vertices the current step's relaxation changed
     double erosion_drift_ = 0.0;    ///< m³ the current step's float relaxation drifted
+    const ProgressCallback* step_progress_ = nullptr;  ///< the current step's, while it runs
 };
 
 /// Applies the script's settings to the context and runs every step; returns one JSON report
 /// per step; a step that did something the artist should hear of (extrusion that lost sand
 /// over the terrain's edge) has a "warning" string naming its line and operation. `carried`,
 /// when given, is the session the terrain came from (see ScriptRunner's constructor).
+/// `progress` (io/progress.hpp) hears each step as "operation k of n (op)", its share of the
+/// script 1/n, and what the step reports inside it (ScriptRunner::run).
 nlohmann::json run_script(const Script& script, Tin& tin, SculptContext& context,
                           const RelaxationSolverFactory& make_solver = {},
-                          const Session* carried = nullptr);
+                          const Session* carried = nullptr, const ProgressCallback& progress = {});
 
 }  // namespace sandtin

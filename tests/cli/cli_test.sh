@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end tests of the sandtin CLI.
 # usage: cli_test.sh /path/to/sandtin <scenario> <work-dir> /path/to/json_get
-#   scenarios: roundtrip, bad_input, bench, demo, run_good, run_bad, readme_script
+#   scenarios: roundtrip, bad_input, bench, demo, run_good, run_bad, readme_script, script_extrude
 # json_get (tests/cli/json_get.cpp) reads values out of the JSON the CLI prints.
 set -uo pipefail
 
@@ -288,8 +288,77 @@ scenario_demo() {
     abs_le "$(json demo.out /volume)" "$expected" 1e-9 "demo volume accounted for"
     # The stroke dug: the reported change is negative and larger than the pour.
     holds "demo dug" "a < 0" "$(json demo.out /steps/0/volume_change)"
-    expect_ok demo_plain demo || return
+    # The result is saved, by default in the current directory, and the JSON says where.
+    check_eq "demo file" "$(json demo.out /file)" sandtin-demo.sandtin
+    expect_ok demo_info info sandtin-demo.sandtin --json || return
+    check_eq "demo result valid" "$(json demo_info.out /valid)" true
+    check_eq "demo result vertices" "$(json demo_info.out /vertices)" "$(json demo.out /vertices)"
+
+    # Without --json: a short summary for a person, not a JSON document.
+    expect_ok demo_plain demo -o "my demo.sandtin" || return
     grep -q "sandtin demo" demo_plain.out || fail "plain demo output lacks its title"
+    if "$JSON_GET" demo_plain.out /valid >/dev/null 2>&1 || grep -q '^{' demo_plain.out; then
+        fail "plain demo output is JSON: $(head -c 300 demo_plain.out)"
+    fi
+    holds "plain demo is short" "a <= 15" "$(wc -l <demo_plain.out)"
+    grep -q "^  vertices  *$(json demo.out /vertices)$" demo_plain.out ||
+        fail "plain demo lacks the vertex count: $(cat demo_plain.out)"
+    grep -q "relief" demo_plain.out || fail "plain demo lacks the relief: $(cat demo_plain.out)"
+    grep -q "^wrote my demo.sandtin$" demo_plain.out ||
+        fail "plain demo does not say where it wrote: $(cat demo_plain.out)"
+    [[ -s "my demo.sandtin" ]] || fail "demo -o wrote no file"
+    # The command that opens the result: the editor beside this sandtin, the path quoted.
+    local editor
+    editor="$(dirname "$(dirname "$SANDTIN")")/app/sandtin-editor"
+    local command
+    command=$(grep -A1 "^open it in the editor:" demo_plain.out | tail -n 1 | sed 's/^  //')
+    if [[ -x "$editor" ]]; then
+        check_eq "editor command" "$command" "$editor 'my demo.sandtin'"
+    else
+        check_eq "editor command" "$command" "sandtin-editor 'my demo.sandtin'"
+    fi
+    [[ -s demo_plain.err ]] && fail "plain demo wrote to a piped stderr: $(cat demo_plain.err)"
+    expect_error demo_bad_out "sandtin export" demo -o demo.png
+}
+
+# "extrude" on a stamp or stroke is shorthand for the tool's field: both spellings leave the same
+# terrain, unlike no extrusion; given in both places, they must agree.
+scenario_script_extrude() {
+    local where
+    for where in op tool none; do
+        local tool='{"asset": "circle"}' op_field=''
+        [[ $where == tool ]] && tool='{"asset": "circle", "extrude": true}'
+        [[ $where == op ]] && op_field='"extrude": true,'
+        cat >"extrude_$where.json" <<END_OF_SCRIPT
+{"version": 1,
+ "terrain": {"size": [1, 1], "points": 2000, "seed": 7, "height": 0.1},
+ "operations": [
+   {"op": "stroke", "tool": $tool, $op_field "path": [[0.3, 0.5], [0.7, 0.5]], "depth": 0.01},
+   {"op": "stamp", "tool": $tool, $op_field "at": [0.5, 0.3], "depth": 0.01}]}
+END_OF_SCRIPT
+        expect_ok "run_$where" run "extrude_$where.json" -o "$where.sandtin" --json || return
+    done
+    cmp -s op.sandtin tool.sandtin || fail "extrude on the op and in the tool left other terrains"
+    check_eq "same volume" "$(json run_op.out /terrain/volume)" "$(json run_tool.out /terrain/volume)"
+    # Extrusion pushes the dug sand into a ridge: the volume stays, where a plain dig loses it.
+    holds "extrusion kept the sand" "a > b" "$(json run_op.out /terrain/volume)"         "$(json run_none.out /terrain/volume)"
+    holds "the ridge got sand" "a > 0" "$(json run_op.out /steps/0/deposited_volume)"
+
+    cat >contradiction.json <<'END_OF_SCRIPT'
+{"version": 1, "terrain": {"points": 100},
+ "operations": [
+   {"op": "stroke", "tool": {"asset": "circle", "extrude": false}, "extrude": true,
+    "path": [[0.3, 0.5], [0.7, 0.5]], "depth": 0.01}]}
+END_OF_SCRIPT
+    expect_error contradiction "tool.extrude" run contradiction.json -o c.sandtin
+    grep -q "contradiction.json:3: operation 1 (stroke): field 'extrude' is true" contradiction.err ||
+        fail "the contradiction is not named by line and field: $(cat contradiction.err)"
+    [[ -e c.sandtin ]] && fail "a contradictory script wrote a terrain"
+    cat >width.json <<'END_OF_SCRIPT'
+[{"op": "stamp", "tool": {"asset": "circle"}, "extrude": true, "extrusion_width": 0.02,
+  "at": [0.5, 0.5]}]
+END_OF_SCRIPT
+    expect_error width "field 'extrusion_width' is a field of the tool" run width.json -o w.sandtin
 }
 
 # sandtin run: a good script in both forms, from a script terrain and from an input session.
@@ -484,6 +553,7 @@ case "$SCENARIO" in
     run_good) scenario_run_good ;;
     run_bad) scenario_run_bad ;;
     readme_script) scenario_readme_script ;;
+    script_extrude) scenario_script_extrude ;;
     *)
         echo "unknown scenario $SCENARIO" >&2
         exit 2
