@@ -243,7 +243,15 @@ class App {
     /// The Stats window's first lines: vertex and triangle counts, constrained edges and
     /// volume (their length sizes the window).
     std::array<std::string, 2> stats_terrain_lines() const;
-    void panel_stats(const std::array<std::string, 2>& terrain_lines);
+    /// Every line of text the Stats window shows, made before the window so that its width
+    /// can be that of the widest.
+    struct StatsText {
+        std::array<std::string, 2> terrain;
+        std::array<std::string, 3> timing;  ///< stats_lines.hpp
+        std::string normal_map;
+    };
+    StatsText stats_text() const;
+    void panel_stats(const StatsText& text);
     void stats_window();
     void recovery_prompt();
     void discard_prompt();
