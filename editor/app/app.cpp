@@ -303,6 +303,8 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["scene_field"] = std::string(path_buf_);
     s["dirty"] = doc_.dirty();
     s["tooltip"] = widgets_.last_tooltip();
+    s["widgets"] = widgets_.to_json();
+    s["help_open"] = help_open_;
     s["settings"] = {{"tool_radius", settings_.tool_radius},
                      {"tool_depth", settings_.tool_depth},
                      {"stroke_spacing_ratio", settings_.stroke_spacing_ratio},

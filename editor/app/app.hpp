@@ -36,6 +36,7 @@
 #include "haptics_session.hpp"
 #include "layout_probe.hpp"
 #include "sculpting.hpp"
+#include "shortcuts.hpp"
 #include "stage_times.hpp"
 #include "terrain_view.hpp"
 #include "widget_map.hpp"
@@ -213,6 +214,8 @@ class App {
     std::optional<Vec3> pick(double x, double y) const;
     /// Picks a tool by key or panel: not in the middle of a stroke.
     void pick_tool(int index);
+    /// What a shortcut's key does (shortcuts.hpp).
+    void run_command(Command command);
 
     // ---- Panels (panel_*.cpp) ------------------------------------------------------------
     void draw_panels();
@@ -253,6 +256,8 @@ class App {
     StatsText stats_text() const;
     void panel_stats(const StatsText& text);
     void stats_window();
+    /// The list of keys and gestures (F1; shortcuts.hpp).
+    void help_window();
     void recovery_prompt();
     void discard_prompt();
     void overwrite_prompt();
@@ -305,6 +310,7 @@ class App {
     std::string published_widgets_;      ///< the map last written to --widget-map
     /// Opens (true) or closes every panel header in the next frame (the script's "panels" op).
     std::optional<bool> open_panels_;
+    bool help_open_ = false;  ///< the Help window (F1)
     std::uint64_t events_seen_ = 0;
     Clock::time_point last_frame_at_{};
     int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)

@@ -47,6 +47,7 @@ void App::draw_panels() {
     ImGui::End();
     status_window(status_height);
     stats_window();
+    help_window();
     recovery_prompt();
     discard_prompt();
     overwrite_prompt();
