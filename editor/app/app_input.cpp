@@ -84,6 +84,12 @@ void on_framebuffer_size(GLFWwindow* w, int, int) {
 void on_iconify(GLFWwindow* w, int) {
     app_of(w)->note_event();
 }
+void on_drop(GLFWwindow* w, int count, const char** paths) {
+    App* app = app_of(w);
+    app->note_event();
+    const std::vector<std::string> dropped(paths, paths + std::max(count, 0));
+    app->guarded("the dropped file", [&] { app->drop_files(dropped); });
+}
 
 }  // namespace
 
@@ -98,6 +104,7 @@ void install_callbacks(GLFWwindow* window) {
     glfwSetWindowRefreshCallback(window, on_refresh);
     glfwSetFramebufferSizeCallback(window, on_framebuffer_size);
     glfwSetWindowIconifyCallback(window, on_iconify);
+    glfwSetDropCallback(window, on_drop);
 }
 
 void App::note_event() {
@@ -197,7 +204,7 @@ void App::run_command(Command command) {
             replace_document("New", [this] { new_document(); });
             break;
         case Command::Open:
-            replace_document("Open", [this] { open_reporting(); });
+            replace_document("Open", [this] { open_reporting(path_buf_); });
             break;
         case Command::Quit:
             // As the window's close button: an untitled scene's unsaved edits are asked about.

@@ -54,6 +54,7 @@ inline constexpr Gesture kGestures[] = {
     {"Middle drag", "pan the camera"},
     {"Wheel", "zoom"},
     {"Ctrl+click a slider", "type a value (kept inside the slider's range)"},
+    {"Drop a file on the window", "open a scene (.sandtin) or import a heightmap"},
 };
 
 /// The shortcut `key` (a GLFW key code) with or without Ctrl runs, if any.
