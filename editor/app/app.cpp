@@ -310,6 +310,7 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["widgets"] = widgets_.to_json();
     s["help_open"] = help_open_;
     s["recent_files"] = settings_.recent_files;
+    if (recovery_for_) s["recovery_prompt"] = recovery_prompt_text();
     s["settings"] = {{"tool_radius", settings_.tool_radius},
                      {"tool_depth", settings_.tool_depth},
                      {"stroke_spacing_ratio", settings_.stroke_spacing_ratio},

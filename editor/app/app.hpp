@@ -270,6 +270,8 @@ class App {
     void stats_window();
     /// The list of keys and gestures (F1; shortcuts.hpp).
     void help_window();
+    /// What the recovery prompt says: which scene, and how old its autosave is.
+    std::string recovery_prompt_text() const;
     void recovery_prompt();
     void discard_prompt();
     void overwrite_prompt();

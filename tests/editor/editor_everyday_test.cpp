@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +15,7 @@
 
 #include "editor_harness.hpp"
 #include "editor_settings.hpp"
+#include "io/autosave.hpp"
 #include "io/session_file.hpp"
 
 namespace sandtin {
@@ -198,6 +201,38 @@ TEST_F(EditorXvfb, TheStatsWindowFitsASlowMachinesTimings) {
                 << "the Stats window is cut off in " << name;
         }
     }
+}
+
+TEST_F(EditorXvfb, TheRecoveryPromptSaysHowOldTheAutosaveIs) {
+    const fs::path scene = kWork / "age.sandtin";
+    Session edited = save_flat_scene(scene, 1.0, unit_square_points(200, 6));
+    std::size_t raised = 0;
+    while (!edited.terrain.vertices.alive[raised])
+        ++raised;
+    edited.terrain.vertices.height[raised] += 0.01;
+    write_autosave(scene, edited);
+    // The scene saved ten minutes ago, its autosave three minutes and ten seconds ago.
+    const auto now = fs::file_time_type::clock::now();
+    fs::last_write_time(scene, now - std::chrono::minutes(10));
+    const auto written = now - std::chrono::seconds(190);
+    fs::last_write_time(autosave_path(scene), written);
+    ASSERT_TRUE(find_autosave(scene)->offer_recovery());
+
+    const EditorRun r = run_editor("age", kFlat, scene.string());
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    // The local time of the autosave, as a clock on the wall shows it.
+    const std::time_t t = std::chrono::system_clock::to_time_t(
+        std::chrono::time_point_cast<std::chrono::system_clock::duration>(
+            std::chrono::file_clock::to_sys(written)));
+    std::tm local{};
+    localtime_r(&t, &local);
+    char hhmm[8];
+    std::strftime(hhmm, sizeof(hhmm), "%H:%M", &local);
+    ASSERT_TRUE(r.stats.contains("recovery_prompt")) << "no recovery prompt: " << r.log;
+    const std::string text = r.stats.at("recovery_prompt").get<std::string>();
+    EXPECT_NE(text.find(scene.string()), std::string::npos) << text;
+    EXPECT_NE(text.find(std::string("autosave from 3 minutes ago, ") + hhmm), std::string::npos)
+        << text;
 }
 
 }  // namespace
