@@ -7,6 +7,7 @@
 
 #include "default_sandbox.hpp"
 #include "formats/png_image.hpp"
+#include "recent_files.hpp"
 #include "tool_palette.hpp"
 #include "util/atomic_file.hpp"
 #include "util/json_document.hpp"
@@ -155,7 +156,10 @@ int App::run() {
             script_.push_back(op);
     }
     Document first = initial_document();
-    if (!options_.scene.empty()) set_scene_field(options_.scene.string());
+    if (!options_.scene.empty()) {
+        set_scene_field(options_.scene.string());
+        note_recent_file(settings_.recent_files, options_.scene);
+    }
     window_ = std::make_unique<EditorWindow>(options_.width, options_.height, options_.validation,
                                              settings_.vsync, this, install_callbacks);
     view_ = std::make_unique<TerrainView>(window_->context(), window_->renderer());
@@ -303,6 +307,10 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["scene_field"] = std::string(path_buf_);
     s["dirty"] = doc_.dirty();
     s["tooltip"] = widgets_.last_tooltip();
+    s["widgets"] = widgets_.to_json();
+    s["help_open"] = help_open_;
+    s["recent_files"] = settings_.recent_files;
+    if (recovery_for_) s["recovery_prompt"] = recovery_prompt_text();
     s["settings"] = {{"tool_radius", settings_.tool_radius},
                      {"tool_depth", settings_.tool_depth},
                      {"stroke_spacing_ratio", settings_.stroke_spacing_ratio},

@@ -6,6 +6,7 @@
 // over app_*.cpp and panel_*.cpp by concern:
 //   app.cpp          set-up, the loops, the stats and outputs of a scripted run
 //   app_document.cpp the document commands: the prompts that guard them, install_document
+//   app_files.cpp    files handed over without a field: dropped, or picked from the recent list
 //   app_input.cpp    mouse and keys: the camera, the tools, shortcuts
 //   app_frame.cpp    one frame: erosion, the terrain's views, drawing
 //   app_script.cpp   scripted mode: ops as real input
@@ -32,10 +33,12 @@
 #include "editor_app.hpp"
 #include "editor_settings.hpp"
 #include "editor_window.hpp"
+#include "file_kinds.hpp"
 #include "frame_policy.hpp"
 #include "haptics_session.hpp"
 #include "layout_probe.hpp"
 #include "sculpting.hpp"
+#include "shortcuts.hpp"
 #include "stage_times.hpp"
 #include "terrain_view.hpp"
 #include "widget_map.hpp"
@@ -84,6 +87,9 @@ class App {
     void mouse_move(double x, double y);
     void scroll(double dy);
     void key(int key, bool ctrl);
+    /// Files dropped on the window (app_files.cpp): the first is opened or imported as its
+    /// kind says, behind the unsaved-edits prompt; anything else is refused with a message.
+    void drop_files(const std::vector<std::string>& paths);
     /// Runs an input handler; an error in it (a tool that refuses its parameters, a file that
     /// cannot be read) is shown on the status line and the gesture under way is ended, never
     /// thrown through GLFW (C code) or out of the editor.
@@ -143,11 +149,18 @@ class App {
     /// first (the discard prompt), and the window stays open meanwhile.
     bool close_confirmed();
     void new_document();
-    /// Opens the scene named in the Scene field; a failure is reported.
-    void open_reporting();
-    /// Imports the heightmap named in the Heightmap field as an untitled scene, and fills the
-    /// Scene field with a name of its own; a failure is reported.
-    void import_document();
+    /// Opens the scene at `path` (the Scene field's, a recent or a dropped file's) and puts it
+    /// in the Scene field and the recent list; a failure is reported.
+    void open_reporting(const std::filesystem::path& path);
+    /// Imports the heightmap at `path` as an untitled scene, fills the Scene field with a name
+    /// of its own and notes the heightmap in the recent list; a failure is reported.
+    void import_document(const std::filesystem::path& heightmap);
+    /// A file handed over without a field (dropped, or a recent one): a scene is opened and a
+    /// heightmap imported, each as the Open and Import buttons do, behind the unsaved-edits
+    /// prompt; anything else is refused on the status line, naming it and what is accepted.
+    void open_or_import(const std::filesystem::path& path, FileKind kind);
+    /// The File panel's recent list; an entry clicked is opened by open_or_import.
+    void recent_files_list();
     /// Save, Save As, Ctrl+S and the prompts' Save: writes the scene to `p`, then runs `then`.
     /// A file at `p` that is not this scene's own is replaced only after the overwrite prompt
     /// says so. A failure is reported on the status line and `then` does not run.
@@ -213,6 +226,8 @@ class App {
     std::optional<Vec3> pick(double x, double y) const;
     /// Picks a tool by key or panel: not in the middle of a stroke.
     void pick_tool(int index);
+    /// What a shortcut's key does (shortcuts.hpp).
+    void run_command(Command command);
 
     // ---- Panels (panel_*.cpp) ------------------------------------------------------------
     void draw_panels();
@@ -243,8 +258,20 @@ class App {
     /// The Stats window's first lines: vertex and triangle counts, constrained edges and
     /// volume (their length sizes the window).
     std::array<std::string, 2> stats_terrain_lines() const;
-    void panel_stats(const std::array<std::string, 2>& terrain_lines);
+    /// Every line of text the Stats window shows, made before the window so that its width
+    /// can be that of the widest.
+    struct StatsText {
+        std::array<std::string, 2> terrain;
+        std::array<std::string, 3> timing;  ///< stats_lines.hpp
+        std::string normal_map;
+    };
+    StatsText stats_text() const;
+    void panel_stats(const StatsText& text);
     void stats_window();
+    /// The list of keys and gestures (F1; shortcuts.hpp).
+    void help_window();
+    /// What the recovery prompt says: which scene, and how old its autosave is.
+    std::string recovery_prompt_text() const;
     void recovery_prompt();
     void discard_prompt();
     void overwrite_prompt();
@@ -297,6 +324,7 @@ class App {
     std::string published_widgets_;      ///< the map last written to --widget-map
     /// Opens (true) or closes every panel header in the next frame (the script's "panels" op).
     std::optional<bool> open_panels_;
+    bool help_open_ = false;  ///< the Help window (F1)
     std::uint64_t events_seen_ = 0;
     Clock::time_point last_frame_at_{};
     int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "panel_layout.hpp"
+#include "recent_files.hpp"
 #include "terrain_scale.hpp"
 
 namespace sandtin::editor {
@@ -73,29 +74,31 @@ void App::new_document() {
     install_document(Document::sandbox(), "new sandbox");
 }
 
-void App::open_reporting() {
+void App::open_reporting(const std::filesystem::path& p) {
     try {
         sculpting_.close_level(doc_);
         // Read before anything is dropped: a file that does not load leaves the scene as it was.
-        const std::filesystem::path p = path_buf_;
         Document next = Document::open(p);
         keep_unsaved_edits();
+        set_scene_field(p.string());
+        note_recent_file(settings_.recent_files, p);
         install_document(std::move(next), "opened " + p.string());
     } catch (const std::exception& e) {
         report(std::string("open failed: ") + e.what());
     }
 }
 
-void App::import_document() {
+void App::import_document(const std::filesystem::path& heightmap) {
     try {
         sculpting_.close_level(doc_);
-        const std::filesystem::path heightmap = import_buf_;
         Document next = Document::imported(heightmap);
         keep_unsaved_edits();
         // An imported model is a scene of its own, with a name of its own in the Scene field,
         // so Save never writes it over the scene it replaced.
         const std::filesystem::path name = scene_name_for_import(heightmap);
         set_scene_field(name.string());
+        set_import_field(heightmap.string());
+        note_recent_file(settings_.recent_files, heightmap);
         install_document(std::move(next), "imported " + heightmap.string() +
                                               " (untitled: Save writes " + name.string() + ")");
     } catch (const std::exception& e) {
@@ -174,6 +177,7 @@ void App::save(const std::filesystem::path& p) {
     autosave_writer_.cancel();
     doc_.save(p);
     set_scene_field(p.string());
+    note_recent_file(settings_.recent_files, p);
     report("saved " + p.string());
 }
 

@@ -6,9 +6,14 @@
 #include <algorithm>
 
 #include "picking.hpp"
+#include "shortcuts.hpp"
 #include "tool_palette.hpp"
 
 namespace sandtin::editor {
+
+static_assert(kKeyF1 == GLFW_KEY_F1);
+static_assert('Z' == GLFW_KEY_Z && 'A' == GLFW_KEY_A && '0' == GLFW_KEY_0,
+              "shortcuts.hpp and tool_palette.hpp write letter and digit keys as ASCII");
 
 namespace {
 
@@ -45,10 +50,11 @@ void on_wheel(GLFWwindow* w, double, double dy) {
 void on_key(GLFWwindow* w, int key, int, int action, int mods) {
     App* app = app_of(w);
     app->note_event();
-    // A held key repeats only undo and redo: a repeated Ctrl+N or Ctrl+O would replace the
-    // document again for as long as the key stays down.
+    // A held key repeats only the shortcuts that say so (undo and redo): a repeated Ctrl+N or
+    // Ctrl+O would replace the document again for as long as the key stays down.
     const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0;
-    const bool repeats = ctrl && (key == GLFW_KEY_Z || key == GLFW_KEY_Y);
+    const Shortcut* shortcut = shortcut_for_key(key, ctrl);
+    const bool repeats = shortcut != nullptr && shortcut->repeats;
     if (action != GLFW_PRESS && !(action == GLFW_REPEAT && repeats)) return;
     // Keys go to a text field being typed into (a path, a value typed into a slider). Not
     // WantCaptureKeyboard: ImGui decides that when a frame starts, and a key that follows the
@@ -78,6 +84,12 @@ void on_framebuffer_size(GLFWwindow* w, int, int) {
 void on_iconify(GLFWwindow* w, int) {
     app_of(w)->note_event();
 }
+void on_drop(GLFWwindow* w, int count, const char** paths) {
+    App* app = app_of(w);
+    app->note_event();
+    const std::vector<std::string> dropped(paths, paths + std::max(count, 0));
+    app->guarded("the dropped file", [&] { app->drop_files(dropped); });
+}
 
 }  // namespace
 
@@ -92,6 +104,7 @@ void install_callbacks(GLFWwindow* window) {
     glfwSetWindowRefreshCallback(window, on_refresh);
     glfwSetFramebufferSizeCallback(window, on_framebuffer_size);
     glfwSetWindowIconifyCallback(window, on_iconify);
+    glfwSetDropCallback(window, on_drop);
 }
 
 void App::note_event() {
@@ -167,25 +180,42 @@ void App::key(int k, bool ctrl) {
     // While a prompt waits for its answer, shortcuts must not change the document under it
     // (Ctrl+O could open another scene with the recovery prompt still about the first).
     if (prompt_open()) return;
-    if (ctrl && k == GLFW_KEY_Z) {
-        undo();
-    } else if (ctrl && k == GLFW_KEY_Y) {
-        redo();
-    } else if (ctrl && k == GLFW_KEY_S) {
-        request_save(save_path());
-    } else if (ctrl && k == GLFW_KEY_N) {
-        replace_document("New", [this] { new_document(); });
-    } else if (ctrl && k == GLFW_KEY_O) {
-        replace_document("Open", [this] { open_reporting(); });
-    } else if (ctrl && k == GLFW_KEY_Q) {
-        // As the window's close button: an untitled scene's unsaved edits are asked about.
-        glfwSetWindowShouldClose(window_->glfw(), GLFW_TRUE);
+    if (const Shortcut* shortcut = shortcut_for_key(k, ctrl)) {
+        run_command(shortcut->command);
     } else if (ctrl) {
-        return;  // no other shortcut uses Ctrl: Ctrl+R must not pick the Raise brush
-    } else if (k == GLFW_KEY_F) {
-        frame_terrain();
+        return;  // no tool key uses Ctrl: Ctrl+R must not pick the Raise brush
     } else if (const std::optional<int> tool = tool_for_key(k)) {
         pick_tool(*tool);
+    }
+}
+
+void App::run_command(Command command) {
+    switch (command) {
+        case Command::Undo:
+            undo();
+            break;
+        case Command::Redo:
+            redo();
+            break;
+        case Command::Save:
+            request_save(save_path());
+            break;
+        case Command::New:
+            replace_document("New", [this] { new_document(); });
+            break;
+        case Command::Open:
+            replace_document("Open", [this] { open_reporting(path_buf_); });
+            break;
+        case Command::Quit:
+            // As the window's close button: an untitled scene's unsaved edits are asked about.
+            glfwSetWindowShouldClose(window_->glfw(), GLFW_TRUE);
+            break;
+        case Command::Frame:
+            frame_terrain();
+            break;
+        case Command::Help:
+            help_open_ = !help_open_;
+            break;
     }
 }
 

@@ -41,6 +41,10 @@ namespace sandtin::editor {
 //         | {"op": "save", "path": "..."} | {"op": "export", "path": "..."}
 //         | {"op": "autosave"}  (unsaved edits to the autosave now, as on closing)
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
+//         | {"op": "drop", "paths": ["...", ...]}  (files dropped on the window: what GLFW's
+//            drop callback hands over, to the same handler)
+//         | {"op": "stage_times", "ms": t}  (from now on every stage of every frame counts as
+//            taking t ms, as on a slow machine: the Stats window's fit, whatever the machine)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
 //            "colour": [r, g, b]}  (the Materials panel's edit: one undo level) ] }
 // Widget names are the panels' (app_panels.cpp: the names given to ui()); prompts' buttons are
@@ -393,6 +397,12 @@ void App::run_document_op(const std::string& kind, const nlohmann::json& op) {
                 m.colour[c] = std::clamp(op["colour"].at(c).get<float>(), 0.0f, 1.0f);
         }
         edit_material(index, m);
+    } else if (kind == "drop") {
+        drop_files(op.at("paths").get<std::vector<std::string>>());
+    } else if (kind == "stage_times") {
+        // Earlier frames' real times go, so the medians are the forced time from the next frame.
+        times_ = StageTimes{};
+        times_.forced_ms = op.at("ms").get<double>();
     } else if (kind == "save_settings") {
         save_settings_reporting();  // what the interactive loop does after a panel change
     } else if (kind == "save") {

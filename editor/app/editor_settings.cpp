@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "recent_files.hpp"
 #include "tool_palette.hpp"
 #include "tools/falloff.hpp"
 #include "util/atomic_file.hpp"
@@ -50,6 +51,7 @@ void fields(EditorSettings& s, F&& f) {
     f("contrast", s.contrast, &kContrastRange);
     f("vsync", s.vsync, nullptr);
     f("scene_size", s.scene_size, nullptr);
+    f("recent_files", s.recent_files, nullptr);
 }
 
 std::string shown(const nlohmann::json& value) {
@@ -137,6 +139,9 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
     // Files of earlier versions chose with a flag: true was a choice of the GPU, false the
     // default, which Auto now is.
     if (!j.contains("physics") && j.value("erosion_gpu", false) == true) s.physics = "gpu";
+    // Entries a hand edit repeated or emptied, or beyond the ten the panel lists, are dropped
+    // quietly: each is still a file the artist opened.
+    s.recent_files = tidy_recent_files(s.recent_files);
     if (s.material < 0) {
         bad.push_back("material " + std::to_string(s.material) + " is not an index");
         s.material = defaults.material;

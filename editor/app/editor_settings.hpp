@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace sandtin::editor {
 
@@ -45,6 +46,8 @@ struct EditorSettings {
     /// Metres: the size (larger domain side) of the terrain the lengths above are for. A
     /// terrain of another size rescales them (terrain_scale.hpp); 1 m is the default sandbox.
     double scene_size = 1.0;
+    /// The File panel's recent files (recent_files.hpp): absolute paths, newest first.
+    std::vector<std::string> recent_files;
 
     friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
 };

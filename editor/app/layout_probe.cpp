@@ -25,7 +25,9 @@ void LayoutProbe::end() {
     if (section_.empty()) return;
     ImGuiWindow* window = ImGui::GetCurrentWindow();
     const float reach = window->DC.CursorMaxPos.x;
-    const float overflow = std::max(0.0f, reach - window->WorkRect.Max.x);
+    // A window hidden while it sizes itself (an auto-resizing one's first frame) shows
+    // nothing that could be cut off: only what is drawn on screen counts.
+    const float overflow = window->Hidden ? 0.0f : std::max(0.0f, reach - window->WorkRect.Max.x);
     float& widest = overflow_px_[section_];
     widest = std::max(widest, overflow);
     window->DC.CursorMaxPos.x = std::max(window_reach_, reach);
@@ -34,6 +36,7 @@ void LayoutProbe::end() {
 
 void LayoutProbe::item_visible(const std::string& name) {
     const ImGuiWindow* window = ImGui::GetCurrentWindow();
+    if (window->Hidden) return;  // sizing itself: nothing of it is on screen yet (end())
     const ImRect item(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
     // What can be seen: the window's inner region (inside its scrollbars, and inside the
     // window, which the display may cut) within the display.

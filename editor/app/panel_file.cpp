@@ -1,8 +1,9 @@
-// The File panel: the scene, import, export, undo and redo.
+// The File panel: the scene, import, export, undo and redo, and the recent files.
 
 #include "app.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "panel_layout.hpp"
 #include "panel_widgets.hpp"
@@ -17,7 +18,7 @@ void App::panel_file() {
     if (ImGui::Button("New")) replace_document("New", [this] { new_document(); });
     ui("New", "Start a new 1 m x 1 m sandbox with dunes (Ctrl+N)");
     ImGui::SameLine();
-    if (ImGui::Button("Open")) replace_document("Open", [this] { open_reporting(); });
+    if (ImGui::Button("Open")) replace_document("Open", [this] { open_reporting(path_buf_); });
     ui("Open", "Open the .sandtin session named above (Ctrl+O)");
     ImGui::SameLine();
     if (ImGui::Button("Save")) request_save(save_path());
@@ -29,7 +30,7 @@ void App::panel_file() {
     ui("Save As", "Save the scene under the path above (asks before replacing another file)");
     if (path_field(widgets_, "Heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
                    "Import"))
-        replace_document("Import", [this] { import_document(); });
+        replace_document("Import", [this] { import_document(import_buf_); });
     ui("Import",
        "Import the heightmap named on the left as a new, untitled scene (an error-bounded\n"
        "TIN): PNG (16-bit or Terrain-RGB), EXR, GeoTIFF or ESRI ASCII grid");
@@ -53,6 +54,55 @@ void App::panel_file() {
     ImGui::SameLine();
     ImGui::TextUnformatted(
         undo_levels_text(doc_.undo_log().levels(), doc_.history().bytes()).c_str());
+    recent_files_list();
+}
+
+void App::recent_files_list() {
+    if (settings_.recent_files.empty()) return;
+    ImGui::Separator();
+    ImGui::TextUnformatted("Recent files");
+    std::optional<std::size_t> remove;
+    std::optional<std::pair<std::filesystem::path, FileKind>> chosen;
+    const ImGuiStyle& style = ImGui::GetStyle();
+    for (std::size_t i = 0; i < settings_.recent_files.size(); ++i) {
+        const std::filesystem::path path = settings_.recent_files[i];
+        const std::string name = "recent/" + std::to_string(i);
+        std::error_code ec;
+        const bool exists = std::filesystem::is_regular_file(path, ec);
+        const std::string label = path.filename().string() + (exists ? "" : " (missing)");
+        ImGui::PushID(static_cast<int>(i));
+        // Only scenes and imported heightmaps are listed: whatever is not a scene was imported
+        // (the importer reads formats by their content, whatever their extension).
+        const FileKind kind =
+            file_kind(path) == FileKind::Scene ? FileKind::Scene : FileKind::Heightmap;
+        if (exists) {
+            if (ImGui::Selectable(label.c_str())) chosen = {path, kind};
+            const std::string text =
+                (kind == FileKind::Scene ? "Open " : "Import ") + path.string();
+            ui(name, text.c_str());
+        } else {
+            // Greyed, with room on its row for the button that takes it off the list.
+            const float remove_width =
+                ImGui::CalcTextSize("Remove").x + 2.0f * style.FramePadding.x;
+            const float width =
+                ImGui::GetContentRegionAvail().x - remove_width - style.ItemSpacing.x;
+            ImGui::BeginDisabled();
+            ImGui::Selectable(label.c_str(), false, 0, ImVec2(width, 0.0f));
+            ImGui::EndDisabled();
+            const std::string text = path.string() + " no longer exists";
+            ui(name, text.c_str());
+            ImGui::SameLine();
+            if (ImGui::SmallButton("Remove")) remove = i;
+            ui(name + "/Remove", "Take the missing file off the list");
+        }
+        ImGui::PopID();
+    }
+    // Acted on after the list is drawn: both change the list being walked.
+    if (remove) {
+        settings_.recent_files.erase(settings_.recent_files.begin() +
+                                     static_cast<std::ptrdiff_t>(*remove));
+    }
+    if (chosen) open_or_import(chosen->first, chosen->second);
 }
 
 }  // namespace sandtin::editor

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "autosave_age.hpp"
 #include "panel_layout.hpp"
 #include "panel_widgets.hpp"
 #include "terrain_scale.hpp"
@@ -74,11 +75,20 @@ void App::overwrite_prompt() {
     }
 }
 
+std::string App::recovery_prompt_text() const {
+    if (!recovery_for_) return {};
+    std::string text = "An autosave newer than " + recovery_for_->string() + " exists";
+    // Read each time the prompt is drawn: left open, it still tells the autosave's age.
+    if (const auto written = autosave_written_at(*recovery_for_))
+        text += ":\n" + autosave_age_text(*written, std::chrono::system_clock::now());
+    return text + ".";
+}
+
 void App::recovery_prompt() {
     if (!recovery_for_) return;
     ImGui::OpenPopup("Recover autosave?");
     if (ImGui::BeginPopupModal("Recover autosave?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("An autosave newer than %s exists.", recovery_for_->c_str());
+        ImGui::TextUnformatted(recovery_prompt_text().c_str());
         const std::optional<bool> recover = answer_buttons(
             {"recovery", "Recover", "Load the autosave; save to keep it"},
             {"recovery", "Discard", "Delete the autosave and keep the scene as saved"});

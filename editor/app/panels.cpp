@@ -7,6 +7,7 @@
 
 #include "panel_layout.hpp"
 #include "panel_widgets.hpp"
+#include "stats_lines.hpp"
 #include "terrain_scale.hpp"
 #include "tool_palette.hpp"
 
@@ -46,6 +47,7 @@ void App::draw_panels() {
     ImGui::End();
     status_window(status_height);
     stats_window();
+    help_window();
     recovery_prompt();
     discard_prompt();
     overwrite_prompt();
@@ -87,19 +89,43 @@ void App::ui(const std::string& name, const char* text) {
 void App::stats_window() {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(display.x - 8, 8), ImGuiCond_Always, ImVec2(1, 0));
-    // As wide as its widest line: the stage times at their usual magnitudes, or the terrain's
-    // counts and volume, which a large or high terrain makes longer.
-    float stats_text_width = ImGui::CalcTextSize("upload 00.00  bake 00.00  render 000.00 ms").x;
-    const std::array<std::string, 2> terrain_lines = stats_terrain_lines();
-    for (const std::string& line : terrain_lines)
-        stats_text_width = std::max(stats_text_width, ImGui::CalcTextSize(line.c_str()).x);
-    const float stats_width = stats_text_width + 2.0f * ImGui::GetStyle().WindowPadding.x;
+    // As wide as its widest line. The timing lines are made for their numbers at their widest
+    // (stats_lines.hpp), so the window keeps its width as the numbers change, and fits them on
+    // a machine however slow; every line as drawn is measured too, so nothing ever sticks out
+    // (a large or high terrain's counts and volume, a large re-baked texel count).
+    const StatsText text = stats_text();
+    std::vector<std::string> measured(text.terrain.begin(), text.terrain.end());
+    measured.insert(measured.end(), text.timing.begin(), text.timing.end());
+    measured.push_back(text.normal_map);
+    for (const std::string& line : widest_stats_timing_lines())
+        measured.push_back(line);
+    float widest = 0.0f;
+    for (const std::string& line : measured)
+        widest = std::max(widest, ImGui::CalcTextSize(line.c_str()).x);
+    const float stats_width = widest + 2.0f * ImGui::GetStyle().WindowPadding.x;
     ImGui::SetNextWindowSize(ImVec2(stats_width, 0), ImGuiCond_Always);
     ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
     layout_.begin("Stats");
-    panel_stats(terrain_lines);
+    panel_stats(text);
     layout_.end();
     ImGui::End();
+}
+
+App::StatsText App::stats_text() const {
+    StatsText text;
+    text.terrain = stats_terrain_lines();
+    text.timing =
+        stats_timing_lines({StageTimes::median(times_.frame), StageTimes::median(times_.tool),
+                            StageTimes::median(times_.physics), StageTimes::median(times_.mesh),
+                            StageTimes::median(times_.upload), StageTimes::median(times_.bake),
+                            StageTimes::median(times_.render)});
+    char normal_map[96];
+    std::snprintf(normal_map, sizeof(normal_map), "normal map %ux%u, re-baked %llu",
+                  view_->normal_map() ? view_->normal_map()->grid().width : 0u,
+                  view_->normal_map() ? view_->normal_map()->grid().height : 0u,
+                  static_cast<unsigned long long>(view_->last_texels_baked()));
+    text.normal_map = normal_map;
+    return text;
 }
 
 std::array<std::string, 2> App::stats_terrain_lines() const {
@@ -115,21 +141,15 @@ std::array<std::string, 2> App::stats_terrain_lines() const {
     return {counts, volume};
 }
 
-void App::panel_stats(const std::array<std::string, 2>& terrain_lines) {
-    for (const std::string& line : terrain_lines)
+void App::panel_stats(const StatsText& text) {
+    for (const std::string& line : text.terrain)
         ImGui::TextUnformatted(line.c_str());
-    const double frame_ms = StageTimes::median(times_.frame);
-    ImGui::Text("%.1f fps (%.1f ms)", frame_ms > 0.0 ? 1000.0 / frame_ms : 0.0, frame_ms);
-    ImGui::Text("tool %.2f  physics %.2f  mesh %.2f", StageTimes::median(times_.tool),
-                StageTimes::median(times_.physics), StageTimes::median(times_.mesh));
-    ImGui::Text("upload %.2f  bake %.2f  render %.2f ms", StageTimes::median(times_.upload),
-                StageTimes::median(times_.bake), StageTimes::median(times_.render));
+    ImGui::TextUnformatted(text.timing[0].c_str());
+    ImGui::TextUnformatted(text.timing[1].c_str());
+    ImGui::TextUnformatted(text.timing[2].c_str());
     tip("Median milliseconds per frame of each stage over the last 240 frames (bake: GPU mirror\n"
         "sync and normal-map re-bake of the changed rectangle)");
-    ImGui::Text("normal map %ux%u, re-baked %llu",
-                view_->normal_map() ? view_->normal_map()->grid().width : 0u,
-                view_->normal_map() ? view_->normal_map()->grid().height : 0u,
-                static_cast<unsigned long long>(view_->last_texels_baked()));
+    ImGui::TextUnformatted(text.normal_map.c_str());
     tip("The baked normal map is re-baked only inside the rectangle the last change touched");
     std::vector<float> plot(times_.frame.begin(), times_.frame.end());
     ImGui::PlotLines("##frame", plot.data(), static_cast<int>(plot.size()), 0, "frame ms", 0.0f,

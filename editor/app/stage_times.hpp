@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <optional>
 #include <vector>
 
 namespace sandtin::editor {
@@ -11,8 +12,12 @@ namespace sandtin::editor {
 struct StageTimes {
     static constexpr std::size_t kKeep = 240;
     std::deque<float> frame, tool, physics, mesh, upload, bake, render;
+    /// Every stage of every frame is recorded as taking this long instead of what it took: a
+    /// test shows the Stats window as a slow machine would (the script's "stage_times" op),
+    /// whatever the speed of the machine it runs on.
+    std::optional<double> forced_ms;
     void push(std::deque<float>& d, double v) {
-        d.push_back(static_cast<float>(v));
+        d.push_back(static_cast<float>(forced_ms.value_or(v)));
         if (d.size() > kKeep) d.pop_front();
     }
     static double median(const std::deque<float>& d) {
