@@ -193,6 +193,61 @@ void report_jitter(const haptics::LoopDiagnostics& diagnostics,
     j["late_ticks_worst_first"] = late;
 }
 
+/// Samples the loop thread's scheduler statistics every 2 ms into `sampler` while the loop runs
+/// (once its thread exists; left empty when the loop ended before it had one). The sampler is
+/// not movable, hence the out-parameter.
+void start_sampler(const haptics::ForceLoop& loop, double seconds,
+                   std::optional<haptics::SchedSampler>& sampler) {
+    while (loop.thread_id() == 0 && loop.running())
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
+    if (loop.thread_id() == 0) return;
+    constexpr std::int64_t kSampleNs = 2'000'000;
+    sampler.emplace(loop.thread_id(), kSampleNs,
+                    static_cast<std::size_t>(seconds * 1e9 / kSampleNs) + 1000);
+    sampler->start();
+}
+
+/// What the bench itself arranged around the loop, reported beside the loop's own grant.
+struct RealtimeExtras {
+    int simulation_cpu = -1;
+    bool keep_heap = false;
+    bool wake_latency_zero = false;
+    std::string wake_latency_error;
+};
+
+/// The loop's real-time grant, its periods against the target, and its forces.
+void report_loop(const haptics::ForceLoopReport& report, const haptics::ForceLoopConfig& config,
+                 const RealtimeExtras& extras, nlohmann::json& j) {
+    using namespace sandtin::haptics;
+    const RealtimeGrant& g = report.realtime_grant;
+    j["realtime"] = {{"sched_fifo", g.fifo},
+                     {"loop_cpu", g.cpu},
+                     {"simulation_cpu", extras.simulation_cpu},
+                     {"timer_slack_1ns", g.timer_slack},
+                     {"mlockall", g.memory_locked},
+                     {"stack_prefaulted_kib", g.stack_prefaulted_bytes / 1024},
+                     {"absolute_sleep", config.absolute_sleep},
+                     {"keep_heap", extras.keep_heap},
+                     {"backup_thread", config.backup_thread},
+                     {"backup_cpu", config.backup_cpu},
+                     {"ticks_by_backup", report.ticks_by_backup},
+                     {"cpu_wake_latency_zero", extras.wake_latency_zero},
+                     {"refused", g.refused}};
+    if (!extras.wake_latency_error.empty())
+        j["realtime"]["refused_wake_latency"] = extras.wake_latency_error;
+    j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
+    j["period_ms"] = {{"p50", report.periods.p50_ms},
+                      {"p99", report.periods.p99_ms},
+                      {"max", report.periods.max_ms},
+                      {"mean", report.periods.mean_ms},
+                      {"target", report.periods.target_ms}};
+    j["overruns"] = report.periods.overruns;
+    j["overrun_definition"] = "period > 110% of target";
+    j["force_n"] = {{"max", report.max_force},
+                    {"max_jump", report.max_force_jump},
+                    {"jumps_over_0_5", report.force_jumps_over_half_newton}};
+}
+
 }  // namespace
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
@@ -281,16 +336,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     if (args.has("--wake-latency-zero")) wake_latency.emplace(0);
     loop.start();
     std::optional<SchedSampler> sampler;
-    if (!args.has("--no-sampler")) {
-        while (loop.thread_id() == 0 && loop.running())
-            std::this_thread::sleep_for(std::chrono::microseconds(100));
-        if (loop.thread_id() != 0) {
-            constexpr std::int64_t kSampleNs = 2'000'000;
-            sampler.emplace(loop.thread_id(), kSampleNs,
-                            static_cast<std::size_t>(seconds * 1e9 / kSampleNs) + 1000);
-            sampler->start();
-        }
-    }
+    if (!args.has("--no-sampler")) start_sampler(loop, seconds, sampler);
     while (loop.running()) {
         const SessionStepReport r = idle ? SessionStepReport{} : session.step();
         if (r.consumed) {
@@ -329,32 +375,9 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
     j["load_average_before"] = load_before;
     j["load_average_after"] = load_average();
     j["realtime_priority"] = report.realtime;
-    const RealtimeGrant& g = report.realtime_grant;
-    j["realtime"] = {{"sched_fifo", g.fifo},
-                     {"loop_cpu", g.cpu},
-                     {"simulation_cpu", simulation_pinned},
-                     {"timer_slack_1ns", g.timer_slack},
-                     {"mlockall", g.memory_locked},
-                     {"stack_prefaulted_kib", g.stack_prefaulted_bytes / 1024},
-                     {"absolute_sleep", config.absolute_sleep},
-                     {"keep_heap", keep_heap},
-                     {"backup_thread", config.backup_thread},
-                     {"backup_cpu", config.backup_cpu},
-                     {"ticks_by_backup", report.ticks_by_backup},
-                     {"cpu_wake_latency_zero", wake_latency_held},
-                     {"refused", g.refused}};
-    if (!wake_latency_error.empty()) j["realtime"]["refused_wake_latency"] = wake_latency_error;
-    j["spin_us"] = static_cast<double>(config.spin_ns) * 1e-3;
-    j["period_ms"] = {{"p50", report.periods.p50_ms},
-                      {"p99", report.periods.p99_ms},
-                      {"max", report.periods.max_ms},
-                      {"mean", report.periods.mean_ms},
-                      {"target", report.periods.target_ms}};
-    j["overruns"] = report.periods.overruns;
-    j["overrun_definition"] = "period > 110% of target";
-    j["force_n"] = {{"max", report.max_force},
-                    {"max_jump", report.max_force_jump},
-                    {"jumps_over_0_5", report.force_jumps_over_half_newton}};
+    report_loop(report, config,
+                RealtimeExtras{simulation_pinned, keep_heap, wake_latency_held, wake_latency_error},
+                j);
     j["stale_ticks"] = report.stale_ticks;
     j["snapshots_taken"] = report.snapshots_taken;
 
