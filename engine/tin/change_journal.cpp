@@ -4,21 +4,6 @@
 
 namespace sandtin {
 
-std::vector<IdRange> merge_into_ranges(std::vector<std::uint32_t> ids, std::uint32_t max_gap) {
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    std::vector<IdRange> ranges;
-    for (std::uint32_t id : ids) {
-        if (!ranges.empty() && static_cast<std::uint64_t>(id) <=
-                                   static_cast<std::uint64_t>(ranges.back().end) + max_gap) {
-            ranges.back().end = id + 1;
-        } else {
-            ranges.push_back({id, id + 1});
-        }
-    }
-    return ranges;
-}
-
 namespace {
 
 /// Joins ranges whose gap is at most `max_gap`; with `budget` > 0, also up to `budget` of the
@@ -43,6 +28,20 @@ std::vector<IdRange> join_gaps(const std::vector<IdRange>& ranges, std::uint64_t
 }
 
 }  // namespace
+
+std::vector<IdRange> merge_into_ranges(std::vector<std::uint32_t> ids, std::uint32_t max_gap) {
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<IdRange> exact;
+    for (std::uint32_t id : ids) {
+        if (!exact.empty() && id == exact.back().end) {
+            ++exact.back().end;
+        } else {
+            exact.push_back({id, id + 1});
+        }
+    }
+    return max_gap == 0 ? exact : join_gaps(exact, max_gap, 0);
+}
 
 std::vector<IdRange> coalesce_ranges(const std::vector<IdRange>& ranges, std::uint32_t max_gap,
                                      std::size_t max_ranges) {
