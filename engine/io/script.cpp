@@ -511,11 +511,15 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step, const ProgressCallback&
     }
     erosion_drift_ = 0.0;
     const auto t0 = std::chrono::steady_clock::now();
-    // Read only while this step runs; every step sets its own.
+    // Read only while this step runs, and cleared however it ends (a throwing step must not
+    // leave a pointer to the caller's callback behind).
+    struct StepProgress {
+        const ProgressCallback*& slot;
+        ~StepProgress() { slot = nullptr; }
+    } clear_after{step_progress_};
     step_progress_ = progress ? &progress : nullptr;
     nlohmann::json r =
         std::visit([&](const auto& op) -> nlohmann::json { return run_op(op); }, step.operation);
-    step_progress_ = nullptr;
     r["op"] = step.op_name;
     r["line"] = step.line;
     r["ms"] =
