@@ -123,8 +123,7 @@ void ForceLoop::run() {
     periods_.clear();
     if (observer_ != nullptr) observer_->thread_started();
     deadline_.store(monotonic_ns() + period_ns_, std::memory_order_relaxed);
-    finished_.store(false, std::memory_order_relaxed);
-    token_.store(0, std::memory_order_release);
+    token_.reset();
     std::thread backup;
     if (config_.backup_thread) {
         backup = std::thread([this, &s] {
@@ -146,11 +145,12 @@ void ForceLoop::run() {
 
 void ForceLoop::wait_and_tick(TickState& s, bool backup) {
     for (;;) {
-        if (finished_.load(std::memory_order_acquire)) return;
-        const std::uint64_t tick = token_.load(std::memory_order_acquire);
-        if ((tick & kTickOwned) != 0) continue;  // the other thread is ticking: a few us
+        const TickToken::Seen seen = token_.load();
+        if (seen.finished()) return;
+        if (seen.owned()) continue;  // the other thread is ticking: a few us
         const std::int64_t deadline = deadline_.load(std::memory_order_acquire);
-        if (token_.load(std::memory_order_acquire) != tick) continue;  // changed meanwhile
+        if (token_.load().word != seen.word) continue;  // changed meanwhile
+        const std::uint64_t tick = seen.tick();
         // Sleep, then spin to the deadline, timing both. The backup wakes only `backup_margin_ns`
         // after the deadline, to take the tick if the primary has not (its wake-up was late).
         TickPhases phases;
@@ -169,15 +169,11 @@ void ForceLoop::wait_and_tick(TickState& s, bool backup) {
             phases.spin_gap_ns = std::max(phases.spin_gap_ns, t - now);
             now = t;
         }
-        std::uint64_t expected = tick;
-        if (!token_.compare_exchange_strong(expected, tick | kTickOwned,
-                                            std::memory_order_acq_rel)) {
-            continue;  // the other thread took this tick
-        }
+        // Fails when the other thread took this tick or ended the loop while we waited.
+        if (!token_.try_claim(seen)) continue;
         phases.work_ns = s.work_ns;
         const bool more = run_tick(s, tick, now, deadline, phases, backup);
-        if (!more) finished_.store(true, std::memory_order_release);
-        token_.store(tick + 1, std::memory_order_release);
+        token_.release(tick, !more);
         if (!more) return;
     }
 }

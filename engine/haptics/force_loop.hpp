@@ -29,6 +29,7 @@
 #include "haptics/loop_observer.hpp"
 #include "haptics/period_stats.hpp"
 #include "haptics/realtime_thread.hpp"
+#include "haptics/tick_token.hpp"
 #include "haptics/triple_buffer.hpp"
 
 namespace sandtin::haptics {
@@ -130,7 +131,6 @@ class ForceLoop {
 
   private:
     struct TickState;
-    static constexpr std::uint64_t kTickOwned = std::uint64_t{1} << 63;
 
     void run();
     void wait_and_tick(TickState& s, bool backup);
@@ -148,12 +148,11 @@ class ForceLoop {
     std::atomic<bool> stop_requested_{false};
     std::atomic<bool> running_{false};
     std::atomic<int> thread_id_{0};
-    // The tick schedule between the primary and the backup thread: token_ holds the number of
-    // the next tick to run, with kTickOwned set while a thread runs it; deadline_ is that
-    // tick's deadline (written before the token is released).
-    std::atomic<std::uint64_t> token_{0};
+    // The tick schedule between the primary and the backup thread: token_ names the next tick
+    // (and whether the loop is over); deadline_ is that tick's deadline, written before the
+    // token is released.
+    TickToken token_;
     std::atomic<std::int64_t> deadline_{0};
-    std::atomic<bool> finished_{false};
     std::thread thread_;
     bool opened_ = false;
     // Owned by the loop thread while it runs; read after join.

@@ -123,6 +123,58 @@ TEST(ForceLoop, WithABackupThreadEveryTickRunsOnceAndTheForcesAreTheSame) {
     check_twice_if_the_first_run_faulted(true);
 }
 
+// A device lost after `ticks` reads, counting every read and write that follows.
+class CountingDevice final : public HapticDevice {
+  public:
+    explicit CountingDevice(int ticks) : ticks_(ticks) {}
+    void open() override {}
+    ReadStatus read(DeviceState& state) override {
+        ++reads_;
+        if (reads_ > ticks_) return ReadStatus::Lost;
+        state = {{0.5, 0.5, -0.004}, 0, 0, true};
+        return ReadStatus::Ok;
+    }
+    void write_force(const ForceCommand&) override { ++writes_; }
+    void close() override {}
+    double max_force() const override { return 10.0; }
+    std::string name() const override { return "counting"; }
+    int reads_ = 0;
+    int writes_ = 0;
+
+  private:
+    int ticks_;
+};
+
+// The last tick (the read that finds the device gone) ends the loop for both threads. The
+// thread that did not run it may be spinning on the token at that moment: it must see the end,
+// not take the next tick number and read the lost device again. Short loops, many times, so
+// the two threads meet at the last tick often.
+TEST(ForceLoop, WithABackupThreadNoTickRunsAfterTheLast) {
+    constexpr int kTicks = 8;
+    constexpr int kRuns = 100;
+    int extra_reads = 0;
+    for (int run = 0; run < kRuns; ++run) {
+        CountingDevice device(kTicks);
+        ForceLoopConfig config;
+        config.rate_hz = 4000.0;
+        config.spin_ns = 50'000;
+        config.try_realtime = false;
+        config.backup_thread = true;
+        config.backup_margin_ns = 0;
+        ForceLoop loop(device, config);
+        loop.start();
+        while (loop.running())
+            std::this_thread::sleep_for(std::chrono::microseconds(200));
+        loop.stop();
+        EXPECT_EQ(loop.report().ticks, static_cast<std::uint64_t>(kTicks)) << run;
+        extra_reads += device.reads_ - (kTicks + 1);
+        // One force per tick and the final zero; no read or write after the device was lost.
+        ASSERT_EQ(device.reads_, kTicks + 1) << "run " << run;
+        ASSERT_EQ(device.writes_, kTicks + 1) << "run " << run;
+    }
+    EXPECT_EQ(extra_reads, 0);
+}
+
 TEST(ForceLoop, StopFadesTheForceOutInsteadOfDroppingIt) {
     // Pressed 4 mm into flat sand for a minute: a steady 3.7 N until we stop the loop.
     Trajectory t;
