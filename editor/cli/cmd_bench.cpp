@@ -35,9 +35,8 @@ int run_bench(const std::vector<std::string>& raw) {
         throw UsageError("unknown benchmark '" + which +
                          "' (available: tin, groove, import, history, erosion, gpu, haptics)");
     }
-    // tin, groove and import (tests/bench) report no sections: their line shows the elapsed
-    // time at the start and at the end only.
     ProgressLine progress("bench " + which);
+    config.progress = progress.callback();
     nlohmann::json result;
     if (which == "tin") {
         result = bench::bench_tin(config);
@@ -46,7 +45,7 @@ int run_bench(const std::vector<std::string>& raw) {
     } else if (which == "import") {
         result = bench::bench_import(config);
     } else {
-        result = bench::bench_history(config, progress.callback());
+        result = bench::bench_history(config, config.progress);
     }
     progress.finish();
     std::cout << result.dump(2) << "\n";

@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <ctime>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "io/progress.hpp"
 
 namespace sandtin::bench {
 
@@ -14,6 +17,31 @@ struct BenchConfig {
     bool quick = false;  ///< small sizes, for smoke tests of the drivers themselves
     /// groove: a tool asset (assets/tools/<name>.json, or a path) instead of the seeds' circle
     std::string tool;
+    /// Where the benchmark reports what it measures now (engine/io/progress.hpp's contract);
+    /// empty: no reports. The measurements are the same either way: reports fall between timed
+    /// sections, never inside one.
+    ProgressCallback progress;
+};
+
+/// Progress through work made of parts of estimated relative cost: start(stage, weight)
+/// reports the stage at the fraction of the estimated cost done before it; done() reports 1.
+/// The weights shape the percentages and the time-left estimate only.
+class WeightedProgress {
+  public:
+    WeightedProgress(const ProgressCallback& whole, double total_weight)
+        : whole_(whole), total_(total_weight) {}
+    void start(std::string_view stage, double weight) {
+        if (whole_ && total_ > 0.0) whole_({std::min(done_ / total_, 1.0), stage});
+        done_ += weight;
+    }
+    void done() {
+        if (whole_) whole_({1.0, "done"});
+    }
+
+  private:
+    const ProgressCallback& whole_;
+    double total_;
+    double done_ = 0.0;
 };
 
 class Stopwatch {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "physics/sand_physics.hpp"
 #include "tin/tin.hpp"
@@ -275,6 +277,23 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     const std::vector<std::size_t> sizes = config.quick
                                                ? std::vector<std::size_t>{1000, 10000}
                                                : std::vector<std::size_t>{10000, 100000, 1000000};
+    // Progress: a groove run costs about its terrain's build (its point count) and its ~80
+    // stamps (taken here as 2·10⁴ points' worth); the weights shape the percentages only.
+    auto runs_cost = [](double points, int runs) { return (points + 2e4) * runs; };
+    const int trace_reps = config.quick ? 1 : 3;
+    const int locality_reps = config.quick ? 1 : 3;
+    const std::size_t trace_points = config.quick ? 1000 : 10000;
+    double work = 0.0;
+    for (std::size_t n : sizes) {
+        const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
+        work += runs_cost(static_cast<double>(n), 3 * reps + 2);
+        if (n <= 10000) work += runs_cost(static_cast<double>(n), (config.quick ? 1 : 3) + 1);
+    }
+    work += runs_cost(100.0 * static_cast<double>(sizes.front()), locality_reps);
+    work += runs_cost(0.1 * static_cast<double>(sizes.back()), locality_reps);
+    work += 8 * runs_cost(static_cast<double>(trace_points), trace_reps + 2);
+    WeightedProgress progress(config.progress, work);
+
     nlohmann::json by_size = nlohmann::json::array();
     std::vector<double> medians;
     for (std::size_t n : sizes) {
@@ -289,6 +308,9 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         std::vector<GrooveRun> unfenced;
         const int reps = config.quick ? 1 : (n >= 1000000 ? 3 : 5);
         for (int r = 0; r < reps; ++r) {
+            progress.start("groove on " + std::to_string(n) + " points, run " +
+                               std::to_string(r + 1) + " of " + std::to_string(reps),
+                           runs_cost(static_cast<double>(n), 3));
             runs.push_back(run_groove(tool, n, 0.8, r == 0));
             plain.push_back(run_groove(tool, n, 0.8, false, false));
             unfenced.push_back(
@@ -310,11 +332,17 @@ nlohmann::json bench_groove(const BenchConfig& config) {
             {"per_stamp_ratio", mid.per_stamp_median_ms / unfenced_mid.per_stamp_median_ms}};
         // Once more with erosion after every stamp (one run: the relaxation's share is what
         // it adds, not a target).
+        progress.start("groove on " + std::to_string(n) + " points with erosion",
+                       runs_cost(static_cast<double>(n), 2));
         const GrooveRun eroded = run_groove(tool, n, 0.8, true, true, Erosion::BetweenStamps);
         row["with_erosion"] = erosion_json(eroded);
         // Eroded to rest after the stroke: cheap up to 10^4 points (the time to rest grows with
         // the vertices and the iterations an avalanche needs to cross them).
-        if (n <= 10000) row["to_rest"] = to_rest_json(tool, n, config.quick ? 1 : 3);
+        if (n <= 10000) {
+            progress.start("groove on " + std::to_string(n) + " points eroded to rest",
+                           runs_cost(static_cast<double>(n), (config.quick ? 1 : 3) + 1));
+            row["to_rest"] = to_rest_json(tool, n, config.quick ? 1 : 3);
+        }
         row["points"] = n;
         row["repetitions"] = reps;
         row["valid"] = runs.front().valid;  // the first run is the validated one
@@ -325,17 +353,23 @@ nlohmann::json bench_groove(const BenchConfig& config) {
     j["per_stamp_growth"] = medians.front() > 0.0 ? medians.back() / medians.front() : 0.0;
     // Locality: the smallest groove's density on a terrain 100 times larger, and the largest
     // groove's on one 10 times smaller.
-    const int locality_reps = config.quick ? 1 : 3;
-    j["locality"] = {{"larger_terrain",
-                      same_density_json(tool, sizes.front(), medians.front(), 10.0, locality_reps)},
+    progress.start("locality: the same density on a terrain 100 times larger",
+                   runs_cost(100.0 * static_cast<double>(sizes.front()), locality_reps));
+    nlohmann::json larger =
+        same_density_json(tool, sizes.front(), medians.front(), 10.0, locality_reps);
+    progress.start("locality: the same density on a terrain 10 times smaller",
+                   runs_cost(0.1 * static_cast<double>(sizes.back()), locality_reps));
+    j["locality"] = {{"larger_terrain", std::move(larger)},
                      {"smaller_terrain", same_density_json(tool, sizes.back(), medians.back(),
                                                            std::sqrt(0.1), locality_reps)}};
     nlohmann::json by_trace = nlohmann::json::array();
-    const std::size_t n = config.quick ? 1000 : 10000;
+    const std::size_t n = trace_points;
     for (int k = 1; k <= 8; ++k) {
         const double trace = 0.1 * k;
+        progress.start("trace length " + std::to_string(k) + " of 8",
+                       runs_cost(static_cast<double>(n), trace_reps + 2));
         std::vector<GrooveRun> runs;
-        for (int r = 0; r < (config.quick ? 1 : 3); ++r)
+        for (int r = 0; r < trace_reps; ++r)
             runs.push_back(run_groove(tool, n, trace, false));
         nlohmann::json row = to_json(median_by_total(runs));
         row["with_erosion"] =
@@ -345,6 +379,7 @@ nlohmann::json bench_groove(const BenchConfig& config) {
         by_trace.push_back(row);
     }
     j["by_trace"] = by_trace;
+    progress.done();
     return j;
 }
 

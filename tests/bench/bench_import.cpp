@@ -6,7 +6,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -135,13 +137,21 @@ nlohmann::json bench_import(const BenchConfig& config) {
     // delatin's published point counts for this tile (../shared/data/README.md).
     const std::map<double, int> published = {{10.0, 190}, {1.0, 2705}, {0.2, 16257}};
 
+    // Progress: each finer error costs about five times the last; delatin's runs about as
+    // much as sandtin's. The weights shape the percentages only.
+    const std::vector<double> weights = {1.0, 5.0, 25.0};
+    WeightedProgress progress(config.progress, 2.0 * 31.0 * reps);
     nlohmann::json levels = nlohmann::json::array();
-    for (double e : errors) {
+    for (std::size_t level = 0; level < errors.size(); ++level) {
+        const double e = errors[level];
         std::vector<double> build;
         std::vector<double> total;
         std::vector<double> cpu;
         GreedyStats stats;
         for (int r = 0; r < reps; ++r) {
+            std::ostringstream stage;
+            stage << "sandtin to " << e << " m, run " << r + 1 << " of " << reps;
+            progress.start(stage.str(), weights[level]);
             Stopwatch w;
             CpuStopwatch c;
             GreedyResult result = greedy_tin(raster, {e, 0});
@@ -168,6 +178,7 @@ nlohmann::json bench_import(const BenchConfig& config) {
     }
     j["sandtin"] = levels;
 
+    progress.start("delatin on node", 31.0 * reps);
     nlohmann::json delatin = run_delatin(raster, errors, reps);
     if (delatin.value("available", false)) {
         nlohmann::json ratios = nlohmann::json::array();
@@ -190,6 +201,7 @@ nlohmann::json bench_import(const BenchConfig& config) {
         delatin["comparison"] = ratios;
     }
     j["delatin"] = delatin;
+    progress.done();
     return j;
 }
 

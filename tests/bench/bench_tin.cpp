@@ -53,17 +53,28 @@ std::vector<Vec2> ring(Vec2 centre, double radius, int points) {
     return r;
 }
 
-nlohmann::json bench_insert(const BenchConfig& config) {
+int insert_repetitions(const BenchConfig& config, std::size_t n) {
+    return config.quick ? 2 : (n >= 1000000 ? 7 : 9);
+}
+
+nlohmann::json bench_insert(const BenchConfig& config, const ProgressCallback& part) {
     nlohmann::json rows = nlohmann::json::array();
     const std::vector<std::size_t> sizes = config.quick
                                                ? std::vector<std::size_t>{1000, 10000}
                                                : std::vector<std::size_t>{10000, 100000, 1000000};
+    double work = 0.0;  // a build costs about its point count
+    for (std::size_t n : sizes)
+        work += static_cast<double>(n) * insert_repetitions(config, n);
+    WeightedProgress progress(part, work);
     for (std::size_t n : sizes) {
         const std::vector<Vec2> pts = random_square_points(n, 42);
         const std::vector<double> zeros(pts.size(), 0.0);
-        const int reps = config.quick ? 2 : (n >= 1000000 ? 7 : 9);
+        const int reps = insert_repetitions(config, n);
         std::vector<double> ours, raw, ours_cpu, raw_cpu;
         for (int r = 0; r < reps; ++r) {
+            progress.start("inserting " + std::to_string(n) + " points, run " +
+                               std::to_string(r + 1) + " of " + std::to_string(reps),
+                           static_cast<double>(n));
             {  // interleaved, so both see the same machine state
                 Stopwatch w;
                 CpuStopwatch c;
@@ -207,11 +218,17 @@ nlohmann::json bench_constraints(const BenchConfig& config) {
 
 /// Rebuilding a terrain from its snapshot (what loading a session does after parsing the
 /// file), split into the rebuild and the full validity check that ends it.
-nlohmann::json bench_restore(const BenchConfig& config) {
+nlohmann::json bench_restore(const BenchConfig& config, const ProgressCallback& part) {
     nlohmann::json rows = nlohmann::json::array();
     const std::vector<std::size_t> sizes =
         config.quick ? std::vector<std::size_t>{10000} : std::vector<std::size_t>{100000, 1000000};
+    double work = 0.0;
+    for (std::size_t n : sizes)
+        work += static_cast<double>(n);
+    WeightedProgress progress(part, work);
     for (std::size_t n : sizes) {
+        progress.start("restoring " + std::to_string(n) + " vertices from a snapshot",
+                       static_cast<double>(n));
         TinOptions options;
         options.track_changes = false;
         const Tin original = Tin::random_points(
@@ -236,6 +253,7 @@ nlohmann::json bench_restore(const BenchConfig& config) {
                         {"restore_cpu_ms_median", median(restore)},
                         {"check_valid_cpu_ms_median", median(validate)}});
     }
+    progress.done();
     return rows;
 }
 
@@ -245,11 +263,16 @@ nlohmann::json bench_tin(const BenchConfig& config) {
     nlohmann::json j;
     j["bench"] = "tin";
     j["quick"] = config.quick;
-    j["insert"] = bench_insert(config);
+    // The parts' shares of a full run (about 110 s on the 2-core reference machine).
+    const ProgressCallback& p = config.progress;
+    j["insert"] = bench_insert(config, progress_part(p, 0.0, 0.5));
+    if (p) p({0.5, "point location"});
     j["locate"] = bench_locate(config);
+    if (p) p({0.7, "vertex removal"});
     j["remove"] = bench_remove(config);
+    if (p) p({0.71, "rings of crossing constraints"});
     j["constraints"] = bench_constraints(config);
-    j["restore"] = bench_restore(config);
+    j["restore"] = bench_restore(config, progress_part(p, 0.8, 1.0));
     return j;
 }
 

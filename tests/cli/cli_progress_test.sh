@@ -128,6 +128,13 @@ scenario_progress_bench() {
     grep -q '^.bench history ' bench.tty || fail "the line does not name the benchmark"
     check_eq "bench on a terminal" "$(json bench.out /benchmark)" history
     expect_silent_when_piped bench_pipe bench history --quick
+    # The drivers in tests/bench report through the same line (their stages and fractions are
+    # checked in tests/bench/bench_progress_test.cpp).
+    on_terminal bench_tin bench tin --quick || return
+    expect_progress bench_tin
+    grep -q '^.bench tin ' bench_tin.tty || fail "the line does not name the tin benchmark"
+    check_eq "bench tin on a terminal" "$(json bench_tin.out /bench)" tin
+    expect_silent_when_piped bench_tin_pipe bench tin --quick
 }
 
 command -v script >/dev/null || {
