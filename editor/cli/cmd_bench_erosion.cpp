@@ -31,6 +31,7 @@
 #include "bench_common.hpp"
 #include "commands.hpp"
 #include "physics/cone.hpp"
+#include "physics/face_slopes.hpp"
 #include "physics/grid_erosion.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_kernel_avx512.hpp"
@@ -55,7 +56,19 @@ struct Row {
     double cpu_ms = 0.0, wall_ms = 0.0;
     double mean_error = 0.0, max_error = 0.0;
     bool at_rest = false;
+    /// Per face (physics/face_slopes.hpp), TIN rows only: the share of the slopes' area
+    /// steeper than tan(alpha) (1 + 1e-3), the steepest face's |∇h| / tan(alpha), and the
+    /// slivers skipped. Negative on grid rows.
+    double steep_share = -1.0, max_face_ratio = -1.0;
+    long skipped_faces = -1;
 };
+
+void measure_faces(Row& row, const Tin& tin) {
+    const FaceSlopeReport r = measure_face_slopes(tin, MaterialTable::presets());
+    row.steep_share = r.steep_share_of_slopes();
+    row.max_face_ratio = r.max_ratio;
+    row.skipped_faces = static_cast<long>(r.skipped_faces);
+}
 
 void measure_error(Row& row, const HeightAt& z, const HeightAt& reference) {
     double sum = 0.0, worst = 0.0;
@@ -118,6 +131,7 @@ Row tin_cone(double rs) {
     row.iterations = r.iterations;
     row.at_rest = r.at_rest;
     row.vertices = tin.vertex_count();
+    measure_faces(row, tin);
     const Cone cone = Cone::from_volume(kVolume, tan_alpha());
     LocateHint hint;
     measure_error(
@@ -162,6 +176,7 @@ Row tin_dunes(std::size_t points, const HeightAt& reference) {
     row.iterations = r.iterations;
     row.at_rest = r.at_rest;
     row.vertices = tin.vertex_count();
+    measure_faces(row, tin);
     LocateHint hint;
     measure_error(
         row, [&](Vec2 p) { return *tin.height_at(p, &hint); }, reference);
@@ -192,10 +207,22 @@ GridRun grid_dunes(int n) {
 }
 
 nlohmann::json to_json(const Row& r) {
-    return {{"scene", r.scene},       {"method", r.method},           {"level", r.level},
-            {"vertices", r.vertices}, {"iterations", r.iterations},   {"cpu_ms", r.cpu_ms},
-            {"wall_ms", r.wall_ms},   {"mean_error_m", r.mean_error}, {"max_error_m", r.max_error},
-            {"at_rest", r.at_rest}};
+    return {{"scene", r.scene},
+            {"method", r.method},
+            {"level", r.level},
+            {"vertices", r.vertices},
+            {"iterations", r.iterations},
+            {"cpu_ms", r.cpu_ms},
+            {"wall_ms", r.wall_ms},
+            {"mean_error_m", r.mean_error},
+            {"max_error_m", r.max_error},
+            {"at_rest", r.at_rest},
+            {"steep_share_of_slopes",
+             r.steep_share < 0.0 ? nlohmann::json() : nlohmann::json(r.steep_share)},
+            {"max_face_ratio",
+             r.max_face_ratio < 0.0 ? nlohmann::json() : nlohmann::json(r.max_face_ratio)},
+            {"skipped_faces",
+             r.skipped_faces < 0 ? nlohmann::json() : nlohmann::json(r.skipped_faces)}};
 }
 
 /// Jacobi throughput on a regular-grid TIN (999 x 999, about 10⁶ vertices; 200 x 200 with
@@ -522,11 +549,18 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
     std::ofstream out(path);
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
     out << "scene,method,level,vertices,iterations,cpu_ms,wall_ms,mean_error_m,max_error_m,at_"
-           "rest\n";
+           "rest,steep_share_of_slopes,max_face_ratio,skipped_faces\n";
     for (const Row& r : rows) {
         out << r.scene << ',' << r.method << ',' << r.level << ',' << r.vertices << ','
             << r.iterations << ',' << r.cpu_ms << ',' << r.wall_ms << ',' << r.mean_error << ','
-            << r.max_error << ',' << (r.at_rest ? 1 : 0) << '\n';
+            << r.max_error << ',' << (r.at_rest ? 1 : 0) << ',';
+        // Empty fields on grid rows, which have no faces of their own.
+        if (r.steep_share >= 0.0) out << r.steep_share;
+        out << ',';
+        if (r.max_face_ratio >= 0.0) out << r.max_face_ratio;
+        out << ',';
+        if (r.skipped_faces >= 0) out << r.skipped_faces;
+        out << '\n';
     }
 }
 

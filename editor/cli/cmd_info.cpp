@@ -1,9 +1,12 @@
 // sandtin info: load a session and describe its terrain.
 
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
@@ -22,6 +25,7 @@ int run_info(const std::vector<std::string>& raw) {
     // second check cost a quarter of `info` on a 10^6-vertex scene).
     nlohmann::json j = describe_terrain(tin, false);
     j["valid"] = true;
+    j["slopes"] = describe_slopes(tin, materials_or_presets(session.metadata_json));
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";
     } else {
@@ -35,6 +39,17 @@ int run_info(const std::vector<std::string>& raw) {
             std::cout << "  sand over bedrock " << j["sand"]["min_thickness"] << " to "
                       << j["sand"]["max_thickness"] << " m thick\n";
         }
+        const nlohmann::json& s = j["slopes"];
+        std::ostringstream slopes;
+        slopes << std::setprecision(3) << "  steeper than repose " << s["steep_faces"] << " of "
+               << s["faces"] << " faces, " << 100.0 * s["steep_share_of_slopes"].get<double>()
+               << " % of the slopes' area";
+        if (s["faces"].get<std::size_t>() > 0) {
+            slopes << "; steepest " << s["max_ratio"].get<double>() << " x tan(repose) at ("
+                   << s["steepest_at"][0].get<double>() << ", " << s["steepest_at"][1].get<double>()
+                   << ") m";
+        }
+        std::cout << slopes.str() << "\n";
         std::cout << "  valid             yes\n";
     }
     return 0;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "physics/face_slopes.hpp"
+
 namespace sandtin::cli {
 
 nlohmann::json describe_terrain(const Tin& tin, bool validate) {
@@ -42,6 +44,16 @@ nlohmann::json describe_terrain(const Tin& tin, bool validate) {
         if (!report.ok()) j["problems"] = report.problems;
     }
     return j;
+}
+
+nlohmann::json describe_slopes(const Tin& tin, const MaterialTable& materials) {
+    const FaceSlopeOptions options;
+    const FaceSlopeReport r = measure_face_slopes(tin, materials, options);
+    return {{"tolerance", options.tolerance}, {"faces", r.faces},
+            {"rock_faces", r.rock_faces},     {"skipped_faces", r.skipped_faces},
+            {"steep_faces", r.steep_faces},   {"sloped_area", r.sloped_area},
+            {"steep_area", r.steep_area},     {"steep_share_of_slopes", r.steep_share_of_slopes()},
+            {"max_ratio", r.max_ratio},       {"steepest_at", {r.steepest_at.x, r.steepest_at.y}}};
 }
 
 }  // namespace sandtin::cli

@@ -94,6 +94,11 @@ scenario_roundtrip() {
     # Euler's formula for 1004 points, 4 of them on the hull: T = 2V - h - 2.
     check_eq "info triangles" "$(json info1.out /triangles)" 2002
     check_eq "info constrained_edges" "$(json info1.out /constrained_edges)" 0
+    # Flat: every face judged, none steep, no slope at all (physics/face_slopes).
+    check_eq "info slopes faces" "$(json info1.out /slopes/faces)" 2002
+    check_eq "info slopes steep" "$(json info1.out /slopes/steep_faces)" 0
+    check_eq "info slopes max ratio" "$(json info1.out /slopes/max_ratio)" 0.0
+    check_eq "info slopes area" "$(json info1.out /slopes/sloped_area)" 0.0
     check_eq "info bbox" "$(json info1.out /bbox/min/0 /bbox/min/1 /bbox/max/0 /bbox/max/1 | tr '\n' ' ')" \
         "0.0 0.0 10.0 10.0 "
 

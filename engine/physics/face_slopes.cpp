@@ -1,0 +1,100 @@
+#include "physics/face_slopes.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+namespace sandtin {
+
+double face_gradient(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double e1x = b.x - a.x, e1y = b.y - a.y, dz1 = b.z - a.z;
+    const double e2x = c.x - a.x, e2y = c.y - a.y, dz2 = c.z - a.z;
+    const double det = e1x * e2y - e1y * e2x;
+    if (det == 0.0) return std::numeric_limits<double>::infinity();
+    // The plane's gradient g solves g . e1 = dz1, g . e2 = dz2 (Cramer's rule).
+    const double gx = (dz1 * e2y - dz2 * e1y) / det;
+    const double gy = (e1x * dz2 - e2x * dz1) / det;
+    return std::hypot(gx, gy);
+}
+
+namespace {
+
+struct JudgedFace {
+    double area = 0.0;       // m², in the plane
+    double gradient = 0.0;   // |∇h|
+    double tan_alpha = 0.0;  // mean of the corners'
+    Vec2 centroid;
+};
+
+/// The sand faces in the region, and how many were rock.
+std::vector<JudgedFace> collect_faces(const Tin& tin, const MaterialTable& materials,
+                                      const FaceSlopeOptions& options, std::size_t& rock) {
+    const VertexArrays& va = tin.vertices();
+    std::vector<JudgedFace> faces;
+    faces.reserve(tin.triangle_count());
+    for (TriangleSlot s = 0; s < tin.slot_capacity(); ++s) {
+        const std::array<VertexId, 3> t = tin.slot_triangle(s);
+        if (!t[0].valid()) continue;
+        Vec3 p[3];
+        double tan_sum = 0.0;
+        bool sand = false;
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t v = t[k].value;
+            p[k] = {va.position[v].x, va.position[v].y, va.height[v]};
+            tan_sum += materials.at(va.material[v]).talus_slope(va.moisture[v]);
+            sand = sand || va.height[v] > va.bedrock[v];
+        }
+        const Vec2 centroid{(p[0].x + p[1].x + p[2].x) / 3.0, (p[0].y + p[1].y + p[2].y) / 3.0};
+        if (options.region && !options.region->contains(centroid)) continue;
+        if (!sand) {
+            ++rock;
+            continue;
+        }
+        const double area = 0.5 * std::abs((p[1].x - p[0].x) * (p[2].y - p[0].y) -
+                                           (p[1].y - p[0].y) * (p[2].x - p[0].x));
+        faces.push_back({area, face_gradient(p[0], p[1], p[2]), tan_sum / 3.0, centroid});
+    }
+    return faces;
+}
+
+}  // namespace
+
+FaceSlopeReport measure_face_slopes(const Tin& tin, const MaterialTable& materials,
+                                    const FaceSlopeOptions& options) {
+    // Written so that NaN fails too.
+    if (!(options.tolerance >= 0.0))
+        throw std::invalid_argument("face slopes: tolerance must be >= 0");
+    if (!(options.sloped_fraction >= 0.0))
+        throw std::invalid_argument("face slopes: sloped_fraction must be >= 0");
+    if (!(options.min_area_fraction >= 0.0 && options.min_area_fraction < 1.0))
+        throw std::invalid_argument("face slopes: min_area_fraction must be in [0, 1)");
+    FaceSlopeReport report;
+    const std::vector<JudgedFace> faces = collect_faces(tin, materials, options, report.rock_faces);
+    double total = 0.0;
+    for (const JudgedFace& f : faces)
+        total += f.area;
+    const double smallest = options.min_area_fraction * total;
+    for (const JudgedFace& f : faces) {
+        if (f.area < smallest || f.area == 0.0) {
+            ++report.skipped_faces;
+            continue;
+        }
+        ++report.faces;
+        report.area += f.area;
+        const double ratio =
+            f.tan_alpha > 0.0 ? f.gradient / f.tan_alpha : std::numeric_limits<double>::infinity();
+        if (ratio > options.sloped_fraction) report.sloped_area += f.area;
+        if (ratio > 1.0 + options.tolerance) {
+            ++report.steep_faces;
+            report.steep_area += f.area;
+        }
+        if (ratio > report.max_ratio) {
+            report.max_ratio = ratio;
+            report.steepest_at = f.centroid;
+        }
+    }
+    return report;
+}
+
+}  // namespace sandtin
