@@ -68,7 +68,8 @@ void App::panel_erosion() {
     ImGui::SameLine();
     ImGui::Checkbox("Slope", &settings_.overlay_slope);
     ui("Slope",
-       "Slope against the angle of repose: green stable, yellow at repose, red over-steep");
+       "Each triangle's slope against the angle of repose of its sand: green below 80 %, "
+       "yellow up to repose, red steeper (the faces `sandtin info` counts as steep)");
     plain_slider("Contrast", settings_.contrast, kContrastRange, "%.3f");
     ui("Contrast", "Strength of the height contrast curve (histogram stretch)");
     if (ImGui::Checkbox("VSync", &settings_.vsync)) window_->recreate_swapchain(settings_.vsync);

@@ -15,7 +15,7 @@ layout(push_constant) uniform Push {
 layout(location = 0) in vec3 v_world;
 layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec3 v_albedo;
-layout(location = 3) in vec3 v_overlay;  // x: slope / repose, y: sand thickness, z: active
+layout(location = 3) in vec3 v_overlay;  // x: tan(repose), y: sand thickness, z: active
 layout(location = 4) in vec2 v_slide;
 
 layout(location = 0) out vec4 out_colour;
@@ -81,8 +81,15 @@ void main() {
         colour = mix(colour, mix(vec3(0.1, 0.2, 0.8), vec3(0.9, 0.9, 0.2), s), 0.5);
     }
     if (pc.overlays.w > 0.5) {
-        float r = v_overlay.x;  // slope / tan(angle of repose)
-        vec3 c = r < 0.8 ? vec3(0.2, 0.7, 0.3) : (r <= 1.02 ? vec3(0.95, 0.8, 0.1) : vec3(0.9, 0.1, 0.1));
+        // The face's own gradient, from its plane: v_world varies linearly over the triangle,
+        // so its screen-space derivatives span the face's plane and their cross product is the
+        // face's normal (|grad z| = |n_xy| / |n_z|). The rest criterion is per face
+        // (physics/face_slopes.hpp, with the same tolerance): a pile whose edges are all at
+        // repose can hold faces far steeper, which a per-vertex slope would hide.
+        vec3 face = cross(dFdx(v_world), dFdy(v_world));
+        float steep = length(face.xy) / max(abs(face.z), 1e-20);
+        float r = steep / max(v_overlay.x, 1e-6);  // against tan(repose) across the face
+        vec3 c = r < 0.8 ? vec3(0.2, 0.7, 0.3) : (r <= 1.001 ? vec3(0.95, 0.8, 0.1) : vec3(0.9, 0.1, 0.1));
         colour = mix(colour, c, 0.55);
     }
     if (pc.cursor.w > 0.5) {

@@ -13,7 +13,7 @@ layout(push_constant) uniform Push {
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec3 in_albedo;
-layout(location = 3) in vec3 in_overlay;  // x: slope / repose, y: sand thickness (m), z: active
+layout(location = 3) in vec3 in_overlay;  // x: tan(repose), y: sand thickness (m), z: active
 layout(location = 4) in vec2 in_slide;    // texture-sliding offset (texture units)
 
 layout(location = 0) out vec3 v_world;

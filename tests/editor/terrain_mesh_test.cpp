@@ -22,7 +22,7 @@
 namespace sandtin::render {
 namespace {
 
-TEST(TerrainMesh, PlaneAtTheAngleOfReposeHasSlopeRatioOne) {
+TEST(TerrainMesh, PlaneAtTheAngleOfReposeCarriesItsTalusSlopeAndNormal) {
     const MaterialTable materials = MaterialTable::presets();
     const double t = materials.at(0).talus_slope(0.0);
     const double gx = t * std::cos(0.5236), gy = t * std::sin(0.5236);  // |grad| = t
@@ -33,7 +33,7 @@ TEST(TerrainMesh, PlaneAtTheAngleOfReposeHasSlopeRatioOne) {
     ASSERT_GE(mesh.vertices().size(), tin.vertex_capacity());
     for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i) {
         const RenderVertex& v = mesh.vertices()[i];
-        EXPECT_NEAR(v.overlay[0], 1.0, 1e-5);
+        EXPECT_NEAR(v.overlay[0], t, 1e-6);  // tan(repose), the Slope overlay's yardstick
         EXPECT_NEAR(v.normal[2], 1.0 / std::sqrt(1.0 + t * t), 1e-6);
         EXPECT_NEAR(v.normal[0], -gx / std::sqrt(1.0 + t * t), 1e-6);
         EXPECT_NEAR(static_cast<double>(v.position[0]) + 1.0, tin.position(VertexId{i}).x, 1e-6);

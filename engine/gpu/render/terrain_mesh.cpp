@@ -52,11 +52,9 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     const float wet = 1.0f - (1.0f - kWetReflectance) * std::clamp(va.moisture[id], 0.0f, 1.0f);
     for (int j = 0; j < 3; ++j)
         out.albedo[j] = m.colour[j] * wet;
-    // Slope of the area-weighted mean plane around the vertex (|grad z| = |n_xy| / n_z): a
-    // sliver's steep but tiny face does not flag its corners.
-    const double talus = m.talus_slope(va.moisture[id]);
-    const double slope = nz > 0.0 ? std::hypot(nx, ny) / nz : 0.0;
-    out.overlay[0] = static_cast<float>(talus > 0.0 ? slope / talus : 0.0);
+    // The Slope overlay judges each face's own gradient (the fragment shader takes it from the
+    // face's plane) against tan(alpha) interpolated from its corners: this vertex's.
+    out.overlay[0] = static_cast<float>(m.talus_slope(va.moisture[id]));
     out.overlay[1] =
         va.bedrock[id] <= kNoBedrock ? 0.0f : static_cast<float>(std::max(0.0, h - va.bedrock[id]));
     out.overlay[2] = id < active_.size() && active_[id] ? 1.0f : 0.0f;

@@ -21,9 +21,9 @@ struct RenderVertex {
     float position[3];  ///< metres: x, y relative to the domain centre, z = height
     float normal[3];    ///< unit, area-weighted mean of the incident faces
     float albedo[3];    ///< linear RGB, darkened by moisture
-    /// x: slope of the area-weighted mean plane around the vertex / tan(angle of repose) of
-    /// the vertex; y: sand thickness
-    /// above bedrock (m; 0 without bedrock); z: 1 when the vertex is active (eroding)
+    /// x: tan(angle of repose) of the vertex's material and moisture (the Slope overlay
+    /// compares each face's gradient with it); y: sand thickness above bedrock (m; 0 without
+    /// bedrock); z: 1 when the vertex is active (eroding)
     float overlay[3];
     float slide[2];  ///< texture-sliding offset, texture units
 };
