@@ -62,6 +62,10 @@ GpuRelaxation::GpuRelaxation(TinMirror& mirror, GpuRelaxationSettings settings)
     if (settings_.quiet_iterations < 1) {
         throw GpuError("GpuRelaxation: quiet_iterations must be >= 1");
     }
+    if (settings_.parameters.rule != SlopeRule::Edge) {
+        throw GpuError(
+            "GpuRelaxation: the face rule runs on the CPU only (choose the CPU physics)");
+    }
     control_buf_ = Buffer(context_, kControlWords * 4,
                           kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryUse::Device);
     control_host_ =

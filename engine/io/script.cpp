@@ -209,6 +209,11 @@ bool parse_physics_fields(JsonFields& f, TalusSettings& t) {
         t.parameters.rest_tolerance = f.in_range("rest_tolerance", 1e-4, 0.0, 1.0);
         any = true;
     }
+    if (f.has("rule")) {
+        t.parameters.rule = f.choice("rule", "edge", {"edge", "face"}) == "face" ? SlopeRule::Face
+                                                                                 : SlopeRule::Edge;
+        any = true;
+    }
     if (f.has("schedule")) {
         t.schedule = f.choice("schedule", "sequential", {"sequential", "jacobi"}) == "sequential"
                          ? Schedule::Sequential

@@ -29,6 +29,12 @@ std::uint32_t local_of(const VertexNumbering* numbering, std::uint32_t t) {
     return v;
 }
 
+/// The across() value of the pair (a, b) of consecutive neighbours around p: |ab| when
+/// p, a, b turn counter-clockwise (a face), else 0 (the outside of a border vertex).
+double across_length(Vec2 p, Vec2 a, Vec2 b) {
+    return cross(a - p, b - p) > 0.0 ? distance(a, b) : 0.0;
+}
+
 }  // namespace
 
 void AdjacencyGraph::refresh_row_summary(std::uint32_t v) {
@@ -64,6 +70,7 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     target_.clear();
     reverse_.clear();
     length_.clear();
+    across_.clear();
     slack_ = 0;
     std::vector<VertexId> ring;
     const VertexArrays& va = tin.vertices();
@@ -74,12 +81,16 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
         offset_[v] = static_cast<std::uint32_t>(target_.size());
         degree_[v] = static_cast<std::uint32_t>(ring.size());
         capacity_[v] = row_capacity(degree_[v], slack_policy_);
-        for (VertexId w : ring) {
+        for (std::size_t k = 0; k < ring.size(); ++k) {
+            const VertexId w = ring[k];
             target_.push_back(local_of(numbering, w.value));
             length_.push_back(distance(va.position[t], va.position[w.value]));
+            across_.push_back(across_length(va.position[t], va.position[w.value],
+                                            va.position[ring[(k + 1) % ring.size()].value]));
         }
         target_.resize(offset_[v] + capacity_[v], kNone);
         length_.resize(offset_[v] + capacity_[v], 0.0);
+        across_.resize(offset_[v] + capacity_[v], 0.0);
         slack_ += capacity_[v] - degree_[v];
         refresh_row_summary(v);
     }
@@ -115,6 +126,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
         capacity_[v] = row_capacity(deg, RowSlack::Some);  // it grew: it may grow again
         target_.resize(target_.size() + capacity_[v], kNone);
         length_.resize(length_.size() + capacity_[v], 0.0);
+        across_.resize(across_.size() + capacity_[v], 0.0);
         reverse_.resize(reverse_.size() + capacity_[v], kNone);
     } else {
         slack_ -= capacity_[v] - degree_[v];
@@ -124,6 +136,8 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
     for (std::uint32_t k = 0; k < deg; ++k) {
         target_[offset_[v] + k] = local_of(numbering, ring[k].value);
         length_[offset_[v] + k] = distance(va.position[t], va.position[ring[k].value]);
+        across_[offset_[v] + k] = across_length(va.position[t], va.position[ring[k].value],
+                                                va.position[ring[(k + 1) % deg].value]);
     }
     refresh_row_summary(v);
 }
@@ -216,6 +230,7 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
         length_.insert(length_.end(), lengths[v].begin(), lengths[v].end());
         refresh_row_summary(v);
     }
+    across_.assign(target_.size(), 0.0);  // explicit rows carry no faces
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v)
         fix_reverse(v);
@@ -273,6 +288,9 @@ bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) c
             if (r == kNone || target_[r] != v || !(length_[r] == length_[slot])) return false;
             if (std::abs(length_[slot] - distance(va.position[t], va.position[ring[k].value])) >
                 0.0)
+                return false;
+            const Vec2 next = va.position[ring[(k + 1) % ring.size()].value];
+            if (!(across_[slot] == across_length(va.position[t], va.position[ring[k].value], next)))
                 return false;
         }
     }

@@ -11,6 +11,11 @@
 // (w -> v), and both slots hold the same length bit for bit (the Jacobi receiver recomputes
 // what a sender computed along the opposite slot).
 //
+// Faces: slots k and k + 1 of a row (the last slot's next is the row's first) are the far
+// corners of a face of v when across(k) > 0, the horizontal length (m) of the edge between
+// them; across(k) == 0 where the pair spans the outside of the domain (the gap in a border
+// vertex's ring), and for graphs given by assign(), which carry no faces.
+//
 // Rows and targets are in a VertexNumbering's local ids when one is given (the relaxation's
 // locality order), else in TIN ids. Row v lists the neighbours of TIN vertex tin_id(v) in the
 // same counter-clockwise order either way, so a kernel sums in the same order.
@@ -67,6 +72,9 @@ class AdjacencyGraph {
     const std::vector<std::uint32_t>& targets() const { return target_; }
     const std::vector<std::uint32_t>& reverses() const { return reverse_; }
     const std::vector<double>& lengths() const { return length_; }
+    /// Per slot k: |target(k) target(next k)| (m) when v, target(k), target(next k) is a face
+    /// (counter-clockwise), else 0. See above.
+    const std::vector<double>& across() const { return across_; }
     const std::vector<double>& longest_edges() const { return longest_; }
     /// Per vertex: the bitmap words its row touches. A kernel that marks v and some of its
     /// neighbours in a bitmap widens its word range once per row with this, not once per mark.
@@ -91,6 +99,7 @@ class AdjacencyGraph {
     std::vector<std::uint32_t> target_;
     std::vector<std::uint32_t> reverse_;
     std::vector<double> length_;
+    std::vector<double> across_;
     std::vector<double> longest_;
     std::vector<RowWords> row_words_;
     RowSlack slack_policy_ = RowSlack::Some;

@@ -50,6 +50,16 @@ inline constexpr double kDegenerateAreaRatio = 1e-6;
 /// The largest settle margin the editor and scripts offer (the solver accepts up to 1).
 inline constexpr double kMaxSettleMargin = 0.2;
 
+/// What the relaxation holds at the angle of repose (issue 39).
+enum class SlopeRule : std::uint8_t {
+    /// Every edge: h_i - h_j <= r_ij tan(alpha) (seed 000 §7.2). A triangle can still be far
+    /// steeper than all three of its edges.
+    Edge,
+    /// Every triangle: |grad h| <= tan(alpha), the piecewise-linear surface itself (Prigozhin's
+    /// critical-slope model; physics/face_kernel.hpp). Sequential schedule only.
+    Face,
+};
+
 struct TalusParameters {
     double damping = 0.5;          ///< fraction of the largest excess removed per step (seeds: 1/2)
     double rest_tolerance = 1e-4;  ///< an edge is at rest when e <= tol * r tan(alpha)
@@ -58,6 +68,7 @@ struct TalusParameters {
     /// seeds' rule. The compute shader does the same. The default is the editor's and the
     /// scripts' alike, so a script reproduces what the artist saw.
     double settle_margin = 0.03;
+    SlopeRule rule = SlopeRule::Edge;
 };
 
 /// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.

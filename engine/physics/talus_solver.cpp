@@ -1,5 +1,6 @@
 #include "physics/talus_solver.hpp"
 
+#include "physics/face_kernel.hpp"
 #include "physics/talus_kernel_avx512.hpp"
 
 #include <algorithm>
@@ -164,6 +165,9 @@ void validate_talus_settings(const TalusSettings& s) {
         throw std::invalid_argument("talus relaxation: settle_margin must be in [0, 1)");
     if (!(s.randomness >= 0.0 && s.randomness < 1.0))
         throw std::invalid_argument("talus relaxation: randomness must be in [0, 1)");
+    if (p.rule == SlopeRule::Face && s.schedule != Schedule::Sequential)
+        throw std::invalid_argument(
+            "talus relaxation: the face rule runs with the sequential schedule only");
 }
 
 IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
@@ -201,18 +205,24 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
     const std::uint32_t* target = g.targets().data();
     const double* length = g.lengths().data();
     const double* longest = g.longest_edges().data();
+    const double* across = g.across().data();
+    const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
     double* q = q_.data();
     for (std::uint32_t i : active.list()) {
         const std::uint32_t begin = g.offset(i);
         const std::uint32_t degree = g.degree(i);
         if (degree == 0) continue;
         ++stats.processed;
-        const double sent = talus_outflow(i, begin, degree, target, length, longest, a.height,
-                                          a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                          random_factor(a, i), q, [&](std::uint32_t v) {
-                                              if (split_around != nullptr)
-                                                  split_around->push_back(v);
-                                          });
+        auto split = [&](std::uint32_t v) {
+            if (split_around != nullptr) split_around->push_back(v);
+        };
+        const double sent =
+            face_rule ? face_outflow(i, begin, degree, target, length, across, longest, a.height,
+                                     a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
+                                     random_factor(a, i), q, split)
+                      : talus_outflow(i, begin, degree, target, length, longest, a.height, a.area,
+                                      a.bedrock, a.tan_alpha[i], settings_.parameters,
+                                      random_factor(a, i), q, split);
         if (sent <= 0.0) continue;
         // Gauss-Seidel: apply at once, so the next vertex sees the new heights.
         a.height[i] -= sent / a.area[i];

@@ -369,6 +369,30 @@ END_OF_SCRIPT
 # sandtin run: a good script in both forms, from a script terrain and from an input session.
 # Oracles: the lines of the operations counted in the script text; a pour of V m^3 on flat sand
 # of height H over a W x L m rectangle leaves W L H + V exactly, whatever the triangulation.
+# The face rule from a script: a poured pile at rest has no triangle steeper than repose, as
+# `info` measures it face by face; the same pile under the edge rule has many.
+scenario_face_rule() {
+    for rule in face edge; do
+        cat >"$rule.json" <<END_OF_SCRIPT
+{"version": 1,
+ "terrain": {"size": [1, 1], "points": 3000, "seed": 3},
+ "settings": {"rule": "$rule"},
+ "operations": [
+   {"op": "pour", "at": [0.5, 0.5], "volume": 1e-3, "radius": 0.02},
+   {"op": "erode", "until_rest": true}]}
+END_OF_SCRIPT
+        expect_ok "run_$rule" run "$rule.json" -o "$rule.sandtin" --json || return
+        check_eq "$rule rule at rest" "$(json "run_$rule.out" /steps/1/at_rest)" true
+        abs_le "$(json "run_$rule.out" /terrain/volume)" 1e-3 1e-15 "$rule rule volume"
+        expect_ok "info_$rule" info "$rule.sandtin" --json || return
+    done
+    check_eq "face rule: steep faces" "$(json info_face.out /slopes/steep_faces)" 0
+    holds "face rule: steepest face" "a <= 1.001" "$(json info_face.out /slopes/max_ratio)"
+    holds "edge rule: steep faces" "a > 10" "$(json info_edge.out /slopes/steep_faces)"
+    sed 's/"rule": "face"/"rule": "faces"/' face.json >bad.json
+    expect_error bad_rule "'rule' is 'faces'; expected one of: edge, face" run bad.json -o bad.sandtin
+}
+
 scenario_run_good() {
     cat >good.json <<'END_OF_SCRIPT'
 {
@@ -556,6 +580,7 @@ case "$SCENARIO" in
     bench) scenario_bench ;;
     demo) scenario_demo ;;
     run_good) scenario_run_good ;;
+    face_rule) scenario_face_rule ;;
     run_bad) scenario_run_bad ;;
     readme_script) scenario_readme_script ;;
     script_extrude) scenario_script_extrude ;;

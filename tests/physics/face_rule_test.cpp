@@ -1,0 +1,158 @@
+// The face rule (SlopeRule::Face, physics/face_kernel.hpp): sand comes to rest with every
+// triangle at most as steep as repose, not only every edge (issue 39). Oracles: the per-face
+// measure (physics/face_slopes), the analytic cone, and the volume ledger.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "physics/cone.hpp"
+#include "physics/face_kernel.hpp"
+#include "physics/face_slopes.hpp"
+#include "physics/sand_physics.hpp"
+#include "physics_oracles.hpp"
+
+namespace sandtin {
+namespace {
+
+constexpr double kFacePileVolume = 0.01;  // m³: a cone of radius ~0.25 m at 32°
+const Vec2 kFacePileCentre{0.5, 0.5};
+
+double repose_tan() {
+    return MaterialTable::presets().at(0).talus_slope(0.0);
+}
+
+TEST(FaceShed, ALevelledFaceHasTheGradientOfRepose) {
+    // i at (0, 1), j at (-1, 0), l at (2, 0): a = sqrt 2, b = sqrt 5, c = 3.
+    const double a = std::sqrt(2.0), b = std::sqrt(5.0), c = 3.0;
+    TalusParameters p;
+    p.settle_margin = 0.0;
+    const double t = repose_tan();
+    const double hj = 0.1, hl = 0.4;
+    const detail::FaceShed f = detail::face_shed(a, b, c, 5.0, hj, hl, t, p, 0.0);
+    ASSERT_GT(f.excess, 0.0);
+    // Lowered by the excess, i makes the face exactly as steep as repose.
+    const double hi = 5.0 - f.excess;
+    EXPECT_NEAR(face_gradient({0, 1, hi}, {-1, 0, hj}, {2, 0, hl}), t, 1e-12);
+    // The shares follow the steepest-descent line and add to 1.
+    EXPECT_NEAR(f.to_j + f.to_l, 1.0, 1e-15);
+    EXPECT_GT(f.to_j, 0.0);
+    EXPECT_GT(f.to_l, 0.0);
+    // A face already gentler than repose sheds nothing.
+    EXPECT_EQ(detail::face_shed(a, b, c, hi - 1e-3, hj, hl, t, p, 0.0).excess, 0.0);
+}
+
+TEST(FaceShed, SandNeverClimbs) {
+    // i barely above the line, j far above i: everything goes to l.
+    TalusParameters p;
+    const double a = std::sqrt(2.0), b = std::sqrt(5.0), c = 3.0;
+    const detail::FaceShed f = detail::face_shed(a, b, c, 1.0, 1.2, -1.5, repose_tan(), p, 0.0);
+    ASSERT_GT(f.excess, 0.0);
+    EXPECT_EQ(f.to_j, 0.0);
+    EXPECT_EQ(f.to_l, 1.0);
+}
+
+struct Rested {
+    FaceSlopeReport faces;
+    test::PileShape shape;
+    Cone cone;
+    double volume_error = 0.0;
+    bool at_rest = false;
+};
+
+Rested pour_face_rule(Tin& tin, double relocation_radius, int portions, int between,
+                      double settle_margin) {
+    TalusSettings settings;
+    settings.parameters.rule = SlopeRule::Face;
+    settings.parameters.settle_margin = settle_margin;
+    settings.parameters.relocation_radius = relocation_radius;
+    SandPhysics physics(tin, MaterialTable::presets(), settings);
+    const double before = tin.volume();
+    const VertexId apex =
+        test::pour_at_point(tin, physics, kFacePileCentre, kFacePileVolume / portions);
+    PhysicsStepReport r;
+    for (int k = 1; k < portions; ++k) {
+        r.accumulate(physics.step(between));
+        tin.set_height(apex, tin.height(apex) + kFacePileVolume / portions /
+                                                    tin.vertices().lumped_area[apex.value]);
+    }
+    r.accumulate(physics.run_to_rest(400000));
+    Rested out;
+    out.at_rest = r.at_rest;
+    // Flowing sand levels towards (1 - m) tan(alpha) (the settle margin): the pile rests between
+    // that and tan(alpha), and the cone at (1 - m) tan(alpha) is the reference.
+    out.cone = Cone::from_volume(kFacePileVolume, (1.0 - settle_margin) * repose_tan());
+    out.faces = measure_face_slopes(tin, MaterialTable::presets());
+    out.shape =
+        test::measure_pile(tin, kFacePileCentre, 2.0 * out.cone.radius, 1e-3 * out.cone.height);
+    out.volume_error = std::abs(tin.volume() - before - kFacePileVolume) / kFacePileVolume;
+    std::printf(
+        "  vertices %zu, iterations %d, steep faces %zu of %zu (%.3g of the slopes), "
+        "steepest %.5f, apex %.5f (cone %.5f), toe %.5f (cone %.5f)\n",
+        tin.vertex_count(), r.iterations, out.faces.steep_faces, out.faces.faces,
+        out.faces.steep_share_of_slopes(), out.faces.max_ratio, out.shape.apex, out.cone.height,
+        out.shape.toe_radius, out.cone.radius);
+    return out;
+}
+
+void expect_rested_cone(const Rested& r) {
+    EXPECT_TRUE(r.at_rest);
+    EXPECT_EQ(r.faces.steep_faces, 0u) << "steepest " << r.faces.max_ratio << " at "
+                                       << r.faces.steepest_at.x << ", " << r.faces.steepest_at.y;
+    EXPECT_LT(r.volume_error, 1e-12);
+    EXPECT_NEAR(r.shape.apex, r.cone.height, 0.03 * r.cone.height);
+    EXPECT_NEAR(r.shape.toe_radius, r.cone.radius, 0.02 * r.cone.radius);
+}
+
+TEST(FaceRule, AConeOnADenseRandomTinRestsWithNoFaceSteeperThanRepose) {
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 20000, 7);
+    expect_rested_cone(pour_face_rule(tin, 0.0, 1, 0, TalusParameters{}.settle_margin));
+}
+
+TEST(FaceRule, AConeFromTwoTrianglesRestsWithNoFaceSteeperThanRepose) {
+    Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0));
+    expect_rested_cone(pour_face_rule(tin, 0.02, 100, 50, TalusParameters{}.settle_margin));
+    EXPECT_TRUE(tin.check_valid().ok());
+}
+
+TEST(FaceRule, MovesVolumeExactlyAndNeverBelowTheBedrock) {
+    // Rough sand 0 to 4 cm over a bedrock 1 cm under the lowest point, eroded 3 000 times.
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 4000, 12, [](Vec2 p) {
+        return 0.02 + 0.02 * std::sin(40.0 * p.x) * std::cos(33.0 * p.y);
+    });
+    const VertexArrays& va = tin.vertices();
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v]) tin.set_bedrock(VertexId{v}, std::min(va.height[v], 0.01));
+    }
+    TalusSettings settings;
+    settings.parameters.rule = SlopeRule::Face;
+    SandPhysics physics(tin, MaterialTable::presets(), settings);
+    physics.activate_all();
+    const double before = tin.volume();
+    const PhysicsStepReport r = physics.step(3000);
+    EXPECT_GT(r.volume_moved, 1e-4);
+    EXPECT_LE(std::abs(tin.volume() - before), 1e-12 * before);
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v]) {
+            EXPECT_GE(va.height[v], va.bedrock[v]) << v;
+        }
+    }
+}
+
+TEST(FaceRule, TheJacobiScheduleRefusesItByName) {
+    Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0));
+    TalusSettings settings;
+    settings.schedule = Schedule::Jacobi;
+    settings.parameters.rule = SlopeRule::Face;
+    EXPECT_THROW(
+        {
+            SandPhysics physics(tin, MaterialTable::presets(), settings);
+            physics.activate_all();
+            physics.step(1);
+        },
+        std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace sandtin
