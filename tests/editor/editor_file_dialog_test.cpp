@@ -164,12 +164,21 @@ TEST_F(EditorFileDialog, ImportsAHeightmapAndExportsThroughTheBrowser) {
     fs::copy_file(kHillsHeightmap, hills, fs::copy_options::overwrite_existing);
     const fs::path out = f.folder / "sub" / "export.obj";
     fs::remove(out);
+    // The imported scene saved under a name typed into the browser (no extension: it gets
+    // .sandtin), then exported.
+    const fs::path saved = f.folder / "sub" / "saved hills.sandtin";
+    fs::remove(saved);
     const EditorRun r = run_editor(
         "pick-import", then(kFlat, pick("import", hills) + R"(, {"op": "wait", "frames": 2}, )" +
-                                       pick("export", out) + R"(, {"op": "wait", "frames": 2})"));
+                                       pick("save_as", f.folder / "sub" / "saved hills") +
+                                       R"(, {"op": "wait", "frames": 2}, )" + pick("export", out) +
+                                       R"(, {"op": "wait", "frames": 2})"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_TRUE(said(r, "imported " + hills.string())) << r.stats.at("messages");
     EXPECT_EQ(r.stats.at("import_field").get<std::string>(), hills.string());
+    EXPECT_EQ(r.stats.at("scene_path").get<std::string>(), saved.string());
+    EXPECT_EQ(r.stats.at("scene_field").get<std::string>(), saved.string());
+    EXPECT_TRUE(fs::exists(saved));
     EXPECT_EQ(r.stats.at("export_field").get<std::string>(), out.string());
     EXPECT_TRUE(said(r, "exported")) << r.stats.at("messages");
     ASSERT_TRUE(fs::exists(out));
