@@ -1,6 +1,7 @@
 #include "file_browser.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <utility>
 
 namespace sandtin::editor {
@@ -15,7 +16,8 @@ void FileBrowser::open(FileDialogRequest request) {
     show_hidden = false;
     message_.clear();
     replacing_.reset();
-    navigate(request_.folder.empty() ? fs::current_path() : request_.folder);
+    std::error_code ec;  // a working folder that is gone: "" (the error shows in the browser)
+    navigate(request_.folder.empty() ? fs::current_path(ec) : request_.folder);
 }
 
 void FileBrowser::close() {
@@ -24,7 +26,13 @@ void FileBrowser::close() {
 }
 
 void FileBrowser::navigate(const fs::path& folder) {
-    fs::path target = folder.is_relative() ? listing_.folder / folder : folder;
+    fs::path target = folder;
+    // "~" and "~/maps" are in the home folder, as in a shell.
+    const std::string typed = folder.string();
+    const char* home = std::getenv("HOME");
+    if (home != nullptr && *home != '\0' && (typed == "~" || typed.rfind("~/", 0) == 0))
+        target = fs::path(home) / typed.substr(typed.size() > 1 ? 2 : 1);
+    if (target.is_relative()) target = listing_.folder / target;
     std::error_code ec;
     if (target.is_relative()) target = fs::absolute(target, ec);
     target = target.lexically_normal();

@@ -29,7 +29,8 @@ class FileBrowser {
     /// Why the last pick did not happen ("no file x.sandtin in /data"), or "".
     const std::string& message() const { return message_; }
 
-    /// Goes to `folder` (a relative one from the current folder). One that cannot be read
+    /// Goes to `folder` (a relative one from the current folder; "~" is the home folder). One
+    /// that cannot be read
     /// becomes the browser's folder all the same, with its error shown and Up to leave it.
     void navigate(const std::filesystem::path& folder);
     void up();

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -123,6 +124,13 @@ TEST_F(FileBrowserTest, NavigatesIntoFoldersAndUp) {
     EXPECT_EQ(b.folder(), dir_ / "Alpha");
     b.navigate("..");
     EXPECT_EQ(b.folder(), dir_);
+    // "~" is the home folder, as in a shell.
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+        b.navigate("~");
+        EXPECT_EQ(b.folder(), fs::path(home).lexically_normal());
+        b.navigate("~/");
+        EXPECT_EQ(b.folder(), fs::path(home).lexically_normal());
+    }
     // Up from the root stays there.
     b.navigate("/");
     b.up();
