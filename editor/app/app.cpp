@@ -19,7 +19,9 @@ namespace sandtin::editor {
 App::~App() {
     // The force loop fades the force out before the window goes; nothing the GPU may still
     // read is destroyed before it is idle; the document's GPU solver and the terrain's views
-    // go before the device.
+    // go before the device. A desktop file dialog still open is closed first: its thread
+    // wakes GLFW's loop, which must still be there.
+    native_dialog_.reset();
     haptics_.reset();
     if (window_) window_->wait_idle();
     release_terrain();
@@ -310,6 +312,14 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["widgets"] = widgets_.to_json();
     s["help_open"] = help_open_;
     s["recent_files"] = settings_.recent_files;
+    s["last_folder"] = settings_.last_folder;
+    s["import_field"] = std::string(import_buf_);
+    s["export_field"] = std::string(export_buf_);
+    s["file_browser"] = {{"open", browser_.is_open()},
+                         {"folder", browser_.folder().string()},
+                         {"error", browser_.error()},
+                         {"message", browser_.message()}};
+    s["native_dialog_busy"] = native_dialog_ != nullptr && native_dialog_->busy();
     if (recovery_for_) s["recovery_prompt"] = recovery_prompt_text();
     s["settings"] = {{"tool_radius", settings_.tool_radius},
                      {"tool_depth", settings_.tool_depth},

@@ -7,6 +7,8 @@
 //   app.cpp          set-up, the loops, the stats and outputs of a scripted run
 //   app_document.cpp the document commands: the prompts that guard them, install_document
 //   app_files.cpp    files handed over without a field: dropped, or picked from the recent list
+//   app_file_dialogs.cpp  Open..., Save As..., Import..., Export...: the desktop's dialog or
+//                    the editor's own browser (panel_file_browser.cpp draws it)
 //   app_input.cpp    mouse and keys: the camera, the tools, shortcuts
 //   app_frame.cpp    one frame: erosion, the terrain's views, drawing
 //   app_script.cpp   scripted mode: ops as real input
@@ -33,10 +35,13 @@
 #include "editor_app.hpp"
 #include "editor_settings.hpp"
 #include "editor_window.hpp"
+#include "file_browser.hpp"
+#include "file_dialog_request.hpp"
 #include "file_kinds.hpp"
 #include "frame_policy.hpp"
 #include "haptics_session.hpp"
 #include "layout_probe.hpp"
+#include "native_file_dialog.hpp"
 #include "sculpting.hpp"
 #include "shortcuts.hpp"
 #include "stage_times.hpp"
@@ -141,7 +146,7 @@ class App {
     void replace_document(const std::string& what, std::function<void()> action);
     enum class DiscardChoice { Save, Discard, Cancel };
     /// The discard prompt's answer. Save writes the scene where Save and Ctrl+S write an
-    /// untitled one (the File panel's Scene field: the editor has no file dialog), then goes on.
+    /// untitled one (the File panel's Scene field), then goes on.
     void answer_discard(DiscardChoice choice);
     /// The recovery prompt's answer.
     void answer_recovery(bool recover);
@@ -190,6 +195,41 @@ class App {
     std::string fit_settings_to_document();
     void set_scene_field(const std::string& path);
     void set_import_field(const std::string& path);
+    void set_export_field(const std::string& path);
+
+    // ---- File dialogs (app_file_dialogs.cpp, panel_file_browser.cpp) ---------------------
+    /// Open..., Save As..., Import... and Export...: the desktop's dialog program when there
+    /// is one (and it is wanted), else the editor's own browser. One dialog at a time.
+    void show_file_dialog(FileDialogKind kind);
+    /// The dialog program to run, or nothing for the editor's browser: the setting, or
+    /// SANDTIN_FILE_DIALOG, says which; "auto" is the program found on PATH, except in a
+    /// scripted run, which always has the browser (a script drives it the same on any desktop).
+    std::optional<DialogProgram> native_dialog_program();
+    /// Where a dialog starts: the last folder a dialog picked in, else the folder of the
+    /// field's path, else the working folder.
+    std::filesystem::path dialog_start_folder(FileDialogKind kind) const;
+    bool file_dialog_open() const {
+        return browser_.is_open() || (native_dialog_ && native_dialog_->busy());
+    }
+    /// A file picked in either dialog goes where its field's button sends the field's path:
+    /// Open and Import behind the unsaved-edits prompt, Save As behind the overwrite prompt.
+    /// The path lands in the field, its folder in the settings (last_folder).
+    void apply_picked_file(FileDialogKind kind, const std::filesystem::path& path);
+    /// The desktop dialog's answer, taken on the UI thread; a dialog that failed gives way to
+    /// the browser, and the status line says why.
+    void take_native_dialog_result();
+    /// The File panel's Open..., Save As..., Import... and Export... buttons.
+    void file_dialog_buttons();
+    /// The browser, while it is open (a modal window).
+    void file_browser_window();
+    /// The folder, the filters and the error; returns the file Enter in the filter picked.
+    std::optional<std::filesystem::path> file_browser_header();
+    /// The folder's entries; returns the file a double click picked.
+    std::optional<std::filesystem::path> file_browser_entries(float height);
+    void file_browser_footer(std::optional<std::filesystem::path>& picked);
+    /// The script's pick_file op: the dialog's button, then the browser driven by real input.
+    void queue_pick_file_op(const nlohmann::json& op);
+    void queue_typing(const std::string& text);
 
     // ---- Solver (app_frame.cpp) ----------------------------------------------------------
     /// Whether the relaxation runs now: the Run/Pause switch, unless this document is still
@@ -349,7 +389,7 @@ class App {
     bool quit_confirmed_ = false;
     bool prompt_open() const {
         return recovery_for_.has_value() || pending_replacement_ != nullptr ||
-               pending_overwrite_.has_value();
+               pending_overwrite_.has_value() || browser_.is_open();
     }
 
     // Haptics panel.
@@ -375,6 +415,11 @@ class App {
     int script_wait_ = 0;
     /// A step returns false to be tried again next frame (a control not on screen yet).
     std::deque<std::function<bool()>> input_steps_;
+
+    // File dialogs.
+    FileBrowser browser_;
+    std::unique_ptr<NativeFileDialog> native_dialog_;
+    FileDialogRequest native_request_;  ///< what the desktop's dialog was asked
 
     // The File panel's fields.
     char path_buf_[512] = "scene.sandtin";

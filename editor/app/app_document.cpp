@@ -306,4 +306,10 @@ void App::set_import_field(const std::string& path) {
     std::snprintf(import_buf_, sizeof(import_buf_), "%s", path.c_str());
 }
 
+void App::set_export_field(const std::string& path) {
+    if (path.size() >= sizeof(export_buf_))
+        throw std::runtime_error("the path is longer than the Export path field holds");
+    std::snprintf(export_buf_, sizeof(export_buf_), "%s", path.c_str());
+}
+
 }  // namespace sandtin::editor

@@ -43,6 +43,16 @@ namespace sandtin::editor {
 //         | {"op": "save_settings"}  (writes the settings file, as a panel change does)
 //         | {"op": "drop", "paths": ["...", ...]}  (files dropped on the window: what GLFW's
 //            drop callback hands over, to the same handler)
+//         | {"op": "pick_file", "dialog": "open"|"save_as"|"import"|"export",
+//            "path": "/folder/name", "cancel": false, "replace": false}  (clicks the File
+//            panel's Open..., Save As..., Import... or Export... button, then drives the
+//            editor's file browser with real input: types the folder into its folder field,
+//            types the name into its type-to-filter box and clicks the file in the list (Open,
+//            Import) or types it into its name field (Save As, Export), then clicks its pick
+//            button, or Cancel when "cancel"; "replace" answers the browser's overwrite question.
+//            A scripted run shows the browser unless SANDTIN_FILE_DIALOG (or the file_dialog
+//            setting) is "native": then the desktop's dialog program picks, "path" is not used,
+//            and the op waits (up to 30 s) for the program's answer)
 //         | {"op": "stage_times", "ms": t}  (from now on every stage of every frame counts as
 //            taking t ms, as on a slow machine: the Stats window's fit, whatever the machine)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
@@ -155,6 +165,64 @@ void App::queue_key(int glfw_key, bool ctrl) {
     });
 }
 
+void App::queue_typing(const std::string& text) {
+    input_steps_.push_back([this, text] {
+        for (char c : text)
+            x_input_->type(c);
+        return true;
+    });
+}
+
+void App::queue_pick_file_op(const nlohmann::json& op) {
+    const std::string dialog = op.at("dialog").get<std::string>();
+    const std::optional<FileDialogKind> kind = file_dialog_kind_named(dialog);
+    if (!kind) {
+        throw std::runtime_error(
+            "script: pick_file dialog must be open, save_as, import or export, not '" + dialog +
+            "'");
+    }
+    static constexpr const char* kButtons[] = {"Open...", "Save As...", "Import...", "Export..."};
+    queue_widget_click(kButtons[static_cast<int>(*kind)], false, "the File panel is closed");
+    if (native_dialog_program()) {
+        // The desktop's program picks: wait for its answer, as a hand would.
+        auto started = std::make_shared<std::optional<Clock::time_point>>();
+        input_steps_.push_back([this, started] {
+            if (!*started) *started = Clock::now();
+            // Answered: its file applied, or (a failure) the browser open in its place.
+            if (!native_dialog_ || !native_dialog_->busy()) return true;
+            if (Clock::now() - **started > std::chrono::seconds(30))
+                throw std::runtime_error("script: the file dialog did not answer within 30 s");
+            return false;
+        });
+        return;
+    }
+    const std::filesystem::path path = op.at("path").get<std::string>();
+    const std::string name = path.filename().string();
+    if (name.empty() || !path.has_parent_path())
+        throw std::runtime_error("script: pick_file wants a folder and a file name, not '" +
+                                 path.string() + "'");
+    // To the folder: its field, everything in it selected, the folder typed, Enter.
+    queue_widget_click("browser/Folder", false, "the file browser did not open");
+    queue_key(GLFW_KEY_A, true);
+    queue_typing(path.parent_path().string());
+    queue_key(GLFW_KEY_ENTER, false);
+    if (file_dialog_request(*kind, {}).saving) {
+        queue_widget_click("browser/Name", false, "the file browser has no name field");
+        queue_key(GLFW_KEY_A, true);
+        queue_typing(name);
+    } else {
+        // The file among the folder's entries: the list narrowed to it, then clicked.
+        queue_widget_click("browser/Filter", false, "the file browser has no filter box");
+        queue_typing(name);
+        queue_widget_click("browser/entry/" + name, false,
+                           "no " + name + " listed in " + path.parent_path().string());
+    }
+    queue_widget_click(op.value("cancel", false) ? "browser/Cancel" : "browser/OK", false,
+                       "the file browser closed early");
+    if (op.value("replace", false))
+        queue_widget_click("browser/Replace", false, "the browser did not ask to replace");
+}
+
 void App::queue_widget_click(const std::string& name, bool ctrl, const std::string& why_missing) {
     // Waits, frame after frame, for the control to be on screen and to stop moving.
     auto waited = std::make_shared<int>(0);
@@ -183,6 +251,8 @@ void App::run_script_op(const nlohmann::json& op) {
         queue_pointer_op(kind, op);
     else if (kind == "recovery" || kind == "discard" || kind == "overwrite")
         queue_prompt_op(kind, op);
+    else if (kind == "pick_file")
+        queue_pick_file_op(op);
     else
         run_document_op(kind, op);
 }
@@ -303,11 +373,7 @@ void App::queue_pointer_op(const std::string& kind, const nlohmann::json& op) {
     } else if (kind == "key") {
         queue_key(glfw_key_named(op.at("key").get<std::string>()), op.value("ctrl", false));
     } else if (kind == "type") {
-        const std::string text = op.at("text").get<std::string>();
-        step([this, text] {
-            for (char c : text)
-                x_input_->type(c);
-        });
+        queue_typing(op.at("text").get<std::string>());
     } else if (kind == "scroll") {
         const long clicks = std::lround(op.at("steps").get<double>());
         step([this, clicks] {

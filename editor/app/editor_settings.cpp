@@ -52,6 +52,8 @@ void fields(EditorSettings& s, F&& f) {
     f("vsync", s.vsync, nullptr);
     f("scene_size", s.scene_size, nullptr);
     f("recent_files", s.recent_files, nullptr);
+    f("last_folder", s.last_folder, nullptr);
+    f("file_dialog", s.file_dialog, nullptr);
 }
 
 std::string shown(const nlohmann::json& value) {
@@ -135,6 +137,10 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
     if (s.physics != "auto" && s.physics != "cpu" && s.physics != "gpu") {
         bad.push_back("physics '" + s.physics + "' is not auto, cpu or gpu");
         s.physics = defaults.physics;
+    }
+    if (s.file_dialog != "auto" && s.file_dialog != "native" && s.file_dialog != "imgui") {
+        bad.push_back("file_dialog '" + s.file_dialog + "' is not auto, native or imgui");
+        s.file_dialog = defaults.file_dialog;
     }
     // Files of earlier versions chose with a flag: true was a choice of the GPU, false the
     // default, which Auto now is.

@@ -48,6 +48,12 @@ struct EditorSettings {
     double scene_size = 1.0;
     /// The File panel's recent files (recent_files.hpp): absolute paths, newest first.
     std::vector<std::string> recent_files;
+    /// The folder the last file dialog picked a file in: the next one starts there.
+    std::string last_folder;
+    /// Which file dialog Open..., Save As..., Import... and Export... show: "auto" (the
+    /// desktop's zenity or kdialog when one is on PATH, else the editor's own browser),
+    /// "native" or "imgui". The environment variable SANDTIN_FILE_DIALOG overrides it.
+    std::string file_dialog = "auto";
 
     friend bool operator==(const EditorSettings&, const EditorSettings&) = default;
 };

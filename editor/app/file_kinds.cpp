@@ -1,15 +1,12 @@
 #include "file_kinds.hpp"
 
-#include <algorithm>
-#include <cctype>
+#include "util/lower_extension.hpp"
 
 namespace sandtin::editor {
 
 FileKind file_kind(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext == ".sandtin") return FileKind::Scene;
+    const std::string ext = lower_extension(path);
+    if (ext == kSceneExtension) return FileKind::Scene;
     for (const char* e : kHeightmapExtensions) {
         if (ext == e) return FileKind::Heightmap;
     }

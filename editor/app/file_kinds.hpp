@@ -15,6 +15,15 @@ enum class FileKind { Scene, Heightmap, Other };
 /// PNG (16-bit grey or Terrain-RGB), OpenEXR, GeoTIFF and ESRI ASCII grid.
 inline constexpr const char* kHeightmapExtensions[] = {".png", ".exr", ".tif", ".tiff", ".asc"};
 
+/// The extension of a scene (engine/io/session_file.hpp).
+inline constexpr const char* kSceneExtension = ".sandtin";
+
+/// The extensions of the formats the exporter writes, chosen by the extension
+/// (engine/io/export_terrain.hpp, export_format_for): meshes, then height maps. A test checks
+/// each against the exporter.
+inline constexpr const char* kExportExtensions[] = {".obj", ".ply", ".stl", ".gltf",
+                                                    ".glb", ".png", ".exr"};
+
 FileKind file_kind(const std::filesystem::path& path);
 
 /// "a scene (.sandtin) or a heightmap (.png .exr .tif .tiff .asc)": what is accepted, for

@@ -3,6 +3,7 @@
 #include "app.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <utility>
 
 #include "panel_layout.hpp"
@@ -28,6 +29,7 @@ void App::panel_file() {
     ImGui::SameLine();
     if (ImGui::Button("Save As")) request_save(path_buf_);
     ui("Save As", "Save the scene under the path above (asks before replacing another file)");
+    file_dialog_buttons();
     if (path_field(widgets_, "Heightmap", "heightmap to import", import_buf_, sizeof(import_buf_),
                    "Import"))
         replace_document("Import", [this] { import_document(import_buf_); });
@@ -55,6 +57,34 @@ void App::panel_file() {
     ImGui::TextUnformatted(
         undo_levels_text(doc_.undo_log().levels(), doc_.history().bytes()).c_str());
     recent_files_list();
+}
+
+void App::file_dialog_buttons() {
+    // Two a row, each half the row: they fit the panel whatever its scroll bar takes.
+    const float half = 0.5f * (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x);
+    struct DialogButton {
+        const char* label;
+        FileDialogKind kind;
+        const char* tip;
+    };
+    static constexpr DialogButton kButtons[] = {
+        {"Open...", FileDialogKind::Open, "Choose a scene (.sandtin) to open"},
+        {"Save As...", FileDialogKind::SaveAs,
+         "Choose where to save the scene (asks before replacing another file)"},
+        {"Import...", FileDialogKind::Import,
+         "Choose a heightmap to import as a new, untitled scene"},
+        {"Export...", FileDialogKind::Export,
+         "Choose a file to export the terrain to (the extension picks the format)"},
+    };
+    const bool busy = file_dialog_open();
+    for (std::size_t i = 0; i < std::size(kButtons); ++i) {
+        if (i % 2 == 1) ImGui::SameLine();
+        ImGui::BeginDisabled(busy);
+        if (ImGui::Button(kButtons[i].label, ImVec2(half, 0.0f)))
+            show_file_dialog(kButtons[i].kind);
+        ImGui::EndDisabled();
+        ui(kButtons[i].label, busy ? "A file dialog is open: answer it first" : kButtons[i].tip);
+    }
 }
 
 void App::recent_files_list() {

@@ -14,6 +14,7 @@
 namespace sandtin::editor {
 
 void App::draw_panels() {
+    take_native_dialog_result();
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     // The status line (save and autosave failures, the terrain-scaling notice) has its own
     // window in the bottom-left corner, and the panel ends above it: when the panel is taller
@@ -48,6 +49,7 @@ void App::draw_panels() {
     status_window(status_height);
     stats_window();
     help_window();
+    file_browser_window();
     recovery_prompt();
     discard_prompt();
     overwrite_prompt();

@@ -154,6 +154,29 @@ TEST(Settings, ThePhysicsChoiceIsAutoByDefaultAndAnOldGpuFlagStaysAChoiceOfTheGp
     std::filesystem::remove_all(dir);
 }
 
+TEST(Settings, TheFileDialogChoiceAndTheLastFolderSurviveAndABadChoiceFallsBack) {
+    const auto dir = std::filesystem::temp_directory_path() / "sandtin-editor-settings-dialog";
+    std::filesystem::remove_all(dir);
+    const auto path = dir / "editor.json";
+    EXPECT_EQ(EditorSettings{}.file_dialog, "auto");
+    EXPECT_EQ(EditorSettings{}.last_folder, "");
+    EditorSettings s;
+    s.file_dialog = "imgui";
+    s.last_folder = "/data/dunes and hills";
+    save_settings(path, s);
+    std::string problem;
+    const EditorSettings loaded = load_settings(path, &problem);
+    EXPECT_EQ(loaded.file_dialog, "imgui");
+    EXPECT_EQ(loaded.last_folder, "/data/dunes and hills");
+    EXPECT_TRUE(problem.empty()) << problem;
+    std::ofstream(path) << R"({"file_dialog": "gtk", "last_folder": "/data"})";
+    const EditorSettings bad = load_settings(path, &problem);
+    EXPECT_EQ(bad.file_dialog, "auto");
+    EXPECT_EQ(bad.last_folder, "/data") << "the rest of the file still counts";
+    EXPECT_NE(problem.find("file_dialog 'gtk'"), std::string::npos) << problem;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(Settings, RangesClampWhatIsTypedAndScaleWithTheTerrain) {
     EXPECT_EQ(kToolRadiusRange.clamp(-2.0, 1.0), 0.005);
     EXPECT_EQ(kToolRadiusRange.clamp(1e9, 1.0), 0.15);
