@@ -7,7 +7,8 @@ editor=build/editor/app/sandtin-editor
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 settings="$work/editor.json"  # defaults: the pictures do not depend on your own settings
-for name in sculpt wireframe slope help file-browser; do
+# progress: an import held mid-way by the script (its "jobs" op), so the bar shows on any machine.
+for name in sculpt wireframe slope help file-browser progress; do
   xvfb-run -a -s '-screen 0 1280x720x24' "$editor" assets/scenes/default.sandtin \
     --settings "$settings" --script "docs/scripts/$name.json" --frames 3 \
     --screenshot "docs/editor-$name.png"

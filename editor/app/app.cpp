@@ -19,8 +19,10 @@ namespace sandtin::editor {
 App::~App() {
     // The force loop fades the force out before the window goes; nothing the GPU may still
     // read is destroyed before it is idle; the document's GPU solver and the terrain's views
-    // go before the device. A desktop file dialog still open is closed first: its thread
-    // wakes GLFW's loop, which must still be there.
+    // go before the device. A job still running is cancelled and waited for first (it
+    // touches nothing of the editor's, but its result would never be taken), and a desktop
+    // file dialog still open is closed: its thread wakes GLFW's loop, which must still be there.
+    job_.reset();
     native_dialog_.reset();
     haptics_.reset();
     if (window_) window_->wait_idle();
@@ -81,7 +83,9 @@ LoopState App::loop_state() const {
     state.redraw_pending = redraw_frames_ > 0;
     state.dragging = left_down_;
     state.prompt_open = prompt_open();
-    state.eroding = erosion_runs() && sculpting_.wants_to_erode(doc_);
+    state.job_running = busy();
+    // The sand waits while a job runs (update_simulation): its frames are the job's.
+    state.eroding = !busy() && erosion_runs() && sculpting_.wants_to_erode(doc_);
     state.haptics_connected = haptics_ != nullptr;
     return state;
 }
@@ -230,6 +234,8 @@ void App::scripted_loop() {
             run_input_step();
         } else if (script_wait_ > 0) {
             --script_wait_;
+        } else if (busy() && script_waits_for_jobs_) {
+            // The next op waits for the import, open or export the last one started.
         } else if (script_pos_ < script_.size()) {
             run_script_op(script_[script_pos_++]);
             if (!input_steps_.empty()) run_input_step();
@@ -311,6 +317,9 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["tooltip"] = widgets_.last_tooltip();
     s["widgets"] = widgets_.to_json();
     s["help_open"] = help_open_;
+    s["jobs"] = jobs_done_;
+    s["job_running"] = busy();
+    s["settle"] = settle_record_;
     s["recent_files"] = settings_.recent_files;
     s["last_folder"] = settings_.last_folder;
     s["import_field"] = std::string(import_buf_);

@@ -9,6 +9,7 @@
 //   app_files.cpp    files handed over without a field: dropped, or picked from the recent list
 //   app_file_dialogs.cpp  Open..., Save As..., Import..., Export...: the desktop's dialog or
 //                    the editor's own browser (panel_file_browser.cpp draws it)
+//   app_jobs.cpp     long work: import, open and export on a worker; the erosion to rest
 //   app_input.cpp    mouse and keys: the camera, the tools, shortcuts
 //   app_frame.cpp    one frame: erosion, the terrain's views, drawing
 //   app_script.cpp   scripted mode: ops as real input
@@ -30,6 +31,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "background_job.hpp"
 #include "camera.hpp"
 #include "document.hpp"
 #include "editor_app.hpp"
@@ -43,6 +45,7 @@
 #include "layout_probe.hpp"
 #include "native_file_dialog.hpp"
 #include "sculpting.hpp"
+#include "settle_progress.hpp"
 #include "shortcuts.hpp"
 #include "stage_times.hpp"
 #include "terrain_view.hpp"
@@ -86,7 +89,7 @@ class App {
     /// closing a prompt, or the pointer moving off a panel, before the next frame would be
     /// judged by where it was.)
     bool ui_takes_pointer(double x, double y) const {
-        return prompt_open() || widgets_.covers(x, y);
+        return prompt_open() || busy() || widgets_.covers(x, y);
     }
     void mouse_button(int button, bool down, double x, double y);
     void mouse_move(double x, double y);
@@ -154,12 +157,15 @@ class App {
     /// first (the discard prompt), and the window stays open meanwhile.
     bool close_confirmed();
     void new_document();
-    /// Opens the scene at `path` (the Scene field's, a recent or a dropped file's) and puts it
-    /// in the Scene field and the recent list; a failure is reported.
+    /// Opens the scene at `path` (the Scene field's, a recent or a dropped file's) on a worker
+    /// (app_jobs.cpp); once read, it replaces the document and goes in the Scene field and the
+    /// recent list. A failure or a Cancel is reported and leaves the document as it was.
     void open_reporting(const std::filesystem::path& path);
-    /// Imports the heightmap at `path` as an untitled scene, fills the Scene field with a name
-    /// of its own and notes the heightmap in the recent list; a failure is reported.
+    /// Imports the heightmap at `path` on a worker as an untitled scene; once read, it fills
+    /// the Scene field with a name of its own and notes the heightmap in the recent list
+    /// (finish_import). A failure or a Cancel is reported and leaves the document as it was.
     void import_document(const std::filesystem::path& heightmap);
+    void finish_import(const std::filesystem::path& heightmap, Document next);
     /// A file handed over without a field (dropped, or a recent one): a scene is opened and a
     /// heightmap imported, each as the Open and Import buttons do, behind the unsaved-edits
     /// prompt; anything else is refused on the status line, naming it and what is accepted.
@@ -173,7 +179,29 @@ class App {
     /// Saves now (scripts, --save-after and the overwrite prompt's Replace); throws.
     void save(const std::filesystem::path& p);
     bool save_reporting(const std::filesystem::path& p);
+    /// Exports a copy of the terrain as it is now, on a worker; a failure or a Cancel is
+    /// reported, and a cancelled export writes no file.
     void export_reporting(const std::filesystem::path& p);
+
+    // ---- Long work (app_jobs.cpp) --------------------------------------------------------
+    /// A job runs: the terrain, the document commands and saving wait for it.
+    bool busy() const { return job_ != nullptr; }
+    /// While a job runs: says on the status line that `what` was not done, and returns true.
+    bool refuse_while_busy(const std::string& what);
+    /// Starts `work` on a worker; `done` takes its result on the UI thread once it is done.
+    void start_job(const std::string& kind, const std::string& title, BackgroundJob::Work work,
+                   std::function<void()> done);
+    /// Every frame: a job that ended is taken (its result installed, its failure or Cancel
+    /// reported).
+    void poll_job();
+    /// The Cancel button and Escape: the job stops at its next check.
+    void cancel_job();
+    /// The job's bar was drawn showing `shown` (for a scripted run's stats).
+    void note_job_shown(const JobProgress& shown);
+    /// A frame of erosion: measures the erosion's own settle to rest for its bar.
+    void update_settle(const ErosionFrame& e);
+    /// The settle bar's Stop: the erosion pauses, and what settled is one undo level.
+    void stop_settling();
     /// Where Save and Ctrl+S write: the scene's file, or the Scene field for an untitled one.
     std::filesystem::path save_path() const {
         return doc_.untitled() ? std::filesystem::path(path_buf_) : doc_.path();
@@ -315,6 +343,10 @@ class App {
     void recovery_prompt();
     void discard_prompt();
     void overwrite_prompt();
+    /// The running job's modal bar with Cancel (panel_progress.cpp).
+    void job_window();
+    /// The erosion's settle to rest: its bar with Stop, while it lasts.
+    void settle_window();
 
     // ---- Scripted mode (app_script.cpp) --------------------------------------------------
     void run_script_op(const nlohmann::json& op);
@@ -333,6 +365,8 @@ class App {
     /// A click on a control: waits for it to be on screen first.
     void queue_widget_click(const std::string& name, bool ctrl, const std::string& why_missing);
     void queue_key(int glfw_key, bool ctrl);
+    /// The ops about long work: jobs, job, cancel_job, resume_job.
+    void run_job_op(const std::string& kind, const nlohmann::json& op);
     void set_physics(const std::string& name);
     void set_falloff(const std::string& name);
 
@@ -391,6 +425,19 @@ class App {
         return recovery_for_.has_value() || pending_replacement_ != nullptr ||
                pending_overwrite_.has_value() || browser_.is_open();
     }
+
+    // Long work (app_jobs.cpp).
+    std::unique_ptr<BackgroundJob> job_;
+    std::string job_kind_;            ///< "open", "import" or "export"
+    std::function<void()> job_done_;  ///< takes the job's result on the UI thread
+    bool job_popup_open_ = false;     ///< the modal is closed in the frame after the job ends
+    nlohmann::json job_record_;       ///< what the running job's bar showed
+    std::vector<nlohmann::json> jobs_done_;  ///< the records of the jobs that ended
+    bool script_waits_for_jobs_ = true;      ///< a script's next op waits for the job to end
+    std::optional<double> job_pause_at_;     ///< test hook (background_job.hpp)
+    SettleProgress settle_;
+    Clock::time_point last_settle_at_{};
+    nlohmann::json settle_record_ = nlohmann::json::object();
 
     // Haptics panel.
     std::unique_ptr<HapticsSession> haptics_;

@@ -20,20 +20,6 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
     return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(b, ec);
 }
 
-/// A scene name for an imported heightmap: beside it, with its stem, and not taken by a file
-/// or an autosave ("bay-hills.sandtin", else "bay-hills-2.sandtin", ...).
-std::filesystem::path scene_name_for_import(const std::filesystem::path& heightmap) {
-    const std::filesystem::path folder = heightmap.parent_path();
-    const std::string stem = heightmap.stem().string();
-    for (int n = 1; n < 1000; ++n) {
-        const std::string name = n == 1 ? stem : stem + "-" + std::to_string(n);
-        const std::filesystem::path candidate = folder / (name + ".sandtin");
-        std::error_code ec;
-        if (!std::filesystem::exists(candidate, ec) && !find_autosave(candidate)) return candidate;
-    }
-    return folder / (stem + "-imported.sandtin");
-}
-
 }  // namespace
 
 // ---- Replacing the document ---------------------------------------------------------------
@@ -74,38 +60,6 @@ void App::new_document() {
     install_document(Document::sandbox(), "new sandbox");
 }
 
-void App::open_reporting(const std::filesystem::path& p) {
-    try {
-        sculpting_.close_level(doc_);
-        // Read before anything is dropped: a file that does not load leaves the scene as it was.
-        Document next = Document::open(p);
-        keep_unsaved_edits();
-        set_scene_field(p.string());
-        note_recent_file(settings_.recent_files, p);
-        install_document(std::move(next), "opened " + p.string());
-    } catch (const std::exception& e) {
-        report(std::string("open failed: ") + e.what());
-    }
-}
-
-void App::import_document(const std::filesystem::path& heightmap) {
-    try {
-        sculpting_.close_level(doc_);
-        Document next = Document::imported(heightmap);
-        keep_unsaved_edits();
-        // An imported model is a scene of its own, with a name of its own in the Scene field,
-        // so Save never writes it over the scene it replaced.
-        const std::filesystem::path name = scene_name_for_import(heightmap);
-        set_scene_field(name.string());
-        set_import_field(heightmap.string());
-        note_recent_file(settings_.recent_files, heightmap);
-        install_document(std::move(next), "imported " + heightmap.string() +
-                                              " (untitled: Save writes " + name.string() + ")");
-    } catch (const std::exception& e) {
-        report(std::string("import failed: ") + e.what());
-    }
-}
-
 void App::answer_recovery(bool recover) {
     if (!recovery_for_) throw std::runtime_error("there is no autosave to recover or discard");
     const std::filesystem::path scene = *recovery_for_;
@@ -128,6 +82,7 @@ void App::answer_recovery(bool recover) {
 }
 
 void App::replace_document(const std::string& what, std::function<void()> action) {
+    if (refuse_while_busy(what)) return;
     sculpting_.close_level(doc_);
     if (doc_.dirty() && doc_.untitled()) {
         pending_replacement_ = std::move(action);
@@ -192,6 +147,7 @@ bool App::save_reporting(const std::filesystem::path& p) {
 }
 
 void App::request_save(const std::filesystem::path& p, std::function<void()> then) {
+    if (refuse_while_busy("save")) return;
     sculpting_.close_level(doc_);
     std::error_code ec;
     const bool own_file = !doc_.untitled() && same_file(p, doc_.path());
@@ -202,16 +158,6 @@ void App::request_save(const std::filesystem::path& p, std::function<void()> the
         return;
     }
     if (save_reporting(p) && then) then();
-}
-
-void App::export_reporting(const std::filesystem::path& p) {
-    try {
-        sculpting_.close_level(doc_);
-        const ExportReport r = doc_.export_to(p);
-        report("exported " + std::to_string(r.files.size()) + " file(s)");
-    } catch (const std::exception& e) {
-        report(std::string("export failed: ") + e.what());
-    }
 }
 
 void App::keep_unsaved_edits() {
@@ -300,16 +246,16 @@ void App::set_scene_field(const std::string& path) {
     std::snprintf(path_buf_, sizeof(path_buf_), "%s", path.c_str());
 }
 
-void App::set_import_field(const std::string& path) {
-    if (path.size() >= sizeof(import_buf_))
-        throw std::runtime_error("the path is longer than the Heightmap field holds");
-    std::snprintf(import_buf_, sizeof(import_buf_), "%s", path.c_str());
-}
-
 void App::set_export_field(const std::string& path) {
     if (path.size() >= sizeof(export_buf_))
         throw std::runtime_error("the path is longer than the Export path field holds");
     std::snprintf(export_buf_, sizeof(export_buf_), "%s", path.c_str());
+}
+
+void App::set_import_field(const std::string& path) {
+    if (path.size() >= sizeof(import_buf_))
+        throw std::runtime_error("the path is longer than the Heightmap field holds");
+    std::snprintf(import_buf_, sizeof(import_buf_), "%s", path.c_str());
 }
 
 }  // namespace sandtin::editor

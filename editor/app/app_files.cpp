@@ -29,6 +29,7 @@ void App::drop_files(const std::vector<std::string>& paths) {
         report("answer the open prompt first: " + first.string() + " was not opened");
         return;
     }
+    if (refuse_while_busy("opening the dropped " + first.string())) return;
     // One scene is open at a time: the first file counts, and the status line says what was
     // left (open_or_import's own message follows it in the session's messages).
     if (paths.size() > 1)

@@ -100,14 +100,18 @@ void App::update_simulation() {
         hold_clock_ = now;
         sculpting_.hold(doc_, seconds, settings_);
     }
-    if (erosion_runs()) {
+    // While a job runs the sand waits: the job's worker has the CPU, and an import or open
+    // replaces this terrain anyway.
+    if (erosion_runs() && !busy()) {
         const ErosionFrame e = sculpting_.erode(doc_, settings_, kErosionBudgetMs);
         if (e.ran) {
             erosion_active_ = e.active;
             view_->set_active(e.changed);
         }
+        update_settle(e);
     } else {
-        view_->clear_active();
+        if (!busy()) view_->clear_active();
+        update_settle({});
     }
     for (const std::string& m : sculpting_.take_messages())
         report(m);
@@ -221,6 +225,7 @@ bool App::frame(bool capture) {
     // The simulation and the panels may edit the terrain: the haptic snapshot is not held
     // through them, so a long edit fades the force as the loop's staleness rule intends.
     if (haptics_) haptics_->release();
+    poll_job();
     update_simulation();
     const ViewUpdate u = view_->update(doc_, [this] { window_->swapchain().wait_idle(); });
     times_.push(times_.mesh, u.mesh_ms);

@@ -180,6 +180,11 @@ void App::key(int k, bool ctrl) {
     // While a prompt waits for its answer, shortcuts must not change the document under it
     // (Ctrl+O could open another scene with the recovery prompt still about the first).
     if (prompt_open()) return;
+    // While a job runs the keys wait too; Escape cancels it, as its Cancel button does.
+    if (busy()) {
+        if (k == GLFW_KEY_ESCAPE) cancel_job();
+        return;
+    }
     if (const Shortcut* shortcut = shortcut_for_key(k, ctrl)) {
         run_command(shortcut->command);
     } else if (ctrl) {

@@ -53,6 +53,14 @@ namespace sandtin::editor {
 //            A scripted run shows the browser unless SANDTIN_FILE_DIALOG (or the file_dialog
 //            setting) is "native": then the desktop's dialog program picks, "path" is not used,
 //            and the op waits (up to 30 s) for the program's answer)
+//         | {"op": "jobs", "wait": true|false, "pause_at": f}  (whether the ops after one that
+//            starts an import, open or export wait for it to end, as by default; with
+//            pause_at, a job holds at its first report at or past fraction f until
+//            "resume_job" or Cancel: a test sees the bar mid-way on any machine)
+//         | {"op": "job", "until": "paused"|"done", "frames": n}  (waits for the running
+//            job to hold at its pause point, or to end: at most n frames, 600 by default)
+//         | {"op": "cancel_job"}  (clicks the job's Cancel, or the settle bar's Stop)
+//         | {"op": "resume_job"}
 //         | {"op": "stage_times", "ms": t}  (from now on every stage of every frame counts as
 //            taking t ms, as on a slow machine: the Stats window's fit, whatever the machine)
 //         | {"op": "material", "index": i, "repose_dry": deg, "repose_moist": deg,
@@ -65,7 +73,7 @@ namespace sandtin::editor {
 // ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
 // simplify_tolerance (metres, as the Erosion panel's slider), physics ("auto" | "cpu" | "gpu", the
 // Erosion panel's switch), scene_path and import_path (typed into the File panel's Scene and
-// Heightmap fields); numbers
+// Heightmap fields), export_path (the Export field); numbers
 // are clamped to their sliders' ranges, as typed values are.
 // Positions are fractions of the window (0..1): scripts work at any --size.
 
@@ -297,6 +305,8 @@ void App::run_setting_op(const nlohmann::json& op) {
             set_scene_field(v.get<std::string>());
         else if (k2 == "import_path")
             set_import_field(v.get<std::string>());
+        else if (k2 == "export_path")
+            set_export_field(v.get<std::string>());
         else
             throw std::runtime_error("script: unknown setting '" + k2 + "'");
     }
@@ -463,6 +473,8 @@ void App::run_document_op(const std::string& kind, const nlohmann::json& op) {
                 m.colour[c] = std::clamp(op["colour"].at(c).get<float>(), 0.0f, 1.0f);
         }
         edit_material(index, m);
+    } else if (kind == "jobs" || kind == "job" || kind == "cancel_job" || kind == "resume_job") {
+        run_job_op(kind, op);
     } else if (kind == "drop") {
         drop_files(op.at("paths").get<std::vector<std::string>>());
     } else if (kind == "stage_times") {
@@ -484,6 +496,38 @@ void App::run_document_op(const std::string& kind, const nlohmann::json& op) {
         keep_unsaved_edits();
     } else {
         throw std::runtime_error("script: unknown op '" + kind + "'");
+    }
+}
+
+void App::run_job_op(const std::string& kind, const nlohmann::json& op) {
+    if (kind == "jobs") {
+        script_waits_for_jobs_ = op.value("wait", true);
+        if (op.contains("pause_at"))
+            job_pause_at_ = op.at("pause_at").get<double>();
+        else
+            job_pause_at_.reset();
+    } else if (kind == "job") {
+        const std::string until = op.value("until", "done");
+        if (until != "paused" && until != "done")
+            throw std::runtime_error("script: a job op waits until paused or done");
+        const int most = op.value("frames", 600);
+        auto waited = std::make_shared<int>(0);
+        input_steps_.push_back([this, until, most, waited] {
+            if (until == "done" ? !busy() : busy() && job_->paused()) return true;
+            if (until == "paused" && !busy())
+                throw std::runtime_error("script: the job ended before its pause point");
+            if (++*waited > most)
+                throw std::runtime_error("script: the job was not " + until + " within " +
+                                         std::to_string(most) + " frames");
+            return false;
+        });
+    } else if (kind == "cancel_job") {
+        if (busy())
+            queue_widget_click("job/Cancel", false, "no job runs");
+        else
+            queue_widget_click("settle/Stop", false, "the sand is not settling to rest");
+    } else if (busy()) {
+        job_->resume();
     }
 }
 

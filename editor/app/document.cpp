@@ -37,21 +37,31 @@ Document Document::sandbox() {
     return make(default_sandbox(), 1, {}, MaterialTable::presets(), "{}");
 }
 
-Document Document::open(const std::filesystem::path& path) {
+Document Document::open(const std::filesystem::path& path, const ProgressCallback& progress) {
+    // Shares measured on a large scene: decoding the file and building the TIN (its
+    // triangulation checked) about equally, setting up the solver and the history the rest.
+    if (progress) progress({0.0, "reading the scene"});
     const Session s = load_session(path);
-    Document d = make(session_terrain(s, path), s.next_generation, path,
+    if (progress) progress({0.45, "building the terrain"});
+    Tin tin = session_terrain(s, path);
+    if (progress) progress({0.85, "setting up the solver and the history"});
+    Document d = make(std::move(tin), s.next_generation, path,
                       materials_or_presets(s.metadata_json), s.metadata_json);
     d.erosion_held_ = true;
+    if (progress) progress({1.0, "done"});
     return d;
 }
 
-Document Document::imported(const std::filesystem::path& heightmap) {
-    ImportResult r = import_heightmap(heightmap, ImportOptions{});
+Document Document::imported(const std::filesystem::path& heightmap,
+                            const ProgressCallback& progress) {
+    ImportResult r = import_heightmap(heightmap, ImportOptions{}, progress_part(progress, 0, 0.9));
+    if (progress) progress({0.9, "setting up the solver and the history"});
     // The import record, as `sandtin import` writes it.
     Document d = make(std::move(r.tin), 1, {}, MaterialTable::presets(),
                       nlohmann::json{{"import", to_json(r.report)}}.dump());
     d.erosion_held_ = true;
     d.dirty_ = true;  // on no disk yet
+    if (progress) progress({1.0, "done"});
     return d;
 }
 
@@ -198,13 +208,27 @@ void Document::save(const std::filesystem::path& path) {
     autosave_schedule_.saved(std::chrono::steady_clock::now());
 }
 
-ExportReport Document::export_to(const std::filesystem::path& path) const {
+ExportOptions Document::export_options() const {
     // The defaults `sandtin export` takes from the session: the import grid while the terrain
     // lies on it, and the georeference; the colours are the live table's.
     ExportOptions options;
     apply_import_defaults(*tin_, metadata_json_, options);
     options.palette = export_palette(materials_);
-    return export_terrain(*tin_, path, export_format_for(path), options);
+    return options;
+}
+
+ExportReport Document::export_to(const std::filesystem::path& path) const {
+    return export_terrain(*tin_, path, export_format_for(path), export_options());
+}
+
+ExportJob Document::export_job(const std::filesystem::path& path) const {
+    return ExportJob{path, export_format_for(path), export_options(), tin_->snapshot()};
+}
+
+ExportReport ExportJob::run(const ProgressCallback& progress) const {
+    if (progress) progress({0.0, "copying the terrain"});
+    const Tin tin = Tin::from_snapshot(terrain);
+    return export_terrain(tin, path, format, options, progress_part(progress, 0.05, 1.0));
 }
 
 void Document::mark_edited(std::chrono::steady_clock::time_point now) {

@@ -18,6 +18,7 @@
 #include "io/autosave.hpp"
 #include "io/autosave_writer.hpp"
 #include "io/export_terrain.hpp"
+#include "io/progress.hpp"
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "physics/terrain_solver.hpp"
@@ -25,6 +26,18 @@
 #include "undo_log.hpp"
 
 namespace sandtin::editor {
+
+/// An export with its own copy of the terrain and options (Document::export_job).
+struct ExportJob {
+    std::filesystem::path path;
+    ExportFormat format = ExportFormat::Obj;
+    ExportOptions options;
+    TinSnapshot terrain;
+
+    /// Builds the terrain again from the copy and exports it, as Document::export_to does.
+    /// `progress` may throw (Cancelled): the export then writes nothing.
+    ExportReport run(const ProgressCallback& progress = {}) const;
+};
 
 /// What an undo or redo did, for the status line.
 struct UndoOutcome {
@@ -43,11 +56,15 @@ class Document {
     /// A new 1 m sandbox (default_sandbox()), untitled; it erodes once sculpted.
     static Document sandbox();
     /// The session at `path`, with its material table; held (erosion waits for Run). Throws
-    /// on a file that does not load, before anything else is touched.
-    static Document open(const std::filesystem::path& path);
+    /// on a file that does not load, before anything else is touched. `progress`
+    /// (io/progress.hpp) hears reading, the terrain's build and the document's set-up; it may
+    /// throw (Cancelled) to stop there. Touches nothing shared: runs on a worker thread.
+    static Document open(const std::filesystem::path& path, const ProgressCallback& progress = {});
     /// A heightmap meshed as `sandtin import` meshes it: untitled, unsaved and held, with the
-    /// import record in its metadata (exports read its grid and georeference).
-    static Document imported(const std::filesystem::path& heightmap);
+    /// import record in its metadata (exports read its grid and georeference). `progress` as
+    /// for open().
+    static Document imported(const std::filesystem::path& heightmap,
+                             const ProgressCallback& progress = {});
     /// The autosave of the scene at `scene`, as that scene (edited since it was saved); held.
     static Document recovered(const std::filesystem::path& scene);
 
@@ -105,6 +122,10 @@ class Document {
     /// The terrain as `sandtin export` writes it (format from the extension), with the
     /// materials as they are now, unsaved edits included. Throws on failure.
     ExportReport export_to(const std::filesystem::path& path) const;
+    /// What an export to `path` needs, copied: the export can then run on a worker thread
+    /// while this document goes on being edited (or is replaced). Throws std::invalid_argument
+    /// for an extension no format has, at once.
+    ExportJob export_job(const std::filesystem::path& path) const;
     /// The session a save or an autosave writes.
     Session session() const;
     /// Edits were made: the scene needs saving, and an autosave once the interval passed.
@@ -117,6 +138,8 @@ class Document {
     bool keep_in_autosave(AutosaveWriter& writer);
 
   private:
+    /// The options `sandtin export` would take from this scene (export_to, export_job).
+    ExportOptions export_options() const;
     /// Undo (`back`) or redo: a material edit or a terrain level of the history.
     UndoOutcome step_back_or_forward(bool back);
     static Document make(Tin t, Generation next_generation, const std::filesystem::path& p,

@@ -7,6 +7,10 @@
 // With a haptic device connected, the waits are timed so the Haptics panel's live rate and force
 // are redrawn every kHapticReadoutSeconds; the force loop's snapshot is kept current meanwhile
 // by the session's heartbeat thread (haptics/snapshot_heartbeat.hpp), not by frames.
+//
+// While long work runs on a worker (an import, an open, an export: background_job.hpp) the
+// window redraws its progress bar every kJobRefreshSeconds: frames keep coming, well within
+// 100 ms, without spinning on the CPU the worker needs.
 
 namespace sandtin::editor {
 
@@ -18,10 +22,14 @@ struct LoopState {
     bool prompt_open = false;        ///< a modal waits for an answer
     bool eroding = false;            ///< erosion runs and the sand is not at rest
     bool haptics_connected = false;  ///< a force loop reads the snapshots we publish
+    bool job_running = false;        ///< long work on a worker: its progress bar is redrawn
 };
 
 /// Seconds between frames drawn while idle with a haptic device (the panel's live readout).
 inline constexpr double kHapticReadoutSeconds = 0.5;
+/// Seconds between frames drawn while a job runs on a worker (its bar, elapsed and estimate):
+/// frames go on, but do not spin, so the worker has the CPU it needs.
+inline constexpr double kJobRefreshSeconds = 0.05;
 /// How long wait_for_events may block: 0 polls, a negative value waits for the next event.
 inline constexpr double kWaitForEvent = -1.0;
 
@@ -41,6 +49,7 @@ constexpr bool wants_continuous_frames(const LoopState& s) {
 constexpr double event_wait_seconds(const LoopState& s) {
     if (wants_continuous_frames(s)) return 0.0;
     const bool visible = can_draw(s.framebuffer_width, s.framebuffer_height);
+    if (visible && s.job_running) return kJobRefreshSeconds;
     return visible && s.haptics_connected ? kHapticReadoutSeconds : kWaitForEvent;
 }
 
@@ -50,6 +59,8 @@ constexpr double event_wait_seconds(const LoopState& s) {
 constexpr bool draw_after_wait(const LoopState& s, bool event_arrived, double seconds_since_frame) {
     if (!can_draw(s.framebuffer_width, s.framebuffer_height)) return false;
     if (wants_continuous_frames(s) || event_arrived) return true;
+    // A timed wait may end a hair early: half the period is the job's refresh.
+    if (s.job_running && seconds_since_frame >= 0.5 * kJobRefreshSeconds) return true;
     return s.haptics_connected && seconds_since_frame >= kHapticReadoutSeconds;
 }
 

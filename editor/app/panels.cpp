@@ -53,6 +53,8 @@ void App::draw_panels() {
     recovery_prompt();
     discard_prompt();
     overwrite_prompt();
+    job_window();
+    settle_window();
 }
 
 float App::status_window_height() const {

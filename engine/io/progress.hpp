@@ -9,7 +9,9 @@
 //  - calls are made on the calling thread, between pieces of work, a few hundred times at most
 //    for the whole job (not once per sample or per vertex);
 //  - an empty callback costs a branch: nothing is computed for it;
-//  - the work and its result are the same with or without a callback.
+//  - the work and its result are the same with or without a callback;
+//  - the callback may throw to stop the work (Cancelled, io/cancellation.hpp): the exception
+//    passes through and the function leaves no partial result (see that header).
 
 #include <algorithm>
 #include <functional>

@@ -72,5 +72,24 @@ TEST(FramePolicy, MinimisedWithHapticsStillBlocksAndNeverDraws) {
     EXPECT_FALSE(draw_after_wait(s, false, 3600.0));
 }
 
+TEST(FramePolicy, AJobRedrawsItsBarWithoutSpinning) {
+    LoopState s = visible();
+    s.job_running = true;
+    // Frames go on (the bar, elapsed, the estimate) at the job's refresh, not back to back:
+    // the worker has the CPU.
+    EXPECT_FALSE(wants_continuous_frames(s));
+    EXPECT_EQ(event_wait_seconds(s), kJobRefreshSeconds);
+    EXPECT_LE(kJobRefreshSeconds, 0.1) << "the frame must not stall for more than 100 ms";
+    EXPECT_TRUE(draw_after_wait(s, false, kJobRefreshSeconds));
+    EXPECT_FALSE(draw_after_wait(s, false, 0.0));
+    // With a haptic device too, the job's shorter period wins.
+    s.haptics_connected = true;
+    EXPECT_EQ(event_wait_seconds(s), kJobRefreshSeconds);
+    // Minimised: nothing, job or not.
+    s.framebuffer_width = 0;
+    EXPECT_EQ(event_wait_seconds(s), kWaitForEvent);
+    EXPECT_FALSE(draw_after_wait(s, true, 1.0));
+}
+
 }  // namespace
 }  // namespace sandtin::editor

@@ -1,0 +1,207 @@
+// Long document work off the UI thread (background_job.hpp): importing a heightmap, opening a
+// scene and exporting run on a worker with their own inputs while the frames go on; the result
+// replaces the document (or the status line says what was written) on the UI thread once the
+// work is done. While a job runs, whatever would conflict with it waits: editing the terrain,
+// another document command, a save. And the erosion settling to rest, measured for its bar
+// (settle_progress.hpp).
+
+#include "app.hpp"
+
+#include <algorithm>
+
+#include "recent_files.hpp"
+
+namespace sandtin::editor {
+
+namespace {
+
+/// Seconds the erosion's frames count for while settling: a scripted frame 1/60 s, as a held
+/// pour; a slow interactive frame at most a quarter of a second.
+double settle_seconds(bool scripted, Clock::time_point& last, Clock::time_point now) {
+    const double real =
+        last == Clock::time_point{} ? 0.0 : std::chrono::duration<double>(now - last).count();
+    last = now;
+    return scripted ? kScriptFrameSeconds : std::min(real, 0.25);
+}
+
+/// A scene name for an imported heightmap: beside it, with its stem, and not taken by a file
+/// or an autosave ("bay-hills.sandtin", else "bay-hills-2.sandtin", ...).
+std::filesystem::path scene_name_for_import(const std::filesystem::path& heightmap) {
+    const std::filesystem::path folder = heightmap.parent_path();
+    const std::string stem = heightmap.stem().string();
+    for (int n = 1; n < 1000; ++n) {
+        const std::string name = n == 1 ? stem : stem + "-" + std::to_string(n);
+        const std::filesystem::path candidate = folder / (name + ".sandtin");
+        std::error_code ec;
+        if (!std::filesystem::exists(candidate, ec) && !find_autosave(candidate)) return candidate;
+    }
+    return folder / (stem + "-imported.sandtin");
+}
+
+}  // namespace
+
+// ---- Starting and finishing ---------------------------------------------------------------
+
+bool App::refuse_while_busy(const std::string& what) {
+    if (!busy()) return false;
+    report(what + " not done: " + job_->progress().title +
+           " is still running (let it finish, or Cancel it)");
+    return true;
+}
+
+void App::start_job(const std::string& kind, const std::string& title, BackgroundJob::Work work,
+                    std::function<void()> done) {
+    sculpting_.close_level(doc_);  // a gesture under way ends here: the pointer is the job's now
+    left_down_ = false;
+    job_kind_ = kind;
+    job_done_ = std::move(done);
+    job_record_ = {{"kind", kind},    {"title", title},       {"frames", 0},
+                   {"bar_frames", 0}, {"outcome", "running"}, {"fractions_shown", 0}};
+    job_ = std::make_unique<BackgroundJob>(title, std::move(work), job_pause_at_);
+    job_popup_open_ = true;
+}
+
+void App::cancel_job() {
+    if (!job_) return;
+    job_->cancel();
+    report("cancelling: " + job_->progress().title);
+}
+
+void App::poll_job() {
+    if (!job_) return;
+    const JobOutcome outcome = job_->outcome();
+    if (outcome == JobOutcome::Running) {
+        job_record_["frames"] = job_record_["frames"].get<int>() + 1;
+        return;
+    }
+    const JobProgress last = job_->progress();
+    const std::string error = job_->error();
+    // A scene or heightmap read to the end after Cancel was pressed is dropped all the same:
+    // nothing was touched yet. An export whose files were written is done, and says so.
+    const bool read_only = job_kind_ != "export";
+    const bool cancelled = outcome == JobOutcome::Cancelled || (read_only && last.cancel_requested);
+    std::function<void()> done = std::move(job_done_);
+    job_done_ = nullptr;
+    job_.reset();
+    job_record_["outcome"] = cancelled ? "cancelled" : to_string(outcome);
+    job_record_["seconds"] = last.elapsed_seconds;
+    if (jobs_done_.size() < 100) jobs_done_.push_back(job_record_);
+    redraw_frames_ = std::max(redraw_frames_, 2);  // the popup closes, the scene appears
+    if (cancelled) {
+        report(
+            last.title + " cancelled: " +
+            (job_kind_ == "export" ? "no file was written" : "the scene open before is as it was"));
+    } else if (outcome == JobOutcome::Failed) {
+        report(job_kind_ + " failed: " + error);
+    } else {
+        if (last.cancel_requested)
+            report(last.title + ": Cancel came after the files were written");
+        try {
+            if (done) done();
+        } catch (const std::exception& e) {
+            report(job_kind_ + " failed: " + e.what());
+        }
+    }
+}
+
+void App::note_job_shown(const JobProgress& shown) {
+    job_record_["bar_frames"] = job_record_["bar_frames"].get<int>() + 1;
+    job_record_["stage_last"] = shown.stage;
+    if (shown.fraction > 0.0 && shown.fraction < 1.0) {
+        job_record_["fractions_shown"] = job_record_["fractions_shown"].get<int>() + 1;
+        if (!job_record_.contains("fraction_min_shown"))
+            job_record_["fraction_min_shown"] = shown.fraction;
+        job_record_["fraction_max_shown"] = shown.fraction;
+    }
+}
+
+// ---- The jobs -----------------------------------------------------------------------------
+
+void App::open_reporting(const std::filesystem::path& p) {
+    if (refuse_while_busy("open " + p.string())) return;
+    // Read before anything is dropped: a file that does not load (or a Cancel) leaves the
+    // scene as it was.
+    auto next = std::make_shared<std::optional<Document>>();
+    start_job(
+        "open", "Opening " + p.filename().string(),
+        [next, p](const ProgressCallback& progress) { next->emplace(Document::open(p, progress)); },
+        [this, next, p] {
+            keep_unsaved_edits();
+            set_scene_field(p.string());
+            note_recent_file(settings_.recent_files, p);
+            install_document(std::move(**next), "opened " + p.string());
+        });
+}
+
+void App::import_document(const std::filesystem::path& heightmap) {
+    if (refuse_while_busy("import " + heightmap.string())) return;
+    auto next = std::make_shared<std::optional<Document>>();
+    start_job(
+        "import", "Importing " + heightmap.filename().string(),
+        [next, heightmap](const ProgressCallback& progress) {
+            next->emplace(Document::imported(heightmap, progress));
+        },
+        [this, next, heightmap] { finish_import(heightmap, std::move(**next)); });
+}
+
+void App::finish_import(const std::filesystem::path& heightmap, Document next) {
+    keep_unsaved_edits();
+    // An imported model is a scene of its own, with a name of its own in the Scene field,
+    // so Save never writes it over the scene it replaced.
+    const std::filesystem::path name = scene_name_for_import(heightmap);
+    set_scene_field(name.string());
+    set_import_field(heightmap.string());
+    note_recent_file(settings_.recent_files, heightmap);
+    install_document(std::move(next), "imported " + heightmap.string() +
+                                          " (untitled: Save writes " + name.string() + ")");
+}
+
+void App::export_reporting(const std::filesystem::path& p) {
+    if (refuse_while_busy("export to " + p.string())) return;
+    try {
+        sculpting_.close_level(doc_);
+        // The terrain and options are copied now: the export writes the scene as it is at
+        // this click, whatever happens to the document meanwhile.
+        auto job = std::make_shared<const ExportJob>(doc_.export_job(p));
+        auto written = std::make_shared<std::size_t>(0);
+        start_job(
+            "export", "Exporting " + p.filename().string(),
+            [job, written](const ProgressCallback& progress) {
+                *written = job->run(progress).files.size();
+            },
+            [this, written] { report("exported " + std::to_string(*written) + " file(s)"); });
+    } catch (const std::exception& e) {
+        report(std::string("export failed: ") + e.what());
+    }
+}
+
+// ---- Erosion to rest ----------------------------------------------------------------------
+
+void App::update_settle(const ErosionFrame& e) {
+    // Only the erosion's own settle (after Run, with no gesture before it) is long work; a
+    // stroke's settling belongs to the stroke and shows no bar.
+    const bool own_settle =
+        e.ran && !left_down_ && e.active > 0 && sculpting_.open_level() == Document::kErosionLevel;
+    if (!own_settle) {
+        settle_.end();
+        last_settle_at_ = {};
+        return;
+    }
+    const bool was_shown = settle_.shown();
+    settle_.step(e.active, settle_seconds(options_.scripted(), last_settle_at_, Clock::now()));
+    if (settle_.shown()) {
+        settle_record_["bar_frames"] = settle_record_.value("bar_frames", 0) + 1;
+        settle_record_["fraction_max_shown"] = settle_.progress().fraction;
+        if (!was_shown) settle_record_["shown"] = true;
+    }
+}
+
+void App::stop_settling() {
+    if (!erosion_runs()) return;
+    toggle_erosion();  // pauses: what slid so far is its level
+    settle_.end();
+    settle_record_["stopped"] = true;
+    report("erosion stopped: what settled so far is one undo level; Run goes on");
+}
+
+}  // namespace sandtin::editor
