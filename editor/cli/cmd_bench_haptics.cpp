@@ -248,6 +248,36 @@ void report_loop(const haptics::ForceLoopReport& report, const haptics::ForceLoo
                     {"jumps_over_0_5", report.force_jumps_over_half_newton}};
 }
 
+/// The simulation thread's steps (sorted here): how many, how fast, their p50, p99 and max (ms),
+/// the stamps they made; `idle` and `burn` say what the thread did instead.
+nlohmann::json simulation_json(std::vector<double>& step_ms, double wall_seconds,
+                               std::size_t stamps, bool idle, bool burn) {
+    std::sort(step_ms.begin(), step_ms.end());
+    const auto pct = [&](double q) {
+        if (step_ms.empty()) return 0.0;
+        const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(step_ms.size())));
+        return step_ms[std::clamp<std::size_t>(k, 1, step_ms.size()) - 1];
+    };
+    return {{"idle", idle},
+            {"burn", burn},
+            {"steps", step_ms.size()},
+            {"steps_per_second", static_cast<double>(step_ms.size()) / wall_seconds},
+            {"stamps", stamps},
+            {"step_ms_p50", pct(0.5)},
+            {"step_ms_p99", pct(0.99)},
+            {"step_ms_max", step_ms.empty() ? 0.0 : step_ms.back()}};
+}
+
+/// The loop's targets: p99 within 10 % of the period, no period over twice it.
+nlohmann::json loop_targets_json(const haptics::ForceLoopReport& report) {
+    const double target_p99 = report.periods.target_ms * 1.1;
+    const double target_max = report.periods.target_ms * 2.0;
+    return {{"p99_ms", target_p99},
+            {"max_ms", target_max},
+            {"p99_met", report.periods.p99_ms <= target_p99},
+            {"max_met", report.periods.max_ms <= target_max}};
+}
+
 }  // namespace
 
 int run_bench_haptics(const std::vector<std::string>& raw) {
@@ -359,12 +389,6 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::vector<std::int64_t> steal_after = read_cpu_steal_ns();
     const ForceLoopReport report = loop.report();
-    std::sort(step_ms.begin(), step_ms.end());
-    const auto pct = [&](double q) {
-        if (step_ms.empty()) return 0.0;
-        const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(step_ms.size())));
-        return step_ms[std::clamp<std::size_t>(k, 1, step_ms.size()) - 1];
-    };
 
     nlohmann::json j;
     j["benchmark"] = "haptics";
@@ -392,22 +416,10 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                         {"interval_ms", 2.0}};
     }
 
-    j["simulation"] = {{"idle", idle},
-                       {"burn", burn},
-                       {"steps", step_ms.size()},
-                       {"steps_per_second", static_cast<double>(step_ms.size()) / wall},
-                       {"stamps", stamps},
-                       {"step_ms_p50", pct(0.5)},
-                       {"step_ms_p99", pct(0.99)},
-                       {"step_ms_max", step_ms.empty() ? 0.0 : step_ms.back()},
-                       {"erode_iterations_per_stamp", edit.erode_iterations},
-                       {"vertices_at_end", tin.vertex_count()}};
-    const double target_p99 = report.periods.target_ms * 1.1;
-    const double target_max = report.periods.target_ms * 2.0;
-    j["targets"] = {{"p99_ms", target_p99},
-                    {"max_ms", target_max},
-                    {"p99_met", report.periods.p99_ms <= target_p99},
-                    {"max_met", report.periods.max_ms <= target_max}};
+    j["simulation"] = simulation_json(step_ms, wall, stamps, idle, burn);
+    j["simulation"]["erode_iterations_per_stamp"] = edit.erode_iterations;
+    j["simulation"]["vertices_at_end"] = tin.vertex_count();
+    j["targets"] = loop_targets_json(report);
     j["hardware_threads"] = std::thread::hardware_concurrency();
     std::cout << j.dump(2) << "\n";
     return 0;
