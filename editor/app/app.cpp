@@ -3,6 +3,8 @@
 #include "app.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <ctime>
 #include <fstream>
 
 #include "default_sandbox.hpp"
@@ -13,6 +15,17 @@
 #include "util/json_document.hpp"
 
 namespace sandtin::editor {
+
+namespace {
+
+/// CPU time of the whole process so far (s): every thread's.
+double process_cpu_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
 
 // ---- Set-up -------------------------------------------------------------------------------
 
@@ -255,7 +268,10 @@ void App::scripted_loop() {
 }
 
 void App::idle_measurement(std::uint64_t& submissions, std::uint64_t& work) {
-    // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile.
+    // Idle: nothing changed, nothing drawn; count what reaches the queue meanwhile, and the
+    // CPU time the whole process (every thread, the Vulkan driver's too) spends.
+    const double cpu_before = process_cpu_seconds();
+    const auto wall_before = Clock::now();
     const std::uint64_t before = window_->swapchain().submissions();
     const std::uint64_t work_before = gpu_work();
     const auto until = Clock::now() + std::chrono::duration<double>(options_.idle_seconds);
@@ -270,6 +286,8 @@ void App::idle_measurement(std::uint64_t& submissions, std::uint64_t& work) {
     }
     submissions = window_->swapchain().submissions() - before;
     work = gpu_work() - work_before;
+    idle_cpu_share_ = (process_cpu_seconds() - cpu_before) /
+                      std::chrono::duration<double>(Clock::now() - wall_before).count();
 }
 
 void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_work) {
@@ -306,6 +324,7 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["mesh_vertices_recomputed"] = view_->vertices_recomputed();
     s["idle_submissions"] = idle_submissions;
     s["idle_gpu_work"] = idle_gpu_work;
+    s["idle_cpu_share"] = idle_cpu_share_;  // CPU seconds per second while idle (all threads)
     s["validation_messages"] = window_->context().validation_message_count();
     s["layout_overflow_px"] = layout_.overflow_px();
     s["layout_hidden_px"] = layout_.hidden_px();

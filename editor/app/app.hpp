@@ -398,7 +398,8 @@ class App {
     std::string published_widgets_;      ///< the map last written to --widget-map
     /// Opens (true) or closes every panel header in the next frame (the script's "panels" op).
     std::optional<bool> open_panels_;
-    bool help_open_ = false;  ///< the Help window (F1)
+    bool help_open_ = false;       ///< the Help window (F1)
+    double idle_cpu_share_ = 0.0;  ///< --idle-seconds: CPU seconds per second while idle
     std::uint64_t events_seen_ = 0;
     Clock::time_point last_frame_at_{};
     int redraw_frames_ = 2;  ///< frames still to draw after the last event (ImGui settles)

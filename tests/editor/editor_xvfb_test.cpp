@@ -543,6 +543,41 @@ TEST_F(EditorXvfb, IdleEditorSubmitsNothing) {
     EXPECT_EQ(g.stats.at("idle_gpu_work").get<int>(), 0);
 }
 
+// Every window the editor grew for everyday work (Help, the file browser, the progress bar)
+// opened and closed again: the idle editor still submits nothing, does no GPU work, and spends
+// under 1 % of a CPU (every thread of the process, the Vulkan driver's included).
+TEST_F(EditorXvfb, AfterItsWindowsCloseTheEditorIdlesAtNoCost) {
+    const fs::path scene = kWork / "idle-windows.sandtin";
+    save_flat_scene(scene, 1.0, unit_square_points(200, 31));
+    const fs::path grid = kWork / "idle-windows.asc";
+    {
+        std::ofstream out(grid);
+        out << "ncols 40\nnrows 40\nxllcorner 0\nyllcorner 0\ncellsize 0.025\n";
+        for (int y = 0; y < 40; ++y) {
+            for (int x = 0; x < 40; ++x)
+                out << 0.001 * ((x * 7 + y * 3) % 11) << (x + 1 < 40 ? " " : "\n");
+        }
+    }
+    const std::string ops = then(kFlat, R"({"op": "key", "key": "f1"}, {"op": "wait", "frames": 2},
+        {"op": "key", "key": "f1"}, {"op": "wait", "frames": 2},
+        {"op": "pick_file", "dialog": "open", "path": ")" +
+                                            scene.string() +
+                                            R"(", "cancel": true},
+        {"op": "wait", "frames": 2},
+        {"op": "set", "import_path": ")" + grid.string() +
+                                            R"("},
+        {"op": "click", "widget": "Import"}, {"op": "wait", "frames": 4})");
+    const EditorRun r = run_editor("idle-windows", ops, "--frames 2 --idle-seconds 2");
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    ASSERT_EQ(r.stats.at("jobs").size(), 1u) << "the import did not run as a job";
+    EXPECT_EQ(r.stats.at("jobs")[0].at("outcome"), "done");
+    EXPECT_GE(r.stats.at("jobs")[0].at("bar_frames").get<int>(), 1);
+    EXPECT_EQ(r.stats.at("idle_submissions").get<int>(), 0);
+    EXPECT_EQ(r.stats.at("idle_gpu_work").get<int>(), 0);
+    EXPECT_LT(r.stats.at("idle_cpu_share").get<double>(), 0.01);
+}
+
 // The Erosion panel's GPU switch: sand poured with erosion paused, then eroded by the GPU
 // physics inside the editor. Oracle: the CPU Jacobi schedule (physics/SandPhysics, a second
 // implementation) run to rest from the saved pre-erosion scene. r_S = 5 cm keeps refinement
