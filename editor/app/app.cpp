@@ -60,10 +60,15 @@ Document App::initial_document() {
         throw std::runtime_error("scene " + options_.scene.string() + " does not exist");
     }
     Document d = Document::open(options_.scene);
-    // An autosave newer than the scene: the prompt asks.
-    if (const auto info = find_autosave(options_.scene); info && info->offer_recovery())
-        recovery_for_ = options_.scene;
+    offer_recovery_of(options_.scene);
     return d;
+}
+
+void App::offer_recovery_of(const std::filesystem::path& scene) {
+    // An autosave newer than the scene: the prompt asks, however the scene was opened (the
+    // command line, Open, the recent list or a drop).
+    if (const auto info = find_autosave(scene); info && info->offer_recovery())
+        recovery_for_ = scene;
 }
 
 void App::report(const std::string& message) {

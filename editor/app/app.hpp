@@ -153,6 +153,8 @@ class App {
     void answer_discard(DiscardChoice choice);
     /// The recovery prompt's answer.
     void answer_recovery(bool recover);
+    /// Asks about `scene`'s autosave (the recovery prompt) when one newer than it exists.
+    void offer_recovery_of(const std::filesystem::path& scene);
     /// The window was asked to close and may: an untitled scene with unsaved edits asks
     /// first (the discard prompt), and the window stays open meanwhile.
     bool close_confirmed();

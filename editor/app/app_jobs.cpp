@@ -130,6 +130,7 @@ void App::open_reporting(const std::filesystem::path& p) {
             set_scene_field(p.string());
             note_recent_file(settings_.recent_files, p);
             install_document(std::move(**next), "opened " + p.string());
+            offer_recovery_of(p);
         });
 }
 

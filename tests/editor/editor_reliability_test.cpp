@@ -133,6 +133,33 @@ TEST_F(EditorXvfb, RecoverThroughItsButtonOnTheSandboxAndOnAnElevationModel) {
     }
 }
 
+// An autosave is offered however its scene is opened: here through the File panel's Open (the
+// recent list and a drop take the same path), not only when the scene is named on the command
+// line. Oracle: the autosave's raised vertex in what the editor then saves.
+TEST_F(EditorXvfb, OpeningASceneFromThePanelOffersItsAutosave) {
+    const fs::path scene = kWork / "recover-open.sandtin";
+    save_flat_scene(scene, 1.0, unit_square_points(2000, 91), 0.05);
+    Session edited = load_session(scene);
+    std::size_t raised = 0;
+    while (!edited.terrain.vertices.alive[raised])
+        ++raised;
+    edited.terrain.vertices.height[raised] += 0.02;
+    write_autosave(scene, edited);
+    ASSERT_TRUE(find_autosave(scene)->offer_recovery());
+    const fs::path after = kWork / "recover-open-after.sandtin";
+    const EditorRun r = run_editor(
+        "recover-open",
+        then(kFlat, R"({"op": "set", "scene_path": ")" + scene.string() +
+                        R"("}, {"op": "click", "widget": "Open"}, {"op": "wait", "frames": 3},
+                        {"op": "recovery", "choice": "recover"}, {"op": "wait", "frames": 2})"),
+        "--save-after " + after.string() + fresh_settings("recover-open"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    const Tin got = tin_of(after);
+    EXPECT_NEAR(*got.height_at(edited.terrain.vertices.position[raised]),
+                edited.terrain.vertices.height[raised], 1e-12);
+}
+
 TEST_F(EditorXvfb, DiscardAndNewAndSaveAndNewThroughTheirButtons) {
     const fs::path fresh = kWork / "buttons-fresh.sandtin";
     ASSERT_EQ(run_editor("buttons-fresh", kFlat, "--save-after " + fresh.string()).exit_code, 0);
