@@ -4,7 +4,7 @@
 #      stress sessions);
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer (clang) over the engine rooms' tests, and
 #      libFuzzer on the session loader, every importer, the script parser and the haptic packet
-#      decoder, SANDTIN_FUZZ_SECONDS (default 10) each, from the same build;
+#      decoder, SANDTIN_FUZZ_SECONDS (default 5) each, from the same build;
 #   3. ThreadSanitizer over the threaded parts (haptics loop, multithreaded Jacobi, the
 #      autosave writer).
 # Arguments are passed to the first ctest (e.g. ./test.sh -L tin). SANDTIN_TEST_PASSES picks
@@ -39,8 +39,8 @@ fi
 # ASan, run the relaxation and the r_S splits that the Jacobi two-triangle pile runs in 4 s).
 # The threaded Jacobi schedule's bit-for-bit comparisons (2 x 12 s here) run under ThreadSanitizer
 # below; the 10^5-vertex one-and-two-threads determinism check (19 s here, 63 s under TSan) runs
-# in the release pass only, its threaded code reaching both sanitizers through the schedule
-# tests and Determinism.JacobiOnOneAndTwoThreads; the long groove eroded to rest (27 s) repeats
+# in the release pass only, its threaded code reaching ThreadSanitizer through the schedule
+# tests and AddressSanitizer through Determinism.JacobiOnOneAndTwoThreads; the long groove eroded to rest (27 s) repeats
 # the relaxation and splits of the shorter erode tests.
 engine_tests=(sandtin_tin_tests sandtin_io_tests sandtin_geom_tests sandtin_tools_tests
   sandtin_terrain_io_tests sandtin_physics_tests sandtin_stress_tests sandtin_haptics_core_tests
@@ -52,7 +52,7 @@ if has_pass asan || has_pass fuzz; then
   has_pass asan && targets+=("${engine_tests[@]}")
   has_pass fuzz && targets+=("${fuzzers[@]}")
   CC=clang-14 CXX=clang++-14 cmake -S . -B build-clang-asan -G Ninja "${checking_flags[@]}" \
-    -DSANDTIN_FUZZ=ON -DSANDTIN_FUZZ_SECONDS="${SANDTIN_FUZZ_SECONDS:-10}"
+    -DSANDTIN_FUZZ=ON -DSANDTIN_FUZZ_SECONDS="${SANDTIN_FUZZ_SECONDS:-5}"
   cmake --build build-clang-asan -j"$jobs" --target "${targets[@]}"
   if has_pass asan; then
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
@@ -69,15 +69,17 @@ if has_pass tsan; then
   section "ThreadSanitizer"
   cmake -S . -B build-tsan -G Ninja "${checking_flags[@]}" -DSANDTIN_TSAN=ON
   cmake --build build-tsan -j"$jobs" --target sandtin_haptics_core_tests sandtin_physics_tests \
-    sandtin_stress_tests sandtin_io_tests
+    sandtin_io_tests
   export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
   # The haptics core (label tsan), then the multithreaded Jacobi (its one-thread comparisons
-  # have nothing to race and took TSan 70 s), the determinism sessions and the autosave
-  # writer, each test in its own process so that both cores are busy (run one after another
-  # in a single process, they left a core idle for about a minute).
+  # have nothing to race and took TSan 70 s) and the autosave writer, each test in its own
+  # process so that both cores are busy (run one after another in a single process, they left
+  # a core idle for about a minute). The determinism sessions (tests/stress) run the same
+  # thread pool through a whole session; they run in the release and ASan passes, and are not
+  # built here (their binary alone cost the TSan pass about half a minute).
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" \
-    -R '^(Jacobi|Randomisation|Determinism)\.|^JacobiSchedule\.TwoThreads|^Autosave\.Writer' \
+    -R '^(Jacobi|Randomisation)\.|^JacobiSchedule\.TwoThreads|^Autosave\.Writer' \
     -E '^Jacobi\.OneAndTwoThreadsAreBitwiseIdentical$'
   unset TSAN_OPTIONS
 fi

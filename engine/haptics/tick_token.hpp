@@ -31,12 +31,13 @@ class TickToken {
 
     Seen load() const { return {word_.load(std::memory_order_acquire)}; }
 
-    /// Claims the tick `seen` names if the token has not changed since: false when the other
-    /// thread claimed it, ran it or ended the loop meanwhile (or `seen` was owned or finished).
-    bool try_claim(Seen seen) {
-        if (seen.owned() || seen.finished()) return false;
-        std::uint64_t expected = seen.word;
-        return word_.compare_exchange_strong(expected, seen.word | kOwned,
+    /// Claims the tick `observed` names if the token has not changed since: false when the other
+    /// thread claimed it, ran it or ended the loop meanwhile (or `observed` was owned or
+    /// finished).
+    bool try_claim(Seen observed) {
+        if (observed.owned() || observed.finished()) return false;
+        std::uint64_t expected = observed.word;
+        return word_.compare_exchange_strong(expected, observed.word | kOwned,
                                              std::memory_order_acq_rel);
     }
 
