@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <fstream>
 
 #include "default_sandbox.hpp"
@@ -13,19 +12,9 @@
 #include "tool_palette.hpp"
 #include "util/atomic_file.hpp"
 #include "util/json_document.hpp"
+#include "util/process_cpu_time.hpp"
 
 namespace sandtin::editor {
-
-namespace {
-
-/// CPU time of the whole process so far (s): every thread's.
-double process_cpu_seconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 // ---- Set-up -------------------------------------------------------------------------------
 

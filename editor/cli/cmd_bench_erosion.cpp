@@ -37,6 +37,7 @@
 #include "physics/talus_kernel_avx512.hpp"
 #include "progress_line.hpp"
 #include "tin/tin.hpp"
+#include "util/process_cpu_time.hpp"
 
 namespace sandtin::cli {
 
@@ -348,13 +349,6 @@ std::vector<ThroughputScene> throughput_scenes(int n) {
     return scenes;
 }
 
-/// CPU time of the whole process (all threads), ms.
-double process_cpu_ms() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
-}
-
 double load_average() {
     std::ifstream in("/proc/loadavg");
     double one = -1.0;
@@ -414,12 +408,12 @@ ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel k
     SceneSolver s(scene, threads, kernel);
     s.iterate();  // warm-up: first-touch of the buffers
     ThroughputRun run;
-    const double cpu0 = process_cpu_ms();
+    const double cpu0 = process_cpu_seconds();
     Stopwatch wall;
     for (int it = 0; it < kTimed; ++it)
         run.updates += s.iterate();
     run.wall_s = wall.ms() * 1e-3;
-    run.cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
+    run.cpu_s = process_cpu_seconds() - cpu0;
     return run;
 }
 
@@ -540,9 +534,9 @@ nlohmann::json sand_physics_throughputs(bool quick, int runs) {
                 SandPhysics physics(tin, MaterialTable::presets(), settings, order);
                 physics.activate_all();
                 physics.step(1);
-                const double cpu0 = process_cpu_ms();
+                const double cpu0 = process_cpu_seconds();
                 const PhysicsStepReport r = physics.step(kTimed);
-                const double cpu_s = (process_cpu_ms() - cpu0) * 1e-3;
+                const double cpu_s = process_cpu_seconds() - cpu0;
                 per_iteration = r.vertex_updates / static_cast<std::size_t>(kTimed);
                 cpu_rates.push_back(static_cast<double>(r.vertex_updates) / cpu_s);
             }

@@ -40,6 +40,12 @@ namespace detail {
 struct FaceShed {
     double excess = 0.0;  ///< > 0 when the face sheds
     double to_j = 0.0, to_l = 0.0;
+    /// j (or, with `j_refuses` false, l) takes nothing: the other corner takes its share.
+    void refuse(bool j_refuses) {
+        double& from = j_refuses ? to_j : to_l;
+        (j_refuses ? to_l : to_j) += from;
+        from = 0.0;
+    }
 };
 
 /// The face (i, j, l): |ij| = a, |il| = b, |jl| = c (m), heights hi, hj, hl (m).
@@ -77,14 +83,8 @@ inline FaceShed face_shed(double a, double b, double c, double hi, double hj, do
         out.to_l = to_j ? 0.0 : 1.0;
     }
     // Sand never climbs: a corner above i takes no share.
-    if (hj >= hi) {
-        out.to_l += out.to_j;
-        out.to_j = 0.0;
-    }
-    if (hl >= hi) {
-        out.to_j += out.to_l;
-        out.to_l = 0.0;
-    }
+    if (hj >= hi) out.refuse(true);
+    if (hl >= hi) out.refuse(false);
     if (!(out.to_j + out.to_l > 0.0)) out.excess = 0.0;
     return out;
 }
@@ -130,14 +130,8 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
             }
         }
         // A degenerate receiver passes its share to the other, or the face sheds nothing.
-        if (area[j] < degenerate) {
-            f.to_l += f.to_j;
-            f.to_j = 0.0;
-        }
-        if (area[l] < degenerate) {
-            f.to_j += f.to_l;
-            f.to_l = 0.0;
-        }
+        if (area[j] < degenerate) f.refuse(true);
+        if (area[l] < degenerate) f.refuse(false);
         if (!(f.to_j + f.to_l > 0.0)) continue;
         const double denominator = inv_ai + (f.to_j > 0.0 ? f.to_j * f.to_j / area[j] : 0.0) +
                                    (f.to_l > 0.0 ? f.to_l * f.to_l / area[l] : 0.0);
