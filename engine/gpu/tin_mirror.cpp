@@ -67,9 +67,20 @@ uint32_t element_size(EdgeBuffer) {
 TinMirror::TinMirror(VulkanContext& context, Tin& tin, MaterialTable materials,
                      VkDeviceSize staging_bytes)
     : context_(context),
-      changes_(tin),
+      changes_(std::make_unique<ChangeReader>(tin)),
       materials_(std::move(materials)),
       ring_(context, staging_bytes) {
+    if (materials_.size() == 0) throw GpuError("TinMirror: the material table is empty");
+}
+
+TinMirror::TinMirror(VulkanContext& context, MirrorSeed seed, MaterialTable materials,
+                     VkDeviceSize staging_bytes)
+    : context_(context),
+      changes_(std::move(seed.changes)),
+      seed_(std::move(seed)),
+      materials_(std::move(materials)),
+      ring_(context, staging_bytes) {
+    if (!changes_) throw GpuError("TinMirror: the seed has no reader of the TIN's journal");
     if (materials_.size() == 0) throw GpuError("TinMirror: the material table is empty");
 }
 
@@ -185,7 +196,8 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
     put(VertexBuffer::Slide, va.slide.data() + r.begin, 8);
 }
 
-void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows) {
+void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows,
+                            const std::vector<uint32_t>* flags) {
     if (rows.empty()) return;
     // Per-vertex row data, by id ranges (small gaps merged: fewer copy regions).
     for (const IdRange r : merge_into_ranges(rows, kMergeGap)) {
@@ -238,7 +250,9 @@ void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows) {
             const uint32_t b = graph_.offset(v);
             for (uint32_t k = 0; k < graph_.degree(v); ++k) {
                 const VertexId w{graph_.targets()[b + k]};
-                u_[b - begin + k] = tin.is_constrained_edge(VertexId{v}, w) ? 1u : 0u;
+                u_[b - begin + k] = flags != nullptr                          ? (*flags)[b + k]
+                                    : tin.is_constrained_edge(VertexId{v}, w) ? 1u
+                                                                              : 0u;
             }
         }
         ring_.upload(edge_buffer(EdgeBuffer::EdgeFlags), VkDeviceSize{begin} * 4, u_.data(),
@@ -247,39 +261,55 @@ void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows) {
     }
 }
 
+void TinMirror::update_graph(const Tin& tin, const ChangeSet& changes) {
+    // Vertices whose star changed: corners of dirty slots (every re-triangulated star has a new
+    // triangle) and vertices that died.
+    std::vector<VertexId> star;
+    for (const IdRange r : changes.triangles) {
+        for (uint32_t s = r.begin; s < r.end; ++s) {
+            for (VertexId c : tin.slot_triangle(s))
+                if (c.valid()) star.push_back(c);
+        }
+    }
+    for (const IdRange r : changes.vertices) {
+        for (uint32_t v = r.begin; v < r.end; ++v)
+            if (!tin.is_alive(VertexId{v})) star.push_back(VertexId{v});
+    }
+    graph_.update(tin, star);
+}
+
+void TinMirror::adopt_seed(Tin& tin, const ChangeSet& changes) {
+    // A prepared seed's reader reports only what changed after it was built; a mirror without
+    // one builds it now, after its reader's first take (which reported everything).
+    const bool prepared = seed_.has_value();
+    if (!prepared) {
+        seed_.emplace();
+        build_mirror_seed(tin, *seed_);
+    }
+    origin_ = seed_->origin;
+    height_origin_ = seed_->height_origin;
+    graph_ = std::move(seed_->graph);
+    if (prepared && !changes.empty()) {
+        update_graph(tin, changes);
+        seed_->edge_flags.clear();  // rows moved: the flags are read from the TIN again
+    }
+}
+
 SyncStats TinMirror::sync() {
-    Tin& tin = changes_.tin();
-    const ChangeSet changes = changes_.take();
+    Tin& tin = changes_->tin();
+    ChangeSet changes = changes_->take();
     SyncStats stats;
     std::vector<uint32_t> rows;
+    const std::vector<uint32_t>* seed_flags = nullptr;
     if (first_sync_) {
-        origin_ = tin.domain().min;
-        const VertexArrays& va = tin.vertices();
-        double sum = 0.0;
-        std::size_t live = 0;
-        for (std::size_t v = 0; v < va.size(); ++v) {
-            if (!va.alive[v]) continue;
-            sum += va.height[v];
-            ++live;
-        }
-        height_origin_ = live > 0 ? sum / static_cast<double>(live) : 0.0;
-        graph_.rebuild(tin);
+        adopt_seed(tin, changes);
         rows = graph_.take_dirty_rows();
+        if (!seed_->edge_flags.empty()) seed_flags = &seed_->edge_flags;
+        // The first sync uploads everything, whatever the reader reported.
+        changes.vertices = {IdRange{0, static_cast<uint32_t>(tin.vertices().size())}};
+        changes.triangles = {IdRange{0, tin.slot_capacity()}};
     } else if (!changes.empty()) {
-        // Vertices whose star changed: corners of dirty slots (every re-triangulated star has
-        // a new triangle) and vertices that died.
-        std::vector<VertexId> star;
-        for (const IdRange r : changes.triangles) {
-            for (uint32_t s = r.begin; s < r.end; ++s) {
-                for (VertexId c : tin.slot_triangle(s))
-                    if (c.valid()) star.push_back(c);
-            }
-        }
-        for (const IdRange r : changes.vertices) {
-            for (uint32_t v = r.begin; v < r.end; ++v)
-                if (!tin.is_alive(VertexId{v})) star.push_back(VertexId{v});
-        }
-        graph_.update(tin, star);
+        update_graph(tin, changes);
         rows = graph_.take_dirty_rows();
     }
     const uint32_t edges = static_cast<uint32_t>(graph_.slot_count());
@@ -320,10 +350,11 @@ SyncStats TinMirror::sync() {
                      VkDeviceSize{n} * 4);
         ++stats.slot_ranges;
     }
-    upload_rows(tin, rows);
+    upload_rows(tin, rows, seed_flags);
     stats.rows = static_cast<uint32_t>(rows.size());
     ring_.flush();
     first_sync_ = false;
+    seed_.reset();
 
     stats.bytes = ring_.take_frame_bytes();
     stats.copy_regions = ring_.take_frame_regions();

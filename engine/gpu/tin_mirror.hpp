@@ -30,10 +30,13 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "geom/vec2.hpp"
 #include "gpu/buffer.hpp"
+#include "gpu/mirror_seed.hpp"
 #include "gpu/staging_ring.hpp"
 #include "physics/adjacency_graph.hpp"
 #include "physics/material.hpp"
@@ -77,6 +80,12 @@ class TinMirror {
     // repose) per vertex; `staging_bytes` sizes the ring. Nothing is uploaded before sync().
     TinMirror(VulkanContext& context, Tin& tin, MaterialTable materials = MaterialTable::presets(),
               VkDeviceSize staging_bytes = VkDeviceSize{8} << 20);
+    // Mirrors the TIN `seed` was prepared from (prepare_mirror_seed, maybe on another thread):
+    // the first sync takes the seed's graph, flags and origins instead of computing them, and
+    // catches up through the seed's reader with whatever changed since it was built.
+    TinMirror(VulkanContext& context, MirrorSeed seed,
+              MaterialTable materials = MaterialTable::presets(),
+              VkDeviceSize staging_bytes = VkDeviceSize{8} << 20);
     ~TinMirror();
     TinMirror(const TinMirror&) = delete;
     TinMirror& operator=(const TinMirror&) = delete;
@@ -86,7 +95,7 @@ class TinMirror {
     // mirror current calls it (the GPU physics before a step, the editor before a bake): a
     // second call with nothing changed uploads nothing.
     SyncStats sync();
-    Tin& tin() const { return changes_.tin(); }
+    Tin& tin() const { return changes_->tin(); }
     // Materials changed: tan_alpha of every live vertex is re-uploaded at the next sync.
     void set_materials(MaterialTable materials);
 
@@ -119,10 +128,18 @@ class TinMirror {
   private:
     void grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStats& stats);
     void upload_vertex_range(const Tin& tin, IdRange r);
-    void upload_rows(const Tin& tin, const std::vector<uint32_t>& rows);
+    // `flags`: the rows' constrained flags by pool slot, when known (the seed's), else read
+    // from the TIN.
+    void upload_rows(const Tin& tin, const std::vector<uint32_t>& rows,
+                     const std::vector<uint32_t>* flags);
+    // Rewrites the graph rows around `changes` (the stars that changed).
+    void update_graph(const Tin& tin, const ChangeSet& changes);
+    // The first sync: the seed (built now when there is none) becomes the graph and origins.
+    void adopt_seed(Tin& tin, const ChangeSet& changes);
 
     VulkanContext& context_;
-    ChangeReader changes_;
+    std::unique_ptr<ChangeReader> changes_;
+    std::optional<MirrorSeed> seed_;  ///< until the first sync
     MaterialTable materials_;
     StagingRing ring_;
     AdjacencyGraph graph_;

@@ -3,7 +3,9 @@
 
 #include <array>
 #include <random>
+#include <thread>
 
+#include "gpu/mirror_seed.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "gpu_fixture.hpp"
 #include "gpu_scenes.hpp"
@@ -174,6 +176,53 @@ TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {
     const SyncStats s = second.sync();
     EXPECT_GT(s.bytes, second.mirrored_bytes() / 2);
     expect_mirror_equals_tin(ctx(), second, tin);
+}
+
+// A mirror seeded on another thread (prepare_mirror_seed, as the editor's worker does when it
+// opens a scene) holds what a mirror that built everything itself holds, constrained edges
+// included; and a seed the TIN moved on from (edits between the seed and the first sync)
+// catches up through its reader instead of uploading a stale graph.
+TEST_F(GpuTest, AMirrorFromASeedBuiltOnAnotherThreadEqualsTheTin) {
+    Tin tin = Tin::random_points(kUnitSquare, 4000, 23,
+                                 [](Vec2 p) { return testing::collapsing_cone(p); });
+    const VertexId a = tin.insert_point({0.2, 0.3}, 0.3);
+    const VertexId b = tin.insert_point({0.7, 0.4}, 0.3);
+    const VertexId c = tin.insert_point({0.45, 0.8}, 0.3);
+    const std::array<VertexId, 3> ring{a, b, c};
+    tin.insert_constraint(ring, true, 1);
+    MirrorSeed seed;
+    std::thread worker([&] { seed = prepare_mirror_seed(tin); });
+    worker.join();
+    std::size_t constrained = 0;
+    for (std::uint32_t f : seed.edge_flags)
+        constrained += f;
+    EXPECT_GE(constrained, 6u) << "the triangle's three edges, both ways";
+
+    TinMirror seeded(ctx(), std::move(seed));
+    const SyncStats first = seeded.sync();
+    EXPECT_GT(first.bytes, seeded.mirrored_bytes() / 2) << "the first sync uploads everything";
+    expect_mirror_equals_tin(ctx(), seeded, tin);
+    TinMirror own(ctx(), tin);
+    own.sync();
+    EXPECT_EQ(seeded.origin().x, own.origin().x);
+    EXPECT_EQ(seeded.origin().y, own.origin().y);
+    EXPECT_EQ(seeded.height_origin(), own.height_origin());
+    EXPECT_EQ(seeded.graph().targets(), own.graph().targets());
+
+    // Edits after the seed was built: a new constrained edge, moved heights, a removal.
+    MirrorSeed behind = prepare_mirror_seed(tin);
+    const VertexId d = tin.insert_point({0.85, 0.85}, 0.2);
+    const std::array<VertexId, 2> edge{c, d};
+    tin.insert_constraint(edge, false, 2);
+    tin.set_height(a, tin.height(a) + 0.05);
+    tin.remove_vertex(tin.locate({0.1, 0.9}).corners[0]);
+    TinMirror caught_up(ctx(), std::move(behind));
+    caught_up.sync();
+    expect_mirror_equals_tin(ctx(), caught_up, tin);
+    // And it goes on from there like any mirror.
+    tin.set_height(b, tin.height(b) - 0.02);
+    caught_up.sync();
+    expect_mirror_equals_tin(ctx(), caught_up, tin);
 }
 
 // The acceptance figure: one stamp (r = 0.04, 12 control points) on a 10^6-vertex terrain
