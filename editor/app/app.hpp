@@ -114,8 +114,13 @@ class App {
   private:
     // ---- Set-up and the loops (app.cpp) --------------------------------------------------
     void load_settings_reporting();
-    /// The scene named on the command line, or a new sandbox.
+    /// What the window shows first: the sandbox, or with a scene named on the command line a
+    /// placeholder while start_opening_initial_scene() reads it.
     Document initial_document();
+    /// Opens the command line's scene as Open does, on a worker behind the progress bar.
+    void start_opening_initial_scene();
+    /// The command line's scene did not open: a scripted run fails, an artist gets the sandbox.
+    void initial_scene_failed(const std::string& problem);
     void interactive_loop();
     void scripted_loop();
     void idle_measurement(std::uint64_t& submissions, std::uint64_t& gpu_work);
@@ -143,6 +148,10 @@ class App {
     /// terrain is built again for the new one (its GPU views, the solver, the gesture state)
     /// before anything draws, wherever this is called from.
     void install_document(Document next, const std::string& message);
+    /// The same for a document read on a worker with its view prepared there (app_jobs.cpp):
+    /// the UI thread's share is the GPU's, not the CPU's O(n) builds.
+    void install_document(PreparedDocument next, const std::string& message);
+    void install(Document next, std::optional<PreparedView> prepared, const std::string& message);
     /// Replaces the document (New, Open, Import) through `action`; when that would drop the
     /// unsaved edits of an untitled scene (no file, so no autosave to keep them), the user is
     /// asked first. A scene with a file keeps its edits in the autosave (keep_unsaved_edits).
@@ -167,7 +176,10 @@ class App {
     /// the Scene field with a name of its own and notes the heightmap in the recent list
     /// (finish_import). A failure or a Cancel is reported and leaves the document as it was.
     void import_document(const std::filesystem::path& heightmap);
-    void finish_import(const std::filesystem::path& heightmap, Document next);
+    /// Recovers `scene`'s autosave on a worker, as Open reads a scene (the recovery prompt's
+    /// Recover); a failure is reported and leaves the document as it was.
+    void recover_document(const std::filesystem::path& scene);
+    void finish_import(const std::filesystem::path& heightmap, PreparedDocument next);
     /// A file handed over without a field (dropped, or a recent one): a scene is opened and a
     /// heightmap imported, each as the Open and Import buttons do, behind the unsaved-edits
     /// prompt; anything else is refused on the status line, naming it and what is accepted.
@@ -436,6 +448,9 @@ class App {
     bool job_popup_open_ = false;     ///< the modal is closed in the frame after the job ends
     nlohmann::json job_record_;       ///< what the running job's bar showed
     std::vector<nlohmann::json> jobs_done_;  ///< the records of the jobs that ended
+    std::vector<double> install_ms_;         ///< each install_document's time on the UI thread
+    bool startup_open_ = false;              ///< the running job opens the command line's scene
+    nlohmann::json startup_job_record_;      ///< its record, once it ended
     bool script_waits_for_jobs_ = true;      ///< a script's next op waits for the job to end
     std::optional<double> job_pause_at_;     ///< test hook (background_job.hpp)
     SettleProgress settle_;

@@ -25,6 +25,15 @@ bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
 // ---- Replacing the document ---------------------------------------------------------------
 
 void App::install_document(Document next, const std::string& message) {
+    install(std::move(next), std::nullopt, message);
+}
+
+void App::install_document(PreparedDocument next, const std::string& message) {
+    install(std::move(next.document), std::move(next.view), message);
+}
+
+void App::install(Document next, std::optional<PreparedView> prepared, const std::string& message) {
+    const auto started = Clock::now();
     // What the old document had under way ends with it (its open level included).
     if (doc_.has_terrain()) sculpting_.close_level(doc_);
     sculpting_.reset();
@@ -40,7 +49,10 @@ void App::install_document(Document next, const std::string& message) {
     // The material the Paint brush and the pour use must be in this document's table.
     settings_.material =
         std::clamp(settings_.material, 0, static_cast<int>(doc_.materials().size()) - 1);
-    view_->rebuild(doc_);
+    if (prepared)
+        view_->rebuild(doc_, std::move(*prepared));
+    else
+        view_->rebuild(doc_);
     attach_solver(false);
     // An opened scene was never relaxed by this solver (it may have been saved mid-slide, or
     // imported steeper than repose): all of it is a candidate, as after a switch of solver.
@@ -48,6 +60,7 @@ void App::install_document(Document next, const std::string& message) {
     doc_.solver().activate_all();
     sculpting_.kick();
     frame_terrain();
+    if (install_ms_.size() < 100) install_ms_.push_back(ms_since(started));
     std::string text = message;
     if (!scaled.empty()) text += text.empty() ? scaled : "; " + scaled;
     if (doc_.erosion_held() && settings_.erosion_running)
@@ -65,19 +78,18 @@ void App::answer_recovery(bool recover) {
     const std::filesystem::path scene = *recovery_for_;
     recovery_for_.reset();
     autosave_writer_.cancel();  // nothing may rewrite the autosave being recovered or discarded
-    // The autosave was checked when the scene opened, but it can still fail now (its terrain
-    // may not rebuild, the folder may have become read-only): the scene stays as it is.
+    if (recover) {
+        // Read on a worker, as Open does. The autosave was checked when the scene opened, but it
+        // can still fail now (its terrain may not rebuild): the scene stays as it is, and the
+        // status line says why.
+        recover_document(scene);
+        return;
+    }
     try {
-        if (recover) {
-            install_document(Document::recovered(scene),
-                             "recovered the autosave of " + scene.string());
-        } else {
-            discard_autosave(scene);
-            report("discarded the autosave of " + scene.string());
-        }
+        discard_autosave(scene);
+        report("discarded the autosave of " + scene.string());
     } catch (const std::exception& e) {
-        report(std::string(recover ? "cannot recover the autosave: " : "cannot discard it: ") +
-               e.what());
+        report(std::string("cannot discard the autosave: ") + e.what());
     }
 }
 

@@ -8,6 +8,7 @@
 #include "app.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "recent_files.hpp"
 
@@ -36,6 +37,15 @@ std::filesystem::path scene_name_for_import(const std::filesystem::path& heightm
         if (!std::filesystem::exists(candidate, ec) && !find_autosave(candidate)) return candidate;
     }
     return folder / (stem + "-imported.sandtin");
+}
+
+/// `read` on the worker, then its view prepared there (TerrainView::prepare): the bar's last
+/// third, as measured on a 10^6-vertex scene.
+PreparedDocument read_with_view(const std::function<Document(const ProgressCallback&)>& read,
+                                const ProgressCallback& progress) {
+    Document document = read(progress_part(progress, 0.0, 0.65));
+    PreparedView view = TerrainView::prepare(document, progress_part(progress, 0.65, 1.0));
+    return PreparedDocument{std::move(document), std::move(view)};
 }
 
 }  // namespace
@@ -85,9 +95,15 @@ void App::poll_job() {
     job_.reset();
     job_record_["outcome"] = cancelled ? "cancelled" : to_string(outcome);
     job_record_["seconds"] = last.elapsed_seconds;
-    if (jobs_done_.size() < 100) jobs_done_.push_back(job_record_);
+    const bool startup = std::exchange(startup_open_, false);
+    if (startup)
+        startup_job_record_ = job_record_;
+    else if (jobs_done_.size() < 100)
+        jobs_done_.push_back(job_record_);
     redraw_frames_ = std::max(redraw_frames_, 2);  // the popup closes, the scene appears
-    if (cancelled) {
+    if (startup && (cancelled || outcome == JobOutcome::Failed)) {
+        initial_scene_failed(cancelled ? "cancelled" : error);
+    } else if (cancelled) {
         report(
             last.title + " cancelled: " +
             (job_kind_ == "export" ? "no file was written" : "the scene open before is as it was"));
@@ -121,10 +137,13 @@ void App::open_reporting(const std::filesystem::path& p) {
     if (refuse_while_busy("open " + p.string())) return;
     // Read before anything is dropped: a file that does not load (or a Cancel) leaves the
     // scene as it was.
-    auto next = std::make_shared<std::optional<Document>>();
+    auto next = std::make_shared<std::optional<PreparedDocument>>();
     start_job(
         "open", "Opening " + p.filename().string(),
-        [next, p](const ProgressCallback& progress) { next->emplace(Document::open(p, progress)); },
+        [next, p](const ProgressCallback& progress) {
+            next->emplace(read_with_view(
+                [&](const ProgressCallback& part) { return Document::open(p, part); }, progress));
+        },
         [this, next, p] {
             keep_unsaved_edits();
             set_scene_field(p.string());
@@ -134,18 +153,35 @@ void App::open_reporting(const std::filesystem::path& p) {
         });
 }
 
+void App::recover_document(const std::filesystem::path& scene) {
+    if (refuse_while_busy("recover the autosave of " + scene.string())) return;
+    auto next = std::make_shared<std::optional<PreparedDocument>>();
+    start_job(
+        "recover", "Recovering " + scene.filename().string(),
+        [next, scene](const ProgressCallback& progress) {
+            next->emplace(read_with_view(
+                [&](const ProgressCallback& part) { return Document::recovered(scene, part); },
+                progress));
+        },
+        [this, next, scene] {
+            install_document(std::move(**next), "recovered the autosave of " + scene.string());
+        });
+}
+
 void App::import_document(const std::filesystem::path& heightmap) {
     if (refuse_while_busy("import " + heightmap.string())) return;
-    auto next = std::make_shared<std::optional<Document>>();
+    auto next = std::make_shared<std::optional<PreparedDocument>>();
     start_job(
         "import", "Importing " + heightmap.filename().string(),
         [next, heightmap](const ProgressCallback& progress) {
-            next->emplace(Document::imported(heightmap, progress));
+            next->emplace(read_with_view(
+                [&](const ProgressCallback& part) { return Document::imported(heightmap, part); },
+                progress));
         },
         [this, next, heightmap] { finish_import(heightmap, std::move(**next)); });
 }
 
-void App::finish_import(const std::filesystem::path& heightmap, Document next) {
+void App::finish_import(const std::filesystem::path& heightmap, PreparedDocument next) {
     keep_unsaved_edits();
     // An imported model is a scene of its own, with a name of its own in the Scene field,
     // so Save never writes it over the scene it replaced.

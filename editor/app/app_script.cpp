@@ -54,9 +54,11 @@ namespace sandtin::editor {
 //            setting) is "native": then the desktop's dialog program picks, "path" is not used,
 //            and the op waits (up to 30 s) for the program's answer)
 //         | {"op": "jobs", "wait": true|false, "pause_at": f}  (whether the ops after one that
-//            starts an import, open or export wait for it to end, as by default; with
+//            starts an import, open, recovery or export wait for it to end, as by default; with
 //            pause_at, a job holds at its first report at or past fraction f until
-//            "resume_job" or Cancel: a test sees the bar mid-way on any machine)
+//            "resume_job" or Cancel: a test sees the bar mid-way on any machine. The script's
+//            leading "jobs" ops apply to the opening of the scene named on the command line
+//            too, which the ops after them wait for unless they said "wait": false)
 //         | {"op": "job", "until": "paused"|"done", "frames": n}  (waits for the running
 //            job to hold at its pause point, or to end: at most n frames, 600 by default)
 //         | {"op": "cancel_job"}  (clicks the job's Cancel, or the settle bar's Stop)

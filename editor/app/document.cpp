@@ -37,6 +37,12 @@ Document Document::sandbox() {
     return make(default_sandbox(), 1, {}, MaterialTable::presets(), "{}");
 }
 
+Document Document::placeholder() {
+    // Not held: there is nothing on it to slide, and nothing to say about erosion.
+    return make(Tin::flat_rectangle(Rect{{0.0, 0.0}, {1.0, 1.0}}), 1, {}, MaterialTable::presets(),
+                "{}");
+}
+
 Document Document::open(const std::filesystem::path& path, const ProgressCallback& progress) {
     // Shares measured on a large scene: decoding the file and building the TIN (its
     // triangulation checked) about equally, setting up the solver and the history the rest.
@@ -65,12 +71,18 @@ Document Document::imported(const std::filesystem::path& heightmap,
     return d;
 }
 
-Document Document::recovered(const std::filesystem::path& scene) {
+Document Document::recovered(const std::filesystem::path& scene, const ProgressCallback& progress) {
+    // The stages and shares of open().
+    if (progress) progress({0.0, "reading the autosave"});
     const Session s = recover_autosave(scene);
-    Document d = make(Tin::from_snapshot(s.terrain), s.next_generation, scene,
+    if (progress) progress({0.45, "building the terrain"});
+    Tin tin = Tin::from_snapshot(s.terrain);
+    if (progress) progress({0.85, "setting up the solver and the history"});
+    Document d = make(std::move(tin), s.next_generation, scene,
                       materials_or_presets(s.metadata_json), s.metadata_json);
     d.erosion_held_ = true;
     d.dirty_ = true;  // the scene's file does not hold these edits
+    if (progress) progress({1.0, "done"});
     return d;
 }
 

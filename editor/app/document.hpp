@@ -55,6 +55,10 @@ class Document {
 
     /// A new 1 m sandbox (default_sandbox()), untitled; it erodes once sculpted.
     static Document sandbox();
+    /// A flat 1 m square of two triangles, untitled: what the window shows behind the
+    /// progress bar while the scene named on the command line is read (cheap to show: the
+    /// sandbox's view alone took a quarter of a second on a CPU renderer).
+    static Document placeholder();
     /// The session at `path`, with its material table; held (erosion waits for Run). Throws
     /// on a file that does not load, before anything else is touched. `progress`
     /// (io/progress.hpp) hears reading, the terrain's build and the document's set-up; it may
@@ -66,7 +70,9 @@ class Document {
     static Document imported(const std::filesystem::path& heightmap,
                              const ProgressCallback& progress = {});
     /// The autosave of the scene at `scene`, as that scene (edited since it was saved); held.
-    static Document recovered(const std::filesystem::path& scene);
+    /// `progress` as open()'s; it touches nothing shared either.
+    static Document recovered(const std::filesystem::path& scene,
+                              const ProgressCallback& progress = {});
 
     Document() = default;
     Document(Document&&) noexcept;

@@ -19,7 +19,9 @@ void App::panel_erosion() {
        "an elevation model does not melt as it appears. A stroke and the settling it\n"
        "causes are one undo level");
     ImGui::SameLine();
-    ImGui::TextUnformatted(erosion_status().c_str());
+    // Wrapped: "paused for the opened scene: Run lets it settle" is wider than the panel (it
+    // showed cut off when a scene opened with the erosion running).
+    ImGui::TextWrapped("%s", erosion_status().c_str());
     tip("Paused, at rest, or sliding with the number of vertices the relaxation still looks at");
     ImGui::SliderInt("Steps/frame", &settings_.erosion_steps,
                      static_cast<int>(kErosionStepsRange.lo),

@@ -1,6 +1,7 @@
 #include "terrain_view.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace sandtin::editor {
 
@@ -10,6 +11,25 @@ using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+/// The 2nd and 98th percentiles of the live heights (m), high at least 0.1 mm above low;
+/// nothing for fewer than two vertices.
+std::optional<std::pair<double, double>> contrast_range(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    std::vector<double> h;
+    h.reserve(tin.vertex_count());
+    for (std::size_t i = 0; i < va.size(); ++i) {
+        if (va.alive[i]) h.push_back(va.height[i]);
+    }
+    if (h.size() < 2) return std::nullopt;
+    const auto at = [&](double q) {
+        auto it = h.begin() + static_cast<long>(q * static_cast<double>(h.size() - 1));
+        std::nth_element(h.begin(), it, h.end());
+        return *it;
+    };
+    const double low = at(0.02);
+    return std::pair{low, std::max(at(0.98), low + 1e-4)};
 }
 
 }  // namespace
@@ -36,14 +56,57 @@ void TerrainView::rebuild(Document& doc) {
     materials_version_ = doc.materials_version();
     mesh_changes_ = std::make_unique<ChangeReader>(doc.tin());
     mirror_ = std::make_unique<gpu::TinMirror>(context_, doc.tin(), doc.materials());
+    start(doc);
+    update(doc, [] {});  // the mesh, the mirror and the normal map exist before anything draws
+}
+
+void TerrainView::rebuild(Document& doc, PreparedView prepared) {
+    if (!prepared.mesh || !prepared.mesh_changes || &prepared.mesh_changes->tin() != &doc.tin())
+        throw std::logic_error("TerrainView::rebuild: the view was prepared for another terrain");
+    release();
+    mesh_changes_ = std::move(prepared.mesh_changes);
+    mesh_ = std::move(prepared.mesh);
+    // The table moved with the document (whose version a move bumps): the one the mesh has.
+    materials_version_ = doc.materials_version();
+    mirror_ =
+        std::make_unique<gpu::TinMirror>(context_, std::move(prepared.mirror), doc.materials());
+    start(doc);
+    // Uploaded whole by the update below (unless the TIN changed since: then rebuilt whole).
+    prepared_upload_ = std::move(prepared.mesh_upload);
+    stale_ = false;
+    if (prepared.contrast) {
+        contrast_low_ = prepared.contrast->first;
+        contrast_high_ = prepared.contrast->second;
+        contrast_at_ = Clock::now();
+        contrast_stale_ = false;
+    }
+    update(doc, [] {});
+}
+
+void TerrainView::start(Document& doc) {
     normal_map_changes_ = std::make_unique<ChangeReader>(doc.tin());
     active_.clear();
     active_ids_.clear();
     active_flipped_.clear();
+    prepared_upload_.reset();
     stale_ = true;
     contrast_stale_ = true;
-    // The mesh, the mirror and the normal map exist before anything draws.
-    update(doc, [] {});
+}
+
+PreparedView TerrainView::prepare(Document& doc, const ProgressCallback& progress) {
+    // Shares measured on a 10^6-vertex scene: the mesh a quarter, the mirror's graph and flags
+    // the rest.
+    PreparedView out;
+    if (progress) progress({0.0, "building the render mesh"});
+    out.mesh_changes = std::make_unique<ChangeReader>(doc.tin());
+    out.mesh_changes->take();  // "everything": the mesh below is built from everything
+    out.mesh = std::make_unique<render::TerrainMesh>(doc.materials());
+    out.mesh_upload = out.mesh->rebuild(doc.tin());
+    out.contrast = contrast_range(doc.tin());
+    if (progress) progress({0.25, "building the GPU copy's graph"});
+    out.mirror = gpu::prepare_mirror_seed(doc.tin());
+    if (progress) progress({1.0, "done"});
+    return out;
 }
 
 ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_idle) {
@@ -57,11 +120,19 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
     }
     // The journal says what changed; nothing changed means no recomputation and no upload.
     const ChangeSet changes = mesh_changes_->take();
-    if (!stale_ && changes.empty() && active_flipped_.empty() && normal_map_) return out;
+    if (prepared_upload_ && !(changes.empty() && active_flipped_.empty())) {
+        prepared_upload_.reset();  // the prepared mesh is behind the TIN: built again
+        stale_ = true;
+    }
+    if (!stale_ && !prepared_upload_ && changes.empty() && active_flipped_.empty() && normal_map_)
+        return out;
     const auto t0 = Clock::now();
     mesh_->set_active(active_);
-    const render::MeshUpdate update =
-        stale_ ? mesh_->rebuild(doc.tin()) : mesh_->update(doc.tin(), changes, active_flipped_);
+    const render::MeshUpdate update = stale_ ? mesh_->rebuild(doc.tin())
+                                      : prepared_upload_
+                                          ? *prepared_upload_
+                                          : mesh_->update(doc.tin(), changes, active_flipped_);
+    prepared_upload_.reset();
     active_flipped_.clear();
     stale_ = false;
     ++mesh_updates_;
@@ -100,20 +171,10 @@ void TerrainView::update_contrast_range(const Tin& tin) {
     // The contrast curve stretches the 2nd..98th percentile of the heights over the full
     // range (the seeds' histogram stretch). O(n): refreshed at most twice a second.
     if (!contrast_stale_ && Clock::now() - contrast_at_ < std::chrono::milliseconds(500)) return;
-    const VertexArrays& va = tin.vertices();
-    std::vector<double> h;
-    h.reserve(tin.vertex_count());
-    for (std::size_t i = 0; i < va.size(); ++i) {
-        if (va.alive[i]) h.push_back(va.height[i]);
-    }
-    if (h.size() < 2) return;
-    const auto at = [&](double q) {
-        auto it = h.begin() + static_cast<long>(q * static_cast<double>(h.size() - 1));
-        std::nth_element(h.begin(), it, h.end());
-        return *it;
-    };
-    contrast_low_ = at(0.02);
-    contrast_high_ = std::max(at(0.98), contrast_low_ + 1e-4);
+    const std::optional<std::pair<double, double>> range = contrast_range(tin);
+    if (!range) return;
+    contrast_low_ = range->first;
+    contrast_high_ = range->second;
     contrast_at_ = Clock::now();
     contrast_stale_ = false;
 }

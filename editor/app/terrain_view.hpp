@@ -8,18 +8,42 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "document.hpp"
+#include "gpu/mirror_seed.hpp"
 #include "gpu/render/normal_map.hpp"
 #include "gpu/render/terrain_mesh.hpp"
 #include "gpu/render/terrain_renderer.hpp"
 #include "gpu/tin_mirror.hpp"
 #include "gpu/vulkan_context.hpp"
+#include "io/progress.hpp"
 #include "tin/change_reader.hpp"
 
 namespace sandtin::editor {
+
+/// What TerrainView::rebuild() computes on the CPU, computed beforehand on the worker thread
+/// that opened, imported or recovered the document (app_jobs.cpp): the render mesh, the GPU
+/// mirror's seed and the contrast range. Each part holds a reader of the TIN's journal opened
+/// before it was built, so whatever changes later still reaches it. It must go before the
+/// document's TIN does (PreparedDocument keeps that order).
+struct PreparedView {
+    std::unique_ptr<ChangeReader> mesh_changes;  ///< opened before the mesh was built
+    std::unique_ptr<render::TerrainMesh> mesh;
+    render::MeshUpdate mesh_upload;  ///< the whole mesh, for the first upload
+    gpu::MirrorSeed mirror;
+    std::optional<std::pair<double, double>> contrast;  ///< low and high heights (m)
+};
+
+/// A document read on a worker thread and its view prepared there: the UI thread only uploads
+/// (App::install_document). Members go in reverse order: the view's readers before the TIN.
+struct PreparedDocument {
+    Document document;
+    PreparedView view;
+};
 
 /// What one update did and took (milliseconds), for the Stats window.
 struct ViewUpdate {
@@ -39,6 +63,13 @@ class TerrainView {
     /// and the normal map of `doc`'s (the GPU must be idle, and no solver may still relax on
     /// the old mirror). Safe in the middle of a frame: the next draw sees only the new terrain.
     void rebuild(Document& doc);
+    /// The same, with the CPU's share done beforehand by prepare() on `doc` (its TIN must be the
+    /// one prepared): only the GPU's share is left, buffers made and filled, the normal map baked.
+    void rebuild(Document& doc, PreparedView prepared);
+    /// The CPU's share of rebuild(): the render mesh, the mirror's seed and the contrast range.
+    /// Touches no GPU state: runs on any thread that has `doc` to itself. `progress` names the
+    /// parts and may throw (Cancelled).
+    static PreparedView prepare(Document& doc, const ProgressCallback& progress = {});
     /// Drops everything built for the current terrain (its readers of the TIN's journal, the
     /// mirror, the normal map and the renderer's buffers), before that terrain goes. No solver
     /// may still relax on the mirror, and the GPU must be idle.
@@ -68,6 +99,8 @@ class TerrainView {
     std::uint64_t vertices_recomputed() const { return mesh_recomputed_; }
 
   private:
+    /// What both rebuilds share once the mesh and the mirror exist.
+    void start(Document& doc);
     void update_normal_map(Document& doc);
     void update_contrast_range(const Tin& tin);
 
@@ -75,6 +108,8 @@ class TerrainView {
     render::TerrainRenderer& renderer_;
     std::uint64_t materials_version_ = ~std::uint64_t{0};
     std::unique_ptr<render::TerrainMesh> mesh_;
+    /// A prepared mesh not uploaded yet: the next update() uploads it whole.
+    std::optional<render::MeshUpdate> prepared_upload_;
     std::unique_ptr<ChangeReader> mesh_changes_;        ///< the mesh's reader of the journal
     std::unique_ptr<gpu::TinMirror> mirror_;            ///< syncs from a reader of its own
     std::unique_ptr<ChangeReader> normal_map_changes_;  ///< the bake's dirty rectangle

@@ -5,6 +5,7 @@
 // level. Jobs are held at a fraction by the script's "jobs" op (pause_at), so the bar is seen
 // mid-way and Cancel pressed whatever the machine's speed; no timing is asserted.
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -109,6 +110,53 @@ TEST_F(EditorXvfb, ACancelledImportShowedItsBarAndLeftTheSceneAsItWas) {
     EXPECT_EQ(kept.vertex_count(), sandbox.vertex_count());
     EXPECT_LT(surface_difference(kept, sandbox), 1e-12);
     EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+}
+
+// The scene named on the command line is read on a worker after the window opened, under the
+// bar, as Open reads one: frames go on meanwhile, and it lands in the Scene field and the
+// recent list. Only the document's install is left to the UI thread.
+TEST_F(EditorXvfb, ASceneOnTheCommandLineOpensUnderTheBarAfterTheWindowOpened) {
+    const fs::path scene = kWork / "startup-scene.sandtin";
+    const fs::path saved = kWork / "startup-saved.sandtin";
+    ASSERT_EQ(run_editor("startup-base", then(kFlat, R"({"op": "drag", "button": "left",
+                  "path": [[0.4, 0.5], [0.6, 0.5]], "steps": 4})"),
+                         "--save-after " + scene.string() + settings_for("startup-base"))
+                  .exit_code,
+              0);
+    const EditorRun r = run_editor(
+        "startup-open",
+        then(R"([{"op": "jobs", "wait": false, "pause_at": 0.5}])",
+             R"({"op": "job", "until": "paused"}, {"op": "wait", "frames": 3},
+                                {"op": "resume_job"}, {"op": "job", "until": "done"},
+                                {"op": "jobs", "wait": true}, {"op": "wait", "frames": 2})"),
+        scene.string() + " --save-after " + saved.string() + settings_for("startup-open"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_TRUE(r.stats.at("jobs").empty()) << "the start's job is recorded on its own";
+    const nlohmann::json& job = r.stats.at("startup_job");
+    EXPECT_EQ(job.at("kind"), "open");
+    EXPECT_EQ(job.at("outcome"), "done");
+    expect_bar_shown_mid_way(job);
+    // --save-after made the saved copy the newest recent file; the scene came before it.
+    const auto& recent = r.stats.at("recent_files");
+    EXPECT_NE(std::find(recent.begin(), recent.end(), scene.string()), recent.end()) << recent;
+    EXPECT_EQ(r.stats.at("install_ms").size(), 2u) << "the placeholder, then the scene";
+    EXPECT_TRUE(said(r, "opened " + scene.string())) << r.stats.at("messages");
+    const Tin opened = Tin::from_snapshot(load_session(saved).terrain);
+    const Tin original = Tin::from_snapshot(load_session(scene).terrain);
+    EXPECT_EQ(opened.vertex_count(), original.vertex_count());
+    EXPECT_LT(surface_difference(opened, original), 1e-12);
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+}
+
+// A scene that does not load fails a scripted run with a message naming it, after the window
+// opened and the worker tried; an interactive run would get the sandbox and the same words.
+TEST_F(EditorXvfb, ADamagedSceneOnTheCommandLineFailsAScriptNamingIt) {
+    const fs::path scene = kWork / "startup-damaged.sandtin";
+    fs::create_directories(kWork);
+    std::ofstream(scene, std::ios::binary) << "not a sandtin session at all";
+    const EditorRun r = run_editor("startup-damaged", kFlat, scene.string());
+    EXPECT_EQ(r.exit_code, 1) << r.log;
+    EXPECT_NE(r.log.find("cannot open " + scene.string()), std::string::npos) << r.log;
 }
 
 TEST_F(EditorXvfb, ACompletedBackgroundImportIsTheSynchronousImport) {
