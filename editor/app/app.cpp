@@ -105,7 +105,8 @@ void App::save_settings_reporting() {
 LoopState App::loop_state() const {
     LoopState state;
     window_->framebuffer_size(state.framebuffer_width, state.framebuffer_height);
-    state.redraw_pending = redraw_frames_ > 0;
+    // A new terrain's normal map is baked a band a frame: frames go on until it is whole.
+    state.redraw_pending = redraw_frames_ > 0 || view_->baking_normal_map();
     state.dragging = left_down_;
     state.prompt_open = prompt_open();
     state.job_running = busy();
@@ -268,8 +269,9 @@ void App::scripted_loop() {
             sculpting_.close_level(doc_);
             ++frames_after_script;
         }
+        // The last frame shows the view finished: its normal map baked whole.
         const bool last = script_pos_ >= script_.size() && script_wait_ == 0 &&
-                          input_steps_.empty() &&
+                          input_steps_.empty() && !view_->baking_normal_map() &&
                           frames_after_script >= std::max(1, options_.frames);
         frame(last && !options_.screenshot.empty());
         if (last) break;

@@ -42,6 +42,7 @@ TerrainView::~TerrainView() = default;
 void TerrainView::release() {
     // The renderer forgets its buffers, so nothing of that terrain stays in memory it draws
     // from; the readers close on the TIN while it still exists.
+    renderer_.use_vertex_normals();  // the map it samples goes next
     normal_map_.reset();
     normal_map_changes_.reset();
     mirror_.reset();
@@ -124,7 +125,8 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
         prepared_upload_.reset();  // the prepared mesh is behind the TIN: built again
         stale_ = true;
     }
-    if (!stale_ && !prepared_upload_ && changes.empty() && active_flipped_.empty() && normal_map_)
+    if (!stale_ && !prepared_upload_ && changes.empty() && active_flipped_.empty() &&
+        !baking_normal_map())
         return out;
     const auto t0 = Clock::now();
     mesh_->set_active(active_);
@@ -156,12 +158,23 @@ void TerrainView::update_normal_map(Document& doc) {
     // The mirror takes what changed since its last sync, whoever synced it last (a GPU
     // solver's step syncs it too; the solver wakes what changed through a feed of its own).
     mirror_->sync();
-    const ChangeSet dirty = normal_map_changes_->take();
     if (!normal_map_) {
-        normal_map_ = std::make_unique<render::TerrainNormalMap>(*mirror_, doc.tin().domain());
+        normal_map_changes_->take();  // "everything": the first bake covers it
+        normal_map_ = std::make_unique<render::TerrainNormalMap>(*mirror_, doc.tin().domain(),
+                                                                 kNormalMapSide, false);
+        return;  // the frame that installs a terrain uploads it; the bands come after
+    }
+    if (!normal_map_->complete()) {
+        // A new terrain's map is baked a band of rows a frame (a 1024-row bake took 150 ms
+        // of a frame on a CPU renderer); meanwhile the renderer shades with vertex normals.
+        // What changes meanwhile stays in the reader, and is re-baked once the map is whole.
+        normal_map_->bake_rows(kNormalMapRowsPerFrame);
+        if (!normal_map_->complete()) return;
         renderer_.set_normal_map(normal_map_->view(), normal_map_->sampler());
         ++normal_map_bakes_;
-    } else if (const auto texels = normal_map_->rebake(doc.tin(), dirty)) {
+    }
+    const ChangeSet dirty = normal_map_changes_->take();
+    if (const auto texels = normal_map_->rebake(doc.tin(), dirty)) {
         ++normal_map_bakes_;
         normal_map_texels_ = std::uint64_t{texels->width()} * texels->height();
     }

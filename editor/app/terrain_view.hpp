@@ -45,6 +45,11 @@ struct PreparedDocument {
     PreparedView view;
 };
 
+/// The normal map's longer side (texels), and the rows of it baked per update while a new
+/// terrain's map is made: 8 updates for the whole map.
+inline constexpr std::uint32_t kNormalMapSide = 1024;
+inline constexpr std::uint32_t kNormalMapRowsPerFrame = 128;
+
 /// What one update did and took (milliseconds), for the Stats window.
 struct ViewUpdate {
     double mesh_ms = 0.0, upload_ms = 0.0, bake_ms = 0.0;
@@ -90,6 +95,9 @@ class TerrainView {
     double contrast_high() const { return contrast_high_; }
     const render::TerrainMesh& mesh() const { return *mesh_; }
     const render::TerrainNormalMap* normal_map() const { return normal_map_.get(); }
+    /// The new terrain's normal map is still being baked (a band of rows an update): the
+    /// caller keeps drawing frames until it is done. Shaded with vertex normals meanwhile.
+    bool baking_normal_map() const { return !normal_map_ || !normal_map_->complete(); }
     /// GPU work so far: normal-map bakes and mirror upload batches (an idle editor adds none).
     std::uint64_t gpu_work() const;
     std::uint64_t normal_map_bakes() const { return normal_map_bakes_; }

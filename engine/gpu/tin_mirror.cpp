@@ -31,20 +31,47 @@ uint32_t grown(uint32_t have, uint32_t need) {
     return static_cast<uint32_t>(std::min<uint64_t>(g, 0xFFFFFFFFu));
 }
 
-// Replaces `buffer` by one of `bytes`, copying the old contents on the GPU and zeroing the rest.
-void reallocate(const VulkanContext& ctx, Buffer& buffer, VkDeviceSize bytes) {
-    Buffer fresh(ctx, bytes, kUsage, MemoryUse::Device);
-    const VkDeviceSize old = buffer ? buffer.size() : 0;
-    ctx.submit_and_wait([&](VkCommandBuffer cb) {
-        if (old > 0) {
-            VkBufferCopy c{0, 0, old};
-            vkCmdCopyBuffer(cb, buffer.get(), fresh.get(), 1, &c);
-        }
-        // Fill sizes must be multiples of 4; all element sizes are.
-        vkCmdFillBuffer(cb, fresh.get(), old, bytes - old, 0);
-    });
-    buffer = std::move(fresh);
-}
+// Buffers being replaced by larger ones in one submission: each old buffer's contents are
+// copied on the GPU, and the rest is zeroed from `fill_from` on (bytes; what the same sync
+// uploads anyway need not be zeroed first).
+class Regrowth {
+  public:
+    explicit Regrowth(const VulkanContext& ctx) : ctx_(ctx) {}
+    void add(Buffer& buffer, VkDeviceSize bytes, VkDeviceSize fill_from) {
+        const VkDeviceSize old = buffer ? buffer.size() : 0;
+        parts_.push_back({&buffer, Buffer(ctx_, bytes, kUsage, MemoryUse::Device), old,
+                          std::min(std::max(old, fill_from), bytes)});
+    }
+    // One submission for all of them (one wait, not one per buffer), then the swap.
+    void run() {
+        if (parts_.empty()) return;
+        ctx_.submit_and_wait([&](VkCommandBuffer cb) {
+            for (Part& p : parts_) {
+                if (p.old > 0) {
+                    VkBufferCopy c{0, 0, p.old};
+                    vkCmdCopyBuffer(cb, p.buffer->get(), p.fresh.get(), 1, &c);
+                }
+                // Fill sizes must be multiples of 4; all element sizes are.
+                if (p.fill_from < p.fresh.size())
+                    vkCmdFillBuffer(cb, p.fresh.get(), p.fill_from, p.fresh.size() - p.fill_from,
+                                    0);
+            }
+        });
+        for (Part& p : parts_)
+            *p.buffer = std::move(p.fresh);
+        parts_.clear();
+    }
+
+  private:
+    struct Part {
+        Buffer* buffer;
+        Buffer fresh;
+        VkDeviceSize old;
+        VkDeviceSize fill_from;
+    };
+    const VulkanContext& ctx_;
+    std::vector<Part> parts_;
+};
 
 }  // namespace
 
@@ -115,7 +142,8 @@ uint64_t TinMirror::mirrored_bytes() const {
     return total;
 }
 
-void TinMirror::grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStats& stats) {
+void TinMirror::grow(uint32_t vertices, uint32_t slots, uint32_t edges, const Uploaded& uploaded,
+                     SyncStats& stats) {
     const uint32_t nv = grown(vertex_capacity_, std::max(vertices, 1u));
     const uint32_t ns = grown(slot_capacity_, std::max(slots, 1u));
     const uint32_t ne = grown(edge_capacity_, std::max(edges, 1u));
@@ -123,28 +151,35 @@ void TinMirror::grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStat
     // Queued copies target the old buffers: land them first.
     ring_.flush();
     ring_.wait_idle();
+    // What this sync uploads from 0 on (the first sync: every id, slot and pool entry) is not
+    // zeroed first: on a 10^6-vertex scene the fills were a third of the first sync.
+    const auto covered = [](uint32_t count, uint32_t element) {
+        return VkDeviceSize{count} * element;
+    };
+    Regrowth regrowth(context_);
     if (nv != vertex_capacity_) {
         for (uint32_t i = 0; i < static_cast<uint32_t>(VertexBuffer::Count); ++i) {
-            reallocate(context_, vertex_[i],
-                       VkDeviceSize{nv} * element_size(static_cast<VertexBuffer>(i)));
+            const uint32_t e = element_size(static_cast<VertexBuffer>(i));
+            regrowth.add(vertex_[i], VkDeviceSize{nv} * e, covered(uploaded.vertices, e));
         }
         vertex_capacity_ = nv;
         tan_alpha_cpu_.resize(nv, 0.0f);
     }
     if (ns != slot_capacity_) {
         for (uint32_t i = 0; i < static_cast<uint32_t>(SlotBuffer::Count); ++i) {
-            reallocate(context_, slot_[i],
-                       VkDeviceSize{ns} * element_size(static_cast<SlotBuffer>(i)));
+            const uint32_t e = element_size(static_cast<SlotBuffer>(i));
+            regrowth.add(slot_[i], VkDeviceSize{ns} * e, covered(uploaded.slots, e));
         }
         slot_capacity_ = ns;
     }
     if (ne != edge_capacity_) {
         for (uint32_t i = 0; i < static_cast<uint32_t>(EdgeBuffer::Count); ++i) {
-            reallocate(context_, edge_[i],
-                       VkDeviceSize{ne} * element_size(static_cast<EdgeBuffer>(i)));
+            const uint32_t e = element_size(static_cast<EdgeBuffer>(i));
+            regrowth.add(edge_[i], VkDeviceSize{ne} * e, covered(uploaded.edges, e));
         }
         edge_capacity_ = ne;
     }
+    regrowth.run();
     ++generation_;
     stats.reallocated = true;
 }
@@ -313,8 +348,13 @@ SyncStats TinMirror::sync() {
         rows = graph_.take_dirty_rows();
     }
     const uint32_t edges = static_cast<uint32_t>(graph_.slot_count());
-    grow(std::max<uint32_t>(changes.vertex_capacity, static_cast<uint32_t>(tin.vertices().size())),
-         std::max(changes.slot_capacity, tin.slot_capacity()), edges, stats);
+    const uint32_t vertex_count = static_cast<uint32_t>(tin.vertices().size());
+    // The first sync uploads everything below these counts (the rows' pool up to its last
+    // row's slack, which nothing reads).
+    const Uploaded uploaded =
+        first_sync_ ? Uploaded{vertex_count, tin.slot_capacity(), edges} : Uploaded{};
+    grow(std::max(changes.vertex_capacity, vertex_count),
+         std::max(changes.slot_capacity, tin.slot_capacity()), edges, uploaded, stats);
 
     const VertexArrays& va = tin.vertices();
     // Scattered edits (erosion moves sand on thousands of vertices a frame) give thousands of

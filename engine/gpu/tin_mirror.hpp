@@ -126,7 +126,12 @@ class TinMirror {
     StagingRing& staging() { return ring_; }
 
   private:
-    void grow(uint32_t vertices, uint32_t slots, uint32_t edges, SyncStats& stats);
+    // Counts of ids, slots and pool entries a sync uploads in full from 0 (none after the first).
+    struct Uploaded {
+        uint32_t vertices = 0, slots = 0, edges = 0;
+    };
+    void grow(uint32_t vertices, uint32_t slots, uint32_t edges, const Uploaded& uploaded,
+              SyncStats& stats);
     void upload_vertex_range(const Tin& tin, IdRange r);
     // `flags`: the rows' constrained flags by pool slot, when known (the seed's), else read
     // from the TIN.

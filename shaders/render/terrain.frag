@@ -55,7 +55,10 @@ void main() {
     // contrast.zw = 1 / domain size: centre-relative position -> texture coordinates.
     vec2 map_uv = vec2(0.5 + v_world.x * pc.contrast.z, 0.5 - v_world.y * pc.contrast.w);
     vec2 nxy = texture(normal_map, map_uv).xy;  // z > 0: the terrain is a height field
-    vec3 n = normalize(vec3(nxy, sqrt(max(1.0 - dot(nxy, nxy), 0.0))));
+    // x = -1 is the renderer's placeholder while the baked map is not ready
+    // (vertex_normal_placeholder.hpp): the interpolated vertex normal, the same smooth normal.
+    vec3 n = nxy.x <= -0.99999 ? normalize(v_normal)
+                               : normalize(vec3(nxy, sqrt(max(1.0 - dot(nxy, nxy), 0.0))));
     // Detail normal: sand grains about 2.5 mm across, offset by the sliding texture
     // coordinates so the grain pattern moves with transported material.
     vec2 uv = v_world.xy * 400.0 + v_slide * 64.0;

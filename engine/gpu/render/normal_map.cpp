@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "gpu/buffer.hpp"
 #include "gpu/gpu_error.hpp"
@@ -73,7 +74,7 @@ MapGrid normal_map_grid(const Rect& domain, std::uint32_t max_side) {
 }
 
 TerrainNormalMap::TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain,
-                                   std::uint32_t max_side)
+                                   std::uint32_t max_side, bool bake_now)
     : mirror_(mirror), grid_(normal_map_grid(domain, max_side)), maps_(mirror) {
     const gpu::VulkanContext& ctx = mirror.context();
     const VkDevice device = ctx.device();
@@ -115,16 +116,28 @@ TerrainNormalMap::TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain,
     VkSampler sampler = VK_NULL_HANDLE;
     gpu::check(vkCreateSampler(device, &si, nullptr, &sampler), "vkCreateSampler (normal map)");
     sampler_ = gpu::UniqueSampler(device, sampler);
-    bake_all();
+    if (bake_now) bake_all();
 }
 
 TerrainNormalMap::~TerrainNormalMap() = default;
 
 void TerrainNormalMap::bake_all() {
     bake(grid_.domain, {0, 0, grid_.width - 1, grid_.height - 1});
+    next_row_ = grid_.height;
+}
+
+void TerrainNormalMap::bake_rows(std::uint32_t rows) {
+    if (complete() || rows == 0) return;
+    const std::uint32_t last = std::min(grid_.height, next_row_ + rows) - 1;
+    // The first band computes every vertex normal (none is valid yet); the later ones reuse
+    // them: an empty region recomputes none.
+    bake(next_row_ == 0 ? grid_.domain : Rect{}, {0, next_row_, grid_.width - 1, last});
+    next_row_ = last + 1;
 }
 
 std::optional<gpu::TexelRect> TerrainNormalMap::rebake(const Tin& tin, const ChangeSet& changes) {
+    if (!complete())
+        throw std::logic_error("TerrainNormalMap::rebake: the map is still being baked");
     const std::optional<Rect> region = normal_map_dirty_region(tin, mirror_.graph(), changes);
     if (!region) return std::nullopt;
     // Texel centres inside the region, plus one texel of margin for float rounding.

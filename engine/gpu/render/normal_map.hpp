@@ -39,14 +39,22 @@ MapGrid normal_map_grid(const Rect& domain, std::uint32_t max_side);
 class TerrainNormalMap {
   public:
     /// The mirror must have been synced at least once and outlive this object. Bakes the
-    /// whole map.
-    TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain, std::uint32_t max_side = 1024);
+    /// whole map, or with `bake_now` false nothing yet: bake_rows() then bakes it a band at a
+    /// time (an editor frame each), complete() says when every texel is.
+    TerrainNormalMap(gpu::TinMirror& mirror, const Rect& domain, std::uint32_t max_side = 1024,
+                     bool bake_now = true);
     ~TerrainNormalMap();
     TerrainNormalMap(const TerrainNormalMap&) = delete;
     TerrainNormalMap& operator=(const TerrainNormalMap&) = delete;
 
+    /// Bakes the next `rows` rows not baked yet, from the mirror as it is now (the first band
+    /// computes every vertex normal); the GPU must not be reading the texture. What changed in
+    /// the TIN meanwhile is for rebake() once the map is complete.
+    void bake_rows(std::uint32_t rows);
+    bool complete() const { return next_row_ >= grid_.height; }
     /// Re-bakes what `changes` touched; the mirror must already hold the changed TIN (synced)
-    /// and the GPU must not be reading the texture. Returns the texels re-baked, if any.
+    /// and the GPU must not be reading the texture. Returns the texels re-baked, if any. Only
+    /// on a complete map (std::logic_error otherwise).
     std::optional<gpu::TexelRect> rebake(const Tin& tin, const ChangeSet& changes);
     /// Everything (a new terrain, or a mirror whose buffers were reallocated).
     void bake_all();
@@ -71,7 +79,8 @@ class TerrainNormalMap {
     gpu::Image image_;    ///< RG16_SNORM: the normal's x and y
     gpu::UniqueImageView view_;
     gpu::UniqueSampler sampler_;
-    bool initialised_ = false;  ///< the image left UNDEFINED layout
+    bool initialised_ = false;    ///< the image left UNDEFINED layout
+    std::uint32_t next_row_ = 0;  ///< rows before it are baked
     std::uint64_t texels_baked_ = 0;
 };
 

@@ -138,7 +138,7 @@ std::span<const std::uint32_t> spirv(const std::uint32_t (&code)[N]) {
 }  // namespace
 
 TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass render_pass)
-    : context_(context) {
+    : context_(context), placeholder_(context) {
     const VkDevice device = context.device();
     // Set 0, binding 0: the baked normal map.
     VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
@@ -166,6 +166,7 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     ai.descriptorSetCount = 1;
     ai.pSetLayouts = &set_layout;
     gpu::check(vkAllocateDescriptorSets(device, &ai, &set_), "vkAllocateDescriptorSets");
+    use_vertex_normals();  // until a baked map is set
     terrain_layout_ = make_layout(device, sizeof(TerrainPush), set_layout);
     terrain_pipeline_ = make_pipeline(device, render_pass, terrain_layout_.get(),
                                       {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 5,
@@ -240,7 +241,10 @@ void TerrainRenderer::set_normal_map(VkImageView view, VkSampler sampler) {
     w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     w.pImageInfo = &image;
     vkUpdateDescriptorSets(context_.device(), 1, &w, 0, nullptr);
-    has_normal_map_ = true;
+}
+
+void TerrainRenderer::use_vertex_normals() {
+    set_normal_map(placeholder_.view(), placeholder_.sampler());
 }
 
 void TerrainRenderer::drop_mesh() {
@@ -269,8 +273,6 @@ std::span<const std::byte> TerrainRenderer::drawn_index_bytes() const {
 void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
                            const TerrainMesh& mesh) {
     if (index_count_ == 0) return;
-    if (!has_normal_map_)
-        throw gpu::GpuError("TerrainRenderer::draw: no normal map was set (set_normal_map)");
     VkViewport viewport{
         0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
         0.0f, 1.0f};

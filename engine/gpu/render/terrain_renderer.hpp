@@ -15,6 +15,7 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/render/terrain_mesh.hpp"
+#include "gpu/render/vertex_normal_placeholder.hpp"
 #include "gpu/vulkan_context.hpp"
 
 namespace sandtin::render {
@@ -39,9 +40,13 @@ class TerrainRenderer {
     /// Copies the ranges `update` names from `mesh` (everything when it says resized). The GPU
     /// must not be reading the buffers (the caller waits for the previous frame).
     void upload(const TerrainMesh& mesh, const MeshUpdate& update);
-    /// The baked normal map terrain.frag samples (TerrainNormalMap). Must be set before the
-    /// first draw and again when the map is replaced; the GPU must not be drawing.
+    /// The baked normal map terrain.frag samples (TerrainNormalMap). Set again when the map is
+    /// replaced; the GPU must not be drawing.
     void set_normal_map(VkImageView view, VkSampler sampler);
+    /// No baked map (as after construction): the terrain is shaded with its interpolated vertex
+    /// normals (vertex_normal_placeholder.hpp) until set_normal_map(). Call before the map in
+    /// use is destroyed; the GPU must not be drawing.
+    void use_vertex_normals();
     /// Records the draws (viewport and scissor are dynamic). With the wireframe overlay on,
     /// the edge list is rebuilt from `mesh` when its triangles changed since the last call.
     void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
@@ -72,7 +77,7 @@ class TerrainRenderer {
     gpu::UniqueDescriptorSetLayout set_layout_;
     gpu::UniqueDescriptorPool pool_;
     VkDescriptorSet set_ = VK_NULL_HANDLE;  ///< freed with pool_
-    bool has_normal_map_ = false;
+    VertexNormalPlaceholder placeholder_;
     gpu::UniquePipelineLayout terrain_layout_;
     gpu::UniquePipeline terrain_pipeline_;
     gpu::UniquePipelineLayout lines_layout_;
