@@ -368,7 +368,8 @@ std::vector<double> cpu_iteration_from(const Tin& tin, const TinMirror& mirror, 
     std::vector<double> tan_alpha(va.size(), 0.0);
     for (uint32_t v : all) {
         h[v] = static_cast<double>(from[v]);
-        tan_alpha[v] = mirror.materials().at(va.material[v]).talus_slope(va.moisture[v]);
+        tan_alpha[v] =
+            mirror.materials().at(va.material[v]).talus_slope(static_cast<double>(va.moisture[v]));
     }
     const TalusArrays arrays{h.data(), va.lumped_area.data(), va.bedrock.data(), tan_alpha.data(),
                              va.size()};
@@ -486,6 +487,8 @@ TEST_F(GpuTest, FaceRuleComesToRestWithNoFaceSteeperThanRepose) {
         if (last.active_after == 0) break;
     }
     EXPECT_EQ(last.active_after, 0u) << "still active after " << iterations << " iterations";
+    // At rest the GPU records nothing.
+    EXPECT_EQ(gpu.run(100).dispatches, 0u);
     const std::vector<float> hg = gpu.read_heights();
     EXPECT_LE(std::abs(gpu_volume(hg, tin) - v0), 1e-6 * std::abs(v0));
     for (uint32_t v : live_ids(tin))
