@@ -27,6 +27,7 @@
 // them as they apply edges': the sequential one at once, the Jacobi one (TalusSolver) from
 // the heights at the start of the iteration, through the same per-slot inflow. The Jacobi
 // schedule's branch-free and AVX-512 row passes are the edge rule's only; face rows branch.
+// shaders/talus_face_outflow.comp transcribes face_shed and face_row_scale in float.
 
 #include <algorithm>
 #include <cmath>
