@@ -1,5 +1,6 @@
 // Talus relaxation on the GPU: the buffers and control block shared by its kernels. The
-// arithmetic transcribes engine/physics/talus_kernel.hpp (CPU Jacobi schedule) in float.
+// arithmetic transcribes engine/physics/talus_kernel.hpp and face_kernel.hpp (CPU Jacobi
+// schedule) in float.
 #ifndef SANDTIN_TALUS_COMMON_GLSL
 #define SANDTIN_TALUS_COMMON_GLSL
 

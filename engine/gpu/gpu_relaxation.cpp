@@ -22,7 +22,7 @@ constexpr uint32_t R_CHANGED = 3, R_SPLIT = 4, R_TOUCHED = 5;
 constexpr uint32_t kStateBytes = 36;   // shaders/talus_common.glsl VertexState
 constexpr uint32_t kPackedBytes = 24;  // PackedVertex
 static_assert(sizeof(TouchedVertex) == kPackedBytes);
-constexpr uint32_t kBindings = 18;
+constexpr uint32_t kBindings = 19;
 constexpr uint32_t kTimedPairs = 4096;
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
@@ -50,6 +50,8 @@ GpuRelaxation::GpuRelaxation(TinMirror& mirror, GpuRelaxationSettings settings)
       mirror_(mirror),
       settings_(settings),
       outflow_(context_, "talus_outflow", shaders::talus_outflow(), kBindings, sizeof(Push)),
+      face_outflow_(context_, "talus_face_outflow", shaders::talus_face_outflow(), kBindings,
+                    sizeof(Push)),
       gather_(context_, "talus_gather", shaders::talus_gather(), kBindings, sizeof(Push)),
       age_(context_, "talus_age", shaders::talus_age(), kBindings, sizeof(Push)),
       activate_(context_, "talus_activate", shaders::talus_activate(), kBindings, sizeof(Push)),
@@ -61,10 +63,6 @@ GpuRelaxation::GpuRelaxation(TinMirror& mirror, GpuRelaxationSettings settings)
     }
     if (settings_.quiet_iterations < 1) {
         throw GpuError("GpuRelaxation: quiet_iterations must be >= 1");
-    }
-    if (settings_.parameters.rule != SlopeRule::Edge) {
-        throw GpuError(
-            "GpuRelaxation: the face rule runs on the CPU only (choose the CPU physics)");
     }
     control_buf_ = Buffer(context_, kControlWords * 4,
                           kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryUse::Device);
@@ -159,8 +157,10 @@ void GpuRelaxation::bind_all() {
                                                lists_.get(),
                                                mirror_.vertex_buffer(VertexBuffer::Position),
                                                mirror_.vertex_buffer(VertexBuffer::Slide),
-                                               packed_.get()};
-    for (ComputeKernel* k : {&outflow_, &gather_, &age_, &activate_, &control_, &pack_})
+                                               packed_.get(),
+                                               mirror_.edge_buffer(EdgeBuffer::Across)};
+    for (ComputeKernel* k :
+         {&outflow_, &face_outflow_, &gather_, &age_, &activate_, &control_, &pack_})
         k->bind(b);
 }
 
@@ -200,6 +200,9 @@ GpuRunStats GpuRelaxation::run(int iterations) {
     std::vector<uint32_t> before;
     read_control(before);  // totals before this run (host copy is current after every run)
 
+    // The rule picks phase 1's kernel; the other phases are the same for both.
+    ComputeKernel& outflow =
+        settings_.parameters.rule == SlopeRule::Face ? face_outflow_ : outflow_;
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         if (profile) timer_->reset(cb);
         compute_barrier(cb);  // uploads of the mirror (earlier submissions) -> shaders
@@ -227,8 +230,8 @@ GpuRunStats GpuRelaxation::run(int iterations) {
             ++iteration_;
             if (iteration_ == 0) iteration_ = 1;  // 0 means "never" in the stamps
             const Push p0 = push(0), p1 = push(1), p2 = push(2);
-            timed(outflow_,
-                  [&] { outflow_.dispatch_indirect(cb, control_buf_.get(), kArgsActive, &p0); });
+            timed(outflow,
+                  [&] { outflow.dispatch_indirect(cb, control_buf_.get(), kArgsActive, &p0); });
             timed(control_, [&] { control_.dispatch(cb, 1, &p0); });
             timed(gather_,
                   [&] { gather_.dispatch_indirect(cb, control_buf_.get(), kArgsReceivers, &p0); });

@@ -1,7 +1,9 @@
 #pragma once
 // Talus relaxation on the GPU over a TinMirror: the two-phase Jacobi schedule of
 // physics/talus_solver.hpp (outflow per directed edge, then gather), in float, over a compacted
-// active list kept on the GPU and dispatched indirectly. Per iteration: outflow (active list),
+// active list kept on the GPU and dispatched indirectly. Per iteration: outflow (active list;
+// talus_outflow.comp under the edge rule, talus_face_outflow.comp under the face rule, picked
+// by settings().parameters.rule at each run),
 // gather (receivers), age (active list), activate (changed vertices and neighbours) and three
 // one-invocation control steps that write the next indirect arguments. A terrain at rest
 // records nothing at all: run() returns without touching the GPU when the last known active
@@ -114,6 +116,7 @@ class GpuRelaxation {
     TinMirror& mirror_;
     GpuRelaxationSettings settings_;
     ComputeKernel outflow_;
+    ComputeKernel face_outflow_;  // phase 1 under SlopeRule::Face (talus_face_outflow.comp)
     ComputeKernel gather_;
     ComputeKernel age_;
     ComputeKernel activate_;

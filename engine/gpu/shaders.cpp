@@ -8,6 +8,7 @@ namespace {
 #include "talus_activate_comp.spv.h"
 #include "talus_age_comp.spv.h"
 #include "talus_control_comp.spv.h"
+#include "talus_face_outflow_comp.spv.h"
 #include "talus_gather_comp.spv.h"
 #include "talus_outflow_comp.spv.h"
 #include "talus_pack_comp.spv.h"
@@ -16,6 +17,9 @@ namespace {
 
 std::span<const uint32_t> talus_outflow() {
     return kSpv_talus_outflow_comp;
+}
+std::span<const uint32_t> talus_face_outflow() {
+    return kSpv_talus_face_outflow_comp;
 }
 std::span<const uint32_t> talus_gather() {
     return kSpv_talus_gather_comp;

@@ -7,6 +7,7 @@
 namespace sandtin::gpu::shaders {
 
 std::span<const uint32_t> talus_outflow();
+std::span<const uint32_t> talus_face_outflow();  // SlopeRule::Face
 std::span<const uint32_t> talus_gather();
 std::span<const uint32_t> talus_age();
 std::span<const uint32_t> talus_activate();

@@ -278,6 +278,10 @@ void TinMirror::upload_rows(const Tin& tin, const std::vector<uint32_t>& rows,
             f_[k] = static_cast<float>(graph_.lengths()[begin + k]);
         ring_.upload(edge_buffer(EdgeBuffer::Length), VkDeviceSize{begin} * 4, f_.data(),
                      VkDeviceSize{n} * 4);
+        for (uint32_t k = 0; k < n; ++k)
+            f_[k] = static_cast<float>(graph_.across()[begin + k]);
+        ring_.upload(edge_buffer(EdgeBuffer::Across), VkDeviceSize{begin} * 4, f_.data(),
+                     VkDeviceSize{n} * 4);
         // Constrained flags of the rows in this range (gap slots: 0).
         u_.assign(n, 0u);
         for (size_t r = i; r < j; ++r) {

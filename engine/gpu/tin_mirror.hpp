@@ -21,7 +21,9 @@
 //     slot_flags uint: bits 0-2 = edge opposite corner i constrained, bit 3 = live
 //   per directed edge k of the CSR pool (capacity edge_capacity()):
 //     target uint, reverse uint (slot of the opposite direction), length float metres,
-//     edge_flags uint (bit 0: constrained edge)
+//     edge_flags uint (bit 0: constrained edge), across float metres (AdjacencyGraph::across:
+//     the edge between this slot's target and the next slot's when they make a face with the
+//     row's vertex, else 0; the face rule's kernel reads it)
 // Rows list neighbours counter-clockwise (AdjacencyGraph's invariant), which the normal kernels
 // rely on.
 //
@@ -62,7 +64,7 @@ enum class VertexBuffer : uint32_t {
     Count
 };
 enum class SlotBuffer : uint32_t { Triangles, SlotFlags, Count };
-enum class EdgeBuffer : uint32_t { Target, Reverse, Length, EdgeFlags, Count };
+enum class EdgeBuffer : uint32_t { Target, Reverse, Length, EdgeFlags, Across, Count };
 
 // What one sync() did.
 struct SyncStats {

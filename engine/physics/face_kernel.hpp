@@ -23,8 +23,11 @@
 // i's drop, the sand above the bedrock, the settle margin (faces trigger above T and level
 // towards (1 - m) T), the rest tolerance (relative to each face's altitude, so slivers are
 // judged on their own scale), degenerate receivers, the relocation radius, the jitter. The
-// shares of the faces that send to one neighbour add up in its slot, so the sequential
-// schedule applies them as it applies edges'.
+// shares of the faces that send to one neighbour add up in its slot, so both schedules apply
+// them as they apply edges': the sequential one at once, the Jacobi one (TalusSolver) from
+// the heights at the start of the iteration, through the same per-slot inflow. The Jacobi
+// schedule's branch-free and AVX-512 row passes are the edge rule's only; face rows branch.
+// shaders/talus_face_outflow.comp transcribes face_shed and face_row_scale in float.
 
 #include <algorithm>
 #include <cmath>
@@ -161,6 +164,21 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
     return scale;
 }
 
+/// face_row_scale with the relocation radius chosen at run time (talus_scale's twin; the
+/// Jacobi schedule scales as it sends).
+template <class NeedsSplit>
+inline double face_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
+                         const std::uint32_t* target, const double* length, const double* across,
+                         const double* longest, const double* height, const double* area,
+                         const double* bedrock, double tan_alpha, const TalusParameters& p,
+                         double random_factor, double* q, NeedsSplit&& needs_split) {
+    if (p.relocation_radius > 0.0)
+        return face_row_scale<true>(i, begin, degree, target, length, across, longest, height, area,
+                                    bedrock, tan_alpha, p, random_factor, q, needs_split);
+    return face_row_scale<false>(i, begin, degree, target, length, across, longest, height, area,
+                                 bedrock, tan_alpha, p, random_factor, q, needs_split);
+}
+
 /// talus_outflow under the face rule: q[k] (m³) for every slot, and their total.
 template <class NeedsSplit>
 inline double face_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
@@ -168,11 +186,7 @@ inline double face_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t d
                            const double* longest, const double* height, const double* area,
                            const double* bedrock, double tan_alpha, const TalusParameters& p,
                            double random_factor, double* q, NeedsSplit&& needs_split) {
-    const double scale =
-        p.relocation_radius > 0.0
-            ? face_row_scale<true>(i, begin, degree, target, length, across, longest, height, area,
-                                   bedrock, tan_alpha, p, random_factor, q, needs_split)
-            : face_row_scale<false>(i, begin, degree, target, length, across, longest, height, area,
+    const double scale = face_scale(i, begin, degree, target, length, across, longest, height, area,
                                     bedrock, tan_alpha, p, random_factor, q, needs_split);
     if (scale == 0.0) return 0.0;
     double sent = 0.0;

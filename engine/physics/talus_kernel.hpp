@@ -56,7 +56,8 @@ enum class SlopeRule : std::uint8_t {
     /// steeper than all three of its edges.
     Edge,
     /// Every triangle: |grad h| <= tan(alpha), the piecewise-linear surface itself (Prigozhin's
-    /// critical-slope model; physics/face_kernel.hpp). Sequential schedule only.
+    /// critical-slope model; physics/face_kernel.hpp). Both schedules; its Jacobi rows take
+    /// the branching passes only.
     Face,
 };
 

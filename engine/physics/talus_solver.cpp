@@ -165,9 +165,6 @@ void validate_talus_settings(const TalusSettings& s) {
         throw std::invalid_argument("talus relaxation: settle_margin must be in [0, 1)");
     if (!(s.randomness >= 0.0 && s.randomness < 1.0))
         throw std::invalid_argument("talus relaxation: randomness must be in [0, 1)");
-    if (p.rule == SlopeRule::Face && s.schedule != Schedule::Sequential)
-        throw std::invalid_argument(
-            "talus relaxation: the face rule runs with the sequential schedule only");
 }
 
 IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
@@ -269,6 +266,10 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
 
     // Phase 1: outflow of every active vertex along each of its edges, from the old heights;
     // senders mark themselves and the neighbours they send to as receivers.
+    // The face rule's rows take the branching passes only (face_row_scale): it has no
+    // branch-free or AVX-512 twin, and these passes are never chosen for it (passes_after).
+    const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
+    if (face_rule) row_passes_ = RowPasses::Branching;
     static const bool avx512 = avx512_rows_supported();
     const bool avx512_applies = row_passes_ == RowPasses::BranchFree && avx512 &&
                                 settings_.row_kernel != RowKernel::Sse2 &&
@@ -322,7 +323,7 @@ IterationStats TalusSolver::jacobi(const AdjacencyGraph& g, const TalusArrays& a
             split_around->insert(split_around->end(), s.splits.begin(), s.splits.end());
     }
 
-    row_passes_ = passes_after(census);
+    row_passes_ = face_rule ? RowPasses::Branching : passes_after(census);
 
     // Phase 2: each receiver gathers, in its row order, what its source neighbours sent; the
     // changed ones wake themselves and their neighbours.
@@ -412,6 +413,8 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
     const std::uint32_t* target = g.targets().data();
     const std::uint32_t* reverse = g.reverses().data();
     const double* length = g.lengths().data();
+    const double* across = g.across().data();
+    const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
     const double* longest = g.longest_edges().data();
     const double* prefetch_longest =
         settings_.parameters.relocation_radius > 0.0 ? longest : nullptr;
@@ -438,10 +441,22 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         const std::uint32_t row = offset[i];
         census.slots += deg;
         double* q = row_buffer(stack_q, s.row_q, deg);
-        const double scale = talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
-                                                  a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                                  settings_.parameters, random_factor(a, i), q,
-                                                  [&s](std::uint32_t v) { s.splits.push_back(v); });
+        auto split = [&s](std::uint32_t v) { s.splits.push_back(v); };
+        double scale = 0.0;
+        if constexpr (kPasses == RowPasses::Branching) {
+            // The face rule, from the same old heights (its rows always branch; see jacobi()).
+            scale = face_rule
+                        ? face_scale(i, 0, deg, target + row, length + row, across + row, longest,
+                                     a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                     settings_.parameters, random_factor(a, i), q, split)
+                        : talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
+                                               a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                               settings_.parameters, random_factor(a, i), q, split);
+        } else {
+            scale = talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest, a.height,
+                                         a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
+                                         random_factor(a, i), q, split);
+        }
         // Scaled as they are sent, in row order (see send_branch_free); only neighbours that
         // receive something are marked.
         double sent = 0.0;

@@ -9,6 +9,8 @@
 //    (the TIN numbers bulk-built vertices along a Hilbert curve, so that order is also
 //    spatially coherent), and all three phases (outflow, gather, ageing) run on the threads.
 // Both move volume, never height: what leaves a vertex is exactly what its neighbours receive.
+// Both run either slope rule (TalusParameters::rule); the face rule's Jacobi rows always take
+// the branching passes (physics/face_kernel.hpp has no branch-free or AVX-512 twin).
 
 #include <cstdint>
 #include <memory>
@@ -93,7 +95,7 @@ class TalusSolver {
                            ActiveSet& active, std::vector<std::uint32_t>* split_around = nullptr);
 
     /// The kernel's passes the next Jacobi iteration will take (chosen from how much of the last
-    /// one flowed; the results are the same either way).
+    /// one flowed; the results are the same either way). Always Branching under the face rule.
     RowPasses jacobi_row_passes() const { return row_passes_; }
 
     /// The instruction set the Jacobi schedule's branch-free rows run in now (Avx512 or Sse2;

@@ -372,11 +372,16 @@ END_OF_SCRIPT
 # The face rule from a script: a poured pile at rest has no triangle steeper than repose, as
 # `info` measures it face by face; the same pile under the edge rule has many.
 scenario_face_rule() {
-    for rule in face edge; do
+    # face_jacobi: the face rule under the Jacobi schedule, on two threads.
+    for rule in face edge face_jacobi; do
+        settings="\"rule\": \"$rule\""
+        if [[ $rule == face_jacobi ]]; then
+            settings='"rule": "face", "schedule": "jacobi", "threads": 2'
+        fi
         cat >"$rule.json" <<END_OF_SCRIPT
 {"version": 1,
  "terrain": {"size": [1, 1], "points": 3000, "seed": 3},
- "settings": {"rule": "$rule"},
+ "settings": {$settings},
  "operations": [
    {"op": "pour", "at": [0.5, 0.5], "volume": 1e-3, "radius": 0.02},
    {"op": "erode", "until_rest": true}]}
@@ -388,6 +393,9 @@ END_OF_SCRIPT
     done
     check_eq "face rule: steep faces" "$(json info_face.out /slopes/steep_faces)" 0
     holds "face rule: steepest face" "a <= 1.001" "$(json info_face.out /slopes/max_ratio)"
+    check_eq "face rule, Jacobi: steep faces" "$(json info_face_jacobi.out /slopes/steep_faces)" 0
+    holds "face rule, Jacobi: steepest face" "a <= 1.001" \
+        "$(json info_face_jacobi.out /slopes/max_ratio)"
     holds "edge rule: steep faces" "a > 10" "$(json info_edge.out /slopes/steep_faces)"
     sed 's/"rule": "face"/"rule": "faces"/' face.json >bad.json
     expect_error bad_rule "'rule' is 'faces'; expected one of: edge, face" run bad.json -o bad.sandtin

@@ -2,6 +2,7 @@
 // dirty ranges only (counted).
 
 #include <array>
+#include <cmath>
 #include <random>
 #include <thread>
 
@@ -34,6 +35,7 @@ void expect_mirror_equals_tin(const VulkanContext& ctx, const TinMirror& m, cons
     const auto reverse = read_as<uint32_t>(ctx, m.edge_buffer(EdgeBuffer::Reverse), g.slot_count());
     const auto eflags =
         read_as<uint32_t>(ctx, m.edge_buffer(EdgeBuffer::EdgeFlags), g.slot_count());
+    const auto across = read_as<float>(ctx, m.edge_buffer(EdgeBuffer::Across), g.slot_count());
     EXPECT_TRUE(g.matches(tin));
     std::vector<VertexId> ring;
     int bad = 0;
@@ -58,8 +60,16 @@ void expect_mirror_equals_tin(const VulkanContext& ctx, const TinMirror& m, cons
             const uint32_t slot = off[v] + k;
             const uint32_t w = target[slot];
             const bool constrained = tin.is_constrained_edge(VertexId{v}, VertexId{w});
+            // The face rule's across: the graph's, and where there is a face, the distance
+            // between this slot's target and the next one's (from the TIN's positions).
+            const uint32_t next = target[off[v] + (k + 1 == deg[v] ? 0 : k + 1)];
+            const double far_edge = distance(va.position[w], va.position[next]);
+            const bool across_ok =
+                across[slot] == static_cast<float>(g.across()[slot]) &&
+                (across[slot] == 0.0f ||
+                 std::abs(static_cast<double>(across[slot]) - far_edge) <= 1e-6 * far_edge);
             if (w != g.targets()[slot] || target[reverse[slot]] != v ||
-                (eflags[slot] & 1u) != (constrained ? 1u : 0u)) {
+                (eflags[slot] & 1u) != (constrained ? 1u : 0u) || !across_ok) {
                 ADD_FAILURE() << "edge slot " << slot << " of row " << v << " differs";
                 ++bad;
                 break;

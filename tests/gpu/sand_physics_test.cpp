@@ -9,6 +9,7 @@
 #include "gpu_fixture.hpp"
 #include "gpu_scenes.hpp"
 #include "physics/cone.hpp"
+#include "physics/face_slopes.hpp"
 #include "physics/physics_oracles.hpp"
 #include "physics/sand_physics.hpp"
 #include "tools/sand.hpp"
@@ -150,10 +151,13 @@ void pour_in_portions(PileOnTwoTriangles& p, Physics& physics, double volume) {
     EXPECT_TRUE(p.tin.check_valid().ok());
 }
 
-TEST_F(GpuTest, GpuPhysicsWithARelocationRadiusPilesAsTheCpuDoes) {
+/// A pile poured in portions on two triangles with r_S, on the CPU (Jacobi) and on the GPU
+/// under `rule`: both rest near the cone and near each other.
+void pile_on_cpu_and_gpu(VulkanContext& context, SlopeRule rule) {
     TalusSettings settings;
     settings.schedule = Schedule::Jacobi;
     settings.parameters.relocation_radius = 0.02;
+    settings.parameters.rule = rule;
     constexpr double kVolume = 1e-3;
     PileOnTwoTriangles cpu_pile, gpu_pile;
     for (PileOnTwoTriangles* p : {&cpu_pile, &gpu_pile}) {
@@ -165,9 +169,15 @@ TEST_F(GpuTest, GpuPhysicsWithARelocationRadiusPilesAsTheCpuDoes) {
     }
     SandPhysics cpu(cpu_pile.tin, MaterialTable::presets(), settings);
     pour_in_portions(cpu_pile, cpu, kVolume);
-    GpuSandPhysics gpu(gpu_pile.tin, ctx(), MaterialTable::presets(), settings);
+    GpuSandPhysics gpu(gpu_pile.tin, context, MaterialTable::presets(), settings);
     pour_in_portions(gpu_pile, gpu, kVolume);
-    const Cone cone = Cone::from_volume(kVolume, MaterialTable::presets().at(0).talus_slope(0.0));
+    // The face rule rests at the true cone, between (1 - m) tan(alpha) (where flowing sand
+    // levels to, the settle margin) and tan(alpha): the cone of the former is its reference,
+    // as in physics/face_rule_test.cpp. The edge rule's piles stand steeper than their edges.
+    const double repose = MaterialTable::presets().at(0).talus_slope(0.0);
+    const Cone cone = Cone::from_volume(
+        kVolume,
+        rule == SlopeRule::Face ? (1.0 - settings.parameters.settle_margin) * repose : repose);
     std::printf(
         "  cpu: vertices %zu, iterations %d, apex %.5f, reach %.5f\n"
         "  gpu: vertices %zu, iterations %d, apex %.5f, reach %.5f (cone %.5f, %.5f)\n",
@@ -185,6 +195,19 @@ TEST_F(GpuTest, GpuPhysicsWithARelocationRadiusPilesAsTheCpuDoes) {
     // Both near the cone (the reach is the last vertex with sand, a little beyond the toe).
     EXPECT_NEAR(cpu_pile.top, cone.height, 0.05 * cone.height);
     EXPECT_NEAR(gpu_pile.top, cone.height, 0.05 * cone.height);
+    if (rule == SlopeRule::Face) {
+        // The GPU's pile, written back into its TIN, has no face steeper than repose.
+        const FaceSlopeReport faces = measure_face_slopes(gpu_pile.tin, MaterialTable::presets());
+        EXPECT_EQ(faces.steep_faces, 0u) << "steepest " << faces.max_ratio;
+    }
+}
+
+TEST_F(GpuTest, GpuPhysicsWithARelocationRadiusPilesAsTheCpuDoes) {
+    pile_on_cpu_and_gpu(ctx(), SlopeRule::Edge);
+}
+
+TEST_F(GpuTest, GpuPhysicsUnderTheFaceRulePilesAsTheCpuDoes) {
+    pile_on_cpu_and_gpu(ctx(), SlopeRule::Face);
 }
 
 TEST_F(GpuTest, GpuPhysicsAtRestRecordsNothingAndUploadsNothing) {
