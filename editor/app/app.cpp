@@ -403,7 +403,7 @@ std::vector<std::string> App::write_outputs() {
     std::vector<std::string> failures;
     if (!options_.save_after.empty()) {
         try {
-            save(options_.save_after);
+            save_now(options_.save_after);
         } catch (const std::exception& e) {
             failures.push_back("cannot save the scene: " + std::string(e.what()));
             keep_unsaved_edits();  // as when a session fails: to the autosave, if it has one

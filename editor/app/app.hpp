@@ -190,9 +190,12 @@ class App {
     /// A file at `p` that is not this scene's own is replaced only after the overwrite prompt
     /// says so. A failure is reported on the status line and `then` does not run.
     void request_save(const std::filesystem::path& p, std::function<void()> then = {});
-    /// Saves now (scripts, --save-after and the overwrite prompt's Replace); throws.
-    void save(const std::filesystem::path& p);
-    bool save_reporting(const std::filesystem::path& p);
+    /// Saves the scene as it is now to `p` (scripts and the overwrite prompt's Replace): the
+    /// copy is taken here, encoded and written on a worker under the bar (app_jobs.cpp), then
+    /// `then` runs. A failure is reported on the status line and `then` does not run.
+    void save(const std::filesystem::path& p, std::function<void()> then = {});
+    /// Saves now, on this thread (--save-after, when the run ends); throws.
+    void save_now(const std::filesystem::path& p);
     /// Exports a copy of the terrain as it is now, on a worker; a failure or a Cancel is
     /// reported, and a cancelled export writes no file.
     void export_reporting(const std::filesystem::path& p);
@@ -449,10 +452,14 @@ class App {
     nlohmann::json job_record_;       ///< what the running job's bar showed
     std::vector<nlohmann::json> jobs_done_;  ///< the records of the jobs that ended
     std::vector<double> install_ms_;         ///< each install_document's time on the UI thread
-    bool startup_open_ = false;              ///< the running job opens the command line's scene
-    nlohmann::json startup_job_record_;      ///< its record, once it ended
-    bool script_waits_for_jobs_ = true;      ///< a script's next op waits for the job to end
-    std::optional<double> job_pause_at_;     ///< test hook (background_job.hpp)
+    /// Keys typed while a job ran, for when it has ended (App::key); at most kKeysAfterJob.
+    static constexpr std::size_t kKeysAfterJob = 16;
+    std::vector<std::pair<int, bool>> keys_after_job_;
+    bool script_job_must_succeed_ = false;  ///< a script's save: its failure fails the run
+    bool startup_open_ = false;             ///< the running job opens the command line's scene
+    nlohmann::json startup_job_record_;     ///< its record, once it ended
+    bool script_waits_for_jobs_ = true;     ///< a script's next op waits for the job to end
+    std::optional<double> job_pause_at_;    ///< test hook (background_job.hpp)
     SettleProgress settle_;
     Clock::time_point last_settle_at_{};
     nlohmann::json settle_record_ = nlohmann::json::object();

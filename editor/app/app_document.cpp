@@ -152,7 +152,7 @@ bool App::close_confirmed() {
 
 // ---- Saving and exporting -----------------------------------------------------------------
 
-void App::save(const std::filesystem::path& p) {
+void App::save_now(const std::filesystem::path& p) {
     sculpting_.close_level(doc_);
     // An autosave still being written would otherwise land after the save retired it.
     autosave_writer_.cancel();
@@ -160,16 +160,6 @@ void App::save(const std::filesystem::path& p) {
     set_scene_field(p.string());
     note_recent_file(settings_.recent_files, p);
     report("saved " + p.string());
-}
-
-bool App::save_reporting(const std::filesystem::path& p) {
-    try {
-        save(p);
-        return true;
-    } catch (const std::exception& e) {
-        report(std::string("save failed: ") + e.what());
-        return false;
-    }
 }
 
 void App::request_save(const std::filesystem::path& p, std::function<void()> then) {
@@ -183,7 +173,7 @@ void App::request_save(const std::filesystem::path& p, std::function<void()> the
         pending_overwrite_ = PendingOverwrite{p, std::move(then)};
         return;
     }
-    if (save_reporting(p) && then) then();
+    save(p, std::move(then));
 }
 
 void App::keep_unsaved_edits() {

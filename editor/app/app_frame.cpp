@@ -238,6 +238,7 @@ bool App::frame(bool capture) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     draw_panels();
+    if (busy()) widgets_.note_state("job");  // after the panels: a job they started counts
     ImGui::Render();
     widgets_.end_frame();
     // From here until the next event or frame nothing edits the terrain: the snapshot built

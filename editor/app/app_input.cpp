@@ -180,9 +180,14 @@ void App::key(int k, bool ctrl) {
     // While a prompt waits for its answer, shortcuts must not change the document under it
     // (Ctrl+O could open another scene with the recovery prompt still about the first).
     if (prompt_open()) return;
-    // While a job runs the keys wait too; Escape cancels it, as its Cancel button does.
+    // While a job runs the keys wait for it, in order (Ctrl+S then Ctrl+Q typed during a save
+    // quits once it is written), and act when it has ended; Escape cancels it, as its Cancel
+    // button does, and the keys typed meanwhile with it.
     if (busy()) {
-        if (k == GLFW_KEY_ESCAPE) cancel_job();
+        if (k == GLFW_KEY_ESCAPE)
+            cancel_job();
+        else if (keys_after_job_.size() < kKeysAfterJob)
+            keys_after_job_.push_back({k, ctrl});
         return;
     }
     if (const Shortcut* shortcut = shortcut_for_key(k, ctrl)) {

@@ -486,7 +486,13 @@ void App::run_document_op(const std::string& kind, const nlohmann::json& op) {
     } else if (kind == "save_settings") {
         save_settings_reporting();  // what the interactive loop does after a panel change
     } else if (kind == "save") {
-        save(op.at("path").get<std::string>());
+        // As Save does, on a worker; but a script cannot go on past a save that failed: a bad
+        // name fails it here, a failed write when the job ends (poll_job).
+        const std::filesystem::path path = op.at("path").get<std::string>();
+        if (const std::optional<std::string> problem = Document::save_name_problem(path))
+            throw std::runtime_error("save failed: " + *problem);
+        save(path);
+        script_job_must_succeed_ = busy();
     } else if (kind == "export") {
         sculpting_.close_level(doc_);
         doc_.export_to(op.at("path").get<std::string>());

@@ -208,13 +208,22 @@ Session Document::session() const {
     return s;
 }
 
-void Document::save(const std::filesystem::path& path) {
+std::optional<std::string> Document::save_name_problem(const std::filesystem::path& path) {
     // The rule `sandtin` applies to its -o: a session never takes another format's name (the
     // document would then carry that name, and Ctrl+S write there again).
     if (const std::optional<std::string> problem = session_name_problem(path))
-        throw std::runtime_error("'" + path.string() + "': " + *problem +
-                                 " (Export writes meshes and maps)");
+        return "'" + path.string() + "': " + *problem + " (Export writes meshes and maps)";
+    return std::nullopt;
+}
+
+void Document::save(const std::filesystem::path& path) {
+    if (const std::optional<std::string> problem = save_name_problem(path))
+        throw std::runtime_error(*problem);
     save_session_clearing_autosave(path, session());
+    saved_as(path);
+}
+
+void Document::saved_as(const std::filesystem::path& path) {
     path_ = path;
     dirty_ = false;
     autosave_schedule_.saved(std::chrono::steady_clock::now());

@@ -125,6 +125,11 @@ class Document {
     /// Writes the scene to `path` atomically and makes it the scene's file: not under another
     /// format's name (a .png, an .obj), and its autosave goes. Throws naming the problem.
     void save(const std::filesystem::path& path);
+    /// What save() refuses before writing anything (another format's name), or nothing.
+    static std::optional<std::string> save_name_problem(const std::filesystem::path& path);
+    /// After the session() taken for `path` was written there (by a worker, App::save): the
+    /// scene's file is `path`, with nothing unsaved.
+    void saved_as(const std::filesystem::path& path);
     /// The terrain as `sandtin export` writes it (format from the extension), with the
     /// materials as they are now, unsaved edits included. Throws on failure.
     ExportReport export_to(const std::filesystem::path& path) const;

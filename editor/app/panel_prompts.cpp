@@ -69,8 +69,8 @@ void App::overwrite_prompt() {
             pending_overwrite_.reset();
             if (!*replace)
                 report("not saved: " + target + " exists (type another name in the Scene field)");
-            else if (save_reporting(pending.path) && pending.then)
-                pending.then();
+            else
+                save(pending.path, pending.then);
         }
     }
 }

@@ -29,6 +29,9 @@ class WidgetMap {
     /// Call right after the ImGui item `name` (inside its window). Items scrolled out of
     /// sight or clipped away are not noted (a pointer cannot reach them).
     void note(const std::string& name);
+    /// A state of the editor rather than a control, noted with an empty rectangle: "job" while
+    /// long work runs, so the xdotool test can wait for it to end as a hand waits for the bar.
+    void note_state(const std::string& name) { drawing_[name] = WidgetRect{}; }
     /// Ends a frame (call after ImGui::Render): what it noted becomes the map to look things up
     /// in, and where ImGui's windows are is noted (the panels, the Stats window, an open
     /// combo's list), but not tooltips, which take no clicks, nor modal prompts, whose owner

@@ -185,6 +185,9 @@ class LiveEditor {
         std::this_thread::sleep_for(400ms);
         xdotool("mouseup 1");
     }
+    /// Waits until long work the last action started (New, Open, Recover, Save: a worker under
+    /// the bar) has ended, as a hand waits for the bar to go before it goes on.
+    void wait_for_job() const { EXPECT_TRUE(gone("job")) << "the job never ended: " << log(); }
     /// Waits until `name` is no longer on screen.
     bool gone(const std::string& name, std::chrono::seconds wait = 60s) const {
         const auto until = std::chrono::steady_clock::now() + wait;
@@ -291,6 +294,7 @@ TEST_F(EditorXdotool, TheThreePromptsAnsweredWithTheMouse) {
         write_autosave(scene, edited);
         s.start({scene.string()});
         s.click("recovery/Recover");
+        s.wait_for_job();
         s.drag(kX0, kY, kX1, kY);
         s.key("ctrl+s");
         s.key("ctrl+q");
@@ -311,6 +315,7 @@ TEST_F(EditorXdotool, TheThreePromptsAnsweredWithTheMouse) {
         s.drag(kX0, kY, kX1, kY);
         s.click("New");
         s.click("unsaved/Discard");
+        s.wait_for_job();
         s.key("ctrl+s");
         s.key("ctrl+q");
         ASSERT_EQ(s.wait_exit(), 0) << s.log();
