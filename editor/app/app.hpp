@@ -176,6 +176,11 @@ class App {
     /// the Scene field with a name of its own and notes the heightmap in the recent list
     /// (finish_import). A failure or a Cancel is reported and leaves the document as it was.
     void import_document(const std::filesystem::path& heightmap);
+    /// Reads a document on a worker with `read` and prepares its view there too, under the
+    /// bar; once done, `install` takes it on the UI thread (Open, Recover, Import, New).
+    using ReadDocument = std::function<Document(const ProgressCallback&)>;
+    void start_document_job(const std::string& kind, const std::string& title, ReadDocument read,
+                            std::function<void(PreparedDocument)> install);
     /// Recovers `scene`'s autosave on a worker, as Open reads a scene (the recovery prompt's
     /// Recover); a failure is reported and leaves the document as it was.
     void recover_document(const std::filesystem::path& scene);

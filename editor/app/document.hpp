@@ -57,7 +57,7 @@ class Document {
     static Document sandbox();
     /// A flat 1 m square of two triangles, untitled: what the window shows behind the
     /// progress bar while the scene named on the command line is read (cheap to show: the
-    /// sandbox's view alone took a quarter of a second on a CPU renderer).
+    /// sandbox took 160-230 ms of a frame to install on a CPU renderer).
     static Document placeholder();
     /// The session at `path`, with its material table; held (erosion waits for Run). Throws
     /// on a file that does not load, before anything else is touched. `progress`

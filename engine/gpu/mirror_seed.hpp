@@ -3,7 +3,7 @@
 // graph, the constrained flag of every directed edge, and the origins the GPU's floats are
 // taken from. A scene opened or imported on a worker thread has its seed built there, so the
 // UI thread's first sync only allocates and copies (issue 42: on a 10^6-vertex scene the graph
-// and the flags took 2.4 s of a 4.4 s frame).
+// took 1.9 s and the rows' upload with their flags 0.4 s of a 4.4 s install).
 //
 // A seed made by prepare_mirror_seed() carries a reader of the TIN's journal opened before the
 // graph was built: whatever changes after that reaches the mirror's first sync through it, so

@@ -152,7 +152,7 @@ void TinMirror::grow(uint32_t vertices, uint32_t slots, uint32_t edges, const Up
     ring_.flush();
     ring_.wait_idle();
     // What this sync uploads from 0 on (the first sync: every id, slot and pool entry) is not
-    // zeroed first: on a 10^6-vertex scene the fills were a third of the first sync.
+    // zeroed first: every byte of it would be written twice.
     const auto covered = [](uint32_t count, uint32_t element) {
         return VkDeviceSize{count} * element;
     };

@@ -52,6 +52,14 @@ bool said(const EditorRun& r, const std::string& words) {
     return false;
 }
 
+/// The scenes saved at `a` and `b` hold the same terrain: as many vertices, the same surface.
+void expect_same_terrain(const fs::path& a, const fs::path& b) {
+    const Tin ta = Tin::from_snapshot(load_session(a).terrain);
+    const Tin tb = Tin::from_snapshot(load_session(b).terrain);
+    EXPECT_EQ(ta.vertex_count(), tb.vertex_count());
+    EXPECT_LT(surface_difference(ta, tb), 1e-12);
+}
+
 /// The one job record of a run.
 const nlohmann::json& only_job(const EditorRun& r) {
     return r.stats.at("jobs").at(0);
@@ -105,10 +113,7 @@ TEST_F(EditorXvfb, ACancelledImportShowedItsBarAndLeftTheSceneAsItWas) {
     for (const auto& f : r.stats.at("recent_files"))
         EXPECT_NE(f.get<std::string>(), grid.string()) << "a cancelled import is not recent";
     EXPECT_TRUE(said(r, "cancelled")) << r.stats.at("messages");
-    const Tin kept = Tin::from_snapshot(load_session(after).terrain);
-    const Tin sandbox = Tin::from_snapshot(load_session(before).terrain);
-    EXPECT_EQ(kept.vertex_count(), sandbox.vertex_count());
-    EXPECT_LT(surface_difference(kept, sandbox), 1e-12);
+    expect_same_terrain(after, before);
     EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
 }
 
@@ -141,10 +146,7 @@ TEST_F(EditorXvfb, ASceneOnTheCommandLineOpensUnderTheBarAfterTheWindowOpened) {
     EXPECT_NE(std::find(recent.begin(), recent.end(), scene.string()), recent.end()) << recent;
     EXPECT_EQ(r.stats.at("install_ms").size(), 2u) << "the placeholder, then the scene";
     EXPECT_TRUE(said(r, "opened " + scene.string())) << r.stats.at("messages");
-    const Tin opened = Tin::from_snapshot(load_session(saved).terrain);
-    const Tin original = Tin::from_snapshot(load_session(scene).terrain);
-    EXPECT_EQ(opened.vertex_count(), original.vertex_count());
-    EXPECT_LT(surface_difference(opened, original), 1e-12);
+    expect_same_terrain(saved, scene);
     EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
 }
 
