@@ -1,6 +1,7 @@
 #include "physics/adjacency_graph.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -208,14 +209,25 @@ void AdjacencyGraph::update(const Tin& tin, std::span<const VertexId> changed,
 }
 
 void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
-                            const std::vector<std::vector<double>>& lengths) {
+                            const std::vector<std::vector<double>>& lengths,
+                            const std::vector<std::vector<double>>* across) {
     const auto n = static_cast<std::uint32_t>(rows.size());
-    if (lengths.size() != n)
-        throw std::invalid_argument("adjacency graph: one row of lengths per row of neighbours");
+    if (lengths.size() != n || (across != nullptr && across->size() != n))
+        throw std::invalid_argument(
+            "adjacency graph: one row of lengths (and of across lengths) per row of neighbours");
     for (std::uint32_t v = 0; v < n; ++v) {
-        if (lengths[v].size() != rows[v].size())
+        if (lengths[v].size() != rows[v].size() ||
+            (across != nullptr && (*across)[v].size() != rows[v].size()))
             throw std::invalid_argument("adjacency graph: row " + std::to_string(v) +
                                         " has a different number of neighbours and lengths");
+        if (across != nullptr) {
+            for (double c : (*across)[v]) {
+                if (!(c >= 0.0) || !std::isfinite(c))
+                    throw std::invalid_argument("adjacency graph: row " + std::to_string(v) +
+                                                " has an across length that is negative or "
+                                                "not finite");
+            }
+        }
         for (std::uint32_t w : rows[v]) {
             if (w >= n || w == v)
                 throw std::invalid_argument("adjacency graph: row " + std::to_string(v) +
@@ -238,7 +250,11 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
         length_.insert(length_.end(), lengths[v].begin(), lengths[v].end());
         refresh_row_summary(v);
     }
-    across_.assign(target_.size(), 0.0);  // explicit rows carry no faces
+    across_.assign(target_.size(), 0.0);
+    if (across != nullptr) {
+        for (std::uint32_t v = 0; v < n; ++v)
+            std::copy((*across)[v].begin(), (*across)[v].end(), across_.begin() + offset_[v]);
+    }
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v)
         fix_reverse(v);

@@ -14,7 +14,7 @@
 // Faces: slots k and k + 1 of a row (the last slot's next is the row's first) are the far
 // corners of a face of v when across(k) > 0, the horizontal length (m) of the edge between
 // them; across(k) == 0 where the pair spans the outside of the domain (the gap in a border
-// vertex's ring), and for graphs given by assign(), which carry no faces.
+// vertex's ring), and for graphs given by assign() without faces.
 //
 // Rows and targets are in a VertexNumbering's local ids when one is given (the relaxation's
 // locality order), else in TIN ids. Row v lists the neighbours of TIN vertex tin_id(v) in the
@@ -55,10 +55,15 @@ class AdjacencyGraph {
     /// slack. Pass the numbering the graph was built with.
     void update(const Tin& tin, std::span<const VertexId> changed,
                 const VertexNumbering* numbering = nullptr);
-    /// Builds a graph from explicit rows (regular grids). rows[v] lists v's neighbours. Throws
-    /// std::invalid_argument when an edge has no opposite edge or a different length there.
+    /// Builds a graph from explicit rows (regular grids). rows[v] lists v's neighbours. With
+    /// `across`, rows are counter-clockwise and across[v][k] is across(k) of row v (see above:
+    /// the length between the far corners of the face (v, k, k + 1), or 0 for no face); without
+    /// it the graph carries no faces (the edge rule only). Throws std::invalid_argument when an
+    /// edge has no opposite edge or a different length there, or an across length is negative
+    /// or not finite.
     void assign(const std::vector<std::vector<std::uint32_t>>& rows,
-                const std::vector<std::vector<double>>& lengths);
+                const std::vector<std::vector<double>>& lengths,
+                const std::vector<std::vector<double>>* across = nullptr);
 
     std::uint32_t vertex_capacity() const { return static_cast<std::uint32_t>(offset_.size()); }
     std::uint32_t offset(std::uint32_t v) const { return offset_[v]; }

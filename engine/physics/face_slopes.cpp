@@ -27,7 +27,22 @@ struct JudgedFace {
     Vec2 centroid;
 };
 
-/// The sand faces in the region, and how many were rock.
+/// Adds the face's plane area, gradient and centroid, unless it lies outside the region or is
+/// rock (counted).
+void judge_into(std::vector<JudgedFace>& faces, const SlopeFace& f, const FaceSlopeOptions& options,
+                std::size_t& rock) {
+    const Vec2 centroid{(f.a.x + f.b.x + f.c.x) / 3.0, (f.a.y + f.b.y + f.c.y) / 3.0};
+    if (options.region && !options.region->contains(centroid)) return;
+    if (!f.sand) {
+        ++rock;
+        return;
+    }
+    const double area =
+        0.5 * std::abs((f.b.x - f.a.x) * (f.c.y - f.a.y) - (f.b.y - f.a.y) * (f.c.x - f.a.x));
+    faces.push_back({area, face_gradient(f.a, f.b, f.c), f.tan_alpha, centroid});
+}
+
+/// The sand faces of the TIN in the region, and how many were rock.
 std::vector<JudgedFace> collect_faces(const Tin& tin, const MaterialTable& materials,
                                       const FaceSlopeOptions& options, std::size_t& rock) {
     const VertexArrays& va = tin.vertices();
@@ -45,23 +60,12 @@ std::vector<JudgedFace> collect_faces(const Tin& tin, const MaterialTable& mater
             tan_sum += materials.at(va.material[v]).talus_slope(va.moisture[v]);
             sand = sand || va.height[v] > va.bedrock[v];
         }
-        const Vec2 centroid{(p[0].x + p[1].x + p[2].x) / 3.0, (p[0].y + p[1].y + p[2].y) / 3.0};
-        if (options.region && !options.region->contains(centroid)) continue;
-        if (!sand) {
-            ++rock;
-            continue;
-        }
-        const double area = 0.5 * std::abs((p[1].x - p[0].x) * (p[2].y - p[0].y) -
-                                           (p[1].y - p[0].y) * (p[2].x - p[0].x));
-        faces.push_back({area, face_gradient(p[0], p[1], p[2]), tan_sum / 3.0, centroid});
+        judge_into(faces, {p[0], p[1], p[2], tan_sum / 3.0, sand}, options, rock);
     }
     return faces;
 }
 
-}  // namespace
-
-FaceSlopeReport measure_face_slopes(const Tin& tin, const MaterialTable& materials,
-                                    const FaceSlopeOptions& options) {
+void check_options(const FaceSlopeOptions& options) {
     // Written so that NaN fails too.
     if (!(options.tolerance >= 0.0))
         throw std::invalid_argument("face slopes: tolerance must be >= 0");
@@ -69,8 +73,12 @@ FaceSlopeReport measure_face_slopes(const Tin& tin, const MaterialTable& materia
         throw std::invalid_argument("face slopes: sloped_fraction must be >= 0");
     if (!(options.min_area_fraction >= 0.0 && options.min_area_fraction < 1.0))
         throw std::invalid_argument("face slopes: min_area_fraction must be in [0, 1)");
+}
+
+FaceSlopeReport judge(const std::vector<JudgedFace>& faces, const FaceSlopeOptions& options,
+                      std::size_t rock) {
     FaceSlopeReport report;
-    const std::vector<JudgedFace> faces = collect_faces(tin, materials, options, report.rock_faces);
+    report.rock_faces = rock;
     double total = 0.0;
     for (const JudgedFace& f : faces)
         total += f.area;
@@ -95,6 +103,27 @@ FaceSlopeReport measure_face_slopes(const Tin& tin, const MaterialTable& materia
         }
     }
     return report;
+}
+
+}  // namespace
+
+FaceSlopeReport measure_face_slopes(std::span<const SlopeFace> faces,
+                                    const FaceSlopeOptions& options) {
+    check_options(options);
+    std::size_t rock = 0;
+    std::vector<JudgedFace> judged;
+    judged.reserve(faces.size());
+    for (const SlopeFace& f : faces)
+        judge_into(judged, f, options, rock);
+    return judge(judged, options, rock);
+}
+
+FaceSlopeReport measure_face_slopes(const Tin& tin, const MaterialTable& materials,
+                                    const FaceSlopeOptions& options) {
+    check_options(options);
+    std::size_t rock = 0;
+    const std::vector<JudgedFace> faces = collect_faces(tin, materials, options, rock);
+    return judge(faces, options, rock);
 }
 
 }  // namespace sandtin

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 
 #include "geom/rect.hpp"
 #include "geom/vec2.hpp"
@@ -55,6 +56,19 @@ struct FaceSlopeReport {
         return sloped_area > 0.0 ? steep_area / sloped_area : 0.0;
     }
 };
+
+/// One triangle to judge: its corners (x, y, z in metres), its tan(alpha), and whether any
+/// corner carries sand above the bedrock (rock faces are counted, not judged).
+struct SlopeFace {
+    Vec3 a, b, c;
+    double tan_alpha = 0.0;
+    bool sand = true;
+};
+
+/// Measures the given faces (those whose centroid is in `options.region` when given): the
+/// same yardstick for surfaces that are not a Tin (the regular-grid baseline).
+FaceSlopeReport measure_face_slopes(std::span<const SlopeFace> faces,
+                                    const FaceSlopeOptions& options = {});
 
 /// Measures every finite face of `tin` (in `options.region` when given). `materials` must
 /// hold every material index the vertices use. Throws std::invalid_argument on a negative

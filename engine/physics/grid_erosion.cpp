@@ -9,6 +9,14 @@
 
 namespace sandtin {
 
+namespace {
+
+/// Neighbour directions counter-clockwise from +x: all eight, or the four along the axes.
+constexpr int kDi[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+constexpr int kDj[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+
+}  // namespace
+
 GridErosion::GridErosion(Rect domain, int cells_x, int cells_y, double tan_alpha,
                          TalusSettings settings)
     : domain_(domain), nx_(cells_x), ny_(cells_y), solver_(settings) {
@@ -21,13 +29,18 @@ GridErosion::GridErosion(Rect domain, int cells_x, int cells_y, double tan_alpha
     area_.assign(n, dx_ * dy_);
     bedrock_.assign(n, kNoBedrock);
     tan_.assign(n, tan_alpha);
+    if (rule() == SlopeRule::Face)
+        build_triangulated_graph();
+    else
+        build_moore_graph();
+}
+
+void GridErosion::build_moore_graph() {
+    const std::size_t n = height_.size();
     std::vector<std::vector<std::uint32_t>> rows(n);
     std::vector<std::vector<double>> lengths(n);
     for (int j = 0; j < ny_; ++j) {
         for (int i = 0; i < nx_; ++i) {
-            // Moore neighbourhood, counter-clockwise from +x.
-            static constexpr int kDi[8] = {1, 1, 0, -1, -1, -1, 0, 1};
-            static constexpr int kDj[8] = {0, 1, 1, 1, 0, -1, -1, -1};
             for (int k = 0; k < 8; ++k) {
                 const int a = i + kDi[k];
                 const int b = j + kDj[k];
@@ -38,6 +51,68 @@ GridErosion::GridErosion(Rect domain, int cells_x, int cells_y, double tan_alpha
         }
     }
     graph_.assign(rows, lengths);
+}
+
+void GridErosion::build_triangulated_graph() {
+    const std::size_t n = height_.size();
+    std::vector<std::vector<std::uint32_t>> rows(n);
+    std::vector<std::vector<double>> lengths(n), across(n);
+    const auto inside = [&](int a, int b) { return a >= 0 && b >= 0 && a < nx_ && b < ny_; };
+    const double triangle_area = 0.5 * dx_ * dy_;
+    for (int j = 0; j < ny_; ++j) {
+        for (int i = 0; i < nx_; ++i) {
+            // Centres with i + j even lie on their four quads' diagonals; the others on none.
+            const int step = (i + j) % 2 == 0 ? 1 : 2;
+            const std::size_t v = index(i, j);
+            int faces = 0;
+            for (int k = 0; k < 8; k += step) {
+                if (!inside(i + kDi[k], j + kDj[k])) continue;
+                const int next = (k + step) % 8;
+                rows[v].push_back(static_cast<std::uint32_t>(index(i + kDi[k], j + kDj[k])));
+                lengths[v].push_back(std::hypot(kDi[k] * dx_, kDj[k] * dy_));
+                // Consecutive directions bound a triangle of the quad between them, unless the
+                // next neighbour is outside (the gap in a border centre's ring).
+                const bool face = inside(i + kDi[next], j + kDj[next]);
+                across[v].push_back(
+                    face ? std::hypot((kDi[next] - kDi[k]) * dx_, (kDj[next] - kDj[k]) * dy_)
+                         : 0.0);
+                faces += face ? 1 : 0;
+            }
+            area_[v] = faces * triangle_area / 3.0;
+        }
+    }
+    graph_.assign(rows, lengths, &across);
+}
+
+std::vector<SlopeFace> GridErosion::faces() const {
+    std::vector<SlopeFace> out;
+    out.reserve(2 * static_cast<std::size_t>(nx_ - 1) * static_cast<std::size_t>(ny_ - 1));
+    const auto corner = [&](int i, int j) {
+        const Vec2 c = centre(i, j);
+        return Vec3{c.x, c.y, height(i, j)};
+    };
+    const auto face = [&](Vec3 a, Vec3 b, Vec3 c, std::size_t ia, std::size_t ib, std::size_t ic) {
+        const double t = (tan_[ia] + tan_[ib] + tan_[ic]) / 3.0;
+        const bool sand =
+            height_[ia] > bedrock_[ia] || height_[ib] > bedrock_[ib] || height_[ic] > bedrock_[ic];
+        out.push_back({a, b, c, t, sand});
+    };
+    for (int j = 0; j + 1 < ny_; ++j) {
+        for (int i = 0; i + 1 < nx_; ++i) {
+            const Vec3 p00 = corner(i, j), p10 = corner(i + 1, j), p01 = corner(i, j + 1),
+                       p11 = corner(i + 1, j + 1);
+            const std::size_t i00 = index(i, j), i10 = index(i + 1, j), i01 = index(i, j + 1),
+                              i11 = index(i + 1, j + 1);
+            if ((i + j) % 2 == 0) {  // diagonal (i, j)-(i + 1, j + 1)
+                face(p00, p10, p11, i00, i10, i11);
+                face(p00, p11, p01, i00, i11, i01);
+            } else {  // diagonal (i + 1, j)-(i, j + 1)
+                face(p00, p10, p01, i00, i10, i01);
+                face(p10, p11, p01, i10, i11, i01);
+            }
+        }
+    }
+    return out;
 }
 
 Vec2 GridErosion::centre(int i, int j) const {
@@ -58,8 +133,17 @@ double GridErosion::height_at(Vec2 p) const {
     const int j = std::min(static_cast<int>(fy), ny_ - 2);
     const double tx = fx - i;
     const double ty = fy - j;
-    return (1 - ty) * ((1 - tx) * height(i, j) + tx * height(i + 1, j)) +
-           ty * ((1 - tx) * height(i, j + 1) + tx * height(i + 1, j + 1));
+    const double h00 = height(i, j), h10 = height(i + 1, j), h01 = height(i, j + 1),
+                 h11 = height(i + 1, j + 1);
+    if (rule() != SlopeRule::Face)
+        return (1 - ty) * ((1 - tx) * h00 + tx * h10) + ty * ((1 - tx) * h01 + tx * h11);
+    // Linear on the quad's triangle holding p (faces()).
+    if ((i + j) % 2 == 0) {
+        return tx >= ty ? h00 + tx * (h10 - h00) + ty * (h11 - h10)
+                        : h00 + ty * (h01 - h00) + tx * (h11 - h01);
+    }
+    return tx + ty <= 1.0 ? h00 + tx * (h10 - h00) + ty * (h01 - h00)
+                          : h11 + (1 - tx) * (h01 - h11) + (1 - ty) * (h10 - h11);
 }
 
 void GridErosion::pour(Vec2 p, double volume) {

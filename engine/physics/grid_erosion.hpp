@@ -1,8 +1,16 @@
 #pragma once
-// The regular-grid baseline: classic thermal erosion on a height grid (Musgrave, Kolb & Mace
-// 1989; Beneš & Forsbach), 8-connected cells of equal area, with the same angle of repose,
-// damping, rest tolerance, active set and kernel as the TIN. It exists to compare run time
-// against error with the TIN, in tests and benchmarks.
+// The regular-grid baseline, with the same angle of repose, damping, rest tolerance, active set
+// and kernel as the TIN, under either slope rule (TalusParameters::rule). It exists to compare
+// run time against error with the TIN, in tests and benchmarks: two discretisations of one
+// continuum model.
+//  - SlopeRule::Edge: classic thermal erosion on a height grid (Musgrave, Kolb & Mace 1989;
+//    Beneš & Forsbach), 8-connected cells of equal area.
+//  - SlopeRule::Face: the cell centres triangulated with alternating diagonals (a 4-8 mesh:
+//    centre (i, j) has 8 neighbours when i + j is even, else 4), each lumped area a third of
+//    its triangles' (as the TIN's), so sum(area * height) is the piecewise-linear volume. The
+//    alternation matters: with every diagonal one way the pile stretches along it (issue 39's
+//    prototype found it does not converge).
+// Heights are at the cell centres either way.
 
 #include <cstdint>
 #include <vector>
@@ -10,6 +18,7 @@
 #include "geom/rect.hpp"
 #include "physics/active_set.hpp"
 #include "physics/adjacency_graph.hpp"
+#include "physics/face_slopes.hpp"
 #include "physics/talus_solver.hpp"
 
 namespace sandtin {
@@ -17,8 +26,11 @@ namespace sandtin {
 class GridErosion {
   public:
     /// A (cells_x x cells_y) grid of cells covering `domain`; heights are cell centres (m).
+    /// Throws std::invalid_argument for fewer than 2 x 2 cells.
     GridErosion(Rect domain, int cells_x, int cells_y, double tan_alpha,
                 TalusSettings settings = {});
+
+    SlopeRule rule() const { return solver_.settings().parameters.rule; }
 
     int cells_x() const { return nx_; }
     int cells_y() const { return ny_; }
@@ -28,9 +40,13 @@ class GridErosion {
     double& height(int i, int j) { return height_[index(i, j)]; }
     double height(int i, int j) const { return height_[index(i, j)]; }
     std::vector<double>& heights() { return height_; }
-    /// Volume above z = 0: sum of cell area times height (m³).
+    /// Volume above z = 0: sum of lumped area times height (m³).
     double volume() const;
-    /// Bilinear height at p (m), clamped to the grid.
+    /// Lumped area of cell (i, j) (m²): the cell's under the edge rule, a third of its
+    /// triangles' under the face rule.
+    double area(int i, int j) const { return area_[index(i, j)]; }
+    /// Height at p (m), clamped to the centres' rectangle: bilinear under the edge rule,
+    /// linear on the 4-8 mesh's triangles under the face rule.
     double height_at(Vec2 p) const;
 
     /// Adds `volume` m³ to the cell containing p and activates it.
@@ -41,12 +57,17 @@ class GridErosion {
     int run_to_rest(int max_iterations);
     /// Vertex updates performed so far (for throughput figures).
     std::size_t vertex_updates() const { return updates_; }
+    /// The 4-8 mesh's triangles over the centres (under either rule), for judging the surface
+    /// face by face (physics/face_slopes.hpp).
+    std::vector<SlopeFace> faces() const;
 
   private:
     std::size_t index(int i, int j) const {
         return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) +
                static_cast<std::size_t>(i);
     }
+    void build_moore_graph();
+    void build_triangulated_graph();
 
     Rect domain_;
     int nx_, ny_;
