@@ -127,6 +127,8 @@ void main() {
             largest = max(largest, f.excess);
         }
         float scale = largest > 0.0 ? row_scale(i, hi, largest, levelling) : 0.0;
+        // A drop of i within the noise floor is rounding, not sand (face_row_scale).
+        if (!(scale * levelling * inv_ai > noise_floor)) scale = 0.0;
         // Every slot of the row is written (receivers read q of every source's row).
         for (uint k = begin; k < end; ++k) {
             float v = scale > 0.0 ? q[k] * scale : 0.0;

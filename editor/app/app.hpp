@@ -390,6 +390,9 @@ class App {
     /// The ops about long work: jobs, job, cancel_job, resume_job.
     void run_job_op(const std::string& kind, const nlohmann::json& op);
     void set_physics(const std::string& name);
+    /// "face" or "edge" (EditorSettings::slope_rule); a change wakes every vertex, since sand
+    /// at rest under one rule need not be under the other.
+    void set_slope_rule(const std::string& name);
     void set_falloff(const std::string& name);
 
     // ---- State ---------------------------------------------------------------------------

@@ -74,10 +74,10 @@ namespace sandtin::editor {
 // (Raise and Lower, metres per dab), brush_blend (Smooth and Flatten, 0..1 per dab), falloff
 // ("constant" | "linear" | "smooth" | "gaussian"), steps, relocation_radius,
 // simplify_tolerance (metres, as the Erosion panel's slider), physics ("auto" | "cpu" | "gpu", the
-// Erosion panel's switch), scene_path and import_path (typed into the File panel's Scene and
-// Heightmap fields), export_path (the Export field); numbers
-// are clamped to their sliders' ranges, as typed values are.
-// Positions are fractions of the window (0..1): scripts work at any --size.
+// Erosion panel's switch), slope_rule ("face" | "edge", its Repose on switch), scene_path and
+// import_path (typed into the File panel's Scene and Heightmap fields), export_path (the Export
+// field); numbers are clamped to their sliders' ranges, as typed values are. Positions are
+// fractions of the window (0..1): scripts work at any --size.
 
 namespace {
 
@@ -116,6 +116,15 @@ void App::set_physics(const std::string& name) {
     sculpting_.close_level(doc_);
     settings_.physics = name;
     attach_solver(true);
+}
+
+void App::set_slope_rule(const std::string& name) {
+    if (name != "face" && name != "edge")
+        throw std::runtime_error("script: slope_rule must be face or edge, not '" + name + "'");
+    if (name == settings_.slope_rule) return;
+    settings_.slope_rule = name;
+    doc_.solver().activate_all();
+    sculpting_.kick();
 }
 
 void App::set_falloff(const std::string& name) {
@@ -303,6 +312,8 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.relocation_radius = kRelocationRadiusRange.clamp(v.get<double>(), size);
         else if (k2 == "physics")
             set_physics(v.get<std::string>());
+        else if (k2 == "slope_rule")
+            set_slope_rule(v.get<std::string>());
         else if (k2 == "scene_path")
             set_scene_field(v.get<std::string>());
         else if (k2 == "import_path")

@@ -44,6 +44,7 @@ void fields(EditorSettings& s, F&& f) {
     f("simplify_tolerance", s.simplify_tolerance, &kSimplifyToleranceRange);
     f("relocation_radius", s.relocation_radius, &kRelocationRadiusRange);
     f("settle_margin", s.settle_margin, &kSettleMarginRange);
+    f("slope_rule", s.slope_rule, nullptr);
     f("overlay_wireframe", s.overlay_wireframe, nullptr);
     f("overlay_active", s.overlay_active, nullptr);
     f("overlay_thickness", s.overlay_thickness, nullptr);
@@ -137,6 +138,10 @@ EditorSettings load_settings(const std::filesystem::path& path, std::string* pro
     if (s.physics != "auto" && s.physics != "cpu" && s.physics != "gpu") {
         bad.push_back("physics '" + s.physics + "' is not auto, cpu or gpu");
         s.physics = defaults.physics;
+    }
+    if (s.slope_rule != "face" && s.slope_rule != "edge") {
+        bad.push_back("slope_rule '" + s.slope_rule + "' is not face or edge");
+        s.slope_rule = defaults.slope_rule;
     }
     if (s.file_dialog != "auto" && s.file_dialog != "native" && s.file_dialog != "imgui") {
         bad.push_back("file_dialog '" + s.file_dialog + "' is not auto, native or imgui");

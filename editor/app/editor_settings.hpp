@@ -37,6 +37,9 @@ struct EditorSettings {
     /// settle_margin): a dig then comes to rest in thousands of iterations, not tens of
     /// thousands, so the terrain goes idle.
     double settle_margin = TalusParameters{}.settle_margin;
+    /// What the relaxation holds at repose (SlopeRule): "face", every triangle's gradient (the
+    /// default), or "edge", every edge's slope (the seeds' rule, for comparison).
+    std::string slope_rule = "face";
     bool overlay_wireframe = false;
     bool overlay_active = false;
     bool overlay_thickness = false;

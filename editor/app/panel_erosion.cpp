@@ -51,6 +51,16 @@ void App::panel_erosion() {
     range_slider("r_S", "", settings_.relocation_radius, kRelocationRadiusRange,
                  settings_.scene_size, "%.1f");
     ui("r_S", "Relocation radius: material never jumps farther; longer edges are split");
+    ImGui::TextUnformatted("Repose on");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("Faces", settings_.slope_rule != "edge")) set_slope_rule("face");
+    ui("Faces",
+       "At rest no triangle is steeper than its sand's angle of repose (the surface itself)");
+    ImGui::SameLine();
+    if (ImGui::RadioButton("Edges", settings_.slope_rule == "edge")) set_slope_rule("edge");
+    ui("Edges",
+       "The seeds' rule: at rest no edge is steeper than repose; a triangle can still be\n"
+       "up to about twice as steep as its sand stands (shown red by the Slope overlay)");
     plain_slider("Settle margin (%)", settings_.settle_margin, kSettleMarginRange, "%.1f", 100.0);
     ui("Settle margin",
        "Sand that slides comes to rest this much below its angle of repose (the dynamic\n"

@@ -219,6 +219,8 @@ ErosionFrame Sculpting::erode(Document& doc, const EditorSettings& settings, dou
     // Clamped: a hand-edited settings file must not stop the physics.
     solver.settings().parameters.settle_margin =
         std::clamp(settings.settle_margin, 0.0, kMaxSettleMargin);
+    solver.settings().parameters.rule =
+        settings.slope_rule == "edge" ? SlopeRule::Edge : SlopeRule::Face;
     // Up to the chosen iterations, but within a time budget so the editor stays responsive
     // while a large region slides. The GPU solver batches the iterations into few
     // submissions itself, each followed by the read-back of the heights into the TIN.

@@ -210,8 +210,8 @@ bool parse_physics_fields(JsonFields& f, TalusSettings& t) {
         any = true;
     }
     if (f.has("rule")) {
-        t.parameters.rule = f.choice("rule", "edge", {"edge", "face"}) == "face" ? SlopeRule::Face
-                                                                                 : SlopeRule::Edge;
+        t.parameters.rule = f.choice("rule", "face", {"edge", "face"}) == "edge" ? SlopeRule::Edge
+                                                                                 : SlopeRule::Face;
         any = true;
     }
     if (f.has("schedule")) {

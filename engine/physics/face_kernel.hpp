@@ -156,7 +156,11 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
     }
     if (!(excess.largest > 0.0)) return 0.0;
     const double scale = detail::outflow_scale(excess, hi, area[i], bedrock[i], p, random_factor);
-    if (!(scale > 0.0)) {
+    // A drop of i within the noise floor is rounding, not sand: sand left a few ulps above
+    // the bedrock on rock steeper than repose (every face of i stays steep however little sand
+    // it holds) would otherwise trickle on for ever (measured on thin sand over 56° rock: 43
+    // vertices trading 3e-16 m³ per 5 000 iterations, never at rest).
+    if (!(scale > 0.0) || !(scale * excess.levelling * inv_ai > floor)) {
         for (std::uint32_t k = begin; k < end; ++k)
             q[k] = 0.0;
         return 0.0;

@@ -69,7 +69,10 @@ struct TalusParameters {
     /// seeds' rule. The compute shader does the same. The default is the editor's and the
     /// scripts' alike, so a script reproduces what the artist saw.
     double settle_margin = 0.03;
-    SlopeRule rule = SlopeRule::Edge;
+    /// The face rule is the default everywhere (editor, scripts, haptics, stress): a rested
+    /// pile then has no triangle steeper than its sand can stand. The edge rule stays for
+    /// comparison and old scripts ("rule": "edge").
+    SlopeRule rule = SlopeRule::Face;
 };
 
 /// Splitmix64 hash to [-1, 1): a deterministic per-vertex, per-iteration random number.

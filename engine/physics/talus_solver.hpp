@@ -51,10 +51,11 @@ struct TalusSettings {
     RowKernel row_kernel = RowKernel::Auto;
 };
 
-/// The defaults with the seeds' rule: no settle margin (TalusParameters::settle_margin), as
-/// the grid baseline runs and the seeds' experiments did.
+/// The seeds' rule: the edge rule (SlopeRule::Edge) with no settle margin
+/// (TalusParameters::settle_margin), as the seeds' experiments ran.
 inline TalusSettings seeds_rule() {
     TalusSettings settings;
+    settings.parameters.rule = SlopeRule::Edge;
     settings.parameters.settle_margin = 0.0;
     return settings;
 }

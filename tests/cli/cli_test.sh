@@ -235,6 +235,21 @@ scenario_bench() {
         "$(json bench.out /constraints/constrained_edges_after)"
     expect_ok bench_json bench tin --quick --json || return
     check_eq "bench --json" "$(json bench_json.out /bench)" tin
+    # Run time against error: both slope rules on the TIN and the grid, CSV and SVG written.
+    # Runs 0-3 are the edge rule's (cone TIN, cone grid, step TIN, step grid), 4-7 the face
+    # rule's: the face rule rests with no face steeper than repose on both discretisations,
+    # the edge rule's TIN cone with most of its slopes steeper.
+    expect_ok bench_erosion bench erosion --quick --out erosion_out || return
+    [[ -s erosion_out/erosion.csv && -s erosion_out/erosion.svg ]] ||
+        fail "bench erosion wrote no CSV or SVG"
+    for k in 4 5 6 7; do
+        holds "bench erosion face rule run $k" "a == 0 && b <= 1.001" \
+            "$(json bench_erosion.out /runs/$k/steep_share_of_slopes)" \
+            "$(json bench_erosion.out /runs/$k/max_face_ratio)"
+    done
+    check_eq "bench erosion run 5" "$(json bench_erosion.out /runs/5/method)" grid-face
+    holds "bench erosion edge rule TIN cone" "a > 0.1" \
+        "$(json bench_erosion.out /runs/0/steep_share_of_slopes)"
     # The groove with a shipped tool instead of the seeds' circle: the λ digs a valid groove.
     expect_ok bench_lambda bench groove --quick --tool lambda --json || return
     check_eq "bench groove tool" "$(json bench_lambda.out /tool/asset)" lambda
@@ -397,6 +412,12 @@ END_OF_SCRIPT
     holds "face rule, Jacobi: steepest face" "a <= 1.001" \
         "$(json info_face_jacobi.out /slopes/max_ratio)"
     holds "edge rule: steep faces" "a > 10" "$(json info_edge.out /slopes/steep_faces)"
+    # The default is the face rule: a script that names no rule rests with no steep face.
+    sed 's/"settings": {"rule": "face"},/"settings": {},/' face.json >default.json
+    grep -q '"settings": {},' default.json || fail "could not write the default-rule script"
+    expect_ok run_default run default.json -o default.sandtin --json || return
+    expect_ok info_default info default.sandtin --json || return
+    check_eq "default rule: steep faces" "$(json info_default.out /slopes/steep_faces)" 0
     sed 's/"rule": "face"/"rule": "faces"/' face.json >bad.json
     expect_error bad_rule "'rule' is 'faces'; expected one of: edge, face" run bad.json -o bad.sandtin
 }

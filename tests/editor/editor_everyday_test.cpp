@@ -235,5 +235,26 @@ TEST_F(EditorXvfb, TheRecoveryPromptSaysHowOldTheAutosaveIs) {
         << text;
 }
 
+TEST_F(EditorXvfb, TheReposeSwitchChoosesTheSlopeRuleAndScriptsCanSetIt) {
+    // Faces by default; the Erosion panel's "Edges" switches to the seeds' rule.
+    const EditorRun clicked = run_editor(
+        "slope-rule-click",
+        then(kFlat, R"({"op": "click", "widget": "Edges"}, {"op": "wait", "frames": 2})"));
+    ASSERT_EQ(clicked.exit_code, 0) << clicked.log;
+    EXPECT_EQ(clicked.stats.at("settings").at("slope_rule"), "edge");
+    const EditorRun set = run_editor(
+        "slope-rule-set",
+        then(
+            kFlat,
+            R"({"op": "set", "slope_rule": "edge"}, {"op": "set", "slope_rule": "face"}, {"op": "wait", "frames": 2})"));
+    ASSERT_EQ(set.exit_code, 0) << set.log;
+    EXPECT_EQ(set.stats.at("settings").at("slope_rule"), "face");
+    const EditorRun bad =
+        run_editor("slope-rule-bad", R"([{"op": "set", "slope_rule": "vertex"}])");
+    EXPECT_EQ(bad.exit_code, 1) << bad.log;
+    EXPECT_NE(bad.log.find("slope_rule must be face or edge, not 'vertex'"), std::string::npos)
+        << bad.log;
+}
+
 }  // namespace
 }  // namespace sandtin

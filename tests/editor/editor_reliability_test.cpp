@@ -429,7 +429,7 @@ TEST_F(EditorXvfb, AnOpenedOrImportedSceneWaitsForRun) {
                    R"([{"op": "set", "erosion": true}, {"op": "wait", "frames": 10},
             {"op": "save", "path": ")" +
                        held.string() + R"("},
-            {"op": "click", "widget": "Run"}, {"op": "wait", "frames": 10}])",
+            {"op": "click", "widget": "Run"}, {"op": "wait", "frames": 30}])",
                    dem.string() + " --save-after " + released.string() + fresh_settings("held"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_LT(surface_difference(tin_of(held), original), 1e-9);

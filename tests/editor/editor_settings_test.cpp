@@ -177,6 +177,25 @@ TEST(Settings, TheFileDialogChoiceAndTheLastFolderSurviveAndABadChoiceFallsBack)
     std::filesystem::remove_all(dir);
 }
 
+TEST(Settings, TheSlopeRuleIsFacesByDefaultSurvivesAndABadOneFallsBack) {
+    const auto dir = std::filesystem::temp_directory_path() / "sandtin-editor-settings-rule";
+    std::filesystem::remove_all(dir);
+    const auto path = dir / "editor.json";
+    EXPECT_EQ(EditorSettings{}.slope_rule, "face");
+    EditorSettings s;
+    s.slope_rule = "edge";
+    save_settings(path, s);
+    std::string problem;
+    EXPECT_EQ(load_settings(path, &problem).slope_rule, "edge");
+    EXPECT_TRUE(problem.empty()) << problem;
+    std::ofstream(path) << R"({"slope_rule": "vertex", "settle_margin": 0.01})";
+    const EditorSettings bad = load_settings(path, &problem);
+    EXPECT_EQ(bad.slope_rule, "face");
+    EXPECT_EQ(bad.settle_margin, 0.01) << "the rest of the file still counts";
+    EXPECT_NE(problem.find("slope_rule 'vertex'"), std::string::npos) << problem;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(Settings, RangesClampWhatIsTypedAndScaleWithTheTerrain) {
     EXPECT_EQ(kToolRadiusRange.clamp(-2.0, 1.0), 0.005);
     EXPECT_EQ(kToolRadiusRange.clamp(1e9, 1.0), 0.15);

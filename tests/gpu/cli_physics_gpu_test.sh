@@ -16,7 +16,7 @@ cat > erode.json <<'END_OF_SCRIPT'
 {
   "version": 1,
   "terrain": {"size": [1, 1], "points": 8000, "seed": 5, "height": 0.1},
-  "settings": {"schedule": "jacobi", "simplify": false},
+  "settings": {"schedule": "jacobi", "simplify": false, "rule": "edge"},
   "operations": [
     {"op": "stamp", "tool": {"asset": "circle"}, "at": [0.5, 0.5], "depth": 0.05},
     {"op": "erode", "iterations": 150},
@@ -73,10 +73,30 @@ done
 [[ "$(get cpu.json /steps/1/volume_change)" == 0 || "$(get cpu.json /steps/1/volume_change)" == 0.0 ]] ||
     fail "the CPU erosion reports $(get cpu.json /steps/1/volume_change) m3, not 0"
 
+# The face rule (the default; the runs above hold the edge rule to the tighter bounds): it
+# magnifies float rounding (a face's bound moves with all three corners), so the GPU's
+# relaxation work differs more from the CPU's (measured 4 %: 42 063 against 43 817 updates);
+# the terrain still agrees in vertices and volume.
+sed 's/"rule": "edge"/"rule": "face"/' erode.json > erode_face.json
+grep -q '"rule": "face"' erode_face.json || fail "could not write the face-rule script"
+for backend in cpu gpu; do
+    "$SANDTIN" run erode_face.json -o "face_$backend.sandtin" --physics $backend --json \
+        > "face_$backend.json" 2> "face_$backend.err" ||
+        fail "$backend face-rule run failed: $(cat "face_$backend.err")"
+done
+[[ "$(get face_cpu.json /terrain/vertices)" == "$(get face_gpu.json /terrain/vertices)" ]] ||
+    fail "face rule: vertex counts differ"
+vc=$(get face_cpu.json /terrain/volume) && vg=$(get face_gpu.json /terrain/volume)
+awk -v a="$vc" -v b="$vg" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= 1e-6 * a) }' ||
+    fail "face rule: volumes differ: cpu $vc gpu $vg"
+uc=$(get face_cpu.json /steps/1/vertex_updates) && ug=$(get face_gpu.json /steps/1/vertex_updates)
+awk -v a="$uc" -v b="$ug" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0 && d <= 0.1 * a) }' ||
+    fail "face rule: relaxation work differs: cpu $uc gpu $ug"
+
 # With the relocation radius (the editor's default r_S): refinement runs between the GPU's
 # batches, so the GPU must not let the sand wait long at the edges it asked to split. Over the
 # first 150 iterations, 64-iteration batches refined 210 vertices where the CPU refines 363.
-sed 's/"simplify": false}/"simplify": false, "relocation_radius": 0.01}/' erode.json > erode_rs.json
+sed 's/"rule": "edge"}/"rule": "edge", "relocation_radius": 0.01}/' erode.json > erode_rs.json
 grep -q relocation_radius erode_rs.json || fail "could not write the r_S script"
 "$SANDTIN" run erode_rs.json -o cpu_rs.sandtin --physics cpu --json > cpu_rs.json 2> cpu_rs.err ||
     fail "cpu r_S run failed: $(cat cpu_rs.err)"

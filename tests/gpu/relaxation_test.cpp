@@ -98,6 +98,7 @@ TEST_F(GpuTest, RelaxationMatchesCpuJacobiOn1e5VerticesOver1000Iterations) {
     TinMirror mirror(ctx(), tin);
     mirror.sync();
     GpuRelaxationSettings gs;
+    gs.parameters.rule = SlopeRule::Edge;  // the edge kernel; the face kernel's tests follow
     gs.quiet_iterations = 3;
     // The seeds' rule, whose transfer grows from 0 at the trigger: float and double agree
     // everywhere (the default margin's step at the trigger is SettleMarginMatchesCpuJacobi's).
@@ -107,6 +108,7 @@ TEST_F(GpuTest, RelaxationMatchesCpuJacobiOn1e5VerticesOver1000Iterations) {
     gpu.activate(all);
 
     TalusSettings cs;
+    cs.parameters.rule = SlopeRule::Edge;
     cs.quiet_iterations = 3;
     cs.threads = 2;
     cs.parameters.settle_margin = gs.parameters.settle_margin;
@@ -138,6 +140,7 @@ TEST_F(GpuTest, RandomisedRelaxationMatchesCpuJacobi) {
     TinMirror mirror(ctx(), tin);
     mirror.sync();
     GpuRelaxationSettings gs;
+    gs.parameters.rule = SlopeRule::Edge;  // the edge kernel; the face kernel's tests follow
     gs.randomness = 0.4;
     gs.seed = 12345678901234ull;
     GpuRelaxation gpu(mirror, gs);
@@ -146,6 +149,7 @@ TEST_F(GpuTest, RandomisedRelaxationMatchesCpuJacobi) {
     gpu.run(100);
     gpu.run(100);
     TalusSettings cs;
+    cs.parameters.rule = SlopeRule::Edge;
     cs.randomness = gs.randomness;
     cs.seed = gs.seed;
     const std::vector<double> h = cpu_jacobi(tin, mirror, cs, 200);
@@ -164,11 +168,13 @@ TEST_F(GpuTest, SettleMarginMatchesCpuJacobi) {
     TinMirror mirror(ctx(), tin);
     mirror.sync();
     GpuRelaxationSettings gs;
+    gs.parameters.rule = SlopeRule::Edge;  // the edge kernel; the face kernel's tests follow
     gs.parameters.settle_margin = 0.05;
     GpuRelaxation gpu(mirror, gs);
     gpu.activate(live_ids(tin));
     gpu.run(200);
     TalusSettings cs;
+    cs.parameters.rule = SlopeRule::Edge;
     cs.parameters.settle_margin = gs.parameters.settle_margin;
     const std::vector<double> h = cpu_jacobi(tin, mirror, cs, 200);
     const Difference d = difference(tin, gpu.read_heights(), h);
@@ -201,6 +207,7 @@ TEST_F(GpuTest, RelaxationVolumeDriftOver1e4IterationsIsBelow1e6) {
     TinMirror mirror(ctx(), tin);
     mirror.sync();
     GpuRelaxationSettings gs;
+    gs.parameters.rule = SlopeRule::Edge;  // the edge kernel; the face kernel's tests follow
     gs.parameters.rest_tolerance = 1e-10;  // with half the usual damping: ~6 000 moving iterations
     gs.parameters.damping = 0.25;
     gs.parameters.settle_margin = 0.0;  // the seeds' rule: a margin would let it rest early
@@ -286,6 +293,7 @@ TEST_F(GpuTest, TextureOffsetsMoveDownhillOnACollapsingSlopeAndStayZeroAtRest) {
     TinMirror mirror(ctx(), slope);
     mirror.sync();
     GpuRelaxationSettings gs;
+    gs.parameters.rule = SlopeRule::Edge;  // the edge kernel; the face kernel's tests follow
     gs.slide_gain = 1.0;
     GpuRelaxation gpu(mirror, gs);
     gpu.activate(live_ids(slope));

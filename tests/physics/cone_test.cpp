@@ -35,6 +35,9 @@ PileResult pour_and_settle(Tin& tin, double relocation_radius, Schedule schedule
     TalusSettings settings;
     settings.schedule = schedule;
     settings.threads = threads;
+    // The edge rule, whose rest criterion (no edge steeper than repose) these tests assert;
+    // the face rule's cones are face_rule_test's.
+    settings.parameters.rule = SlopeRule::Edge;
     settings.parameters.relocation_radius = relocation_radius;
     SandPhysics physics(tin, MaterialTable::presets(), settings);
     const double tan_alpha = MaterialTable::presets().at(0).talus_slope(0.0);

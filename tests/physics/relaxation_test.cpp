@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
+#include "physics/face_slopes.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics_oracles.hpp"
 
@@ -25,7 +27,12 @@ void set_heights(Tin& tin, const std::function<double(Vec2)>& f) {
     }
 }
 
-class PlanarSlope : public ::testing::TestWithParam<Schedule> {};
+struct PlaneCase {
+    Schedule schedule;
+    SlopeRule rule;
+};
+
+class PlanarSlope : public ::testing::TestWithParam<PlaneCase> {};
 
 TEST_P(PlanarSlope, OverSteepPlaneRelaxesToRepose) {
     // A plane at slope 2 (63°) on a 40 x 40 grid, walls at the domain border: the sand slides
@@ -33,7 +40,8 @@ TEST_P(PlanarSlope, OverSteepPlaneRelaxesToRepose) {
     Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 40, 40,
                                 [](Vec2 p) { return 1.0 + 2.0 * (p.x - 0.5); });
     TalusSettings settings;
-    settings.schedule = GetParam();
+    settings.schedule = GetParam().schedule;
+    settings.parameters.rule = GetParam().rule;
     SandPhysics physics(tin, MaterialTable::presets(), settings);
     physics.activate_all();
     const double before = tin.volume();
@@ -42,6 +50,10 @@ TEST_P(PlanarSlope, OverSteepPlaneRelaxesToRepose) {
     EXPECT_NEAR(tin.volume(), before, 1e-12 * before);
     const double tan_alpha = dry_tan();
     EXPECT_LE(test::steepest_edge_ratio(tin, tan_alpha), 1.0 + 1e-3);
+    if (GetParam().rule == SlopeRule::Face) {
+        const FaceSlopeReport faces = measure_face_slopes(tin, MaterialTable::presets());
+        EXPECT_EQ(faces.steep_faces, 0u) << "steepest " << faces.max_ratio;
+    }
     // Least-squares slope in x over the middle half of the domain: at the angle of repose,
     // neither steeper nor flatter.
     const VertexArrays& va = tin.vertices();
@@ -52,16 +64,36 @@ TEST_P(PlanarSlope, OverSteepPlaneRelaxesToRepose) {
         sx += p.x, sz += va.height[v], sxx += p.x * p.x, sxz += p.x * va.height[v], n += 1;
     }
     const double slope = (n * sxz - sx * sz) / (n * sxx - sx * sx);
-    EXPECT_NEAR(slope, tan_alpha, 0.02 * tan_alpha);
+    EXPECT_LE(slope, tan_alpha * (1.0 + 1e-3));
+    // Flatter than repose by at most: the edge rule 2 %. The face rule 7 %: its faces, each
+    // levelled alone towards (1 - m) tan(alpha) and several at once around a vertex, overshoot
+    // (measured at the default m = 0.03: 0.946 tan(alpha) sequential, 0.934 Jacobi; at
+    // m = 0.005 still 0.962 and 0.957, so the overshoot is not the margin's).
+    const double flatter = GetParam().rule == SlopeRule::Face ? 0.07 : 0.02;
+    EXPECT_GE(slope, (1.0 - flatter) * tan_alpha);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothSchedules, PlanarSlope,
-                         ::testing::Values(Schedule::Sequential, Schedule::Jacobi));
+INSTANTIATE_TEST_SUITE_P(BothSchedulesAndRules, PlanarSlope,
+                         ::testing::Values(PlaneCase{Schedule::Sequential, SlopeRule::Face},
+                                           PlaneCase{Schedule::Jacobi, SlopeRule::Face},
+                                           PlaneCase{Schedule::Sequential, SlopeRule::Edge},
+                                           PlaneCase{Schedule::Jacobi, SlopeRule::Edge}),
+                         [](const ::testing::TestParamInfo<PlaneCase>& param) {
+                             return std::string(param.param.schedule == Schedule::Jacobi
+                                                    ? "Jacobi"
+                                                    : "Sequential") +
+                                    (param.param.rule == SlopeRule::Face ? "Faces" : "Edges");
+                         });
 
 TEST(Bedrock, NeverExposedBelowZeroThickness) {
     // Thin sand (0 to 4 mm) on a bedrock tilted at 56° with bumps: the sand slides off the
     // bedrock, which stays bare where it lost everything, never cut into.
-    for (Schedule schedule : {Schedule::Sequential, Schedule::Jacobi}) {
+    for (const PlaneCase c : {PlaneCase{Schedule::Sequential, SlopeRule::Face},
+                              PlaneCase{Schedule::Jacobi, SlopeRule::Face},
+                              PlaneCase{Schedule::Sequential, SlopeRule::Edge},
+                              PlaneCase{Schedule::Jacobi, SlopeRule::Edge}}) {
+        const std::string case_name = std::string(c.rule == SlopeRule::Face ? "faces" : "edges") +
+                                      (c.schedule == Schedule::Jacobi ? ", Jacobi" : "");
         Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 5000, 3);
         const VertexArrays& va = tin.vertices();
         for (std::uint32_t v = 0; v < va.size(); ++v) {
@@ -73,12 +105,14 @@ TEST(Bedrock, NeverExposedBelowZeroThickness) {
             tin.set_bedrock(VertexId{v}, rock);
         }
         TalusSettings settings;
-        settings.schedule = schedule;
+        settings.schedule = c.schedule;
+        settings.parameters.rule = c.rule;
         SandPhysics physics(tin, MaterialTable::presets(), settings);
         physics.activate_all();
         const double before = tin.volume();
         const PhysicsStepReport r = physics.run_to_rest(100000);
-        EXPECT_TRUE(r.at_rest);
+        // Under the face rule sand a few ulps above the rock used to trickle on for ever.
+        EXPECT_TRUE(r.at_rest) << case_name;
         EXPECT_GT(r.volume_moved, 0.0);
         std::size_t bare = 0;
         for (std::uint32_t v = 0; v < va.size(); ++v) {
