@@ -72,7 +72,7 @@ ThroughputScene renumbered(const ThroughputScene& own, const VertexArrays& va,
     for (std::uint32_t k = 0; k < size; ++k)
         new_id[keys[k].second] = k;
     std::vector<std::vector<std::uint32_t>> rows(size);
-    std::vector<std::vector<double>> lengths(size);
+    std::vector<std::vector<double>> lengths(size), across(size);
     out.height.resize(size);
     out.area.resize(size);
     out.bedrock.resize(size);
@@ -85,9 +85,10 @@ ThroughputScene renumbered(const ThroughputScene& own, const VertexArrays& va,
              ++k) {
             rows[w].push_back(new_id[own.graph.targets()[k]]);
             lengths[w].push_back(own.graph.lengths()[k]);
+            across[w].push_back(own.graph.across()[k]);  // the row's order is kept: its faces too
         }
     }
-    out.graph.assign(rows, lengths);
+    out.graph.assign(rows, lengths, &across);
     return out;
 }
 
@@ -152,11 +153,11 @@ struct ThroughputRun {
 /// A Jacobi solver over a copy of the scene's heights, with every vertex active.
 class SceneSolver {
   public:
-    SceneSolver(const ThroughputScene& scene, int threads, RowKernel kernel)
+    SceneSolver(const ThroughputScene& scene, SlopeRule rule, int threads, RowKernel kernel)
         : scene_(scene),
           height_(scene.height),
           tan_(height_.size(), dry_sand_tan_alpha()),
-          solver_(settings(threads, kernel)),
+          solver_(settings(rule, threads, kernel)),
           arrays_{height_.data(), scene.area.data(), scene.bedrock.data(), tan_.data(),
                   height_.size()} {
         for (std::uint32_t v = 0; v < height_.size(); ++v)
@@ -170,8 +171,9 @@ class SceneSolver {
     const TalusSolver& solver() const { return solver_; }
 
   private:
-    static TalusSettings settings(int threads, RowKernel kernel) {
+    static TalusSettings settings(SlopeRule rule, int threads, RowKernel kernel) {
         TalusSettings s;
+        s.parameters.rule = rule;
         s.schedule = Schedule::Jacobi;
         s.threads = threads;
         s.row_kernel = kernel;
@@ -185,8 +187,9 @@ class SceneSolver {
     ActiveSet active_;
 };
 
-ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel kernel) {
-    SceneSolver s(scene, threads, kernel);
+ThroughputRun time_jacobi(const ThroughputScene& scene, SlopeRule rule, int threads,
+                          RowKernel kernel) {
+    SceneSolver s(scene, rule, threads, kernel);
     s.iterate();  // warm-up: first-touch of the buffers
     ThroughputRun run;
     const double cpu0 = process_cpu_seconds();
@@ -202,7 +205,7 @@ ThroughputRun time_jacobi(const ThroughputScene& scene, int threads, RowKernel k
 /// on its first branch-free iteration; a warm-up and one more iteration get there), and whether
 /// it measured at all.
 std::pair<RowKernel, bool> auto_row_kernel(const ThroughputScene& scene, int threads) {
-    SceneSolver s(scene, threads, RowKernel::Auto);
+    SceneSolver s(scene, SlopeRule::Edge, threads, RowKernel::Auto);
     for (int it = 0; it < 3 && !s.solver().row_kernel_measured(); ++it)
         s.iterate();
     return {s.solver().row_kernel_in_use(), s.solver().row_kernel_measured()};
@@ -215,8 +218,10 @@ nlohmann::json rates_json(const std::vector<double>& rates, const std::vector<do
             {"runs_per_cpu_s", cpu_rates}};
 }
 
-nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int runs) {
-    const bool avx512 = avx512_rows_supported();
+/// Under the face rule the rows always branch (no SSE2 or AVX-512 row passes): one kernel.
+nlohmann::json jacobi_throughput(const ThroughputScene& scene, SlopeRule rule, int threads,
+                                 int runs) {
+    const bool avx512 = rule == SlopeRule::Edge && avx512_rows_supported();
     std::vector<double> loads;
     // Per kernel: rates per wall second and per CPU second. On an AVX-512 CPU each run times
     // both, next to each other (which goes first alternates), so both see the same machine.
@@ -225,7 +230,7 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
     for (int run = 0; run < runs; ++run) {
         loads.push_back(load_average());
         auto time = [&](RowKernel kernel) {
-            const ThroughputRun r = time_jacobi(scene, threads, kernel);
+            const ThroughputRun r = time_jacobi(scene, rule, threads, kernel);
             processed = r.updates / kTimed;
             const bool sse2 = kernel == RowKernel::Sse2;
             (sse2 ? sse2_rates : avx512_rates).push_back(r.rate());
@@ -251,8 +256,11 @@ nlohmann::json jacobi_throughput(const ThroughputScene& scene, int threads, int 
     nlohmann::json out = {
         {"vertices", scene.vertices},
         {"numbering", scene.numbering},
+        {"rule", rule == SlopeRule::Face ? "face" : "edge"},
         {"threads", threads},
-        {"rows", chose_avx512 ? "avx512" : "sse2"},
+        {"rows", rule == SlopeRule::Face ? "branching"
+                 : chose_avx512          ? "avx512"
+                                         : "sse2"},
         {"rows_measured", measured},
         {"processed_per_iteration", processed},
         {"vertex_updates_per_s", rate},
@@ -280,8 +288,10 @@ nlohmann::json jacobi_throughputs(bool quick, int runs) {
     const std::vector<ThroughputScene> scenes = throughput_scenes(quick ? 200 : 999);
     nlohmann::json list = nlohmann::json::array();
     for (const ThroughputScene& scene : scenes) {
-        for (int threads : {1, 2})
-            list.push_back(jacobi_throughput(scene, threads, runs));
+        for (SlopeRule rule : {SlopeRule::Edge, SlopeRule::Face}) {
+            for (int threads : {1, 2})
+                list.push_back(jacobi_throughput(scene, rule, threads, runs));
+        }
     }
     return list;
 }
@@ -306,34 +316,38 @@ nlohmann::json sand_physics_throughputs(bool quick, int runs) {
     }
     nlohmann::json list = nlohmann::json::array();
     for (VertexOrder order : {VertexOrder::Tin, VertexOrder::Strips}) {
-        for (int threads : {1, 2}) {
-            std::vector<double> cpu_rates;
-            std::size_t per_iteration = 0;
-            for (int run = 0; run < runs; ++run) {
-                tin.set_heights(ids, initial);
-                TalusSettings settings;
-                settings.schedule = Schedule::Jacobi;
-                settings.threads = threads;
-                SandPhysics physics(tin, MaterialTable::presets(), settings, order);
-                physics.activate_all();
-                physics.step(1);
-                const double cpu0 = process_cpu_seconds();
-                const PhysicsStepReport r = physics.step(kTimed);
-                const double cpu_s = process_cpu_seconds() - cpu0;
-                per_iteration = r.vertex_updates / static_cast<std::size_t>(kTimed);
-                cpu_rates.push_back(static_cast<double>(r.vertex_updates) / cpu_s);
+        for (SlopeRule rule : {SlopeRule::Edge, SlopeRule::Face}) {
+            for (int threads : {1, 2}) {
+                std::vector<double> cpu_rates;
+                std::size_t per_iteration = 0;
+                for (int run = 0; run < runs; ++run) {
+                    tin.set_heights(ids, initial);
+                    TalusSettings settings;
+                    settings.schedule = Schedule::Jacobi;
+                    settings.threads = threads;
+                    settings.parameters.rule = rule;
+                    SandPhysics physics(tin, MaterialTable::presets(), settings, order);
+                    physics.activate_all();
+                    physics.step(1);
+                    const double cpu0 = process_cpu_seconds();
+                    const PhysicsStepReport r = physics.step(kTimed);
+                    const double cpu_s = process_cpu_seconds() - cpu0;
+                    per_iteration = r.vertex_updates / static_cast<std::size_t>(kTimed);
+                    cpu_rates.push_back(static_cast<double>(r.vertex_updates) / cpu_s);
+                }
+                list.push_back(
+                    {{"vertices", ids.size()},
+                     {"numbering",
+                      order == VertexOrder::Tin ? "sand-physics tin ids" : "sand-physics strips"},
+                     {"rule", rule == SlopeRule::Face ? "face" : "edge"},
+                     {"threads", threads},
+                     {"processed_per_iteration", per_iteration},
+                     {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
+                     {"runs_per_cpu_s", cpu_rates},
+                     {"timer", "CPU time of one SandPhysics::step(" + std::to_string(kTimed) +
+                                   ") after a warm-up iteration, median of " +
+                                   std::to_string(runs) + " runs"}});
             }
-            list.push_back(
-                {{"vertices", ids.size()},
-                 {"numbering",
-                  order == VertexOrder::Tin ? "sand-physics tin ids" : "sand-physics strips"},
-                 {"threads", threads},
-                 {"processed_per_iteration", per_iteration},
-                 {"vertex_updates_per_cpu_s", bench::median(cpu_rates)},
-                 {"runs_per_cpu_s", cpu_rates},
-                 {"timer", "CPU time of one SandPhysics::step(" + std::to_string(kTimed) +
-                               ") after a warm-up iteration, median of " + std::to_string(runs) +
-                               " runs"}});
         }
     }
     return list;
