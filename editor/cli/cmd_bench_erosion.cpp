@@ -3,7 +3,11 @@
 // two discretisations of one continuum model), and CPU Jacobi throughput.
 //
 //   sandtin bench erosion [--json] [--quick] [--out DIR] [--throughput] [--settle-margin M]
-//   (--throughput: only the throughput tables, bench_erosion_throughput.hpp)
+//                         [--scenes cone,step,dunes] [--rules edge,face] [--repeats N]
+//                         [--no-throughput]
+//   (--throughput: only the throughput tables, bench_erosion_throughput.hpp; --no-throughput:
+//   without them; --scenes and --rules: a subset of the table; --repeats: runs per row, whose
+//   median is kept, 3 by default and 1 with --quick)
 //
 // Methods: "tin" and "grid" run the edge rule under seeds_rule() (no settle margin); "tin-face"
 // and "grid-face" run the face rule with the settle margin M (default: the physics', 0.03).
@@ -311,6 +315,26 @@ GridRun grid_dunes(int n, Method method) {
     return grid_run("dunes", n, method, [](GridErosion& grid) { set_heights(grid, dunes); });
 }
 
+/// The comma-separated names given with `option`, each one of `all`; all of them without it.
+std::vector<std::string> chosen(const Arguments& args, const std::string& option,
+                                const std::vector<std::string>& all) {
+    if (!args.has(option)) return all;
+    std::vector<std::string> out;
+    std::stringstream list(args.text(option));
+    std::string name;
+    while (std::getline(list, name, ',')) {
+        if (std::find(all.begin(), all.end(), name) == all.end()) {
+            std::string names;
+            for (const std::string& a : all)
+                names += (names.empty() ? "" : ", ") + a;
+            throw std::invalid_argument(option + ": '" + name + "' is not one of " + names);
+        }
+        out.push_back(name);
+    }
+    if (out.empty()) throw std::invalid_argument(option + " names nothing");
+    return out;
+}
+
 // ---- The table and its summaries -------------------------------------------------------------
 
 struct Levels {
@@ -365,13 +389,30 @@ nlohmann::json time_to_error(const std::vector<ErosionRun>& rows, const std::str
 }  // namespace
 
 int run_bench_erosion(const std::vector<std::string>& raw) {
-    const Arguments args(
-        raw,
-        {{"--quick", 0}, {"--json", 0}, {"--out", 1}, {"--throughput", 0}, {"--settle-margin", 1}});
+    const Arguments args(raw, {{"--quick", 0},
+                               {"--json", 0},
+                               {"--out", 1},
+                               {"--throughput", 0},
+                               {"--settle-margin", 1},
+                               {"--scenes", 1},
+                               {"--rules", 1},
+                               {"--repeats", 1},
+                               {"--no-throughput", 0}});
     args.require_positionals(1,
                              "sandtin bench erosion [--quick] [--json] [--out DIR] "
-                             "[--throughput] [--settle-margin M]");
+                             "[--throughput] [--settle-margin M] [--scenes cone,step,dunes] "
+                             "[--rules edge,face] [--repeats N] [--no-throughput]");
     const bool quick = args.has("--quick");
+    const std::vector<std::string> scenes = chosen(args, "--scenes", {"cone", "step", "dunes"});
+    const std::vector<std::string> rule_names = chosen(args, "--rules", {"edge", "face"});
+    const bool throughput = !args.has("--no-throughput");
+    int repeats = quick ? 1 : 3;
+    if (args.has("--repeats")) {
+        const double r = args.number("--repeats");
+        if (!(r >= 1.0 && r <= 99.0) || r != std::floor(r))
+            throw std::invalid_argument("--repeats must be a whole number from 1 to 99");
+        repeats = static_cast<int>(r);
+    }
     double face_margin = TalusParameters{}.settle_margin;
     if (args.has("--settle-margin")) {
         face_margin = args.number("--settle-margin");
@@ -400,18 +441,25 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         std::cout << j.dump(2) << "\n";
         return 0;
     }
-    const int repeats = quick ? 1 : 3;
     const Levels lv = levels(quick);
-    const Method methods[] = {{SlopeRule::Edge, face_margin}, {SlopeRule::Face, face_margin}};
+    std::vector<Method> methods;
+    for (const std::string& name : rule_names)
+        methods.push_back({name == "edge" ? SlopeRule::Edge : SlopeRule::Face, face_margin});
+    const auto wanted = [&](const char* scene) {
+        return std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
+    };
     std::vector<ErosionRun> rows;
-    sections =
-        2 * (2 * lv.rs.size() + 2 * lv.grid_n.size() + 1 + lv.points.size() + lv.dune_n.size()) + 2;
+    const std::size_t piles = (wanted("cone") ? 1 : 0) + (wanted("step") ? 1 : 0);
+    sections = methods.size() * (piles * (lv.rs.size() + lv.grid_n.size()) +
+                                 (wanted("dunes") ? 1 + lv.points.size() + lv.dune_n.size() : 0)) +
+               (throughput ? 2 : 0);
     const auto describe = [](const std::string& scene, const std::string& method,
                              const std::string& level) {
         return scene + " (" + method + "), " + level;
     };
     for (const Method& m : methods) {
         for (const char* scene : {"cone", "step"}) {
+            if (!wanted(scene)) continue;
             const bool cone = std::string(scene) == "cone";
             for (double rs : lv.rs) {
                 std::ostringstream level;
@@ -431,6 +479,7 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
     // Dunes: each rule's finest grid is its reference.
     nlohmann::json dune_references = nlohmann::json::array();
     for (const Method& m : methods) {
+        if (!wanted("dunes")) break;
         section(describe("dunes", method_name(true, m.rule),
                          std::to_string(lv.dune_reference_n) + "² reference"));
         GridRun ref = grid_dunes(lv.dune_reference_n, m);
@@ -480,10 +529,12 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
         targets.push_back(time_to_error(rows, scene, "tin", "grid"));
     }
     j["time_to_error"] = targets;
-    section("Jacobi throughput");
-    j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
-    section("sand physics throughput");
-    j["sand_physics_throughput"] = sand_physics_throughputs(quick, 3);
+    if (throughput) {
+        section("Jacobi throughput");
+        j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
+        section("sand physics throughput");
+        j["sand_physics_throughput"] = sand_physics_throughputs(quick, 3);
+    }
     progress.finish();
 
     if (args.has("--out")) {

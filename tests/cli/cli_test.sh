@@ -248,6 +248,14 @@ scenario_bench() {
             "$(json bench_erosion.out /runs/$k/max_face_ratio)"
     done
     check_eq "bench erosion run 5" "$(json bench_erosion.out /runs/5/method)" grid-face
+    # A subset of the table: one scene, one rule, no throughput tables.
+    expect_ok bench_erosion_cone bench erosion --quick --scenes cone --rules face --no-throughput ||
+        return
+    check_eq "bench erosion subset" "$(json bench_erosion_cone.out /runs/1/method)" grid-face
+    holds "bench erosion subset size" "a == 2" \
+        "$(json bench_erosion_cone.out /runs | tr -cd '{' | wc -c)"
+    expect_error bench_erosion_scene "--scenes: 'hill' is not one of cone, step, dunes" \
+        bench erosion --scenes hill
     holds "bench erosion edge rule TIN cone" "a > 0.1" \
         "$(json bench_erosion.out /runs/0/steep_share_of_slopes)"
     # The groove with a shipped tool instead of the seeds' circle: the λ digs a valid groove.
