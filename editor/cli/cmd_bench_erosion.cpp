@@ -35,6 +35,7 @@
 #include <functional>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -63,10 +64,6 @@ constexpr double kVolume = 0.01;
 constexpr int kSamples = 200;
 constexpr int kMaxIterations = 400000;
 
-double tan_alpha() {
-    return dry_sand_tan_alpha();
-}
-
 // ---- Scenes and their references ------------------------------------------------------------
 
 double dunes(Vec2 p) {
@@ -93,7 +90,7 @@ double step_initial(Vec2 p) {
 /// At rest: a straight slope at tan(alpha) through the mid-height, cut equals fill.
 double step_rest(Vec2 p) {
     const double mid = 0.5 * (kStepTop + kStepFoot);
-    return std::clamp(mid - step_distance(p) * tan_alpha(), kStepFoot, kStepTop);
+    return std::clamp(mid - step_distance(p) * dry_sand_tan_alpha(), kStepFoot, kStepTop);
 }
 const Rect kStepJudged{{0.2, 0.2}, {0.8, 0.8}};
 
@@ -192,7 +189,7 @@ ErosionRun tin_cone(double rs, Method method) {
     }
     r.accumulate(physics.run_to_rest(kMaxIterations));
     finish_tin(row, tin, r, cpu, wall);
-    const Cone cone = Cone::from_volume(kVolume, tan_alpha());
+    const Cone cone = Cone::from_volume(kVolume, dry_sand_tan_alpha());
     LocateHint hint;
     measure_error(
         row, [&](Vec2 p) { return *tin.height_at(p, &hint); },
@@ -263,7 +260,7 @@ GridRun grid_run(const std::string& scene, int n, Method method,
     g.row.settle_margin = method.settings().parameters.settle_margin;
     CpuStopwatch cpu;
     Stopwatch wall;
-    g.grid = std::make_unique<GridErosion>(Rect::from_size(1.0, 1.0), n, n, tan_alpha(),
+    g.grid = std::make_unique<GridErosion>(Rect::from_size(1.0, 1.0), n, n, dry_sand_tan_alpha(),
                                            method.settings());
     shape(*g.grid);
     g.row.iterations = g.grid->run_to_rest(kMaxIterations);
@@ -287,7 +284,7 @@ ErosionRun grid_cone(int n, Method method) {
     // The poured cell's centre is the apex; compare against the cone centred there.
     const int c = std::clamp(static_cast<int>(0.5 * n), 0, n - 1);
     const Vec2 apex = g.grid->centre(c, c);
-    const Cone cone = Cone::from_volume(kVolume, tan_alpha());
+    const Cone cone = Cone::from_volume(kVolume, dry_sand_tan_alpha());
     measure_error(
         g.row, [&](Vec2 p) { return g.grid->height_at(p); },
         [&](Vec2 p) { return cone.surface(distance(p, apex)); });
@@ -386,9 +383,22 @@ nlohmann::json time_to_error(const std::vector<ErosionRun>& rows, const std::str
     return target;
 }
 
-}  // namespace
+/// What the command line asked for.
+struct BenchOptions {
+    bool quick = false;
+    double face_margin = TalusParameters{}.settle_margin;
+    std::vector<std::string> scenes, rules;
+    bool throughput = true;  ///< with the throughput tables
+    bool throughput_only = false;
+    int repeats = 3;
+    std::optional<std::filesystem::path> out;
 
-int run_bench_erosion(const std::vector<std::string>& raw) {
+    bool wants(const char* scene) const {
+        return std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
+    }
+};
+
+BenchOptions parse_options(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--quick", 0},
                                {"--json", 0},
                                {"--out", 1},
@@ -402,100 +412,89 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
                              "sandtin bench erosion [--quick] [--json] [--out DIR] "
                              "[--throughput] [--settle-margin M] [--scenes cone,step,dunes] "
                              "[--rules edge,face] [--repeats N] [--no-throughput]");
-    const bool quick = args.has("--quick");
-    const std::vector<std::string> scenes = chosen(args, "--scenes", {"cone", "step", "dunes"});
-    const std::vector<std::string> rule_names = chosen(args, "--rules", {"edge", "face"});
-    const bool throughput = !args.has("--no-throughput");
-    int repeats = quick ? 1 : 3;
+    BenchOptions o;
+    o.quick = args.has("--quick");
+    o.scenes = chosen(args, "--scenes", {"cone", "step", "dunes"});
+    o.rules = chosen(args, "--rules", {"edge", "face"});
+    o.throughput = !args.has("--no-throughput");
+    o.throughput_only = args.has("--throughput");
+    o.repeats = o.quick ? 1 : 3;
     if (args.has("--repeats")) {
         const double r = args.number("--repeats");
         if (!(r >= 1.0 && r <= 99.0) || r != std::floor(r))
             throw std::invalid_argument("--repeats must be a whole number from 1 to 99");
-        repeats = static_cast<int>(r);
+        o.repeats = static_cast<int>(r);
     }
-    double face_margin = TalusParameters{}.settle_margin;
     if (args.has("--settle-margin")) {
-        face_margin = args.number("--settle-margin");
-        if (!(face_margin >= 0.0 && face_margin <= kMaxSettleMargin))
+        o.face_margin = args.number("--settle-margin");
+        if (!(o.face_margin >= 0.0 && o.face_margin <= kMaxSettleMargin))
             throw std::invalid_argument("--settle-margin must be in [0, " +
                                         std::to_string(kMaxSettleMargin) + "]");
     }
-    ProgressLine progress("bench erosion");
-    // Progress counts sections (one run of a scene at a resolution, or a throughput table).
-    std::size_t sections = 0;
-    std::size_t sections_done = 0;
-    const auto section = [&](const std::string& name) {
-        progress.report(
-            {static_cast<double>(sections_done++) / static_cast<double>(sections), name});
-    };
-    if (args.has("--throughput")) {
-        // Only the Jacobi throughput (issue 4's 10⁶-vertex figure), 5 runs per thread count.
-        sections = 2;
-        nlohmann::json j;
-        j["bench"] = "erosion";
-        section("Jacobi throughput");
-        j["jacobi_throughput"] = jacobi_throughputs(quick, 5);
-        section("sand physics throughput");
-        j["sand_physics_throughput"] = sand_physics_throughputs(quick, 5);
-        progress.finish();
-        std::cout << j.dump(2) << "\n";
-        return 0;
+    if (args.has("--out")) o.out = args.text("--out");
+    return o;
+}
+
+/// Counts the sections of the run and reports each as it starts.
+class Sections {
+  public:
+    Sections(ProgressLine& progress, std::size_t total) : progress_(progress), total_(total) {}
+    void start(const std::string& scene, const std::string& method, const std::string& level) {
+        progress_.report({static_cast<double>(done_++) / static_cast<double>(total_),
+                          scene + " (" + method + "), " + level});
     }
-    const Levels lv = levels(quick);
-    std::vector<Method> methods;
-    for (const std::string& name : rule_names)
-        methods.push_back({name == "edge" ? SlopeRule::Edge : SlopeRule::Face, face_margin});
-    const auto wanted = [&](const char* scene) {
-        return std::find(scenes.begin(), scenes.end(), scene) != scenes.end();
-    };
-    std::vector<ErosionRun> rows;
-    const std::size_t piles = (wanted("cone") ? 1 : 0) + (wanted("step") ? 1 : 0);
-    sections = methods.size() * (piles * (lv.rs.size() + lv.grid_n.size()) +
-                                 (wanted("dunes") ? 1 + lv.points.size() + lv.dune_n.size() : 0)) +
-               (throughput ? 2 : 0);
-    const auto describe = [](const std::string& scene, const std::string& method,
-                             const std::string& level) {
-        return scene + " (" + method + "), " + level;
-    };
+
+  private:
+    ProgressLine& progress_;
+    std::size_t total_;
+    std::size_t done_ = 0;
+};
+
+/// The cone and the step: each method at each level, TIN then grid.
+void run_piles(const BenchOptions& o, const Levels& lv, const std::vector<Method>& methods,
+               Sections& sections, std::vector<ErosionRun>& rows) {
     for (const Method& m : methods) {
         for (const char* scene : {"cone", "step"}) {
-            if (!wanted(scene)) continue;
+            if (!o.wants(scene)) continue;
             const bool cone = std::string(scene) == "cone";
             for (double rs : lv.rs) {
                 std::ostringstream level;
                 level << "r_S " << rs << " m";
-                section(describe(scene, method_name(false, m.rule), level.str()));
+                sections.start(scene, method_name(false, m.rule), level.str());
                 rows.push_back(
-                    median_of(repeats, [&] { return cone ? tin_cone(rs, m) : tin_step(rs, m); }));
+                    median_of(o.repeats, [&] { return cone ? tin_cone(rs, m) : tin_step(rs, m); }));
             }
             for (int n : lv.grid_n) {
-                section(describe(scene, method_name(true, m.rule), std::to_string(n) + "² grid"));
+                sections.start(scene, method_name(true, m.rule), std::to_string(n) + "² grid");
                 rows.push_back(
-                    median_of(repeats, [&] { return cone ? grid_cone(n, m) : grid_step(n, m); }));
+                    median_of(o.repeats, [&] { return cone ? grid_cone(n, m) : grid_step(n, m); }));
             }
         }
     }
+}
 
-    // Dunes: each rule's finest grid is its reference.
-    nlohmann::json dune_references = nlohmann::json::array();
+/// The dunes, each rule against its own finest grid; returns the references' figures.
+nlohmann::json run_dunes(const BenchOptions& o, const Levels& lv,
+                         const std::vector<Method>& methods, Sections& sections,
+                         std::vector<ErosionRun>& rows) {
+    nlohmann::json references = nlohmann::json::array();
     for (const Method& m : methods) {
-        if (!wanted("dunes")) break;
-        section(describe("dunes", method_name(true, m.rule),
-                         std::to_string(lv.dune_reference_n) + "² reference"));
+        sections.start("dunes", method_name(true, m.rule),
+                       std::to_string(lv.dune_reference_n) + "² reference");
         GridRun ref = grid_dunes(lv.dune_reference_n, m);
-        dune_references.push_back({{"method", ref.row.method},
-                                   {"grid", lv.dune_reference_n},
-                                   {"cpu_ms", ref.row.cpu_ms},
-                                   {"at_rest", ref.row.at_rest}});
+        references.push_back({{"method", ref.row.method},
+                              {"grid", lv.dune_reference_n},
+                              {"cpu_ms", ref.row.cpu_ms},
+                              {"at_rest", ref.row.at_rest}});
         const GridErosion& ref_grid = *ref.grid;
         const HeightAt reference = [&](Vec2 p) { return ref_grid.height_at(p); };
         for (std::size_t pts : lv.points) {
-            section(describe("dunes", method_name(false, m.rule), std::to_string(pts) + " points"));
-            rows.push_back(median_of(repeats, [&] { return tin_dunes(pts, reference, m); }));
+            sections.start("dunes", method_name(false, m.rule), std::to_string(pts) + " points");
+            rows.push_back(median_of(o.repeats, [&] { return tin_dunes(pts, reference, m); }));
         }
         for (int n : lv.dune_n) {
-            section(describe("dunes", method_name(true, m.rule), std::to_string(n) + "² grid"));
-            rows.push_back(median_of(repeats, [&] {
+            sections.start("dunes", method_name(true, m.rule), std::to_string(n) + "² grid");
+            rows.push_back(median_of(o.repeats, [&] {
                 GridRun g = grid_dunes(n, m);
                 grid_faces(g);
                 measure_error(
@@ -504,46 +503,82 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
             }));
         }
     }
+    return references;
+}
 
+/// The runs, and per scene the fitted orders and the time to the grid's best error.
+nlohmann::json summary(const std::vector<ErosionRun>& rows) {
     nlohmann::json j;
-    j["bench"] = "erosion";
-    j["repeats"] = repeats;
-    j["timer"] = "thread CPU time, median of repeats; wall time alongside";
-    j["face_settle_margin"] = face_margin;
-    j["dunes_reference"] = {
-        {"what", "each rule's finest grid run to rest (a grid reference favours the grid)"},
-        {"runs", dune_references}};
     nlohmann::json list = nlohmann::json::array();
     for (const ErosionRun& r : rows)
         list.push_back(to_json(r));
     j["runs"] = list;
     nlohmann::json orders = nlohmann::json::object();
+    nlohmann::json targets = nlohmann::json::array();
     for (const char* scene : {"cone", "step", "dunes"}) {
         for (const char* method : {"tin", "tin-face", "grid", "grid-face"})
             orders[scene][method] = fitted_order(rows, scene, method);
-    }
-    j["convergence_order"] = orders;
-    nlohmann::json targets = nlohmann::json::array();
-    for (const char* scene : {"cone", "step", "dunes"}) {
         targets.push_back(time_to_error(rows, scene, "tin-face", "grid-face"));
         targets.push_back(time_to_error(rows, scene, "tin", "grid"));
     }
+    j["convergence_order"] = orders;
     j["time_to_error"] = targets;
-    if (throughput) {
-        section("Jacobi throughput");
-        j["jacobi_throughput"] = jacobi_throughputs(quick, 3);
-        section("sand physics throughput");
-        j["sand_physics_throughput"] = sand_physics_throughputs(quick, 3);
+    return j;
+}
+
+}  // namespace
+
+int run_bench_erosion(const std::vector<std::string>& raw) {
+    const BenchOptions o = parse_options(raw);
+    ProgressLine progress("bench erosion");
+    nlohmann::json j;
+    j["bench"] = "erosion";
+    if (o.throughput_only) {
+        // Only the Jacobi throughput (issue 4's 10⁶-vertex figure), 5 runs per row.
+        Sections sections(progress, 2);
+        sections.start("throughput", "Jacobi", "solver alone");
+        j["jacobi_throughput"] = jacobi_throughputs(o.quick, 5);
+        sections.start("throughput", "Jacobi", "sand physics");
+        j["sand_physics_throughput"] = sand_physics_throughputs(o.quick, 5);
+        progress.finish();
+        std::cout << j.dump(2) << "\n";
+        return 0;
+    }
+    const Levels lv = levels(o.quick);
+    std::vector<Method> methods;
+    for (const std::string& name : o.rules)
+        methods.push_back({name == "edge" ? SlopeRule::Edge : SlopeRule::Face, o.face_margin});
+    const std::size_t piles = (o.wants("cone") ? 1 : 0) + (o.wants("step") ? 1 : 0);
+    Sections sections(
+        progress,
+        methods.size() * (piles * (lv.rs.size() + lv.grid_n.size()) +
+                          (o.wants("dunes") ? 1 + lv.points.size() + lv.dune_n.size() : 0)) +
+            (o.throughput ? 2 : 0));
+    std::vector<ErosionRun> rows;
+    run_piles(o, lv, methods, sections, rows);
+    const nlohmann::json dune_references =
+        o.wants("dunes") ? run_dunes(o, lv, methods, sections, rows) : nlohmann::json::array();
+
+    j.update(summary(rows));
+    j["repeats"] = o.repeats;
+    j["timer"] = "thread CPU time, median of repeats; wall time alongside";
+    j["face_settle_margin"] = o.face_margin;
+    j["dunes_reference"] = {
+        {"what", "each rule's finest grid run to rest (a grid reference favours the grid)"},
+        {"runs", dune_references}};
+    if (o.throughput) {
+        sections.start("throughput", "Jacobi", "solver alone");
+        j["jacobi_throughput"] = jacobi_throughputs(o.quick, 3);
+        sections.start("throughput", "Jacobi", "sand physics");
+        j["sand_physics_throughput"] = sand_physics_throughputs(o.quick, 3);
     }
     progress.finish();
-
-    if (args.has("--out")) {
-        const std::filesystem::path dir = args.text("--out");
-        std::filesystem::create_directories(dir);
-        write_erosion_csv(dir / "erosion.csv", rows);
-        write_erosion_svg(dir / "erosion.svg", rows);
-        j["csv"] = (dir / "erosion.csv").string();
-        j["svg"] = (dir / "erosion.svg").string();
+    if (o.out) {
+        std::filesystem::create_directories(*o.out);
+        write_erosion_csv(*o.out / "erosion.csv", rows);
+        write_erosion_svg(*o.out / "erosion.svg", rows);
+        j["csv"] = (*o.out / "erosion.csv").string();
+        j["svg"] = (*o.out / "erosion.svg").string();
     }
     std::cout << j.dump(2) << "\n";
     return 0;

@@ -61,8 +61,9 @@ void GridErosion::build_triangulated_graph() {
     const double triangle_area = 0.5 * dx_ * dy_;
     for (int j = 0; j < ny_; ++j) {
         for (int i = 0; i < nx_; ++i) {
-            // Centres with i + j even lie on their four quads' diagonals; the others on none.
-            const int step = (i + j) % 2 == 0 ? 1 : 2;
+            // A centre on its own quad's diagonal lies on all four quads' diagonals (the
+            // alternation), and has 8 neighbours; the others have the 4 along the axes.
+            const int step = diagonal_from_origin(i, j) ? 1 : 2;
             const std::size_t v = index(i, j);
             int faces = 0;
             for (int k = 0; k < 8; k += step) {
@@ -103,7 +104,7 @@ std::vector<SlopeFace> GridErosion::faces() const {
                        p11 = corner(i + 1, j + 1);
             const std::size_t i00 = index(i, j), i10 = index(i + 1, j), i01 = index(i, j + 1),
                               i11 = index(i + 1, j + 1);
-            if ((i + j) % 2 == 0) {  // diagonal (i, j)-(i + 1, j + 1)
+            if (diagonal_from_origin(i, j)) {  // diagonal (i, j)-(i + 1, j + 1)
                 face(p00, p10, p11, i00, i10, i11);
                 face(p00, p11, p01, i00, i11, i01);
             } else {  // diagonal (i + 1, j)-(i, j + 1)
@@ -138,7 +139,7 @@ double GridErosion::height_at(Vec2 p) const {
     if (rule() != SlopeRule::Face)
         return (1 - ty) * ((1 - tx) * h00 + tx * h10) + ty * ((1 - tx) * h01 + tx * h11);
     // Linear on the quad's triangle holding p (faces()).
-    if ((i + j) % 2 == 0) {
+    if (diagonal_from_origin(i, j)) {
         return tx >= ty ? h00 + tx * (h10 - h00) + ty * (h11 - h10)
                         : h00 + ty * (h01 - h00) + tx * (h11 - h01);
     }

@@ -66,6 +66,10 @@ class GridErosion {
         return static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) +
                static_cast<std::size_t>(i);
     }
+    /// Under the face rule: whether quad (i, j)'s diagonal runs from centre (i, j) to
+    /// (i + 1, j + 1), else from (i + 1, j) to (i, j + 1). The one place the 4-8 mesh's
+    /// alternation is decided (graph, faces and height_at follow it).
+    static bool diagonal_from_origin(int i, int j) { return (i + j) % 2 == 0; }
     void build_moore_graph();
     void build_triangulated_graph();
 

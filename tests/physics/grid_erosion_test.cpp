@@ -121,7 +121,8 @@ TEST(GridFaceRule, APouredConeRestsWithNoFaceSteeperThanReposeAndItsVolume) {
 
 TEST(GridEdgeRule, LeavesFacesSteeperThanReposeWhereTheFaceRuleLeavesNone) {
     // The oracle the face rule exists for: the seeds' edge rule on the 8-connected grid rests
-    // with its diagonal-free faces up to about 1.4 tan(alpha).
+    // with faces of the 4-8 mesh steeper than repose (bench erosion measured the steepest at
+    // 1.14 tan(alpha) on this 32² cone).
     GridErosion grid(Rect::from_size(1.0, 1.0), 32, 32, grid_tan(), seeds_rule());
     grid.pour({0.5, 0.5}, 0.01);
     grid.run_to_rest(400000);
