@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "tin/vertex_arrays.hpp"
@@ -85,35 +86,65 @@ void GridErosion::build_triangulated_graph() {
     graph_.assign(rows, lengths, &across);
 }
 
-std::vector<SlopeFace> GridErosion::faces() const {
-    std::vector<SlopeFace> out;
+std::vector<std::array<std::uint32_t, 3>> GridErosion::triangles() const {
+    std::vector<std::array<std::uint32_t, 3>> out;
     out.reserve(2 * static_cast<std::size_t>(nx_ - 1) * static_cast<std::size_t>(ny_ - 1));
-    const auto corner = [&](int i, int j) {
-        const Vec2 c = centre(i, j);
-        return Vec3{c.x, c.y, height(i, j)};
-    };
-    const auto face = [&](Vec3 a, Vec3 b, Vec3 c, std::size_t ia, std::size_t ib, std::size_t ic) {
-        const double t = (tan_[ia] + tan_[ib] + tan_[ic]) / 3.0;
-        const bool sand =
-            height_[ia] > bedrock_[ia] || height_[ib] > bedrock_[ib] || height_[ic] > bedrock_[ic];
-        out.push_back({a, b, c, t, sand});
-    };
+    const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(index(i, j)); };
     for (int j = 0; j + 1 < ny_; ++j) {
         for (int i = 0; i + 1 < nx_; ++i) {
-            const Vec3 p00 = corner(i, j), p10 = corner(i + 1, j), p01 = corner(i, j + 1),
-                       p11 = corner(i + 1, j + 1);
-            const std::size_t i00 = index(i, j), i10 = index(i + 1, j), i01 = index(i, j + 1),
-                              i11 = index(i + 1, j + 1);
             if (diagonal_from_origin(i, j)) {  // diagonal (i, j)-(i + 1, j + 1)
-                face(p00, p10, p11, i00, i10, i11);
-                face(p00, p11, p01, i00, i11, i01);
+                out.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+                out.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
             } else {  // diagonal (i + 1, j)-(i, j + 1)
-                face(p00, p10, p01, i00, i10, i01);
-                face(p10, p11, p01, i10, i11, i01);
+                out.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+                out.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
             }
         }
     }
     return out;
+}
+
+std::vector<SlopeFace> GridErosion::faces() const {
+    std::vector<SlopeFace> out;
+    const std::vector<std::array<std::uint32_t, 3>> tris = triangles();
+    out.reserve(tris.size());
+    for (const auto& t : tris) {
+        Vec3 p[3];
+        double tan_sum = 0.0;
+        bool sand = false;
+        for (int k = 0; k < 3; ++k) {
+            const std::size_t v = t[k];
+            const Vec2 c = centre(static_cast<int>(v % static_cast<std::size_t>(nx_)),
+                                  static_cast<int>(v / static_cast<std::size_t>(nx_)));
+            p[k] = {c.x, c.y, height_[v]};
+            tan_sum += tan_[v];
+            sand = sand || height_[v] > bedrock_[v];
+        }
+        out.push_back({p[0], p[1], p[2], tan_sum / 3.0, sand});
+    }
+    return out;
+}
+
+ReposeProjection GridErosion::settle_by_projection(const ReposeProjectionOptions& options) {
+    const std::vector<std::array<std::uint32_t, 3>> tris = triangles();
+    std::vector<double> face_tan(tris.size());
+    for (std::size_t f = 0; f < tris.size(); ++f)
+        face_tan[f] = (tan_[tris[f][0]] + tan_[tris[f][1]] + tan_[tris[f][2]]) / 3.0;
+    std::vector<Vec2> position(height_.size());
+    std::vector<double> rock(height_.size());
+    for (int j = 0; j < ny_; ++j) {
+        for (int i = 0; i < nx_; ++i) {
+            position[index(i, j)] = centre(i, j);
+            const double b = bedrock_[index(i, j)];
+            rock[index(i, j)] =
+                b > 0.5 * kNoBedrock ? b : -std::numeric_limits<double>::infinity();
+        }
+    }
+    ReposeProjection p = project_onto_repose(
+        {position, tris, face_tan, area_, height_, rock, {}}, options);
+    height_ = p.height;
+    activate_all();
+    return p;
 }
 
 Vec2 GridErosion::centre(int i, int j) const {

@@ -12,6 +12,7 @@
 //    prototype found it does not converge).
 // Heights are at the cell centres either way.
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "physics/active_set.hpp"
 #include "physics/adjacency_graph.hpp"
 #include "physics/face_slopes.hpp"
+#include "physics/repose_projection.hpp"
 #include "physics/talus_solver.hpp"
 
 namespace sandtin {
@@ -60,6 +62,13 @@ class GridErosion {
     /// The 4-8 mesh's triangles over the centres (under either rule), for judging the surface
     /// face by face (physics/face_slopes.hpp).
     std::vector<SlopeFace> faces() const;
+    /// The same triangles as cell indices j * cells_x + i, counter-clockwise.
+    std::vector<std::array<std::uint32_t, 3>> triangles() const;
+    /// Projects the heights onto the repose set on the 4-8 mesh (physics/repose_projection.hpp),
+    /// keeping sum(area * height), and activates every cell so that the relaxation finishes
+    /// what the projection's tolerance left. Returns the projection's figures (heights moved
+    /// into height()).
+    ReposeProjection settle_by_projection(const ReposeProjectionOptions& options = {});
 
   private:
     std::size_t index(int i, int j) const {

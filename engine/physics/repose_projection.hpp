@@ -1,0 +1,71 @@
+#pragma once
+// The projection of a height field onto the repose set: the surface closest to the given one
+// (in the volume norm, sum of lumped area x squared height change) whose every triangle has
+// |grad h| <= tan(alpha), on or above the bedrock, holding exactly the same volume.
+//
+// This is the critical-slope model in its continuum form (Prigozhin's variational sandpile):
+// each time step of Barrett & Prigozhin's finite-element schemes is this projection, and a
+// collapse (a pour, an over-steep stamp) is one of them. Local moves (face_kernel.hpp) stop at
+// the first surface where every triangle is at rest, and on a collapse that surface is
+// corrugated across the slope at the mesh scale, so the pile does not converge to the physical
+// one as the mesh is refined (issue 39, measured). The projection has no such freedom: a plane
+// steeper than repose becomes the plane at repose through its mean, a point pour the cone.
+//
+// Method: ADMM (Boyd et al. 2011) on the split h = y (bedrock), grad h = z per face:
+//  - the height step solves (A (1 + rho [bedrock]) + rho K) h = rhs, K the piecewise-linear
+//    stiffness matrix, factored once per rho (Eigen's sparse LDL^T), with the volume held by
+//    a Lagrange multiplier (one extra solve per factorisation);
+//  - the face step projects each face's gradient onto the disc of radius tan(alpha);
+//  - the bedrock step clamps to the bedrock;
+//  - rho is balanced between the primal and dual residuals every few iterations, with
+//    over-relaxation 1.6.
+// Each height step conserves the volume exactly (to rounding): the result's volume is the
+// input's. The result is feasible to the tolerance; faces left a hair steeper than repose are
+// for the local rule to finish (SandPhysics does).
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geom/vec2.hpp"
+
+namespace sandtin {
+
+struct ReposeProblem {
+    std::span<const Vec2> position;                       ///< per vertex (m)
+    std::span<const std::array<std::uint32_t, 3>> faces;  ///< vertex indices, either orientation
+    /// Per face: tan(alpha) > 0. A face whose bedrock is steeper may stand as steep as its rock.
+    std::span<const double> face_tan_alpha;
+    /// Per vertex: a third of the areas of its faces (m²), as Tin::vertices().lumped_area.
+    std::span<const double> area;
+    std::span<const double> height;   ///< per vertex (m): the surface to project
+    std::span<const double> bedrock;  ///< per vertex (m), <= height; empty: no bedrock
+    /// Per vertex, nonzero: the height is kept (outside the region being settled); empty: none.
+    std::span<const std::uint8_t> held;
+};
+
+struct ReposeProjectionOptions {
+    /// Relative primal and dual residuals at which ADMM stops (> 0).
+    double tolerance = 1e-4;
+    int max_iterations = 20000;
+};
+
+struct ReposeProjection {
+    std::vector<double> height;  ///< per vertex (m); held and faceless vertices unchanged
+    int iterations = 0;
+    int factorisations = 0;
+    bool converged = false;
+    std::size_t free_vertices = 0;
+    std::size_t degenerate_faces = 0;  ///< faces of (near) zero area, left unconstrained
+    double steepest_ratio = 0.0;       ///< max over constrained faces of |grad h| / bound
+    double volume_change = 0.0;        ///< sum A (h - h0) (m³): rounding only
+};
+
+/// Projects `problem.height` onto the repose set. Throws std::invalid_argument when the spans'
+/// sizes disagree, an index is out of range, a tan(alpha) is not positive and finite, or a
+/// height lies below its bedrock or is not finite. Never modifies the inputs.
+ReposeProjection project_onto_repose(const ReposeProblem& problem,
+                                     const ReposeProjectionOptions& options = {});
+
+}  // namespace sandtin
