@@ -13,6 +13,7 @@
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
+#include "physics/settle_by_projection.hpp"
 #include "tin/flat_bedrock.hpp"
 #include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
@@ -327,6 +328,7 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
             f.fail_field("max_iterations", "applies with \"until_rest\": true; give iterations");
         e.iterations = static_cast<int>(f.integer("iterations", 0, 1, 100'000'000));
         e.max_iterations = static_cast<int>(f.integer("max_iterations", 100000, 1, 100'000'000));
+        e.project = f.boolean("project", false);
         TalusSettings t = physics;
         if (parse_physics_fields(f, t)) e.settings = t;
         f.reject_unknown();
@@ -620,13 +622,26 @@ nlohmann::json ScriptRunner::run_op(const StrokeOp& op) {
 nlohmann::json ScriptRunner::run_op(const ErodeOp& op) {
     const TalusSettings saved = solver_->settings();
     if (op.settings) solver_->settings() = *op.settings;
+    nlohmann::json projection;
+    double projection_drift = 0.0;
+    if (op.project) {
+        const ProjectionSettleReport p = settle_by_projection(tin_, materials_);
+        projection = {{"iterations", p.iterations},
+                      {"converged", p.converged},
+                      {"moved_vertices", p.moved_vertices},
+                      {"steepest_ratio", p.steepest_ratio}};
+        // Each solver follows the TIN's changes: the vertices the projection moved are active.
+        projection_drift = p.volume_change;
+    }
     const PhysicsStepReport pr =
         op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
     solver_->settings() = saved;
-    return {{"iterations", pr.iterations},    {"vertex_updates", pr.vertex_updates},
-            {"refined", pr.refined},          {"volume_moved", pr.volume_moved},
-            {"at_rest", pr.at_rest},          {"erosion_ms", pr.ms},
-            {"volume_change", erosion_drift_}};
+    nlohmann::json j = {{"iterations", pr.iterations},    {"vertex_updates", pr.vertex_updates},
+                        {"refined", pr.refined},          {"volume_moved", pr.volume_moved},
+                        {"at_rest", pr.at_rest},          {"erosion_ms", pr.ms},
+                        {"volume_change", erosion_drift_ + projection_drift}};
+    if (op.project) j["projection"] = projection;
+    return j;
 }
 
 nlohmann::json ScriptRunner::run_op(const PourOp& op) {

@@ -81,6 +81,9 @@ struct ErodeOp {
     bool until_rest = false;
     int max_iterations = 100000;            ///< cap when until_rest
     std::optional<TalusSettings> settings;  ///< overrides the script's physics settings
+    /// First settle by projection onto the repose set (physics/settle_by_projection.hpp), then
+    /// relax as asked.
+    bool project = false;
 };
 
 struct SimplifyOp {
