@@ -1,5 +1,5 @@
 #pragma once
-// One run of `sandtin bench erosion`: a method (tin, tin-face, grid, grid-face) on a scene at one
+// One run of `sandtin bench erosion`: a method (tin, tin-face, tin-proj and the grid's three) on a scene at one
 // resolution, with its cost to rest and its error against the scene's reference.
 
 #include <cstddef>
@@ -27,6 +27,8 @@ struct ErosionRun {
     /// |∇h| / tan(alpha), and the slivers skipped.
     double steep_share = 0.0, max_face_ratio = 0.0;
     long skipped_faces = 0;
+    /// Cones only (else negative): the largest |toe radius / R - 1| over 32 directions.
+    double toe_error = -1.0;
 };
 
 /// tan(alpha) of the scenes' sand: the first preset material, dry.
