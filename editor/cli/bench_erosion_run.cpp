@@ -20,13 +20,15 @@ struct MethodStyle {
     const char* legend;
 };
 constexpr MethodStyle kMethods[] = {
-    {"tin", "#c0392b", "TIN, edges"},
-    {"tin-face", "#27ae60", "TIN, faces"},
-    {"grid", "#2c3e50", "grid, edges"},
-    {"grid-face", "#8e44ad", "grid, faces"},
-    {"tin-proj", "#e67e22", "TIN, projection"},
-    {"grid-proj", "#2980b9", "grid, projection"},
+    {"tin", "#c0392b", "TIN, edges"},           {"tin-face", "#27ae60", "TIN, faces"},
+    {"grid", "#2c3e50", "grid, edges"},         {"grid-face", "#8e44ad", "grid, faces"},
+    {"tin-proj", "#e67e22", "TIN, projection"}, {"grid-proj", "#2980b9", "grid, projection"},
 };
+
+/// A cone-only figure: null where it was not measured (negative).
+nlohmann::json measured(double v) {
+    return v >= 0.0 ? nlohmann::json(v) : nlohmann::json();
+}
 
 std::vector<std::string> scenes_of(const std::vector<ErosionRun>& runs) {
     std::vector<std::string> scenes;
@@ -108,7 +110,9 @@ nlohmann::json to_json(const ErosionRun& r) {
             {"steep_share_of_slopes", r.steep_share},
             {"max_face_ratio", r.max_face_ratio},
             {"skipped_faces", r.skipped_faces},
-            {"toe_error", r.toe_error >= 0.0 ? nlohmann::json(r.toe_error) : nlohmann::json()}};
+            {"toe_error", measured(r.toe_error)},
+            {"pile_mean_error_m", measured(r.pile_error)},
+            {"pile_height_m", measured(r.pile_height)}};
 }
 
 nlohmann::json fitted_order(const std::vector<ErosionRun>& runs, const std::string& scene,
@@ -130,13 +134,17 @@ void write_erosion_csv(const std::filesystem::path& path, const std::vector<Eros
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
     out << "scene,method,level,vertices,spacing_m,iterations,cpu_ms,wall_ms,mean_error_m,"
            "max_error_m,at_rest,settle_margin,steep_share_of_slopes,max_face_ratio,"
-           "skipped_faces,toe_error\n";
+           "skipped_faces,toe_error,pile_mean_error_m,pile_height_m\n";
     for (const ErosionRun& r : runs) {
         out << r.scene << ',' << r.method << ',' << r.level << ',' << r.vertices << ',' << r.spacing
             << ',' << r.iterations << ',' << r.cpu_ms << ',' << r.wall_ms << ',' << r.mean_error
             << ',' << r.max_error << ',' << (r.at_rest ? 1 : 0) << ',' << r.settle_margin << ','
-            << r.steep_share << ',' << r.max_face_ratio << ',' << r.skipped_faces << ',';
-        if (r.toe_error >= 0.0) out << r.toe_error;
+            << r.steep_share << ',' << r.max_face_ratio << ',' << r.skipped_faces;
+        // Cones only: empty cells elsewhere.
+        for (const double v : {r.toe_error, r.pile_error, r.pile_height}) {
+            out << ',';
+            if (v >= 0.0) out << v;
+        }
         out << '\n';
     }
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");

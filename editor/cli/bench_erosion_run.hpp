@@ -1,6 +1,6 @@
 #pragma once
-// One run of `sandtin bench erosion`: a method (tin, tin-face, tin-proj and the grid's three) on a scene at one
-// resolution, with its cost to rest and its error against the scene's reference.
+// One run of `sandtin bench erosion`: a method (tin, tin-face, tin-proj and the grid's three) on a
+// scene at one resolution, with its cost to rest and its error against the scene's reference.
 
 #include <cstddef>
 #include <filesystem>
@@ -27,8 +27,9 @@ struct ErosionRun {
     /// |∇h| / tan(alpha), and the slivers skipped.
     double steep_share = 0.0, max_face_ratio = 0.0;
     long skipped_faces = 0;
-    /// Cones only (else negative): the largest |toe radius / R - 1| over 32 directions.
-    double toe_error = -1.0;
+    /// Cones only (else negative): the largest |toe radius / R - 1| over 32 directions, the
+    /// mean |z - z_ref| inside 1.2 R (m) and the cone's height H (m).
+    double toe_error = -1.0, pile_error = -1.0, pile_height = -1.0;
 };
 
 /// tan(alpha) of the scenes' sand: the first preset material, dry.

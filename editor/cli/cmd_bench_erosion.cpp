@@ -3,7 +3,8 @@
 // two discretisations of one continuum model), and CPU Jacobi throughput.
 //
 //   sandtin bench erosion [--json] [--quick] [--out DIR] [--throughput] [--settle-margin M]
-//                         [--scenes cone,step,dunes] [--rules edge,face,projection] [--repeats N]
+//                         [--scenes cone,half-cone,quarter-cone,step,dunes]
+//                         [--rules edge,face,projection] [--repeats N]
 //                         [--no-throughput]
 //   (--throughput: only the throughput tables, bench_erosion_throughput.hpp; --no-throughput:
 //   without them; --scenes and --rules: a subset of the table; --repeats: runs per row, whose
@@ -18,7 +19,10 @@
 // Scenes, with their references:
 //  - cone: V = 0.01 m³ poured at the centre of a flat 1 m square (dry sand, 32°). The TIN
 //    starts from two triangles and refines through r_S; the grid pours into its centre cell.
-//    Reference: the analytic cone.
+//    Reference: the analytic cone. Also the mean inside 1.2 R and the toe in 32 directions.
+//  - half-cone, quarter-cone: the same volume poured at the middle of a wall and into a corner
+//    (the grid: into the cell there, its centre the apex). Reference: the half and the quarter
+//    of the analytic cone of volume 2 V and 4 V (the walls hold the rest).
 //  - step: a straight step of sand 0.1 m high across the square at 30° to the x axis, its top
 //    at 0.2 m. Reference: the straight slope at tan(alpha) through the step's mid-height (cut
 //    equals fill), judged inside the central 0.6 m square, away from the walls the step meets.
@@ -141,7 +145,6 @@ ErosionRun median_of(int repeats, const std::function<ErosionRun()>& run) {
 
 // ---- Methods ---------------------------------------------------------------------------------
 
-
 /// The edge rule runs under seeds_rule() on both discretisations, as the seeds did; the face
 /// rule with `face_margin`.
 TalusSettings rule_settings(SlopeRule rule, double face_margin) {
@@ -184,14 +187,16 @@ PhysicsStepReport project_then_finish(Tin& tin, SandPhysics& physics, const Meth
     return r;
 }
 
-/// The largest |toe radius / R - 1| over 32 directions from the apex: where the surface first
-/// comes down to 1e-3 of the cone's height (bisected to 1e-4 R), issue 39's ±1.5 %.
-double toe_error(const HeightAt& z, Vec2 apex, const Cone& cone) {
+/// The largest |toe radius / R - 1| over the 32 directions from the apex that enter the
+/// domain: where the surface first comes down to 1e-3 of the cone's height (bisected to
+/// 1e-4 R), issue 39's ±1.5 %.
+double toe_error(const HeightAt& z, Vec2 apex, const Cone& cone, Rect domain) {
     double worst = 0.0;
     const double floor = 1e-3 * cone.height;
     for (int k = 0; k < 32; ++k) {
         const double angle = 2.0 * std::numbers::pi * k / 32.0;
         const Vec2 dir{std::cos(angle), std::sin(angle)};
+        if (!domain.contains(apex + dir * (1e-3 * cone.radius))) continue;  // into a wall
         double lo = 0.0, hi = 1.6 * cone.radius;  // z(lo) above the floor, z(hi) below
         while (hi - lo > 1e-4 * cone.radius) {
             const double mid = 0.5 * (lo + hi);
@@ -215,17 +220,58 @@ void finish_tin(ErosionRun& row, const Tin& tin, const PhysicsStepReport& r,
     take_faces(row, measure_face_slopes(tin, MaterialTable::presets(), judged_in(judged)));
 }
 
-ErosionRun tin_cone(double rs, Method method) {
+/// A cone scene: V poured at the centre, at a wall's midpoint or into a corner, where the walls
+/// keep 1, 1/2 or 1/4 of the analytic cone of volume V / share (issue 39's half and quarter
+/// cones).
+struct ConeScene {
+    const char* name;
+    Vec2 apex;
+    double share;
+    Cone cone() const { return Cone::from_volume(kVolume / share, dry_sand_tan_alpha()); }
+};
+constexpr ConeScene kCones[] = {
+    {"cone", {0.5, 0.5}, 1.0}, {"half-cone", {0.0, 0.5}, 0.5}, {"quarter-cone", {0.0, 0.0}, 0.25}};
+
+const ConeScene* cone_scene(const std::string& name) {
+    for (const ConeScene& c : kCones) {
+        if (name == c.name) return &c;
+    }
+    return nullptr;
+}
+
+/// The cone's error figures against the analytic cone centred at `apex`: the mean and max over
+/// the square, the mean inside 1.2 R (the pile, issue 39's figure) and the toe, along the
+/// directions that enter `domain` (the grid's is its centres' rectangle).
+void judge_cone(ErosionRun& row, const HeightAt& z, Vec2 apex, const Cone& cone,
+                Rect domain = Rect::from_size(1.0, 1.0)) {
+    const HeightAt reference = [&](Vec2 p) { return cone.surface(distance(p, apex)); };
+    measure_error(row, z, reference);
+    double sum = 0.0;
+    int count = 0;
+    for (int j = 0; j < kSamples; ++j) {
+        for (int i = 0; i < kSamples; ++i) {
+            const Vec2 p{(i + 0.5) / kSamples, (j + 0.5) / kSamples};
+            if (distance(p, apex) > 1.2 * cone.radius) continue;
+            sum += std::abs(z(p) - reference(p));
+            ++count;
+        }
+    }
+    row.pile_error = count > 0 ? sum / count : 0.0;
+    row.pile_height = cone.height;
+    row.toe_error = toe_error(z, apex, cone, domain);
+}
+
+ErosionRun tin_cone(const ConeScene& scene, double rs, Method method) {
     Tin tin = Tin::flat_rectangle(Rect::from_size(1.0, 1.0), 0.0, TinOptions{false});
     TalusSettings settings = method.settings();
     settings.parameters.relocation_radius = rs;
-    ErosionRun row{"cone", method_name(false, method), "r_S=" + std::to_string(rs)};
+    ErosionRun row{scene.name, method_name(false, method), "r_S=" + std::to_string(rs)};
     row.spacing = rs;
     row.settle_margin = settings.parameters.settle_margin;
     CpuStopwatch cpu;
     Stopwatch wall;
     SandPhysics physics(tin, MaterialTable::presets(), settings);
-    const VertexId apex = tin.insert_point_on_surface({0.5, 0.5});
+    const VertexId apex = tin.insert_point(scene.apex, 0.0);  // the corner's own vertex there
     const VertexId one[] = {apex};
     physics.refine_around(one);
     PhysicsStepReport r;
@@ -240,18 +286,16 @@ ErosionRun tin_cone(double rs, Method method) {
     } else {
         // Poured in 100 portions at one vertex, as from a nozzle (see tests/physics/cone_test).
         for (int k = 0; k < 100; ++k) {
-            tin.set_height(apex, tin.height(apex) +
-                                     kVolume / 100 / tin.vertices().lumped_area[apex.value]);
+            tin.set_height(
+                apex, tin.height(apex) + kVolume / 100 / tin.vertices().lumped_area[apex.value]);
             r.accumulate(physics.step(50));
         }
         r.accumulate(physics.run_to_rest(kMaxIterations));
     }
     finish_tin(row, tin, r, cpu, wall);
-    const Cone cone = Cone::from_volume(kVolume, dry_sand_tan_alpha());
     LocateHint hint;
-    const HeightAt z = [&](Vec2 p) { return *tin.height_at(p, &hint); };
-    measure_error(row, z, [&](Vec2 p) { return cone.surface(distance(p, {0.5, 0.5})); });
-    row.toe_error = toe_error(z, {0.5, 0.5}, cone);
+    judge_cone(
+        row, [&](Vec2 p) { return *tin.height_at(p, &hint); }, scene.apex, scene.cone());
     return row;
 }
 
@@ -277,15 +321,13 @@ ErosionRun tin_step(double rs, Method method) {
     Stopwatch wall;
     SandPhysics physics(tin, MaterialTable::presets(), settings);
     physics.activate_all();
-    const PhysicsStepReport r =
-        method.projection ? project_then_finish(tin, physics, method,
-                                                [&] {
-                                                    for (VertexId v : tin.vertices_in_disc(
-                                                             {0.5, 0.5}, 1.0))
-                                                        tin.set_height(
-                                                            v, step_initial(tin.position(v)));
-                                                })
-                          : physics.run_to_rest(kMaxIterations);
+    const auto restore_step = [&] {
+        for (VertexId v : tin.vertices_in_disc({0.5, 0.5}, 1.0))
+            tin.set_height(v, step_initial(tin.position(v)));
+    };
+    const PhysicsStepReport r = method.projection
+                                    ? project_then_finish(tin, physics, method, restore_step)
+                                    : physics.run_to_rest(kMaxIterations);
     finish_tin(row, tin, r, cpu, wall, kStepJudged);
     LocateHint hint;
     measure_error(
@@ -343,18 +385,17 @@ void grid_faces(GridRun& g, std::optional<Rect> judged = std::nullopt) {
     take_faces(g.row, measure_face_slopes(faces, judged_in(judged)));
 }
 
-ErosionRun grid_cone(int n, Method method) {
-    GridRun g = grid_run("cone", n, method, [](GridErosion& grid) {
-        grid.pour({0.5, 0.5}, kVolume);
-    });
+ErosionRun grid_cone(const ConeScene& scene, int n, Method method) {
+    GridRun g =
+        grid_run(scene.name, n, method, [&](GridErosion& grid) { grid.pour(scene.apex, kVolume); });
     grid_faces(g);
-    // The poured cell's centre is the apex; compare against the cone centred there.
-    const int c = std::clamp(static_cast<int>(0.5 * n), 0, n - 1);
-    const Vec2 apex = g.grid->centre(c, c);
-    const Cone cone = Cone::from_volume(kVolume, dry_sand_tan_alpha());
-    const HeightAt z = [&](Vec2 p) { return g.grid->height_at(p); };
-    measure_error(g.row, z, [&](Vec2 p) { return cone.surface(distance(p, apex)); });
-    g.row.toe_error = toe_error(z, apex, cone);
+    // The poured cell's centre is the apex (on a wall, the grid's own boundary runs through
+    // it: the centres' rectangle is its domain); compare against the cone centred there.
+    const auto cell = [n](double x) { return std::clamp(static_cast<int>(x * n), 0, n - 1); };
+    const Vec2 apex = g.grid->centre(cell(scene.apex.x), cell(scene.apex.y));
+    const Rect centres{g.grid->centre(0, 0), g.grid->centre(n - 1, n - 1)};
+    judge_cone(
+        g.row, [&](Vec2 p) { return g.grid->height_at(p); }, apex, scene.cone(), centres);
     return g.row;
 }
 
@@ -402,16 +443,21 @@ std::vector<std::string> chosen(const Arguments& args, const std::string& option
 // ---- The table and its summaries -------------------------------------------------------------
 
 struct Levels {
-    std::vector<double> rs;           ///< TIN cone and step: r_S (m)
-    std::vector<int> grid_n;          ///< grid cone and step: cells per side
-    std::vector<std::size_t> points;  ///< TIN dunes
-    std::vector<int> dune_n;          ///< grid dunes
+    std::vector<double> rs;            ///< TIN cones and step: r_S (m)
+    std::vector<double> rs_projected;  ///< the same for the projection: one halving more
+    std::vector<int> grid_n;           ///< grid cone and step: cells per side
+    std::vector<std::size_t> points;   ///< TIN dunes
+    std::vector<int> dune_n;           ///< grid dunes
     int dune_reference_n = 256;
 };
 
 Levels levels(bool quick) {
-    if (quick) return {{0.04}, {32}, {1000}, {16}, 64};
-    return {{0.04, 0.02, 0.01}, {32, 64, 128, 256}, {2000, 8000, 32000}, {32, 64, 128}, 256};
+    if (quick) return {{0.04}, {0.04}, {32}, {1000}, {16}, 64};
+    // The projection is cheap enough for three halvings of r_S (issue 39's convergence
+    // figure); the local rules take minutes at r_S = 0.005.
+    return {{0.04, 0.02, 0.01}, {0.04, 0.02, 0.01, 0.005},
+            {32, 64, 128, 256}, {2000, 8000, 32000},
+            {32, 64, 128},      256};
 }
 
 /// For one scene: the TIN run (of `tin_method`) that reaches the best error of the grid runs
@@ -477,11 +523,12 @@ BenchOptions parse_options(const std::vector<std::string>& raw) {
                                {"--no-throughput", 0}});
     args.require_positionals(1,
                              "sandtin bench erosion [--quick] [--json] [--out DIR] "
-                             "[--throughput] [--settle-margin M] [--scenes cone,step,dunes] "
+                             "[--throughput] [--settle-margin M] "
+                             "[--scenes cone,half-cone,quarter-cone,step,dunes] "
                              "[--rules edge,face,projection] [--repeats N] [--no-throughput]");
     BenchOptions o;
     o.quick = args.has("--quick");
-    o.scenes = chosen(args, "--scenes", {"cone", "step", "dunes"});
+    o.scenes = chosen(args, "--scenes", {"cone", "half-cone", "quarter-cone", "step", "dunes"});
     o.rules = chosen(args, "--rules", {"edge", "face", "projection"});
     o.throughput = !args.has("--no-throughput");
     o.throughput_only = args.has("--throughput");
@@ -517,24 +564,27 @@ class Sections {
     std::size_t done_ = 0;
 };
 
-/// The cone and the step: each method at each level, TIN then grid.
+/// The scenes run at levels of r_S (TIN) and cells (grid): the cones and the step.
+constexpr const char* kPileScenes[] = {"cone", "half-cone", "quarter-cone", "step"};
+
+/// The cones and the step: each method at each level, TIN then grid.
 void run_piles(const BenchOptions& o, const Levels& lv, const std::vector<Method>& methods,
                Sections& sections, std::vector<ErosionRun>& rows) {
     for (const Method& m : methods) {
-        for (const char* scene : {"cone", "step"}) {
+        for (const char* scene : kPileScenes) {
             if (!o.wants(scene)) continue;
-            const bool cone = std::string(scene) == "cone";
-            for (double rs : lv.rs) {
+            const ConeScene* cone = cone_scene(scene);
+            for (double rs : m.projection ? lv.rs_projected : lv.rs) {
                 std::ostringstream level;
                 level << "r_S " << rs << " m";
                 sections.start(scene, method_name(false, m), level.str());
-                rows.push_back(
-                    median_of(o.repeats, [&] { return cone ? tin_cone(rs, m) : tin_step(rs, m); }));
+                rows.push_back(median_of(
+                    o.repeats, [&] { return cone ? tin_cone(*cone, rs, m) : tin_step(rs, m); }));
             }
             for (int n : lv.grid_n) {
                 sections.start(scene, method_name(true, m), std::to_string(n) + "² grid");
-                rows.push_back(
-                    median_of(o.repeats, [&] { return cone ? grid_cone(n, m) : grid_step(n, m); }));
+                rows.push_back(median_of(
+                    o.repeats, [&] { return cone ? grid_cone(*cone, n, m) : grid_step(n, m); }));
             }
         }
     }
@@ -582,7 +632,7 @@ nlohmann::json summary(const std::vector<ErosionRun>& rows) {
     j["runs"] = list;
     nlohmann::json orders = nlohmann::json::object();
     nlohmann::json targets = nlohmann::json::array();
-    for (const char* scene : {"cone", "step", "dunes"}) {
+    for (const char* scene : {"cone", "half-cone", "quarter-cone", "step", "dunes"}) {
         for (const char* method : {"tin", "tin-face", "tin-proj", "grid", "grid-face", "grid-proj"})
             orders[scene][method] = fitted_order(rows, scene, method);
         targets.push_back(time_to_error(rows, scene, "tin-proj", "grid-proj"));
@@ -616,14 +666,17 @@ int run_bench_erosion(const std::vector<std::string>& raw) {
     const Levels lv = levels(o.quick);
     std::vector<Method> methods;
     for (const std::string& name : o.rules)
-        methods.push_back(
-            {name == "edge" ? SlopeRule::Edge : SlopeRule::Face, o.face_margin, name == "projection"});
-    const std::size_t piles = (o.wants("cone") ? 1 : 0) + (o.wants("step") ? 1 : 0);
-    Sections sections(
-        progress,
-        methods.size() * (piles * (lv.rs.size() + lv.grid_n.size()) +
-                          (o.wants("dunes") ? 1 + lv.points.size() + lv.dune_n.size() : 0)) +
-            (o.throughput ? 2 : 0));
+        methods.push_back({name == "edge" ? SlopeRule::Edge : SlopeRule::Face, o.face_margin,
+                           name == "projection"});
+    std::size_t piles = 0;
+    for (const char* scene : kPileScenes)
+        piles += o.wants(scene) ? 1 : 0;
+    std::size_t total = o.throughput ? 2 : 0;
+    for (const Method& m : methods) {
+        total += piles * ((m.projection ? lv.rs_projected : lv.rs).size() + lv.grid_n.size()) +
+                 (o.wants("dunes") ? 1 + lv.points.size() + lv.dune_n.size() : 0);
+    }
+    Sections sections(progress, total);
     std::vector<ErosionRun> rows;
     run_piles(o, lv, methods, sections, rows);
     const nlohmann::json dune_references =

@@ -636,9 +636,12 @@ nlohmann::json ScriptRunner::run_op(const ErodeOp& op) {
     const PhysicsStepReport pr =
         op.until_rest ? erode(op.max_iterations, true) : erode(op.iterations, false);
     solver_->settings() = saved;
-    nlohmann::json j = {{"iterations", pr.iterations},    {"vertex_updates", pr.vertex_updates},
-                        {"refined", pr.refined},          {"volume_moved", pr.volume_moved},
-                        {"at_rest", pr.at_rest},          {"erosion_ms", pr.ms},
+    nlohmann::json j = {{"iterations", pr.iterations},
+                        {"vertex_updates", pr.vertex_updates},
+                        {"refined", pr.refined},
+                        {"volume_moved", pr.volume_moved},
+                        {"at_rest", pr.at_rest},
+                        {"erosion_ms", pr.ms},
                         {"volume_change", erosion_drift_ + projection_drift}};
     if (op.project) j["projection"] = projection;
     return j;

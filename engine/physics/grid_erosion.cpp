@@ -136,12 +136,11 @@ ReposeProjection GridErosion::settle_by_projection(const ReposeProjectionOptions
         for (int i = 0; i < nx_; ++i) {
             position[index(i, j)] = centre(i, j);
             const double b = bedrock_[index(i, j)];
-            rock[index(i, j)] =
-                b > 0.5 * kNoBedrock ? b : -std::numeric_limits<double>::infinity();
+            rock[index(i, j)] = b > 0.5 * kNoBedrock ? b : -std::numeric_limits<double>::infinity();
         }
     }
-    ReposeProjection p = project_onto_repose(
-        {position, tris, face_tan, area_, height_, rock, {}}, options);
+    ReposeProjection p =
+        project_onto_repose({position, tris, face_tan, area_, height_, rock, {}}, options);
     height_ = p.height;
     activate_all();
     return p;

@@ -14,12 +14,12 @@ namespace sandtin {
 namespace {
 
 constexpr std::uint32_t kNotFree = std::numeric_limits<std::uint32_t>::max();
-constexpr double kOverRelaxation = 1.6;      // Boyd et al. §3.4.3: 1.5-1.8 speeds ADMM up
-constexpr int kRhoCheckInterval = 10;        // iterations between residual balancing
-constexpr double kRhoImbalance = 100.0;      // residual ratio that changes rho
-constexpr double kRhoPerArea = 0.05;         // the start of rho per m² of the region
+constexpr double kOverRelaxation = 1.6;  // Boyd et al. §3.4.3: 1.5-1.8 speeds ADMM up
+constexpr int kRhoCheckInterval = 10;    // iterations between residual balancing
+constexpr double kRhoImbalance = 100.0;  // residual ratio that changes rho
+constexpr double kRhoPerArea = 0.05;     // the start of rho per m² of the region
 constexpr double kRhoFactor = 2.0;
-constexpr int kMaxFactorisations = 60;       // rho settles long before this
+constexpr int kMaxFactorisations = 60;  // rho settles long before this
 
 /// One constrained face: its free corners' gradient coefficients (grad of the barycentric
 /// coordinate, 1/m), the held corners' constant gradient, its area (weight, m²) and bound.
@@ -59,8 +59,8 @@ void check(const ReposeProblem& p) {
     for (std::size_t v = 0; v < n; ++v) {
         if (!std::isfinite(p.height[v]) || !std::isfinite(p.position[v].x) ||
             !std::isfinite(p.position[v].y) || !(p.area[v] >= 0.0))
-            fail("vertex " + std::to_string(v) + " has a non-finite position or height, or a "
-                 "negative area");
+            fail("vertex " + std::to_string(v) +
+                 " has a non-finite position or height, or a negative area");
         if (!p.bedrock.empty() && p.height[v] < p.bedrock[v])
             fail("vertex " + std::to_string(v) + " lies below its bedrock");
     }
@@ -68,11 +68,11 @@ void check(const ReposeProblem& p) {
 
 /// The problem in the free vertices' numbering: what the ADMM loop works on.
 struct Discrete {
-    std::vector<std::uint32_t> free_of;   // per vertex: free index or kNotFree
+    std::vector<std::uint32_t> free_of;    // per vertex: free index or kNotFree
     std::vector<std::uint32_t> vertex_of;  // per free index
     std::vector<FaceOperator> faces;
-    Eigen::VectorXd area, h0, bedrock;     // per free vertex; bedrock -inf where none
-    std::vector<std::uint8_t> on_bedrock;  // per free vertex: has a finite bedrock
+    Eigen::VectorXd area, h0, bedrock;              // per free vertex; bedrock -inf where none
+    std::vector<std::uint8_t> on_bedrock;           // per free vertex: has a finite bedrock
     std::vector<Eigen::Triplet<double>> stiffness;  // K over the free vertices
     std::size_t degenerate = 0;
 };
@@ -139,8 +139,9 @@ Discrete discretise(const ReposeProblem& p) {
         op.weight = 0.5 * std::abs(twice_area[f]);
         // A face whose rock is steeper than repose may stand as steep as the rock: the bound
         // must admit the bare rock, or there is no feasible surface at all.
-        const double rock_steepness =
-            p.bedrock.empty() || !std::isfinite(length(rock_gradient)) ? 0.0 : length(rock_gradient);
+        const double rock_steepness = p.bedrock.empty() || !std::isfinite(length(rock_gradient))
+                                          ? 0.0
+                                          : length(rock_gradient);
         op.bound = std::max(p.face_tan_alpha[f], rock_steepness * (1.0 + 1e-9));
         for (int a = 0; a < 3; ++a) {
             if (op.free[a] == kNotFree) continue;
@@ -162,7 +163,7 @@ Vec2 project_onto_disc(Vec2 g, double radius) {
 
 /// Phase 2: ADMM. The height step's matrix changes only with rho.
 class Admm {
-public:
+  public:
     explicit Admm(const Discrete& d) : d_(d) {
         const auto m = static_cast<Eigen::Index>(d.vertex_of.size());
         stiffness_.resize(m, m);
@@ -205,7 +206,7 @@ public:
     }
     const Eigen::VectorXd& height() const { return h_; }
 
-private:
+  private:
     struct Residuals {
         double primal2 = 0.0, dual2 = 0.0;  // squared norms
         double gradient2 = 0.0, z2 = 0.0, multiplier2 = 0.0;
@@ -362,8 +363,8 @@ ReposeProjection project_onto_repose(const ReposeProblem& problem,
     settle_onto_bedrock(d, h);
     for (std::size_t i = 0; i < d.vertex_of.size(); ++i) {
         const double moved = h[static_cast<Eigen::Index>(i)];
-        out.volume_change += d.area[static_cast<Eigen::Index>(i)] *
-                             (moved - d.h0[static_cast<Eigen::Index>(i)]);
+        out.volume_change +=
+            d.area[static_cast<Eigen::Index>(i)] * (moved - d.h0[static_cast<Eigen::Index>(i)]);
         out.height[d.vertex_of[i]] = moved;
     }
     for (const FaceOperator& op : d.faces)

@@ -37,11 +37,12 @@ ProjectionSettleReport settle_by_projection(Tin& tin, const MaterialTable& mater
     for (const std::array<VertexId, 3>& t : tin.triangles()) {
         double tan_sum = 0.0;
         for (VertexId v : t)
-            tan_sum += materials.at(va.material[v.value]).talus_slope(static_cast<double>(va.moisture[v.value]));
+            tan_sum += materials.at(va.material[v.value])
+                           .talus_slope(static_cast<double>(va.moisture[v.value]));
         faces.push_back({t[0].value, t[1].value, t[2].value});
         face_tan.push_back(tan_sum / 3.0);
     }
-    const ReposeProblem problem{va.position, faces, face_tan, va.lumped_area,
+    const ReposeProblem problem{va.position, faces,   face_tan, va.lumped_area,
                                 va.height,   bedrock, held};
     const ReposeProjection p = project_onto_repose(problem, options);
     ProjectionSettleReport report;

@@ -102,8 +102,8 @@ TEST(ReposeProjection, APlaneSteeperThanReposeBecomesThePlaneAtReposeThroughItsM
         Rect::from_size(1.0, 1.0), 1500, 3, [&](Vec2 p) { return 2.0 * t * p.x; },
         TinOptions{false});
     const double before = tin_volume(tin);
-    const ProjectionSettleReport r = settle_by_projection(
-        tin, MaterialTable::presets(), {}, ReposeProjectionOptions{1e-7, 20000});
+    const ProjectionSettleReport r = settle_by_projection(tin, MaterialTable::presets(), {},
+                                                          ReposeProjectionOptions{1e-7, 20000});
     EXPECT_TRUE(r.converged);
     EXPECT_NEAR(tin_volume(tin), before, 1e-12 * before);
     // The 1D answer: h = t x + t / 2 (the same mean, t x + c with c from the volume).
@@ -159,7 +159,8 @@ TEST(ReposeProjection, ThenTheLocalRuleLeavesNoFaceSteeperThanRepose) {
     FaceSlopeOptions judge;
     judge.tolerance = 1e-3;
     const FaceSlopeReport faces = measure_face_slopes(pour.tin, MaterialTable::presets(), judge);
-    EXPECT_LE(faces.max_ratio, 1.0 + 1e-3) << "steepest at " << faces.steepest_at.x << ", " << faces.steepest_at.y;
+    EXPECT_LE(faces.max_ratio, 1.0 + 1e-3)
+        << "steepest at " << faces.steepest_at.x << ", " << faces.steepest_at.y;
     EXPECT_NEAR(tin_volume(pour.tin), before, 1e-12 * before);
     const Cone cone = Cone::from_volume(0.01, t);
     EXPECT_LT(cone_error(pour.tin, cone, pour.apex), 0.015 * cone.height);

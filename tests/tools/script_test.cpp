@@ -360,9 +360,9 @@ TEST(Script, AnErodeThatProjectsFirstTurnsAPourIntoTheAnalyticCone) {
                        {"op": "erode", "until_rest": true, "relocation_radius": 0.01,
                         "project": true}]})");
     ASSERT_TRUE(std::get<ErodeOp>(s.steps.at(1).operation).project);
-    EXPECT_FALSE(std::get<ErodeOp>(parse(R"([{"op": "erode", "iterations": 3}])").steps.at(0)
-                                       .operation)
-                     .project);
+    EXPECT_FALSE(
+        std::get<ErodeOp>(parse(R"([{"op": "erode", "iterations": 3}])").steps.at(0).operation)
+            .project);
     Tin tin = make_script_terrain(*s.terrain);
     const double before = tin.volume();
     SculptContext context(tin.domain());
