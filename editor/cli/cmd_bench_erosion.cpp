@@ -160,7 +160,10 @@ struct Method {
     /// Settled by projection onto the repose set (physics/repose_projection.hpp), the face
     /// rule (`rule` is Face) finishing what the projection's tolerance leaves.
     bool projection = false;
-    TalusSettings settings() const { return rule_settings(rule, face_margin); }
+    /// The relaxation's settings; after a projection the face rule finishes with no settle
+    /// margin: the faces it finds are a hair steeper than repose (the solver's tolerance), and
+    /// levelling them 3 % below it would dent the settled surface and set off a cascade.
+    TalusSettings settings() const { return rule_settings(rule, projection ? 0.0 : face_margin); }
 };
 
 std::string method_name(bool grid, const Method& m) {
@@ -181,7 +184,7 @@ PhysicsStepReport project_then_finish(Tin& tin, SandPhysics& physics, const Meth
     PhysicsStepReport r = physics.run_to_rest(kMaxIterations);
     restore();
     settle_by_projection(tin, MaterialTable::presets());
-    physics.settings().parameters.settle_margin = m.face_margin;
+    physics.settings().parameters.settle_margin = m.settings().parameters.settle_margin;
     physics.activate_all();
     r.accumulate(physics.run_to_rest(kMaxIterations));
     return r;

@@ -359,7 +359,15 @@ TEST(Script, AnErodeThatProjectsFirstTurnsAPourIntoTheAnalyticCone) {
         "operations": [{"op": "pour", "at": [0.5, 0.5], "volume": 0.004, "radius": 0.02},
                        {"op": "erode", "until_rest": true, "relocation_radius": 0.01,
                         "project": true}]})");
-    ASSERT_TRUE(std::get<ErodeOp>(s.steps.at(1).operation).project);
+    const ErodeOp& op = std::get<ErodeOp>(s.steps.at(1).operation);
+    ASSERT_TRUE(op.project);
+    // The relaxation after a projection has no settle margin, unless the op gives one.
+    ASSERT_TRUE(op.settings.has_value());
+    EXPECT_EQ(op.settings->parameters.settle_margin, 0.0);
+    const Script given =
+        parse(R"([{"op": "erode", "until_rest": true, "project": true, "settle_margin": 0.05}])");
+    EXPECT_EQ(std::get<ErodeOp>(given.steps.at(0).operation).settings->parameters.settle_margin,
+              0.05);
     EXPECT_FALSE(
         std::get<ErodeOp>(parse(R"([{"op": "erode", "iterations": 3}])").steps.at(0).operation)
             .project);
