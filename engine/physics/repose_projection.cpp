@@ -193,7 +193,7 @@ class Admm {
             height_step();
             const Residuals r = constraint_steps();
             out.iterations = it + 1;
-            if (r.converged(options.tolerance)) {
+            if (r.converged(options.tolerance) && r.steepest <= 1.0 + options.steepness_tolerance) {
                 out.converged = true;
                 break;
             }
@@ -211,6 +211,7 @@ class Admm {
         double primal2 = 0.0, dual2 = 0.0;  // squared norms
         double gradient2 = 0.0, z2 = 0.0, multiplier2 = 0.0;
         double rho = 0.0;
+        double steepest = 0.0;  // max |grad h| / bound over the faces
         double primal() const { return std::sqrt(primal2); }
         double dual() const { return rho * std::sqrt(dual2); }
         bool converged(double tolerance) const {
@@ -266,6 +267,7 @@ class Admm {
             const Vec2 z = project_onto_disc(v, op.bound);
             u_[f] = v - z;
             r.primal2 += op.weight * dot(g - z, g - z);
+            r.steepest = std::max(r.steepest, length(g) / op.bound);
             r.dual2 += op.weight * dot(z - z_[f], z - z_[f]);
             r.gradient2 += op.weight * dot(g, g);
             r.z2 += op.weight * dot(z, z);
@@ -344,9 +346,11 @@ void settle_onto_bedrock(const Discrete& d, Eigen::VectorXd& h) {
 
 ReposeProjection project_onto_repose(const ReposeProblem& problem,
                                      const ReposeProjectionOptions& options) {
-    if (!(options.tolerance > 0.0) || options.max_iterations < 1)
+    if (!(options.tolerance > 0.0) || !(options.steepness_tolerance >= 0.0) ||
+        options.max_iterations < 1)
         throw std::invalid_argument(
-            "repose projection: tolerance must be > 0 and max_iterations >= 1");
+            "repose projection: tolerance must be > 0, steepness_tolerance >= 0 and "
+            "max_iterations >= 1");
     check(problem);
     ReposeProjection out;
     out.height.assign(problem.height.begin(), problem.height.end());

@@ -48,6 +48,12 @@ struct ReposeProblem {
 struct ReposeProjectionOptions {
     /// Relative primal and dual residuals at which ADMM stops (> 0).
     double tolerance = 1e-4;
+    /// ...and only once no face is steeper than its bound (1 + this) (>= 0). The residuals
+    /// are norms: at 1e-4 they left single faces up to 0.7 % steep, for the local rule to
+    /// finish in thousands of creeping iterations (11 876 on a cone at r_S 5 mm); below the
+    /// local rule's rest tolerance (1e-4) it finds nothing to do. Measured on cones of 2 500
+    /// and 10 000 vertices: 848 and 1 291 iterations instead of 845 and 1 109.
+    double steepness_tolerance = 5e-5;
     int max_iterations = 20000;
 };
 
