@@ -105,9 +105,18 @@ const Rect kStepJudged{{0.2, 0.2}, {0.8, 0.8}};
 
 // ---- Measures --------------------------------------------------------------------------------
 
+/// A disc of the plane (m): where a cone's pile error is judged.
+struct Disc {
+    Vec2 centre;
+    double radius = 0.0;
+};
+
+/// Mean and max |z - reference| on the lattice over `region`; with `pile`, also the mean over
+/// the lattice points inside it (row.pile_error), from the same samples.
 void measure_error(ErosionRun& row, const HeightAt& z, const HeightAt& reference,
-                   Rect region = Rect::from_size(1.0, 1.0)) {
-    double sum = 0.0, worst = 0.0;
+                   Rect region = Rect::from_size(1.0, 1.0), std::optional<Disc> pile = {}) {
+    double sum = 0.0, worst = 0.0, pile_sum = 0.0;
+    int pile_count = 0;
     for (int j = 0; j < kSamples; ++j) {
         for (int i = 0; i < kSamples; ++i) {
             const Vec2 p{region.min.x + (i + 0.5) / kSamples * region.width(),
@@ -115,10 +124,15 @@ void measure_error(ErosionRun& row, const HeightAt& z, const HeightAt& reference
             const double d = std::abs(z(p) - reference(p));
             sum += d;
             worst = std::max(worst, d);
+            if (pile && distance(p, pile->centre) <= pile->radius) {
+                pile_sum += d;
+                ++pile_count;
+            }
         }
     }
     row.mean_error = sum / (kSamples * kSamples);
     row.max_error = worst;
+    if (pile) row.pile_error = pile_count > 0 ? pile_sum / pile_count : 0.0;
 }
 
 void take_faces(ErosionRun& row, const FaceSlopeReport& r) {
@@ -160,10 +174,10 @@ struct Method {
     /// Settled by projection onto the repose set (physics/repose_projection.hpp), the face
     /// rule (`rule` is Face) finishing what the projection's tolerance leaves.
     bool projection = false;
-    /// The relaxation's settings; after a projection the face rule finishes with no settle
-    /// margin: the faces it finds are a hair steeper than repose (the solver's tolerance), and
-    /// levelling them 3 % below it would dent the settled surface and set off a cascade.
-    TalusSettings settings() const { return rule_settings(rule, projection ? 0.0 : face_margin); }
+    /// The relaxation's settings (after a projection, settle_by_projection.hpp's margin).
+    TalusSettings settings() const {
+        return rule_settings(rule, projection ? kSettleMarginAfterProjection : face_margin);
+    }
 };
 
 std::string method_name(bool grid, const Method& m) {
@@ -248,18 +262,7 @@ const ConeScene* cone_scene(const std::string& name) {
 void judge_cone(ErosionRun& row, const HeightAt& z, Vec2 apex, const Cone& cone,
                 Rect domain = Rect::from_size(1.0, 1.0)) {
     const HeightAt reference = [&](Vec2 p) { return cone.surface(distance(p, apex)); };
-    measure_error(row, z, reference);
-    double sum = 0.0;
-    int count = 0;
-    for (int j = 0; j < kSamples; ++j) {
-        for (int i = 0; i < kSamples; ++i) {
-            const Vec2 p{(i + 0.5) / kSamples, (j + 0.5) / kSamples};
-            if (distance(p, apex) > 1.2 * cone.radius) continue;
-            sum += std::abs(z(p) - reference(p));
-            ++count;
-        }
-    }
-    row.pile_error = count > 0 ? sum / count : 0.0;
+    measure_error(row, z, reference, Rect::from_size(1.0, 1.0), Disc{apex, 1.2 * cone.radius});
     row.pile_height = cone.height;
     row.toe_error = toe_error(z, apex, cone, domain);
 }

@@ -331,10 +331,8 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         e.project = f.boolean("project", false);
         TalusSettings t = physics;
         if (parse_physics_fields(f, t)) e.settings = t;
-        // After a projection the faces left to relax are a hair steeper than repose (the
-        // solver's tolerance): levelled 3 % below it they would dent the settled surface.
         if (e.project && !f.has("settle_margin")) {
-            t.parameters.settle_margin = 0.0;
+            t.parameters.settle_margin = kSettleMarginAfterProjection;
             e.settings = t;
         }
         f.reject_unknown();

@@ -161,7 +161,7 @@ TEST(ReposeProjection, ThenTheLocalRuleLeavesNoFaceSteeperThanRepose) {
     const double before = tin_volume(pour.tin);
     settle_by_projection(pour.tin, MaterialTable::presets(), {}, projection_tolerance(1e-3));
     TalusSettings finish;
-    finish.parameters.settle_margin = 0.0;  // as a script's erode with "project" finishes
+    finish.parameters.settle_margin = kSettleMarginAfterProjection;
     SandPhysics physics(pour.tin, MaterialTable::presets(), finish);
     physics.activate_all();
     const PhysicsStepReport relaxed = physics.run_to_rest(100000);
