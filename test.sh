@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds sandtin, and runs the whole test suite:
-#   1. Release build, every ctest (GPU on lavapipe, the editor under Xvfb, 5 x 6 000-operation
+#   1. Release build, every ctest (GPU on lavapipe, the editor under Xvfb, 5 x 5 000-operation
 #      stress sessions);
 #   2. AddressSanitizer + UndefinedBehaviorSanitizer (clang) over the engine rooms' tests, and
 #      libFuzzer on the session loader, every importer, the script parser and the haptic packet
