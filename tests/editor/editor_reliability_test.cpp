@@ -251,10 +251,11 @@ TEST_F(EditorXvfb, OpenAndImportInARunningSessionDrawWhatStartUpDraws) {
 
 // ---- 3: typed values and the settings file ------------------------------------------------
 
-TEST_F(EditorXvfb, TypedOutOfRangeValuesAreClampedInEverySlider) {
-    // Every slider, through Ctrl+click and the keyboard, as ImGui lets an artist type: far below
-    // its range, then far above it. Each must end at its range's end, and the editor must go on
-    // sculpting. A window tall enough for every panel at once.
+// Every slider, through Ctrl+click and the keyboard, as ImGui lets an artist type `text`: far
+// below its range or far above it. Each must end at its range's end, and the editor must go on
+// sculpting. A window tall enough for every panel at once. (Two tests, one editor run each, so
+// that ctest runs them side by side: together they took 55-79 s of one core.)
+void check_typed_values_are_clamped(const char* text) {
     struct Slider {
         const char* widget;
         const char* tool;  ///< the tool that shows it ("" : any)
@@ -279,61 +280,68 @@ TEST_F(EditorXvfb, TypedOutOfRangeValuesAreClampedInEverySlider) {
         {"Paint moisture", "", "", {}},
         {"Loop", "", "", {}},
     };
-    const auto type_into = [](const char* widget, const char* text) {
+    const auto type_into = [](const char* widget, const char* typed) {
         return std::string(R"({"op": "click", "widget": ")") + widget +
-               R"(", "ctrl": true}, {"op": "wait", "frames": 1}, {"op": "type", "text": ")" + text +
-               R"("}, {"op": "key", "key": "enter"}, {"op": "wait", "frames": 1})";
+               R"(", "ctrl": true}, {"op": "wait", "frames": 1}, {"op": "type", "text": ")" +
+               typed + R"("}, {"op": "key", "key": "enter"}, {"op": "wait", "frames": 1})";
     };
-    const fs::path scene = kWork / "typed.sandtin";
+    // Files of their own: the two tests run side by side.
+    const std::string tag = text[0] == '-' ? "low" : "high";
+    const fs::path scene = kWork / ("typed-" + tag + ".sandtin");
     // A small flat terrain: every frame is cheap, and the stroke at the end has sand to cut.
-    const fs::path small = kWork / "typed-in.sandtin";
+    const fs::path small = kWork / ("typed-in-" + tag + ".sandtin");
     save_flat_scene(small, 1.0, unit_square_points(800, 5), 0.05);
-    // (Digits only: ImGui reads an integer slider's text with %d, which takes "1e9" as 1.)
-    for (const char* text : {"-1000", "999999999"}) {
-        // Erosion off: a 10 degree repose and a 1 mm r_S (the low ends) would otherwise refine
-        // the whole sandbox as it slides, which is not what this test is about.
-        std::string ops = R"([{"op": "set", "erosion": false},
+    // Erosion off: a 10 degree repose and a 1 mm r_S (the low ends) would otherwise refine
+    // the whole sandbox as it slides, which is not what this test is about.
+    std::string ops = R"([{"op": "set", "erosion": false},
                               {"op": "panels", "open": true}, {"op": "wait", "frames": 2},
                               {"op": "click", "widget": "Follow path"}, )";
-        for (const Slider& s : sliders) {
-            if (*s.tool != '\0')
-                ops += std::string(R"({"op": "tool", "name": ")") + s.tool + R"("}, )";
-            ops += type_into(s.widget, text) + ", ";
-        }
-        // Then a stroke with the clamped values: it must cut, not quit.
-        ops += R"({"op": "tool", "name": "Circle"},
+    for (const Slider& s : sliders) {
+        if (*s.tool != '\0') ops += std::string(R"({"op": "tool", "name": ")") + s.tool + R"("}, )";
+        ops += type_into(s.widget, text) + ", ";
+    }
+    // Then a stroke with the clamped values: it must cut, not quit.
+    ops += R"({"op": "tool", "name": "Circle"},
                   {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10},
                   {"op": "save_settings"}, {"op": "wait", "frames": 2}])";
-        const std::string settings = fresh_settings(std::string("typed") + text);
-        const EditorRun r = run_editor(
-            std::string("typed") + text, ops,
-            small.string() + " --size 1280x1500 --save-after " + scene.string() + settings);
-        ASSERT_EQ(r.exit_code, 0) << text << ": " << r.log;
-        EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
-        const bool low = text[0] == '-';
-        const double size = 1.0;  // the 1 m sandbox
-        for (const Slider& s : sliders) {
-            if (*s.stat == '\0') continue;
-            const double got = r.stats.at("settings").at(s.stat).get<double>();
-            const double want = low ? s.range.lo_at(size) : s.range.hi_at(size);
-            EXPECT_NEAR(got, want, 1e-6 * std::max(1.0, std::abs(want))) << s.widget << " " << text;
-        }
-        // The material sliders: within their ranges (dry 10-50 degrees, moist up to 70, moisture
-        // 0-1), as saved with the scene.
-        const Session saved = load_session(scene);
-        const Material m = materials_or_presets(saved.metadata_json).all().front();
-        constexpr double kDeg = 3.14159265358979323846 / 180.0;
-        EXPECT_NEAR(m.repose_dry, (low ? 10.0 : 50.0) * kDeg, 1e-4) << text;
-        EXPECT_NEAR(m.repose_wet, (low ? 10.0 : 70.0) * kDeg, 1e-4) << text;
-        EXPECT_NEAR(m.default_moisture, low ? 0.0 : 1.0, 1e-6) << text;
-        // A fresh launch with the settings this session wrote starts and sculpts.
-        if (!low) continue;
-        const EditorRun again = run_editor(std::string("typed-again") + text,
-                                           R"([{"op": "tool", "name": "Circle"},
-                {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10}])",
-                                           settings);
-        EXPECT_EQ(again.exit_code, 0) << again.log;
+    const std::string settings = fresh_settings(std::string("typed") + text);
+    const EditorRun r =
+        run_editor(std::string("typed") + text, ops,
+                   small.string() + " --size 1280x1500 --save-after " + scene.string() + settings);
+    ASSERT_EQ(r.exit_code, 0) << text << ": " << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    const bool low = text[0] == '-';
+    const double size = 1.0;  // the 1 m sandbox
+    for (const Slider& s : sliders) {
+        if (*s.stat == '\0') continue;
+        const double got = r.stats.at("settings").at(s.stat).get<double>();
+        const double want = low ? s.range.lo_at(size) : s.range.hi_at(size);
+        EXPECT_NEAR(got, want, 1e-6 * std::max(1.0, std::abs(want))) << s.widget << " " << text;
     }
+    // The material sliders: within their ranges (dry 10-50 degrees, moist up to 70, moisture
+    // 0-1), as saved with the scene.
+    const Session saved = load_session(scene);
+    const Material m = materials_or_presets(saved.metadata_json).all().front();
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    EXPECT_NEAR(m.repose_dry, (low ? 10.0 : 50.0) * kDeg, 1e-4) << text;
+    EXPECT_NEAR(m.repose_wet, (low ? 10.0 : 70.0) * kDeg, 1e-4) << text;
+    EXPECT_NEAR(m.default_moisture, low ? 0.0 : 1.0, 1e-6) << text;
+    // A fresh launch with the settings this session wrote starts and sculpts.
+    if (!low) return;
+    const EditorRun again = run_editor(std::string("typed-again") + text,
+                                       R"([{"op": "tool", "name": "Circle"},
+                {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10}])",
+                                       settings);
+    EXPECT_EQ(again.exit_code, 0) << again.log;
+}
+
+// (Digits only: ImGui reads an integer slider's text with %d, which takes "1e9" as 1.)
+TEST_F(EditorXvfb, TypedValuesFarBelowTheRangeAreClampedInEverySlider) {
+    check_typed_values_are_clamped("-1000");
+}
+
+TEST_F(EditorXvfb, TypedValuesFarAboveTheRangeAreClampedInEverySlider) {
+    check_typed_values_are_clamped("999999999");
 }
 
 TEST_F(EditorXvfb, ASettingsFileWithBadValuesFallsBackFieldByFieldAndSaysSo) {
