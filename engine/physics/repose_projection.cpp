@@ -17,7 +17,6 @@ constexpr std::uint32_t kNotFree = std::numeric_limits<std::uint32_t>::max();
 constexpr double kOverRelaxation = 1.6;  // Boyd et al. §3.4.3: 1.5-1.8 speeds ADMM up
 constexpr int kRhoCheckInterval = 10;    // iterations between residual balancing
 constexpr double kRhoImbalance = 100.0;  // residual ratio that changes rho
-constexpr double kRhoPerArea = 0.05;     // the start of rho per m² of the region
 constexpr double kRhoFactor = 2.0;
 constexpr int kMaxFactorisations = 60;  // rho settles long before this
 
@@ -164,7 +163,7 @@ Vec2 project_onto_disc(Vec2 g, double radius) {
 /// Phase 2: ADMM. The height step's matrix changes only with rho.
 class Admm {
   public:
-    explicit Admm(const Discrete& d) : d_(d) {
+    Admm(const Discrete& d, double rho_per_area) : d_(d) {
         const auto m = static_cast<Eigen::Index>(d.vertex_of.size());
         stiffness_.resize(m, m);
         stiffness_.setFromTriplets(d.stiffness.begin(), d.stiffness.end());
@@ -182,13 +181,14 @@ class Admm {
         // from the geometric mean of the region's and a vertex's area, which scales with the
         // spacing). Residual balancing only rescues a badly scaled start: at a 10x imbalance
         // it raised rho where the iterations wanted it lower.
-        rho_ = std::max(kRhoPerArea * d.area.sum(), 1e-300);
+        rho_ = std::max(rho_per_area * d.area.sum(), 1e-300);
         volume_ = d.area.dot(d.h0);
     }
 
     void run(const ReposeProjectionOptions& options, ReposeProjection& out) {
         factorise();
         ++out.factorisations;
+        ProgressEstimate progress;
         for (int it = 0; it < options.max_iterations; ++it) {
             height_step();
             const Residuals r = constraint_steps();
@@ -197,12 +197,16 @@ class Admm {
                 out.converged = true;
                 break;
             }
+            if (options.on_progress && out.iterations % options.kProgressInterval == 0)
+                options.on_progress(
+                    progress.update(r.distance(options), out.iterations, options.max_iterations));
             if ((it + 1) % kRhoCheckInterval == 0 && out.factorisations < kMaxFactorisations &&
                 rebalance(r)) {
                 factorise();
                 ++out.factorisations;
             }
         }
+        if (options.on_progress) options.on_progress(1.0);
     }
     const Eigen::VectorXd& height() const { return h_; }
 
@@ -218,6 +222,31 @@ class Admm {
             const double absolute = 1e-14;
             return primal() <= absolute + tolerance * std::sqrt(std::max(gradient2, z2)) &&
                    dual() <= absolute + tolerance * rho * std::sqrt(multiplier2);
+        }
+        /// How far from converged, as a multiple of the stopping criteria (<= 1: there).
+        double distance(const ReposeProjectionOptions& options) const {
+            const double tiny = 1e-300;
+            const double primal_scale =
+                1e-14 + options.tolerance * std::sqrt(std::max(gradient2, z2));
+            const double dual_scale = 1e-14 + options.tolerance * rho * std::sqrt(multiplier2);
+            const double steep = (steepest - 1.0) / std::max(options.steepness_tolerance, tiny);
+            return std::max({primal() / primal_scale, dual() / dual_scale, steep, 1.0});
+        }
+    };
+
+    /// The fraction done for on_progress: the log of the distance to convergence, against
+    /// the first one heard, or the share of the iteration budget; never decreasing.
+    struct ProgressEstimate {
+        double first = 0.0;
+        double shown = 0.0;
+        double update(double distance, int iterations, int max_iterations) {
+            if (first == 0.0) first = std::max(distance, 1.0 + 1e-9);
+            const double by_distance = std::log(first / std::max(distance, 1.0)) / std::log(first);
+            const double by_budget =
+                static_cast<double>(iterations) / static_cast<double>(max_iterations);
+            // Short of 1 until the projection has ended: 1 is the end's own report.
+            shown = std::max(shown, std::clamp(std::max(by_distance, by_budget), 0.0, 0.99));
+            return shown;
         }
     };
 
@@ -347,10 +376,11 @@ void settle_onto_bedrock(const Discrete& d, Eigen::VectorXd& h) {
 ReposeProjection project_onto_repose(const ReposeProblem& problem,
                                      const ReposeProjectionOptions& options) {
     if (!(options.tolerance > 0.0) || !(options.steepness_tolerance >= 0.0) ||
-        options.max_iterations < 1)
+        options.max_iterations < 1 || !(options.rho_per_area > 0.0) ||
+        !std::isfinite(options.rho_per_area))
         throw std::invalid_argument(
-            "repose projection: tolerance must be > 0, steepness_tolerance >= 0 and "
-            "max_iterations >= 1");
+            "repose projection: tolerance must be > 0, steepness_tolerance >= 0, "
+            "max_iterations >= 1 and rho_per_area > 0");
     check(problem);
     ReposeProjection out;
     out.height.assign(problem.height.begin(), problem.height.end());
@@ -359,9 +389,10 @@ ReposeProjection project_onto_repose(const ReposeProblem& problem,
     out.degenerate_faces = d.degenerate;
     if (d.vertex_of.empty() || d.faces.empty()) {
         out.converged = true;
+        if (options.on_progress) options.on_progress(1.0);
         return out;
     }
-    Admm admm(d);
+    Admm admm(d, options.rho_per_area);
     admm.run(options, out);
     Eigen::VectorXd h = admm.height();
     settle_onto_bedrock(d, h);

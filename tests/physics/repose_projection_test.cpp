@@ -279,6 +279,79 @@ TEST(ReposeProjection, BadInputIsRefusedWithTheReason) {
     EXPECT_NEAR(r.height[0] + r.height[1] + r.height[2], 1.0, 1e-12);
 }
 
+// Settle exactly in the editor runs in three phases: the input copied on the UI thread, the
+// projection on a worker (with progress and Cancel), the heights applied on the UI thread.
+TEST(ReposeProjection, ProgressRisesToOneAndLeavesTheResultAsWithoutIt) {
+    Pour pour = pour_on_random_tin(1500, 0.004);
+    const ProjectionInput input = gather_projection_input(pour.tin, MaterialTable::presets());
+    const ReposeProjection plain = project_onto_repose(input.problem());
+    std::vector<double> heard;
+    ReposeProjectionOptions options;
+    options.on_progress = [&](double f) { heard.push_back(f); };
+    const ReposeProjection watched = project_onto_repose(input.problem(), options);
+    ASSERT_TRUE(plain.converged);
+    EXPECT_EQ(watched.height, plain.height);  // bit for bit
+    EXPECT_EQ(watched.iterations, plain.iterations);
+    // Every kProgressInterval iterations, then the end's 1.
+    ASSERT_EQ(heard.size(),
+              static_cast<std::size_t>(plain.iterations / options.kProgressInterval) + 1);
+    EXPECT_EQ(heard.back(), 1.0);
+    for (std::size_t k = 0; k < heard.size(); ++k) {
+        EXPECT_GE(heard[k], 0.0) << k;
+        EXPECT_LE(heard[k], 1.0) << k;
+        if (k > 0) {
+            EXPECT_GE(heard[k], heard[k - 1]) << k;
+        }
+    }
+    // Mid-way it says mid-way: past the start, short of the end.
+    EXPECT_GT(heard[heard.size() / 2], 0.0);
+    EXPECT_LT(heard[heard.size() - 2], 1.0);
+}
+
+TEST(ReposeProjection, AProgressThatThrowsStopsItAndTheTerrainIsAsItWas) {
+    Pour pour = pour_on_random_tin(1500, 0.004);
+    const std::vector<double> before = pour.tin.vertices().height;
+    struct Stop {};
+    int calls = 0;
+    ReposeProjectionOptions options;
+    options.on_progress = [&](double) {
+        if (++calls == 3) throw Stop{};
+    };
+    EXPECT_THROW(settle_by_projection(pour.tin, MaterialTable::presets(), {}, options), Stop);
+    EXPECT_EQ(calls, 3);
+    EXPECT_EQ(pour.tin.vertices().height, before);
+}
+
+TEST(ReposeProjection, HeightsProjectedFromAnotherTerrainAreRefused) {
+    Pour pour = pour_on_random_tin(1500, 0.004);
+    const ProjectionInput input = gather_projection_input(pour.tin, MaterialTable::presets());
+    const ReposeProjection projected = project_onto_repose(input.problem());
+    const TinSnapshot gathered = pour.tin.snapshot();
+    // The terrain as gathered: applied, the volume held.
+    {
+        Tin copy = Tin::from_snapshot(gathered, TinOptions{false});
+        const double volume = tin_volume(copy);
+        const ProjectionSettleReport r = apply_projection(copy, input, projected);
+        EXPECT_GT(r.moved_vertices, 0u);
+        EXPECT_NEAR(tin_volume(copy), volume, 1e-12 * volume);
+    }
+    // One height changed since (an edit while the projection ran): nothing is written.
+    const VertexId some = pour.tin.vertices_in_disc(pour.apex, 0.3).back();
+    pour.tin.set_height(some, pour.tin.height(some) + 0.001);
+    const std::vector<double> edited = pour.tin.vertices().height;
+    try {
+        apply_projection(pour.tin, input, projected);
+        ADD_FAILURE() << "applied onto a changed terrain";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("changed"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(pour.tin.vertices().height, edited);
+    // A vertex more: refused too.
+    Tin grown = Tin::from_snapshot(gathered, TinOptions{false});
+    grown.insert_point({0.123, 0.456}, 0.0);
+    EXPECT_THROW(apply_projection(grown, input, projected), std::runtime_error);
+}
+
 }  // namespace repose_projection_test
 }  // namespace
 }  // namespace sandtin

@@ -1,0 +1,272 @@
+#include "physics/project_out_of_repose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace sandtin {
+
+namespace {
+
+/// Sand at the rim that moved less than this share of the largest move has not reached it:
+/// the projection's own tolerance leaves ripples 20 times smaller (3e-6 m beside a 6 cm pile,
+/// measured against the whole terrain's projection).
+constexpr double kRimMoveShare = 1e-3;
+
+/// Each vertex's neighbours over the faces, as compressed rows.
+struct Neighbours {
+    std::vector<std::uint32_t> start;  // per vertex + 1
+    std::vector<std::uint32_t> ids;
+
+    Neighbours(std::size_t n, std::span<const std::array<std::uint32_t, 3>> faces) {
+        start.assign(n + 1, 0);
+        for (const auto& f : faces) {
+            for (std::uint32_t v : f)
+                start[v + 1] += 2;
+        }
+        for (std::size_t v = 0; v < n; ++v)
+            start[v + 1] += start[v];
+        ids.resize(start[n]);
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (const auto& f : faces) {
+            for (int k = 0; k < 3; ++k) {
+                ids[fill[f[k]]++] = f[(k + 1) % 3];
+                ids[fill[f[k]]++] = f[(k + 2) % 3];
+            }
+        }
+    }
+    std::span<const std::uint32_t> of(std::uint32_t v) const {
+        return {ids.data() + start[v], ids.data() + start[v + 1]};
+    }
+};
+
+bool held_by_input(const ProjectionInput& in, std::size_t v) {
+    return !in.held.empty() && in.held[v] != 0;
+}
+
+/// Phase 1: the corners (not held by the input) of the faces out of repose, and their count.
+std::vector<std::uint32_t> seeds_out_of_repose(const ProjectionInput& in, double tolerance,
+                                               std::size_t& steep_faces) {
+    std::vector<std::uint8_t> seeded(in.height.size(), 0);
+    std::vector<std::uint32_t> seeds;
+    steep_faces = 0;
+    for (std::size_t f = 0; f < in.faces.size(); ++f) {
+        const auto& c = in.faces[f];
+        const Vec2 a = in.position[c[0]], b = in.position[c[1]], e = in.position[c[2]];
+        const double scale = std::max({dot(b - a, b - a), dot(e - b, e - b), dot(a - e, a - e)});
+        const double twice_area = cross(b - a, e - a);
+        if (!(std::abs(twice_area) > 1e-12 * scale)) continue;  // as the projection skips it
+        Vec2 gradient, rock_gradient;
+        for (int k = 0; k < 3; ++k) {
+            const Vec2 edge = in.position[c[(k + 2) % 3]] - in.position[c[(k + 1) % 3]];
+            const Vec2 g = Vec2{-edge.y, edge.x} / twice_area;
+            gradient += g * in.height[c[k]];
+            rock_gradient += g * in.bedrock[c[k]];
+        }
+        const double rock = std::isfinite(length(rock_gradient)) ? length(rock_gradient) : 0.0;
+        const double bound = std::max(in.face_tan_alpha[f], rock);
+        if (!(length(gradient) > bound * (1.0 + tolerance))) continue;
+        ++steep_faces;
+        for (std::uint32_t v : c) {
+            if (!seeded[v] && !held_by_input(in, v)) {
+                seeded[v] = 1;
+                seeds.push_back(v);
+            }
+        }
+    }
+    return seeds;
+}
+
+/// Phase 2: the seeds and `rings` rings of their neighbours (never a vertex the input holds).
+std::vector<std::uint8_t> grow_region(const ProjectionInput& in, const Neighbours& nb,
+                                      const std::vector<std::uint32_t>& seeds, int rings) {
+    std::vector<std::uint8_t> free(in.height.size(), 0);
+    std::vector<std::uint32_t> frontier = seeds, next;
+    for (std::uint32_t v : seeds)
+        free[v] = 1;
+    for (int ring = 0; ring < rings && !frontier.empty(); ++ring) {
+        next.clear();
+        for (std::uint32_t v : frontier) {
+            for (std::uint32_t w : nb.of(v)) {
+                if (free[w] || held_by_input(in, w)) continue;
+                free[w] = 1;
+                next.push_back(w);
+            }
+        }
+        frontier.swap(next);
+    }
+    return free;
+}
+
+/// Does the region hold a vertex next to it that the input does not?
+bool has_rim_around(const ProjectionInput& in, const Neighbours& nb,
+                    const std::vector<std::uint8_t>& free) {
+    for (std::uint32_t v = 0; v < free.size(); ++v) {
+        if (free[v]) continue;
+        if (held_by_input(in, v)) continue;
+        for (std::uint32_t w : nb.of(v)) {
+            if (free[w]) return true;
+        }
+    }
+    return false;
+}
+
+/// Phase 3, first: can the region hold its sand at all? No surface in it stands above the
+/// held vertices plus tan(alpha) times the path length from them (along edges: at least the
+/// straight distance, so this bound errs on the side of room), or below its rock. Sand beyond
+/// that bound has no feasible surface, and the projection would spend its whole iteration
+/// budget finding out: such a region grows at once.
+bool can_hold(const ProjectionInput& in, const Neighbours& nb,
+              const std::vector<std::uint8_t>& free, const std::vector<double>& vertex_tan) {
+    using Entry = std::pair<double, std::uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    std::vector<double> top(free.size(), std::numeric_limits<double>::infinity());
+    for (std::uint32_t v = 0; v < free.size(); ++v) {
+        if (free[v]) continue;
+        for (std::uint32_t w : nb.of(v)) {
+            if (!free[w]) continue;
+            top[v] = in.height[v];  // a held vertex next to the region: a source
+            queue.push({top[v], v});
+            break;
+        }
+    }
+    if (queue.empty()) return true;  // nothing held around it: any volume fits
+    while (!queue.empty()) {
+        const auto [h, v] = queue.top();
+        queue.pop();
+        if (h > top[v]) continue;
+        for (std::uint32_t w : nb.of(v)) {
+            if (!free[w]) continue;
+            const double reach = h + std::max(vertex_tan[v], vertex_tan[w]) *
+                                         length(in.position[w] - in.position[v]);
+            if (reach < top[w]) {
+                top[w] = reach;
+                queue.push({reach, w});
+            }
+        }
+    }
+    double sand = 0.0, room = 0.0;
+    for (std::uint32_t v = 0; v < free.size(); ++v) {
+        if (!free[v]) continue;
+        sand += in.area[v] * in.height[v];
+        room += in.area[v] * std::max(top[v], in.bedrock[v]);
+    }
+    return sand <= room;
+}
+
+/// Phase 4: did the sand reach the region's rim? Compared with the largest move of a vertex
+/// that was not a seed (where the sand lands), not with the seeds' own (a spike of sand on
+/// one vertex drops by metres). Also says whether the region has a rim at all (a vertex it
+/// holds that the input does not).
+bool rim_moved(const ProjectionInput& in, const Neighbours& nb,
+               const std::vector<std::uint8_t>& free, const std::vector<std::uint8_t>& seed,
+               const std::vector<double>& height, bool& has_rim) {
+    double landed = 0.0, dropped = 0.0, at_rim = 0.0;
+    has_rim = false;
+    for (std::uint32_t v = 0; v < free.size(); ++v) {
+        if (!free[v]) continue;
+        const double move = std::abs(height[v] - in.height[v]);
+        double& largest = seed[v] ? dropped : landed;
+        largest = std::max(largest, move);
+        for (std::uint32_t w : nb.of(v)) {
+            if (free[w] || held_by_input(in, w)) continue;
+            has_rim = true;
+            at_rim = std::max(at_rim, move);
+        }
+    }
+    const double scale = std::max(landed, kRimMoveShare * dropped);
+    return has_rim && at_rim > kRimMoveShare * scale;
+}
+
+}  // namespace
+
+ReposeProjection project_out_of_repose(const ProjectionInput& input,
+                                       const ReposeProjectionOptions& options,
+                                       const OutOfReposeOptions& region_options,
+                                       OutOfReposeReport* report) {
+    if (!(region_options.steepness_tolerance >= 0.0) || region_options.first_rings < 1)
+        throw std::invalid_argument(
+            "settle out of repose: steepness_tolerance must be >= 0 and first_rings >= 1");
+    const std::size_t n = input.height.size();
+    if (input.position.size() != n || input.bedrock.size() != n ||
+        input.face_tan_alpha.size() != input.faces.size() ||
+        (!input.held.empty() && input.held.size() != n))
+        throw std::invalid_argument("settle out of repose: the input's arrays disagree in size");
+    for (const auto& f : input.faces) {
+        for (std::uint32_t v : f) {
+            if (v >= n) throw std::invalid_argument("settle out of repose: a face names no vertex");
+        }
+    }
+    OutOfReposeReport local;
+    OutOfReposeReport& r = report != nullptr ? *report : local;
+    r = {};
+    const std::vector<std::uint32_t> seeds =
+        seeds_out_of_repose(input, region_options.steepness_tolerance, r.steep_faces);
+    if (seeds.empty()) {
+        ReposeProjection rest;
+        rest.height = input.height;
+        rest.converged = true;
+        if (options.on_progress) options.on_progress(1.0);
+        return rest;
+    }
+    const Neighbours nb(n, input.faces);
+    // Each vertex's steepest bound over its faces, for can_hold's (generous) room.
+    std::vector<double> vertex_tan(n, 0.0);
+    for (std::size_t f = 0; f < input.faces.size(); ++f) {
+        for (std::uint32_t v : input.faces[f])
+            vertex_tan[v] = std::max(vertex_tan[v], input.face_tan_alpha[f]);
+    }
+    std::vector<std::uint8_t> seed(n, 0);
+    for (std::uint32_t v : seeds)
+        seed[v] = 1;
+    double shown = 0.0;  // the bar: each round fills half of what is left of it
+    ReposeProjection result;
+    std::size_t last_size = 0;
+    for (int rings = region_options.first_rings;; rings *= 2) {
+        const std::vector<std::uint8_t> free = grow_region(input, nb, seeds, rings);
+        // Too small: grow first (unless it can grow no more, walled in by held vertices).
+        const auto size = static_cast<std::size_t>(std::count(free.begin(), free.end(), 1));
+        const bool grew = std::exchange(last_size, size) != size;
+        if (grew && !can_hold(input, nb, free, vertex_tan)) continue;
+        std::vector<std::uint8_t> held(n);
+        for (std::size_t v = 0; v < n; ++v)
+            held[v] = free[v] ? 0 : 1;
+        ReposeProjectionOptions round = options;
+        round.rho_per_area = region_options.rho_per_area;
+        // A region with a rim that does not converge in a quarter of the budget is taken as
+        // too small (a face pressed between held vertices and the rock, 1.0002 steep after
+        // 20 000 iterations on a rock slope, converged in 1 242 once grown); the region that
+        // holds nothing has the whole budget.
+        if (has_rim_around(input, nb, free))
+            round.max_iterations = std::max(1, options.max_iterations / 4);
+        const double from = shown;
+        if (options.on_progress) {
+            round.on_progress = [&](double f) {
+                shown = std::max(shown, from + 0.5 * (0.99 - from) * f);
+                options.on_progress(shown);
+            };
+        }
+        result = project_onto_repose({input.position, input.faces, input.face_tan_alpha, input.area,
+                                      input.height, input.bedrock, held},
+                                     round);
+        ++r.rounds;
+        r.rings = rings;
+        r.free_vertices = result.free_vertices;
+        // A region too small for the settled pile has no feasible surface, or one pressed
+        // against its rim: either way it grows.
+        bool has_rim = false;
+        const bool reached = rim_moved(input, nb, free, seed, result.height, has_rim);
+        r.whole_terrain = !has_rim;
+        if (!has_rim || (result.converged && !reached)) break;
+    }
+    if (options.on_progress) options.on_progress(1.0);
+    return result;
+}
+
+}  // namespace sandtin
