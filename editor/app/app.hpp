@@ -224,6 +224,11 @@ class App {
     void update_settle(const ErosionFrame& e);
     /// The settle bar's Stop: the erosion pauses, and what settled is one undo level.
     void stop_settling();
+    /// The Erosion panel's Settle exactly: the sand projected onto its angle of repose on a
+    /// worker under the bar (physics/settle_by_projection.hpp), the terrain copied here first
+    /// and the heights written here once it is done, as one undo level. Cancel leaves the
+    /// terrain as it was.
+    void settle_exactly();
     /// Where Save and Ctrl+S write: the scene's file, or the Scene field for an untitled one.
     std::filesystem::path save_path() const {
         return doc_.untitled() ? std::filesystem::path(path_buf_) : doc_.path();

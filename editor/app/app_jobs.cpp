@@ -8,8 +8,11 @@
 #include "app.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <utility>
 
+#include "physics/project_out_of_repose.hpp"
+#include "physics/settle_by_projection.hpp"
 #include "recent_files.hpp"
 
 namespace sandtin::editor {
@@ -114,7 +117,9 @@ void App::poll_job() {
         initial_scene_failed(cancelled ? "cancelled" : error);
     } else if (cancelled) {
         report(last.title + " cancelled: " +
-               (read_only ? "the scene open before is as it was" : "no file was written"));
+               (job_kind_ == "settle" ? "the terrain is as it was"
+                : read_only           ? "the scene open before is as it was"
+                                      : "no file was written"));
     } else if (outcome == JobOutcome::Failed) {
         if (must_succeed) throw std::runtime_error(job_kind_ + " failed: " + error);
         report(job_kind_ + " failed: " + error);
@@ -263,6 +268,48 @@ void App::update_settle(const ErosionFrame& e) {
         settle_record_["fraction_max_shown"] = settle_.progress().fraction;
         if (!was_shown) settle_record_["shown"] = true;
     }
+}
+
+void App::settle_exactly() {
+    if (refuse_while_busy("settle exactly")) return;
+    sculpting_.close_level(doc_);  // what slid before is its own level
+    // The copy is the UI thread's (measured: 0.3 ms at 10^4 vertices, 2 ms at 10^5, 0.4 s at
+    // 10^6); the projection is the worker's. Nothing edits the terrain while the job runs (the
+    // erosion and the tools wait for it), and apply_projection refuses heights from another
+    // terrain.
+    auto input = std::make_shared<const ProjectionInput>(
+        gather_projection_input(doc_.tin(), doc_.materials()));
+    auto result = std::make_shared<ReposeProjection>();
+    auto region = std::make_shared<OutOfReposeReport>();
+    start_job(
+        "settle", "Settling the sand exactly",
+        [input, result, region](const ProgressCallback& progress) {
+            ReposeProjectionOptions options;
+            if (progress) {
+                options.on_progress = [&progress](double fraction) {
+                    progress({fraction, "projecting onto the angle of repose"});
+                };
+            }
+            // Where the sand is out of repose: a pour on a large terrain settles at the
+            // cost of its neighbourhood (project_out_of_repose.hpp).
+            *result = project_out_of_repose(*input, options, {}, region.get());
+        },
+        [this, input, result, region] {
+            if (region->rounds == 0) {
+                report("settle exactly: nothing is steeper than its angle of repose");
+                return;
+            }
+            const ProjectionSettleReport r = apply_projection(doc_.tin(), *input, *result);
+            doc_.record_level("settle exactly");
+            sculpting_.kick();  // the erosion finishes what the tolerance left, if anything
+            char steepest[32];
+            std::snprintf(steepest, sizeof steepest, "%.2f", 100.0 * r.steepest_ratio);
+            report("settled exactly: " + std::to_string(region->steep_faces) +
+                   " faces were steeper than repose; " + std::to_string(region->free_vertices) +
+                   " vertices around them settled, the steepest face now at " + steepest +
+                   " % of repose" +
+                   (r.converged ? "" : " (stopped at the iteration limit: Run finishes it)"));
+        });
 }
 
 void App::stop_settling() {
