@@ -630,9 +630,9 @@ nlohmann::json ScriptRunner::run_op(const ErodeOp& op) {
     double projection_drift = 0.0;
     if (op.project) {
         const ProjectionSettleReport p = settle_by_projection(tin_, materials_);
-        projection = {{"iterations", p.iterations},
-                      {"converged", p.converged},
-                      {"moved_vertices", p.moved_vertices},
+        projection = {{"iterations", p.iterations},        {"converged", p.converged},
+                      {"steep_faces", p.steep_faces},      {"rounds", p.rounds},
+                      {"free_vertices", p.free_vertices},  {"moved_vertices", p.moved_vertices},
                       {"steepest_ratio", p.steepest_ratio}};
         // Each solver follows the TIN's changes: the vertices the projection moved are active.
         projection_drift = p.volume_change;

@@ -379,6 +379,12 @@ TEST(Script, AnErodeThatProjectsFirstTurnsAPourIntoTheAnalyticCone) {
     EXPECT_TRUE(erode.at("at_rest").get<bool>());
     EXPECT_TRUE(erode.at("projection").at("converged").get<bool>());
     EXPECT_GT(erode.at("projection").at("moved_vertices").get<std::size_t>(), 100u);
+    // Projected where the pour left the sand out of repose, not over the whole terrain: the
+    // cone covers a tenth of it (R = 0.18 m).
+    EXPECT_GT(erode.at("projection").at("steep_faces").get<std::size_t>(), 0u);
+    EXPECT_GE(erode.at("projection").at("rounds").get<int>(), 1);
+    EXPECT_LT(erode.at("projection").at("free_vertices").get<std::size_t>(), tin.vertex_count() / 2)
+        << erode.at("projection");
     EXPECT_NEAR(tin.volume(), before + volume, 1e-12);
     FaceSlopeOptions judge;
     judge.tolerance = 1e-3;
