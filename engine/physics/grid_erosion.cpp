@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "physics/project_out_of_repose.hpp"
 #include "tin/vertex_arrays.hpp"
 #include "util/compensated_sum.hpp"
 
@@ -126,21 +127,29 @@ std::vector<SlopeFace> GridErosion::faces() const {
 }
 
 ReposeProjection GridErosion::settle_by_projection(const ReposeProjectionOptions& options) {
-    const std::vector<std::array<std::uint32_t, 3>> tris = triangles();
-    std::vector<double> face_tan(tris.size());
-    for (std::size_t f = 0; f < tris.size(); ++f)
-        face_tan[f] = (tan_[tris[f][0]] + tan_[tris[f][1]] + tan_[tris[f][2]]) / 3.0;
-    std::vector<Vec2> position(height_.size());
-    std::vector<double> rock(height_.size());
+    // The TIN's settle_by_projection, on this mesh: the same solver, where the sand is out of
+    // repose only, so the bench compares two discretisations and not two solvers.
+    ProjectionInput in;
+    in.faces = triangles();
+    in.face_tan_alpha.resize(in.faces.size());
+    for (std::size_t f = 0; f < in.faces.size(); ++f) {
+        const auto& t = in.faces[f];
+        in.face_tan_alpha[f] = (tan_[t[0]] + tan_[t[1]] + tan_[t[2]]) / 3.0;
+    }
+    in.position.resize(height_.size());
+    in.bedrock.resize(height_.size());
     for (int j = 0; j < ny_; ++j) {
         for (int i = 0; i < nx_; ++i) {
-            position[index(i, j)] = centre(i, j);
+            in.position[index(i, j)] = centre(i, j);
             const double b = bedrock_[index(i, j)];
-            rock[index(i, j)] = b > 0.5 * kNoBedrock ? b : -std::numeric_limits<double>::infinity();
+            in.bedrock[index(i, j)] =
+                b > 0.5 * kNoBedrock ? b : -std::numeric_limits<double>::infinity();
         }
     }
-    ReposeProjection p =
-        project_onto_repose({position, tris, face_tan, area_, height_, rock, {}}, options);
+    in.area = area_;
+    in.height = height_;
+    in.alive.assign(height_.size(), 1);
+    ReposeProjection p = project_out_of_repose(in, options);
     height_ = p.height;
     activate_all();
     return p;
