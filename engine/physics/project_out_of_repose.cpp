@@ -194,7 +194,7 @@ ReposeProjection project_out_of_repose(const ProjectionInput& input,
         throw std::invalid_argument(
             "settle out of repose: steepness_tolerance must be >= 0 and first_rings >= 1");
     const std::size_t n = input.height.size();
-    if (input.position.size() != n || input.bedrock.size() != n ||
+    if (input.position.size() != n || input.bedrock.size() != n || input.area.size() != n ||
         input.face_tan_alpha.size() != input.faces.size() ||
         (!input.held.empty() && input.held.size() != n))
         throw std::invalid_argument("settle out of repose: the input's arrays disagree in size");
