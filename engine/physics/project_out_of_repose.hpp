@@ -7,14 +7,15 @@
 //  1. seed: the vertices of every face steeper than its bound (tan(alpha), or its rock's own
 //     steepness where that is steeper) by more than the tolerance;
 //  2. region: the seeds grown by a few rings of neighbours; the rest is held;
-//  3. project the region;
-//  4. check: if the projection did not converge, or the sand moved at the region's rim (a free
-//     vertex next to a held one moved by more than a thousandth of the largest move where sand
-//     landed), the settled pile wants more room: grow the region (twice the rings) and project
-//     again from the input, until it fits or covers the whole terrain.
-// Where the rim did not move, the region's projection is the whole terrain's: outside the set
-// of faces it holds at their bound, the projection leaves the heights as they are (the repose
-// set is unchanged by adding a constant, so no volume is spread over the rest of the terrain).
+//  3. project the region, unless a bound on the room in it (the held vertices plus tan(alpha)
+//     times the distance) shows it cannot hold its sand: then grow it first;
+//  4. check: if the projection did not converge, or the settled sand presses against the
+//     region's rim (a face between free and held vertices brought up to its bound), the pile
+//     wants more room: grow the region (twice the rings) and project again from the input,
+//     until it fits or covers the whole terrain.
+// Where no rim face is pressed, the region's projection is the whole terrain's: outside the
+// faces it holds at their bound, the projection leaves the heights as they are (the repose set
+// is unchanged by adding a constant, so no volume is spread over the rest of the terrain).
 
 #include <cstddef>
 
