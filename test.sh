@@ -45,7 +45,7 @@ fi
 # repeats the projection that ReposeProjection.* runs under AddressSanitizer.
 engine_tests=(sandtin_tin_tests sandtin_io_tests sandtin_geom_tests sandtin_tools_tests
   sandtin_terrain_io_tests sandtin_physics_tests sandtin_stress_tests sandtin_haptics_core_tests
-  sandtin_history_tests)
+  sandtin_history_tests sandtin_water_tests)
 fuzzers=(fuzz_session fuzz_script fuzz_udp_packet fuzz_png fuzz_esri_ascii fuzz_exr fuzz_geotiff)
 if has_pass asan || has_pass fuzz; then
   section "clang: AddressSanitizer + UndefinedBehaviorSanitizer, then libFuzzer"
@@ -58,7 +58,7 @@ if has_pass asan || has_pass fuzz; then
   if has_pass asan; then
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-clang-asan --output-on-failure -j"$jobs" \
-      -L '^(tin|io|geom|tools|terrain_io|physics|stress|tsan|history)$' \
+      -L '^(tin|io|geom|tools|terrain_io|physics|stress|tsan|history|water)$' \
       -E '^(stress\.session_seed_|LongStroke\.|Conservation\.|AnalyticPile\.(AgainstAWall|TwoTriangleFlatTerrainGrows)|Jacobi\.OneAndTwoThreads|JacobiSchedule\.(One|Two)ThreadsMatch|ErodeScript\.AGrooveErodedWithARelocationRadius|Script\.AnErodeThatProjectsFirst)'
   fi
   if has_pass fuzz; then

@@ -1,0 +1,172 @@
+#include "water/virtual_pipes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace sandtin {
+
+namespace {
+
+void check(const WaterMesh& m) {
+    const std::size_t n = m.position.size();
+    if (m.area.size() != n || m.bed.size() != n)
+        throw std::invalid_argument("water: position, area and bed must have one entry per vertex");
+    for (const auto& f : m.faces) {
+        for (std::uint32_t v : f) {
+            if (v >= n)
+                throw std::invalid_argument("water: face corner " + std::to_string(v) +
+                                            " is not a vertex");
+        }
+    }
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!std::isfinite(m.position[v].x) || !std::isfinite(m.position[v].y) ||
+            !std::isfinite(m.bed[v]) || !std::isfinite(m.area[v]) || m.area[v] < 0.0)
+            throw std::invalid_argument("water: vertex " + std::to_string(v) +
+                                        " has a non-finite position, bed or area, or a "
+                                        "negative area");
+    }
+}
+
+/// Half the cotangent of the angle at `apex` of the triangle (apex, p, q): one face's part of
+/// the dual (Voronoi) edge length of edge pq, over the edge's length.
+double half_cotangent(Vec2 apex, Vec2 p, Vec2 q) {
+    const Vec2 u = p - apex, v = q - apex;
+    const double sine = std::abs(cross(u, v));
+    return sine > 0.0 ? 0.5 * dot(u, v) / sine : 0.0;
+}
+
+}  // namespace
+
+VirtualPipes::VirtualPipes(WaterMesh mesh, VirtualPipeOptions options)
+    : mesh_(std::move(mesh)), options_(options) {
+    check(mesh_);
+    if (!(options_.gravity > 0.0) || !std::isfinite(options_.gravity) ||
+        !(options_.friction >= 0.0) || !std::isfinite(options_.friction) ||
+        !(options_.courant > 0.0) || !(options_.courant <= 1.0))
+        throw std::invalid_argument(
+            "water: gravity must be > 0, friction >= 0 and courant in (0, 1]");
+    depth_.assign(mesh_.area.size(), 0.0);
+    build_pipes();
+}
+
+void VirtualPipes::build_pipes() {
+    // One pipe per edge; its conductance w / L is the sum over the edge's faces of half the
+    // cotangent of the angle opposite it (the cotangent formula of the dual edge length).
+    // A non-Delaunay edge (a constrained one) can sum below 0: it conducts nothing.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, double> edges;
+    for (const auto& f : mesh_.faces) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = f[(k + 1) % 3], b = f[(k + 2) % 3];
+            edges[{std::min(a, b), std::max(a, b)}] +=
+                half_cotangent(mesh_.position[f[k]], mesh_.position[a], mesh_.position[b]);
+        }
+    }
+    pipes_.clear();
+    pipes_.reserve(edges.size());
+    conductance_sum_.assign(mesh_.area.size(), 0.0);
+    for (const auto& [ends, conductance] : edges) {
+        // A vertex without area (no faces of any size) can hold no water: no pipe reaches it.
+        if (!(mesh_.area[ends.first] > 0.0) || !(mesh_.area[ends.second] > 0.0)) continue;
+        Pipe p;
+        p.a = ends.first;
+        p.b = ends.second;
+        p.conductance = std::max(conductance, 0.0);
+        conductance_sum_[p.a] += p.conductance;
+        conductance_sum_[p.b] += p.conductance;
+        pipes_.push_back(p);
+    }
+    outflow_.assign(mesh_.area.size(), 0.0);
+    inflow_.assign(mesh_.area.size(), 0.0);
+}
+
+void VirtualPipes::set_depth(std::size_t v, double depth) {
+    if (v >= depth_.size()) throw std::invalid_argument("water: no vertex " + std::to_string(v));
+    if (!(depth >= 0.0) || !std::isfinite(depth))
+        throw std::invalid_argument("water: a depth must be finite and >= 0");
+    if (depth > 0.0 && !(mesh_.area[v] > 0.0))
+        throw std::invalid_argument("water: vertex " + std::to_string(v) +
+                                    " has no area to hold water");
+    depth_[v] = depth;
+    moving_ = moving_ || depth > 0.0;
+}
+
+void VirtualPipes::add_water(std::size_t v, double volume) {
+    if (v >= depth_.size()) throw std::invalid_argument("water: no vertex " + std::to_string(v));
+    if (!(mesh_.area[v] > 0.0))
+        throw std::invalid_argument("water: vertex " + std::to_string(v) +
+                                    " has no area to hold water");
+    set_depth(v, depth_[v] + volume / mesh_.area[v]);
+}
+
+double VirtualPipes::volume() const {
+    double sum = 0.0;
+    for (std::size_t v = 0; v < depth_.size(); ++v)
+        sum += mesh_.area[v] * depth_[v];
+    return sum;
+}
+
+double VirtualPipes::stable_time_step() const {
+    double deepest = 0.0;
+    for (double d : depth_)
+        deepest = std::max(deepest, d);
+    if (!(deepest > 0.0)) return std::numeric_limits<double>::infinity();
+    double limit = std::numeric_limits<double>::infinity();
+    for (std::size_t v = 0; v < depth_.size(); ++v) {
+        if (!(conductance_sum_[v] > 0.0) || !(mesh_.area[v] > 0.0)) continue;
+        limit = std::min(
+            limit, std::sqrt(mesh_.area[v] / (options_.gravity * deepest * conductance_sum_[v])));
+    }
+    return options_.courant * limit;
+}
+
+WaterStepReport VirtualPipes::step(double dt) {
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw std::invalid_argument("water: a time step must be finite and > 0");
+    WaterStepReport report;
+    if (!moving_) return report;  // dry and still: nothing to do
+    const double damping = 1.0 / (1.0 + dt * options_.friction);
+    // Phase 1: fluxes from the surface difference, through the upwind depth.
+    std::fill(outflow_.begin(), outflow_.end(), 0.0);
+    for (Pipe& p : pipes_) {
+        const double drop = surface(p.a) - surface(p.b);
+        const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
+        p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+        if (p.flux > 0.0) outflow_[p.a] += p.flux;
+        if (p.flux < 0.0) outflow_[p.b] -= p.flux;
+    }
+    // Phase 2: no vertex gives more than it holds (outflow_ becomes the scale K in [0, 1]).
+    for (std::size_t v = 0; v < depth_.size(); ++v) {
+        const double wanted = outflow_[v] * dt;
+        const double held = depth_[v] * mesh_.area[v];
+        const bool limited = wanted > held;
+        report.outflows_limited += limited ? 1 : 0;
+        outflow_[v] = limited ? held / wanted : 1.0;
+    }
+    // Phase 3: each pipe moves its (scaled) volume from one end to the other.
+    std::fill(inflow_.begin(), inflow_.end(), 0.0);
+    std::vector<double>& change = inflow_;  // m³ over this step, per vertex
+    bool any_flux = false;
+    for (Pipe& p : pipes_) {
+        if (p.flux == 0.0) continue;
+        p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
+        const double moved = p.flux * dt;
+        change[p.a] -= moved;
+        change[p.b] += moved;
+        any_flux = any_flux || p.flux != 0.0;
+    }
+    bool any_water = false;
+    for (std::size_t v = 0; v < depth_.size(); ++v) {
+        if (change[v] != 0.0) depth_[v] = std::max(0.0, depth_[v] + change[v] / mesh_.area[v]);
+        any_water = any_water || depth_[v] > 0.0;
+    }
+    report.pipes_updated = pipes_.size();
+    moving_ = any_water || any_flux;
+    return report;
+}
+
+}  // namespace sandtin

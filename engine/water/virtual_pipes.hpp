@@ -1,0 +1,109 @@
+#pragma once
+// Shallow water on a triangulated terrain by virtual pipes (issue 40, item 1): each vertex
+// holds a water depth over its lumped area, and each edge of the triangulation is a pipe that
+// carries a flux driven by the difference of the water surface at its ends. It is Mei,
+// Decaudin & Hu's GPU scheme (2007) taken off the grid: a pipe's width is the edge's dual
+// (Voronoi) edge length and its length the edge's own, so on a square grid it is theirs, and
+// on a TIN each vertex exchanges water with its neighbours through the boundary of its cell.
+//
+// Per step of dt seconds (symplectic Euler, fluxes first):
+//  1. flux: Q += dt g w h (eta_i - eta_j) / L, with eta = bed + depth the water surface, h the
+//     upwind depth (the depth at the end whose surface is higher), then damped by friction;
+//  2. positivity: a vertex's outflows are scaled down together so that they never take more
+//     than it holds (Mei et al.'s K factor), so depths never go negative;
+//  3. depth: each vertex gains its inflows and loses its outflows over dt, through its area.
+// Properties, each tested:
+//  - volume: every flux leaves one vertex and enters another, so sum(area x depth) is exact
+//    to rounding;
+//  - well balanced: a lake at rest over any bed (a flat surface, dry land above it) has no
+//    surface difference across a wet pipe and none out of a dry vertex, so it stays at rest;
+//  - wet/dry fronts: the upwind depth of a dry vertex is 0, so water flows onto dry land only
+//    from the wet side;
+//  - the time step comes from the CFL condition of the pipe network (stable_time_step);
+//  - dry terrain costs nothing: with no water and no flux, step() returns at once.
+// The domain's border is a closed wall (no pipe leaves it). Units: metres, seconds, m³.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geom/vec2.hpp"
+
+namespace sandtin {
+
+/// What the water flows over, CGAL-free: a triangulation with a bed height per vertex.
+struct WaterMesh {
+    std::vector<Vec2> position;                       ///< per vertex (m)
+    std::vector<std::array<std::uint32_t, 3>> faces;  ///< vertex indices, either orientation
+    std::vector<double> area;  ///< per vertex: a third of its faces' areas (m²), > 0 to hold water
+    std::vector<double> bed;   ///< per vertex: the terrain's height under the water (m)
+};
+
+struct VirtualPipeOptions {
+    double gravity = 9.81;  ///< m/s²
+    /// Linear friction (1/s): each flux is divided by (1 + dt friction) per step, so a lake
+    /// sloshes down to rest. 0: none (waves travel undamped).
+    double friction = 0.5;
+    /// stable_time_step's fraction of the pipe network's stability limit, in (0, 1].
+    double courant = 0.5;
+};
+
+struct WaterStepReport {
+    std::size_t pipes_updated = 0;     ///< 0 when there was no water to move
+    std::size_t outflows_limited = 0;  ///< vertices whose outflows were scaled to what they held
+};
+
+class VirtualPipes {
+  public:
+    /// Builds the pipes of `mesh` (one per edge of its faces). Throws std::invalid_argument
+    /// when the arrays disagree in size, a face names no vertex, or a value is not finite or
+    /// an area is negative. Every depth starts at 0.
+    explicit VirtualPipes(WaterMesh mesh, VirtualPipeOptions options = {});
+
+    std::size_t vertex_count() const { return mesh_.area.size(); }
+    std::size_t pipe_count() const { return pipes_.size(); }
+    const WaterMesh& mesh() const { return mesh_; }
+
+    /// Water depth at vertex v (m), >= 0.
+    double depth(std::size_t v) const { return depth_[v]; }
+    std::span<const double> depths() const { return depth_; }
+    /// The water surface at v: bed + depth (m).
+    double surface(std::size_t v) const { return mesh_.bed[v] + depth_[v]; }
+    /// Sets the depth at v (m, finite, >= 0; throws std::invalid_argument otherwise), for
+    /// sources and for loading a state.
+    void set_depth(std::size_t v, double depth);
+    /// Adds `volume` m³ at v (a source): its depth rises by volume / area. Throws for a vertex
+    /// without area or a volume that would leave a negative depth.
+    void add_water(std::size_t v, double volume);
+    /// sum(area x depth) (m³).
+    double volume() const;
+
+    /// The longest step (s) the scheme is stable for with the deepest water now, times the
+    /// courant option: for each vertex, sqrt(area / (g h_max sum(w / L) over its pipes)),
+    /// the 2D wave CFL condition (s / (2 sqrt(g h)) on a square grid of spacing s). Infinite
+    /// when there is no water.
+    double stable_time_step() const;
+    /// Advances the water by `dt` seconds (finite, > 0; throws otherwise). Stable for
+    /// dt <= stable_time_step() / courant.
+    WaterStepReport step(double dt);
+
+  private:
+    struct Pipe {
+        std::uint32_t a = 0, b = 0;
+        double conductance = 0.0;  ///< w / L: dual edge width over length (dimensionless)
+        double flux = 0.0;         ///< m³/s, positive from a to b
+    };
+    void build_pipes();
+
+    WaterMesh mesh_;
+    VirtualPipeOptions options_;
+    std::vector<Pipe> pipes_;
+    std::vector<double> depth_;
+    std::vector<double> conductance_sum_;   ///< per vertex: sum of its pipes' w / L
+    std::vector<double> outflow_, inflow_;  ///< per vertex, scratch of step()
+    bool moving_ = false;                   ///< some water or some flux: step() has work
+};
+
+}  // namespace sandtin

@@ -1,0 +1,187 @@
+// Shallow water by virtual pipes on a TIN (water/virtual_pipes.hpp), against oracles that do
+// not come from the scheme: a lake at rest stays at rest over any bed; the volume is exact and
+// no depth goes negative; water in a bowl settles to the level whose lake holds its volume
+// (found by bisection on the bed alone); a dam-break front travels no faster than Ritter's
+// 2 sqrt(g h0); dry terrain costs nothing.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "tin/tin.hpp"
+#include "water/tin_water_mesh.hpp"
+#include "water/virtual_pipes.hpp"
+
+namespace sandtin {
+namespace {
+namespace virtual_pipes_test {
+
+double bumpy_bed(Vec2 p) {
+    return 0.05 * std::sin(7.0 * p.x) * std::cos(5.0 * p.y) + 0.03 * p.x;
+}
+
+/// Runs `steps` steps at the stable time step; true when no depth ever went negative.
+bool run(VirtualPipes& w, int steps) {
+    bool non_negative = true;
+    for (int k = 0; k < steps; ++k) {
+        const double dt = w.stable_time_step();
+        if (!std::isfinite(dt)) break;
+        w.step(dt);
+        for (double d : w.depths())
+            non_negative = non_negative && d >= 0.0;
+    }
+    return non_negative;
+}
+
+/// The level L at which a lake over the mesh's bed holds `volume`: sum(area max(0, L - bed))
+/// = volume, by bisection.
+double lake_level(const WaterMesh& m, double volume) {
+    double lo = *std::min_element(m.bed.begin(), m.bed.end());
+    double hi = *std::max_element(m.bed.begin(), m.bed.end()) + 10.0;
+    for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        double held = 0.0;
+        for (std::size_t v = 0; v < m.bed.size(); ++v)
+            held += m.area[v] * std::max(0.0, mid - m.bed[v]);
+        (held < volume ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+TEST(VirtualPipes, ALakeAtRestOverABumpyBedStaysAtRest) {
+    const Tin tin =
+        Tin::random_points(Rect::from_size(1.0, 1.0), 1500, 4, bumpy_bed, TinOptions{false});
+    VirtualPipes w(water_mesh_of(tin));
+    const double level = 0.01;  // islands stand out of it
+    std::size_t wet = 0, dry = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        const double d = std::max(0.0, level - w.mesh().bed[v]);
+        w.set_depth(v, d);
+        (d > 0.0 ? wet : dry) += 1;
+    }
+    ASSERT_GT(wet, 100u);
+    ASSERT_GT(dry, 100u);
+    ASSERT_TRUE(run(w, 2000));
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (w.mesh().bed[v] < level) {
+            EXPECT_NEAR(w.surface(v), level, 1e-12) << v;
+        } else {
+            EXPECT_EQ(w.depth(v), 0.0) << "dry land got wet at " << v;
+        }
+    }
+}
+
+TEST(VirtualPipes, TheVolumeIsExactAndNoDepthGoesNegative) {
+    const Tin tin =
+        Tin::random_points(Rect::from_size(1.0, 1.0), 2000, 9, bumpy_bed, TinOptions{false});
+    VirtualPipeOptions undamped;
+    undamped.friction = 0.0;  // waves slosh for the whole run: the hardest case for both
+    VirtualPipes w(water_mesh_of(tin), undamped);
+    // A column of water in one corner, on the bumps: fronts run over dry ground.
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        const Vec2 p = w.mesh().position[v];
+        if (p.x < 0.3 && p.y < 0.4) w.set_depth(v, 0.04 + 0.02 * p.y);
+    }
+    const double before = w.volume();
+    ASSERT_GT(before, 0.0);
+    EXPECT_TRUE(run(w, 5000));
+    EXPECT_NEAR(w.volume(), before, 1e-12 * before);
+    // It spread: water reached the far half of the square.
+    double far = 0.0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (w.mesh().position[v].x > 0.6) far += w.depth(v) * w.mesh().area[v];
+    }
+    EXPECT_GT(far, 0.0);
+}
+
+TEST(VirtualPipes, WaterPouredInABowlSettlesToTheLevelThatHoldsItsVolume) {
+    const Tin tin = Tin::regular_grid(
+        Rect::from_size(1.0, 1.0), 40, 40,
+        [](Vec2 p) { return 0.5 * ((p.x - 0.5) * (p.x - 0.5) + (p.y - 0.45) * (p.y - 0.45)); },
+        TinOptions{false});
+    VirtualPipeOptions options;
+    options.friction = 2.0;
+    VirtualPipes w(water_mesh_of(tin), options);
+    // 2 litres in at one vertex near the bottom.
+    std::size_t centre = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (length(w.mesh().position[v] - Vec2{0.5, 0.5}) <
+            length(w.mesh().position[centre] - Vec2{0.5, 0.5}))
+            centre = v;
+    }
+    const double volume = 0.002;
+    w.add_water(centre, volume);
+    // Flat to 2e-10 m after 2 000 steps (20 s of water), 1e-14 after 3 000.
+    ASSERT_TRUE(run(w, 3000));
+    const double level = lake_level(w.mesh(), volume);
+    std::size_t wet = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (w.depth(v) > 0.0) {
+            ++wet;
+            EXPECT_NEAR(w.surface(v), level, 1e-5) << v;
+        } else {
+            EXPECT_GE(w.mesh().bed[v], level - 1e-5) << "dry below the lake at " << v;
+        }
+    }
+    EXPECT_GT(wet, 20u);
+    EXPECT_NEAR(w.volume(), volume, 1e-12 * volume);
+}
+
+TEST(VirtualPipes, ADamBreakFrontTravelsNoFasterThanRitter) {
+    // Flat dry bed, water 5 cm deep on x < 0.3. Ritter's solution: the front on a dry bed
+    // moves at 2 sqrt(g h0); the scheme's waves at sqrt(g h) or slower, so no faster.
+    const Tin tin = Tin::regular_grid(
+        Rect::from_size(1.0, 1.0), 100, 10, [](Vec2) { return 0.0; }, TinOptions{false});
+    VirtualPipeOptions options;
+    options.friction = 0.0;
+    VirtualPipes w(water_mesh_of(tin), options);
+    const double h0 = 0.05, dam = 0.3, g = options.gravity;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (w.mesh().position[v].x < dam) w.set_depth(v, h0);
+    }
+    double t = 0.0;
+    const double until = 0.15;  // s: the front at most 0.21 m past the dam, inside the square
+    while (t < until) {
+        const double dt = std::min(w.stable_time_step(), until - t);
+        w.step(dt);
+        t += dt;
+    }
+    double front = 0.0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (w.depth(v) > 1e-6 * h0) front = std::max(front, w.mesh().position[v].x);
+    }
+    const double spacing = 0.01;  // the grid's along x
+    EXPECT_LE(front, dam + 2.0 * std::sqrt(g * h0) * until + 2.0 * spacing);
+    // ...and at the order of the wave speed sqrt(g h0): measured 0.39 m, against 0.405 m for
+    // a linear wave and 0.51 m for Ritter's front.
+    EXPECT_GT(front, dam + 0.5 * std::sqrt(g * h0) * until) << "the water hardly left the dam";
+}
+
+TEST(VirtualPipes, DryTerrainCostsNothingAndBadInputIsRefused) {
+    const Tin tin =
+        Tin::regular_grid(Rect::from_size(1.0, 1.0), 10, 10, bumpy_bed, TinOptions{false});
+    VirtualPipes w(water_mesh_of(tin));
+    EXPECT_TRUE(std::isinf(w.stable_time_step()));
+    EXPECT_EQ(w.step(0.01).pipes_updated, 0u);
+    w.add_water(5, 1e-4);
+    EXPECT_EQ(w.step(0.001).pipes_updated, w.pipe_count());
+    EXPECT_THROW(w.set_depth(0, -1.0), std::invalid_argument);
+    EXPECT_THROW(w.set_depth(w.vertex_count(), 1.0), std::invalid_argument);
+    EXPECT_THROW(w.step(0.0), std::invalid_argument);
+    EXPECT_THROW(w.step(std::nan("")), std::invalid_argument);
+    WaterMesh bad = water_mesh_of(tin);
+    bad.bed.pop_back();
+    EXPECT_THROW(VirtualPipes{bad}, std::invalid_argument);
+    WaterMesh corner = water_mesh_of(tin);
+    corner.faces.push_back({0, 1, 100000});
+    EXPECT_THROW(VirtualPipes{corner}, std::invalid_argument);
+    VirtualPipeOptions no_gravity;
+    no_gravity.gravity = 0.0;
+    EXPECT_THROW(VirtualPipes(water_mesh_of(tin), no_gravity), std::invalid_argument);
+}
+
+}  // namespace virtual_pipes_test
+}  // namespace
+}  // namespace sandtin
