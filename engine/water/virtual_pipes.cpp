@@ -51,6 +51,7 @@ VirtualPipes::VirtualPipes(WaterMesh mesh, VirtualPipeOptions options)
         throw std::invalid_argument(
             "water: gravity must be > 0, friction >= 0 and courant in (0, 1]");
     depth_.assign(mesh_.area.size(), 0.0);
+    border_width_.assign(mesh_.area.size(), 0.0);
     build_pipes();
 }
 
@@ -103,6 +104,16 @@ void VirtualPipes::add_water(std::size_t v, double volume) {
     set_depth(v, depth_[v] + volume / mesh_.area[v]);
 }
 
+void VirtualPipes::set_outflow_width(std::size_t v, double metres) {
+    if (v >= depth_.size()) throw std::invalid_argument("water: no vertex " + std::to_string(v));
+    if (!(metres >= 0.0) || !std::isfinite(metres))
+        throw std::invalid_argument("water: an outflow width must be finite and >= 0");
+    const bool listed = border_width_[v] > 0.0;
+    border_width_[v] = metres;
+    if (metres > 0.0 && !listed) border_vertices_.push_back(static_cast<std::uint32_t>(v));
+    if (metres == 0.0 && listed) std::erase(border_vertices_, static_cast<std::uint32_t>(v));
+}
+
 double VirtualPipes::volume() const {
     double sum = 0.0;
     for (std::size_t v = 0; v < depth_.size(); ++v)
@@ -139,6 +150,13 @@ WaterStepReport VirtualPipes::step(double dt) {
         if (p.flux > 0.0) outflow_[p.a] += p.flux;
         if (p.flux < 0.0) outflow_[p.b] -= p.flux;
     }
+    // ...and over the open border: a free overfall's critical discharge (m³/s).
+    const auto overfall = [&](std::uint32_t v) {
+        const double h = depth_[v];
+        return border_width_[v] * h * std::sqrt(options_.gravity * h);
+    };
+    for (std::uint32_t v : border_vertices_)
+        outflow_[v] += overfall(v);
     // Phase 2: no vertex gives more than it holds (outflow_ becomes the scale K in [0, 1]).
     for (std::size_t v = 0; v < depth_.size(); ++v) {
         const double wanted = outflow_[v] * dt;
@@ -158,6 +176,11 @@ WaterStepReport VirtualPipes::step(double dt) {
         change[p.a] -= moved;
         change[p.b] += moved;
         any_flux = any_flux || p.flux != 0.0;
+    }
+    for (std::uint32_t v : border_vertices_) {
+        const double left = overfall(v) * outflow_[v] * dt;
+        change[v] -= left;
+        volume_left_ += left;
     }
     bool any_water = false;
     for (std::size_t v = 0; v < depth_.size(); ++v) {

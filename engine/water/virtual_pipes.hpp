@@ -21,7 +21,9 @@
 //    from the wet side;
 //  - the time step comes from the CFL condition of the pipe network (stable_time_step);
 //  - dry terrain costs nothing: with no water and no flux, step() returns at once.
-// The domain's border is a closed wall (no pipe leaves it). Units: metres, seconds, m³.
+// The domain's border is a closed wall (no pipe leaves it), except where set_outflow_width
+// opens it: there water leaves at the critical discharge of a free overfall, width x h x
+// sqrt(g h), and is counted (volume_left). Units: metres, seconds, m³.
 
 #include <array>
 #include <cstddef>
@@ -79,6 +81,12 @@ class VirtualPipes {
     void add_water(std::size_t v, double volume);
     /// sum(area x depth) (m³).
     double volume() const;
+    /// Opens the border at vertex v over `metres` of its length (0 closes it again): water
+    /// there leaves the terrain (water_borders.hpp sets this for whole sides). Throws
+    /// std::invalid_argument for a negative or non-finite width or a vertex that does not exist.
+    void set_outflow_width(std::size_t v, double metres);
+    /// m³ that left through open borders since construction.
+    double volume_left() const { return volume_left_; }
 
     /// The longest step (s) the scheme is stable for with the deepest water now, times the
     /// courant option: for each vertex, sqrt(area / (g h_max sum(w / L) over its pipes)),
@@ -101,9 +109,12 @@ class VirtualPipes {
     VirtualPipeOptions options_;
     std::vector<Pipe> pipes_;
     std::vector<double> depth_;
-    std::vector<double> conductance_sum_;   ///< per vertex: sum of its pipes' w / L
-    std::vector<double> outflow_, inflow_;  ///< per vertex, scratch of step()
-    bool moving_ = false;                   ///< some water or some flux: step() has work
+    std::vector<double> conductance_sum_;         ///< per vertex: sum of its pipes' w / L
+    std::vector<double> outflow_, inflow_;        ///< per vertex, scratch of step()
+    std::vector<double> border_width_;            ///< per vertex: open border (m), mostly 0
+    std::vector<std::uint32_t> border_vertices_;  ///< those with an open border
+    double volume_left_ = 0.0;
+    bool moving_ = false;  ///< some water or some flux: step() has work
 };
 
 }  // namespace sandtin

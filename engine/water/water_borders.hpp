@@ -1,0 +1,23 @@
+#pragma once
+// Which sides of the domain let water out (issue 40, item 2): each open side's border edges
+// (edges of one face only, both ends on that side) give half their length to each end as its
+// outflow width (VirtualPipes::set_outflow_width). A closed side is a wall.
+
+#include "geom/rect.hpp"
+#include "water/virtual_pipes.hpp"
+
+namespace sandtin {
+
+struct OpenSides {
+    bool west = false;   ///< x = domain.min.x
+    bool east = false;   ///< x = domain.max.x
+    bool south = false;  ///< y = domain.min.y
+    bool north = false;  ///< y = domain.max.y
+};
+
+/// Sets the outflow width of every vertex of `water` from the open `sides` of `domain` (the
+/// others are closed again); a vertex lies on a side within 1e-9 of the domain's larger
+/// extent. Returns the open border's total length (m).
+double open_borders(VirtualPipes& water, Rect domain, OpenSides sides);
+
+}  // namespace sandtin

@@ -1,0 +1,41 @@
+#pragma once
+// Water that comes and goes (issue 40, item 2): rain over the whole terrain or a disc, nozzles
+// at points, and evaporation, applied to a VirtualPipes state over a time step, with the
+// volumes they moved counted so that the balance can be checked exactly:
+//   volume now = volume before + added - evaporated - VirtualPipes::volume_left().
+
+#include <vector>
+
+#include "geom/vec2.hpp"
+#include "water/virtual_pipes.hpp"
+
+namespace sandtin {
+
+struct Rain {
+    double mm_per_hour = 0.0;  ///< >= 0
+    Vec2 centre;               ///< with radius > 0: rain on the vertices within the disc
+    double radius = 0.0;       ///< m; 0: on the whole terrain
+};
+
+struct Nozzle {
+    Vec2 at;                         ///< m: the water enters at the vertex nearest to it
+    double litres_per_second = 0.0;  ///< >= 0
+};
+
+struct WaterSources {
+    std::vector<Rain> rain;
+    std::vector<Nozzle> nozzles;
+    double evaporation_mm_per_hour = 0.0;  ///< >= 0, from every wet vertex
+};
+
+struct SourceReport {
+    double added = 0.0;       ///< m³ of rain and nozzles
+    double evaporated = 0.0;  ///< m³
+};
+
+/// Adds the rain and the nozzles' water for `dt` seconds, then evaporates (a vertex loses at
+/// most the water it holds). Throws std::invalid_argument for a negative or non-finite rate,
+/// radius or dt, and leaves the water as it was.
+SourceReport apply_sources(VirtualPipes& water, const WaterSources& sources, double dt);
+
+}  // namespace sandtin
