@@ -344,6 +344,7 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         f.reject_unknown();
         return SaveOp{base_dir / path};
     }
+    if (op == "water") return parse_water_op(f);
     if (op == "simplify") {
         SimplifyOp s;
         if (f.has("tolerance")) s.tolerance = f.positive("tolerance", 0.0);
@@ -723,6 +724,10 @@ nlohmann::json ScriptRunner::run_op(const SaveOp& op) {
     session.next_generation = context.peek_generation();
     save_session(op.path, session);
     return {{"file", op.path.string()}, {"volume_change", 0.0}};
+}
+
+nlohmann::json ScriptRunner::run_op(const WaterOp& op) {
+    return run_water_op(op, tin_);
 }
 
 nlohmann::json ScriptRunner::run_op(const CustomOp& op) {

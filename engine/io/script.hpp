@@ -33,6 +33,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/progress.hpp"
+#include "io/script_water.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
@@ -102,8 +103,8 @@ struct CustomOp {
     std::function<nlohmann::json(Tin&, SculptContext&)> run;
 };
 
-using ScriptOperation =
-    std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp, SaveOp, CustomOp>;
+using ScriptOperation = std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp,
+                                     SaveOp, WaterOp, CustomOp>;
 
 struct ScriptStep {
     ScriptOperation operation;
@@ -196,6 +197,7 @@ class ScriptRunner {
     nlohmann::json run_op(const BrushOp& op);
     nlohmann::json run_op(const SimplifyOp& op);
     nlohmann::json run_op(const SaveOp& op);
+    nlohmann::json run_op(const WaterOp& op);
     nlohmann::json run_op(const CustomOp& op);
     /// Tells the current step's progress that `done` of its `total` points are placed.
     void report_points_done(std::size_t done, std::size_t total) const;
