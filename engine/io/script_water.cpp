@@ -1,9 +1,14 @@
 #include "io/script_water.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "tin/vertex_arrays.hpp"
+#include "water/sediment_transport.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
 
@@ -80,6 +85,7 @@ WaterOp parse_water_op(JsonFields& f) {
     op.friction = f.in_range("friction", op.friction, 0.0, 1e3);
     op.wet_moisture = f.in_range("wet_moisture", op.wet_moisture, 0.0, 1.0);
     op.wet_depth = f.positive("wet_depth", op.wet_depth);
+    op.erode = f.boolean("erode", false);
     if (op.sources.rain.empty() && op.sources.nozzles.empty())
         f.fail("give 'rain' or 'nozzles': water needs a source");
     f.reject_unknown();
@@ -91,6 +97,14 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
     options.friction = op.friction;
     VirtualPipes water(water_mesh_of(tin), options);
     open_borders(water, tin.domain(), op.open);
+    std::optional<SedimentTransport> sediment;
+    if (op.erode) {
+        std::vector<double> rock = tin.vertices().bedrock;
+        for (double& z : rock) {
+            if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
+        }
+        sediment.emplace(water, std::move(rock));
+    }
     std::vector<double> deepest(water.vertex_count(), 0.0);
     SourceReport sources;
     double t = 0.0;
@@ -101,10 +115,30 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         sources.added += r.added;
         sources.evaporated += r.evaporated;
         water.step(dt);
+        if (sediment) sediment->step(water, dt);
         for (std::size_t v = 0; v < deepest.size(); ++v)
             deepest[v] = std::max(deepest[v], water.depth(v));
         t += dt;
         ++steps;
+    }
+    // The sand the water moved, into the terrain (journaled, so the GPU mirror and undo see
+    // it): what is still suspended settles where it is.
+    double sand_moved = 0.0, volume_change = 0.0;
+    if (sediment) {
+        sediment->settle_all(water);
+        std::vector<VertexId> moved;
+        std::vector<double> heights;
+        const VertexArrays& va = tin.vertices();
+        for (std::size_t v = 0; v < va.size(); ++v) {
+            const double z = water.mesh().bed[v];
+            if (!va.alive[v] || z == va.height[v]) continue;
+            const double change = va.lumped_area[v] * (z - va.height[v]);
+            sand_moved += std::max(0.0, -change);
+            volume_change += change;
+            moved.push_back(VertexId{static_cast<std::uint32_t>(v)});
+            heights.push_back(z);
+        }
+        tin.set_heights(moved, heights);
     }
     std::size_t wetted = 0;
     double max_depth = 0.0;
@@ -117,15 +151,11 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         ++wetted;
         if (tin.vertices().moisture[v] < moisture) tin.set_moisture(id, moisture);
     }
-    return {{"seconds", op.seconds},
-            {"steps", steps},
-            {"added_m3", sources.added},
-            {"evaporated_m3", sources.evaporated},
-            {"left_m3", water.volume_left()},
-            {"water_m3", water.volume()},
-            {"wetted_vertices", wetted},
-            {"max_depth_m", max_depth},
-            {"volume_change", 0.0}};
+    return {{"seconds", op.seconds},          {"steps", steps},
+            {"added_m3", sources.added},      {"evaporated_m3", sources.evaporated},
+            {"left_m3", water.volume_left()}, {"water_m3", water.volume()},
+            {"wetted_vertices", wetted},      {"max_depth_m", max_depth},
+            {"sand_moved_m3", sand_moved},    {"volume_change", volume_change}};
 }
 
 }  // namespace sandtin

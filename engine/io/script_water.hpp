@@ -1,9 +1,9 @@
 #pragma once
 // The script's "water" operation (issue 40): water over the terrain as it stands for a while,
-// from rain, nozzles and evaporation, draining through open sides (engine/water), and the sand
-// it wets taking a moisture, so that the relaxation afterwards lets wet sand stand at its
-// steeper angle. The water itself is not kept between operations: the terrain and its
-// moisture are.
+// from rain, nozzles and evaporation, draining through open sides (engine/water); with
+// "erode", carrying sand; and the sand it wets taking a moisture, so that the relaxation
+// afterwards lets wet sand stand at its steeper angle. The water itself is not kept between
+// operations: the terrain and its moisture are.
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +22,9 @@ struct WaterOp {
     /// Sand the water reached at least wet_depth deep takes at least this moisture, in [0, 1].
     double wet_moisture = 1.0;
     double wet_depth = 1e-3;  ///< m
+    /// The water carries sand (water/sediment_transport.hpp): it cuts where it runs fast and
+    /// drops the sand where it slows; what is still suspended at the end settles where it is.
+    bool erode = false;
 };
 
 /// Parses the fields of a "water" operation (rain, nozzles, evaporation_mm_per_hour,

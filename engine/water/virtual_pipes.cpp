@@ -114,6 +114,12 @@ void VirtualPipes::set_outflow_width(std::size_t v, double metres) {
     if (metres == 0.0 && listed) std::erase(border_vertices_, static_cast<std::uint32_t>(v));
 }
 
+void VirtualPipes::set_bed(std::size_t v, double z) {
+    if (v >= depth_.size()) throw std::invalid_argument("water: no vertex " + std::to_string(v));
+    if (!std::isfinite(z)) throw std::invalid_argument("water: a bed height must be finite");
+    mesh_.bed[v] = z;
+}
+
 double VirtualPipes::volume() const {
     double sum = 0.0;
     for (std::size_t v = 0; v < depth_.size(); ++v)

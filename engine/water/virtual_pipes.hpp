@@ -97,12 +97,17 @@ class VirtualPipes {
     /// dt <= stable_time_step() / courant.
     WaterStepReport step(double dt);
 
-  private:
     struct Pipe {
         std::uint32_t a = 0, b = 0;
         double conductance = 0.0;  ///< w / L: dual edge width over length (dimensionless)
-        double flux = 0.0;         ///< m³/s, positive from a to b
+        double flux = 0.0;         ///< m³/s, positive from a to b, as the last step left it
     };
+    std::span<const Pipe> pipes() const { return pipes_; }
+    /// Moves the bed under vertex v to `z` (m, finite; throws std::invalid_argument
+    /// otherwise): sand the water carried away or dropped (sediment_transport.hpp).
+    void set_bed(std::size_t v, double z);
+
+  private:
     void build_pipes();
 
     WaterMesh mesh_;

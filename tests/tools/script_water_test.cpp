@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <variant>
@@ -68,6 +69,37 @@ TEST(ScriptWater, RainOnADiscWetsTheSandUnderItAndAddsWhatItsRateSays) {
     }
     EXPECT_EQ(wet_inside, inside);
     EXPECT_GE(report.at("wetted_vertices").get<std::size_t>(), inside);
+}
+
+TEST(ScriptWater, WaterThatErodesMovesSandHoldingItsVolumeAndNeverCutsTheRock) {
+    // A nozzle on flat sand 2 cm over the rock: its jet digs a hole and the water drops the
+    // sand around it as it spreads and slows.
+    const Script s = parse_water_script(R"({"version": 1,
+        "terrain": {"size": [1, 1], "points": 2000, "seed": 8, "sand_depth": 0.02},
+        "operations": [{"op": "water", "seconds": 5, "erode": true,
+                        "nozzles": [{"at": [0.5, 0.5], "litres_per_second": 0.5}]}]})");
+    EXPECT_TRUE(std::get<WaterOp>(s.steps.at(0).operation).erode);
+    Tin tin = make_script_terrain(*s.terrain);
+    const std::vector<double> before = tin.vertices().height;
+    const double volume = tin.volume();
+    SculptContext context(tin.domain());
+    const nlohmann::json report = run_script(s, tin, context).at(0);
+    EXPECT_GT(report.at("sand_moved_m3").get<double>(), 1e-6);
+    // Exact to rounding against the 0.02 m³ of sand (the surface is at z = 0, so its volume
+    // above the datum is 0 before and after).
+    EXPECT_NEAR(tin.volume(), volume, 1e-12 * 0.02);
+    EXPECT_NEAR(report.at("volume_change").get<double>(), 0.0, 1e-12 * 0.02);
+    const VertexArrays& va = tin.vertices();
+    double deepest = 0.0, highest = 0.0;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        EXPECT_GE(va.height[v], va.bedrock[v]) << v;
+        deepest = std::max(deepest, before[v] - va.height[v]);
+        highest = std::max(highest, va.height[v] - before[v]);
+    }
+    EXPECT_GT(deepest, 1e-4) << "no hole under the jet";
+    EXPECT_GT(highest, 0.0) << "the sand was dropped nowhere";
+    ASSERT_TRUE(tin.check_valid().ok());
 }
 
 TEST(ScriptWater, BadFieldsAreNamed) {

@@ -1,0 +1,108 @@
+#include "water/sediment_transport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace sandtin {
+
+SedimentTransport::SedimentTransport(const VirtualPipes& water, std::vector<double> bedrock,
+                                     SedimentOptions options)
+    : bedrock_(std::move(bedrock)), options_(options) {
+    const WaterMesh& m = water.mesh();
+    if (bedrock_.size() != m.bed.size())
+        throw std::invalid_argument("sediment: bedrock must have one entry per vertex");
+    for (std::size_t v = 0; v < bedrock_.size(); ++v) {
+        if (std::isnan(bedrock_[v]) || bedrock_[v] > m.bed[v])
+            throw std::invalid_argument("sediment: the bedrock at vertex " + std::to_string(v) +
+                                        " is not a number or lies above the bed");
+    }
+    const auto rate = [](double r) { return r >= 0.0 && std::isfinite(r); };
+    if (!rate(options_.capacity) || !rate(options_.pick_up_rate) || !rate(options_.drop_rate) ||
+        !rate(options_.least_slope) || !rate(options_.max_concentration) ||
+        options_.max_concentration > 1.0)
+        throw std::invalid_argument(
+            "sediment: every constant must be finite and >= 0, max_concentration at most 1");
+    held_.assign(bedrock_.size(), 0.0);
+}
+
+double SedimentTransport::suspended() const {
+    double sum = 0.0;
+    for (double h : held_)
+        sum += h;
+    return sum;
+}
+
+void SedimentTransport::step(VirtualPipes& water, double dt) {
+    const WaterMesh& m = water.mesh();
+    const std::size_t n = held_.size();
+    // Phase 1: each vertex's flow speed and steepest bed slope, from its pipes.
+    std::vector<double> discharge(n, 0.0), slope(n, 0.0);
+    for (const VirtualPipes::Pipe& p : water.pipes()) {
+        discharge[p.a] += 0.5 * std::abs(p.flux);
+        discharge[p.b] += 0.5 * std::abs(p.flux);
+        const double s =
+            std::abs(m.bed[p.a] - m.bed[p.b]) / length(m.position[p.a] - m.position[p.b]);
+        slope[p.a] = std::max(slope[p.a], s);
+        slope[p.b] = std::max(slope[p.b], s);
+    }
+    // Phase 2: pick up or drop towards the capacity.
+    for (std::size_t v = 0; v < n; ++v) {
+        const double area = m.area[v], depth = water.depth(v);
+        if (!(area > 0.0)) continue;
+        const double speed = depth > 0.0 ? discharge[v] / (depth * std::sqrt(area)) : 0.0;
+        const double capacity =
+            std::min(options_.capacity * speed * std::max(slope[v], options_.least_slope) * area,
+                     options_.max_concentration * depth * area);
+        double bed = m.bed[v];
+        if (held_[v] < capacity) {
+            const double sand = std::max(0.0, bed - bedrock_[v]) * area;
+            const double taken = std::min(options_.pick_up_rate * (capacity - held_[v]) * dt, sand);
+            held_[v] += taken;
+            bed = taken == sand ? std::max(bedrock_[v], bed - taken / area) : bed - taken / area;
+        } else if (held_[v] > 0.0) {
+            const double dropped =
+                std::min(options_.drop_rate * (held_[v] - capacity) * dt, held_[v]);
+            held_[v] -= dropped;
+            bed += dropped / area;
+        }
+        if (bed != m.bed[v]) water.set_bed(v, bed);
+    }
+    // Phase 3: the suspended sand moves with the water, at the upwind vertex's concentration
+    // (suspended m³ per m³ of water), each vertex giving at most what it holds.
+    std::vector<double> out(n, 0.0);
+    for (const VirtualPipes::Pipe& p : water.pipes()) {
+        if (p.flux == 0.0) continue;
+        const std::uint32_t from = p.flux > 0.0 ? p.a : p.b;
+        const double water_there = water.depth(from) * m.area[from];
+        if (water_there > 0.0) out[from] += std::abs(p.flux) * dt * held_[from] / water_there;
+    }
+    std::vector<double> scale(n, 1.0), change(n, 0.0);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (out[v] > held_[v]) scale[v] = held_[v] / out[v];
+    }
+    for (const VirtualPipes::Pipe& p : water.pipes()) {
+        if (p.flux == 0.0) continue;
+        const std::uint32_t from = p.flux > 0.0 ? p.a : p.b, to = from == p.a ? p.b : p.a;
+        const double water_there = water.depth(from) * m.area[from];
+        if (!(water_there > 0.0)) continue;
+        const double moved = std::abs(p.flux) * dt * held_[from] / water_there * scale[from];
+        change[from] -= moved;
+        change[to] += moved;
+    }
+    for (std::size_t v = 0; v < n; ++v)
+        held_[v] = std::max(0.0, held_[v] + change[v]);
+}
+
+void SedimentTransport::settle_all(VirtualPipes& water) {
+    const WaterMesh& m = water.mesh();
+    for (std::size_t v = 0; v < held_.size(); ++v) {
+        if (!(held_[v] > 0.0) || !(m.area[v] > 0.0)) continue;
+        water.set_bed(v, m.bed[v] + held_[v] / m.area[v]);
+        held_[v] = 0.0;
+    }
+}
+
+}  // namespace sandtin
