@@ -118,6 +118,12 @@ Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec
     return session;
 }
 
+std::string fresh_settings(const std::string& name) {
+    const fs::path p = kWork / (name + ".settings.json");
+    fs::remove(p);
+    return " --settings " + p.string();
+}
+
 double surface_difference(const Tin& a, const Tin& b) {
     double worst = 0.0;
     const VertexArrays& va = a.vertices();

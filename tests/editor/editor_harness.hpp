@@ -69,6 +69,10 @@ Session save_flat_scene(const fs::path& path, double size, const std::vector<Vec
 /// `b`): 0, up to the rounding of the interpolation, when they are the same surface.
 double surface_difference(const Tin& a, const Tin& b);
 
+/// " --settings <file>" naming a settings file of its own for the run `name`, removed first:
+/// runs must not share what they change.
+std::string fresh_settings(const std::string& name);
+
 class EditorXvfb : public ::testing::Test {
   protected:
     void SetUp() override {

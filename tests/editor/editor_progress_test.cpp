@@ -16,12 +16,6 @@
 namespace sandtin::editor_test::progress {
 namespace {
 
-std::string settings_for(const std::string& name) {
-    const fs::path p = kWork / (name + ".settings.json");
-    fs::remove(p);
-    return " --settings " + p.string();
-}
-
 /// Rolling hills with ripples, 1 m cells, as an ESRI ASCII grid: many insertions before the
 /// editor's 1 m import bound.
 fs::path hills_grid(const std::string& name, int n) {
@@ -94,12 +88,12 @@ TEST_F(EditorXvfb, ACancelledImportShowedItsBarAndLeftTheSceneAsItWas) {
     const fs::path before = kWork / "progress-before.sandtin";
     const fs::path after = kWork / "progress-after.sandtin";
     ASSERT_EQ(run_editor("progress-before", kFlat,
-                         "--save-after " + before.string() + settings_for("progress-before"))
+                         "--save-after " + before.string() + fresh_settings("progress-before"))
                   .exit_code,
               0);
     const EditorRun r = run_editor(
         "progress-import-cancel", then(kFlat, start_then_cancel("import_path", grid, "Import")),
-        "--save-after " + after.string() + settings_for("progress-import-cancel"));
+        "--save-after " + after.string() + fresh_settings("progress-import-cancel"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     ASSERT_EQ(r.stats.at("jobs").size(), 1u) << r.stats.at("jobs");
     const nlohmann::json& job = only_job(r);
@@ -125,7 +119,7 @@ TEST_F(EditorXvfb, ASceneOnTheCommandLineOpensUnderTheBarAfterTheWindowOpened) {
     const fs::path saved = kWork / "startup-saved.sandtin";
     ASSERT_EQ(run_editor("startup-base", then(kFlat, R"({"op": "drag", "button": "left",
                   "path": [[0.4, 0.5], [0.6, 0.5]], "steps": 4})"),
-                         "--save-after " + scene.string() + settings_for("startup-base"))
+                         "--save-after " + scene.string() + fresh_settings("startup-base"))
                   .exit_code,
               0);
     const EditorRun r = run_editor(
@@ -134,7 +128,7 @@ TEST_F(EditorXvfb, ASceneOnTheCommandLineOpensUnderTheBarAfterTheWindowOpened) {
              R"({"op": "job", "until": "paused"}, {"op": "wait", "frames": 3},
                                 {"op": "resume_job"}, {"op": "job", "until": "done"},
                                 {"op": "jobs", "wait": true}, {"op": "wait", "frames": 2})"),
-        scene.string() + " --save-after " + saved.string() + settings_for("startup-open"));
+        scene.string() + " --save-after " + saved.string() + fresh_settings("startup-open"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_TRUE(r.stats.at("jobs").empty()) << "the start's job is recorded on its own";
     const nlohmann::json& job = r.stats.at("startup_job");
@@ -177,7 +171,7 @@ TEST_F(EditorXvfb, ASaveRunsUnderTheBarAndACancelledOneWritesNothing) {
                 {"op": "wait", "frames": 2}, {"op": "cancel_job"}, {"op": "job", "until": "done"},
                 {"op": "jobs", "wait": true}, {"op": "wait", "frames": 1}, )" +
                                      save),
-                   "--save-after " + direct.string() + settings_for("save-job"));
+                   "--save-after " + direct.string() + fresh_settings("save-job"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const nlohmann::json& jobs = r.stats.at("jobs");
     ASSERT_EQ(jobs.size(), 2u) << jobs;
@@ -211,7 +205,7 @@ TEST_F(EditorXvfb, AKeyTypedDuringAnImportActsOnceTheImportIsIn) {
             {"op": "key", "key": "s", "ctrl": true}, {"op": "wait", "frames": 2},
             {"op": "resume_job"}, {"op": "job", "until": "done"},
             {"op": "jobs", "wait": true}, {"op": "wait", "frames": 2})"),
-                                   settings_for("typed-ahead"));
+                                   fresh_settings("typed-ahead"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     ASSERT_GE(r.stats.at("jobs").size(), 1u);
     EXPECT_EQ(r.stats.at("jobs").at(0).at("kind"), "import");
@@ -228,7 +222,7 @@ TEST_F(EditorXvfb, ACompletedBackgroundImportIsTheSynchronousImport) {
     const EditorRun r = run_editor(
         "progress-import", then(kFlat, R"({"op": "set", "import_path": ")" + grid.string() + R"("},
                        {"op": "click", "widget": "Import"}, {"op": "wait", "frames": 2})"),
-        "--save-after " + saved.string() + settings_for("progress-import"));
+        "--save-after " + saved.string() + fresh_settings("progress-import"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     ASSERT_EQ(r.stats.at("jobs").size(), 1u);
     EXPECT_EQ(only_job(r).at("outcome"), "done");
@@ -251,7 +245,7 @@ TEST_F(EditorXvfb, ACancelledOpenKeepsTheSceneOpenBefore) {
     }
     const EditorRun r = run_editor("progress-open-cancel",
                                    then(kFlat, start_then_cancel("scene_path", scene, "Open")),
-                                   settings_for("progress-open-cancel"));
+                                   fresh_settings("progress-open-cancel"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const nlohmann::json& job = only_job(r);
     EXPECT_EQ(job.at("kind"), "open");
@@ -271,7 +265,7 @@ TEST_F(EditorXvfb, ACancelledExportLeavesTheOldFileAndACompletedOneWritesIt) {
                    then(kFlat, start_then_cancel("export_path", old_file, "Export") +
                                    R"(, {"op": "set", "export_path": ")" + fresh.string() + R"("},
                        {"op": "click", "widget": "Export"}, {"op": "wait", "frames": 2})"),
-                   settings_for("progress-export"));
+                   fresh_settings("progress-export"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     ASSERT_EQ(r.stats.at("jobs").size(), 2u) << r.stats.at("jobs");
     const nlohmann::json& cancelled = r.stats.at("jobs").at(0);
@@ -309,7 +303,7 @@ TEST_F(EditorXvfb, ErosionToRestShowsItsBarAndStopKeepsWhatSettledAsOneLevel) {
         "progress-erosion",
         R"([{"op": "set", "erosion": false, "steps": 1}, {"op": "wait", "frames": 2},
             {"op": "erode", "frames": 45}, {"op": "cancel_job"}, {"op": "wait", "frames": 3}])",
-        cone.string() + " --save-after " + after.string() + settings_for("progress-erosion"));
+        cone.string() + " --save-after " + after.string() + fresh_settings("progress-erosion"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const nlohmann::json& settle = r.stats.at("settle");
     ASSERT_TRUE(settle.value("shown", false)) << settle << r.stats.at("erosion_status");

@@ -47,13 +47,6 @@ fs::path dem_scene() {
     return path;
 }
 
-/// A fresh settings file for one run (runs must not share what they change).
-std::string fresh_settings(const std::string& name) {
-    const fs::path p = kWork / (name + ".settings.json");
-    fs::remove(p);
-    return " --settings " + p.string();
-}
-
 double max_height(const Tin& t) {
     double hi = -1e300;
     const VertexArrays& va = t.vertices();

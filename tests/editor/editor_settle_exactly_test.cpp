@@ -36,12 +36,6 @@ fs::path steep_cone_scene(const std::string& name) {
     return path;
 }
 
-std::string settings_for(const std::string& name) {
-    const fs::path p = kWork / (name + ".settings.json");
-    fs::remove(p);
-    return " --settings " + p.string();
-}
-
 std::string save_op(const fs::path& p) {
     return R"({"op": "save", "path": ")" + p.string() + R"("})";
 }
@@ -104,7 +98,7 @@ TEST_F(EditorXvfb, SettleExactlyBringsAConeToReposeHoldingItsVolumeAndUndoesAsOn
             {"op": "key", "key": "z", "ctrl": true},
             {"op": "wait", "frames": 2}, )" +
                        save_op(undone) + "]",
-                   scene.string() + settings_for("settle-exactly"));
+                   scene.string() + fresh_settings("settle-exactly"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
     const nlohmann::json job = settle_job(r);
@@ -121,7 +115,7 @@ TEST_F(EditorXvfb, SettleExactlyBringsAConeToReposeHoldingItsVolumeAndUndoesAsOn
     ASSERT_TRUE(t1.check_valid().ok()) << t1.check_valid().summary();
     EXPECT_NEAR(t1.volume(), t0.volume(), 1e-12 * t0.volume());
     // The cone of that volume at repose (V = pi H^3 / (3 tan^2 alpha)); the lattice's 2.5 cm
-    // spacing rounds the apex (0.134 against 0.146 m measured when this test was written).
+    // spacing rounds the apex (0.134 against 0.146 m in a direct projection of this lattice).
     const double apex = std::cbrt(3.0 * t0.volume() * tan_alpha * tan_alpha / kPi);
     EXPECT_NEAR(highest(s1), apex, 0.12 * apex);
     EXPECT_LT(highest(s1), highest(s0) - 0.03);
@@ -148,7 +142,7 @@ TEST_F(EditorXvfb, ACancelledSettleShowedItsBarAndLeftTheTerrainAsItWas) {
             {"op": "cancel_job"}, {"op": "job", "until": "done"},
             {"op": "jobs", "wait": true}, {"op": "wait", "frames": 2}, )" +
                        save_op(after) + "]",
-                   scene.string() + settings_for("settle-cancel"));
+                   scene.string() + fresh_settings("settle-cancel"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     const nlohmann::json job = settle_job(r);
     EXPECT_EQ(job.at("kind"), "settle") << job;
