@@ -111,12 +111,12 @@ ProgressCallback ProgressLine::callback() {
 
 void ProgressLine::finish() {
     if (!enabled_ || ended_) return;
-    // The work's own last report may have drawn 100 % already.
-    if (drawn_fraction_ < 1.0) {
-        fraction_ = 1.0;
-        stage_ = "done";
-        draw();
-    }
+    // Always a last drawing that says done: the work's own last report may have drawn 100 %
+    // with its stage ("operation 60 of 60"), and the line must end saying the work is done
+    // (cli.progress_stress failed on a clean clone when that report fell due for a redraw).
+    fraction_ = 1.0;
+    stage_ = "done";
+    draw();
     stop();
 }
 
@@ -137,7 +137,6 @@ void ProgressLine::draw() {
     if (width < width_) text.append(width_ - width, ' ');
     std::cerr << '\r' << text << std::flush;
     width_ = width;
-    drawn_fraction_ = fraction_;
     last_draw_ = now;
     drawn_ = true;
 }

@@ -58,7 +58,6 @@ class ProgressLine {
     std::chrono::steady_clock::time_point last_draw_{};
     bool drawn_ = false;
     double fraction_ = 0.0;
-    double drawn_fraction_ = 0.0;  ///< the fraction the last drawing showed
     std::string stage_;
     std::size_t width_ = 0;  ///< characters of the last line drawn, to blank what it leaves
 };
