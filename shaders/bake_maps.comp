@@ -16,6 +16,18 @@ void main() {
     vec2 a = position[ia], b = position[ib], c = position[ic];
     float area2 = orient(a, b, c);
     if (!(area2 > 0.0)) return;
+    float cmin = (min(a.x, min(b.x, c.x)) - pc.x0) / pc.dx - pc.offset;
+    float cmax = (max(a.x, max(b.x, c.x)) - pc.x0) / pc.dx - pc.offset;
+    float rmin = (pc.y_top - max(a.y, max(b.y, c.y))) / pc.dy - pc.offset;
+    float rmax = (pc.y_top - min(a.y, min(b.y, c.y))) / pc.dy - pc.offset;
+    // Clipped to the grid and to the texel rectangle being re-baked.
+    int c0 = max(int(pc.col0), int(ceil(cmin - 1e-3)));
+    int c1 = min(int(min(pc.col1, pc.width - 1u)), int(floor(cmax + 1e-3)));
+    int r0 = max(int(pc.row0), int(ceil(rmin - 1e-3)));
+    int r1 = min(int(min(pc.row1, pc.height - 1u)), int(floor(rmax + 1e-3)));
+    // Outside the texel rectangle (most triangles, when a band of a new map is baked): done
+    // before the normals and heights are fetched.
+    if (c0 > c1 || r0 > r1) return;
     vec3 na, nb, nc;
     if (pc.mode == 1u) {
         na = corner_normal[3u * s].xyz;
@@ -28,15 +40,6 @@ void main() {
     }
     float ha = height[ia], hb = height[ib], hc = height[ic];
     const float eps = 1e-5;
-    float cmin = (min(a.x, min(b.x, c.x)) - pc.x0) / pc.dx - pc.offset;
-    float cmax = (max(a.x, max(b.x, c.x)) - pc.x0) / pc.dx - pc.offset;
-    float rmin = (pc.y_top - max(a.y, max(b.y, c.y))) / pc.dy - pc.offset;
-    float rmax = (pc.y_top - min(a.y, min(b.y, c.y))) / pc.dy - pc.offset;
-    // Clipped to the grid and to the texel rectangle being re-baked.
-    int c0 = max(int(pc.col0), int(ceil(cmin - 1e-3)));
-    int c1 = min(int(min(pc.col1, pc.width - 1u)), int(floor(cmax + 1e-3)));
-    int r0 = max(int(pc.row0), int(ceil(rmin - 1e-3)));
-    int r1 = min(int(min(pc.row1, pc.height - 1u)), int(floor(rmax + 1e-3)));
     for (int row = r0; row <= r1; ++row) {
         float y = pc.y_top - (float(row) + pc.offset) * pc.dy;
         for (int col = c0; col <= c1; ++col) {

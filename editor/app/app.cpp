@@ -22,9 +22,11 @@ App::~App() {
     // The force loop fades the force out before the window goes; nothing the GPU may still
     // read is destroyed before it is idle; the document's GPU solver and the terrain's views
     // go before the device. A job still running is cancelled and waited for first (it
-    // touches nothing of the editor's, but its result would never be taken), and a desktop
-    // file dialog still open is closed: its thread wakes GLFW's loop, which must still be there.
+    // touches nothing of the editor's but the GPU, and its result would never be taken; a
+    // result not taken yet holds GPU buffers), and a desktop file dialog still open is closed:
+    // its thread wakes GLFW's loop, which must still be there.
     job_.reset();
+    job_done_ = nullptr;
     native_dialog_.reset();
     haptics_.reset();
     if (window_) window_->wait_idle();

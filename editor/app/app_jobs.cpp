@@ -68,13 +68,15 @@ void App::start_job(const std::string& kind, const std::string& title, Backgroun
 void App::start_document_job(const std::string& kind, const std::string& title, ReadDocument read,
                              std::function<void(PreparedDocument)> install) {
     auto next = std::make_shared<std::optional<PreparedDocument>>();
+    gpu::VulkanContext& gpu = window_->context();
     start_job(
         kind, title,
-        [next, read = std::move(read)](const ProgressCallback& progress) {
-            // The document, then its view prepared here too (TerrainView::prepare): the bar's
-            // last third, as measured on a 10^6-vertex scene.
-            Document document = read(progress_part(progress, 0.0, 0.65));
-            PreparedView view = TerrainView::prepare(document, progress_part(progress, 0.65, 1.0));
+        [next, read = std::move(read), &gpu](const ProgressCallback& progress) {
+            // The document, then its view built and uploaded here too (TerrainView::prepare):
+            // 58 % of the time on a 10^6-vertex scene.
+            Document document = read(progress_part(progress, 0.0, 0.42));
+            PreparedView view =
+                TerrainView::prepare(document, gpu, progress_part(progress, 0.42, 1.0));
             next->emplace(PreparedDocument{std::move(document), std::move(view)});
         },
         [next, install = std::move(install)] { install(std::move(**next)); });

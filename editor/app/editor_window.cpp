@@ -93,7 +93,7 @@ EditorWindow::~EditorWindow() {
 }
 
 void EditorWindow::teardown() {
-    if (context_) vkDeviceWaitIdle(context_->device());
+    if (context_) context_->wait_idle();
     if (imgui_ready_) {
         ImGui_ImplVulkan_Shutdown();
         ImGui_ImplGlfw_Shutdown();
@@ -112,7 +112,7 @@ void EditorWindow::teardown() {
 }
 
 void EditorWindow::wait_idle() const {
-    if (context_) vkDeviceWaitIdle(context_->device());
+    if (context_) context_->wait_idle();
 }
 
 void EditorWindow::fit_swapchain(bool vsync) {

@@ -64,7 +64,7 @@ void Swapchain::destroy_targets() {
 
 void Swapchain::recreate(VkExtent2D extent, bool vsync) {
     wait_idle();
-    vkDeviceWaitIdle(context_.device());
+    context_.wait_idle();
     destroy_targets();
     create(extent, vsync);
 }

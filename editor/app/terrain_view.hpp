@@ -25,17 +25,21 @@
 
 namespace sandtin::editor {
 
-/// What TerrainView::rebuild() computes on the CPU, computed beforehand on the worker thread
-/// that opened, imported or recovered the document (app_jobs.cpp): the render mesh, the GPU
-/// mirror's seed and the contrast range. Each part holds a reader of the TIN's journal opened
-/// before it was built, so whatever changes later still reaches it. It must go before the
-/// document's TIN does (PreparedDocument keeps that order).
+/// What TerrainView::rebuild() builds, built beforehand on the worker thread that opened,
+/// imported or recovered the document (app_jobs.cpp): the render mesh and its GPU buffers, the
+/// GPU mirror uploaded whole, the normal map baked whole, and the contrast range. The UI thread
+/// only adopts them: on lavapipe, at 10^6 vertices, the uploads were 1.9 s of the install
+/// frame, and the map's bake 8 frames of 100-260 ms. The readers of the TIN's journal were
+/// opened before what they follow was built, so whatever changes later still reaches it. It
+/// must go before the document's TIN does (PreparedDocument keeps that order).
 struct PreparedView {
     std::unique_ptr<ChangeReader> mesh_changes;  ///< opened before the mesh was built
     std::unique_ptr<render::TerrainMesh> mesh;
-    render::MeshUpdate mesh_upload;  ///< the whole mesh, for the first upload
-    gpu::MirrorSeed mirror;
-    std::optional<std::pair<double, double>> contrast;  ///< low and high heights (m)
+    render::MeshBuffers mesh_buffers;                      ///< `mesh`, written whole
+    std::unique_ptr<gpu::TinMirror> mirror;                ///< synced, its uploads landed
+    std::unique_ptr<ChangeReader> normal_map_changes;      ///< opened before the map was baked
+    std::unique_ptr<render::TerrainNormalMap> normal_map;  ///< complete; reads `mirror`
+    std::optional<std::pair<double, double>> contrast;     ///< low and high heights (m)
 };
 
 /// A document read on a worker thread and its view prepared there: the UI thread only uploads
@@ -68,13 +72,16 @@ class TerrainView {
     /// and the normal map of `doc`'s (the GPU must be idle, and no solver may still relax on
     /// the old mirror). Safe in the middle of a frame: the next draw sees only the new terrain.
     void rebuild(Document& doc);
-    /// The same, with the CPU's share done beforehand by prepare() on `doc` (its TIN must be the
-    /// one prepared): only the GPU's share is left, buffers made and filled, the normal map baked.
+    /// The same, with the mesh, the mirror and their uploads done beforehand by prepare() on
+    /// `doc` (its TIN must be the one prepared): what is left is adopting them and starting the
+    /// normal map, which is baked a band a frame.
     void rebuild(Document& doc, PreparedView prepared);
-    /// The CPU's share of rebuild(): the render mesh, the mirror's seed and the contrast range.
-    /// Touches no GPU state: runs on any thread that has `doc` to itself. `progress` names the
-    /// parts and may throw (Cancelled).
-    static PreparedView prepare(Document& doc, const ProgressCallback& progress = {});
+    /// rebuild()'s work but the normal map, for `doc`'s terrain: runs on any thread that has
+    /// `doc` to itself, while other threads use `context` (it submits under the context's queue
+    /// lock and waits for its own uploads). `progress` names the parts and may throw
+    /// (Cancelled).
+    static PreparedView prepare(Document& doc, gpu::VulkanContext& context,
+                                const ProgressCallback& progress = {});
     /// Drops everything built for the current terrain (its readers of the TIN's journal, the
     /// mirror, the normal map and the renderer's buffers), before that terrain goes. No solver
     /// may still relax on the mirror, and the GPU must be idle.
@@ -116,8 +123,6 @@ class TerrainView {
     render::TerrainRenderer& renderer_;
     std::uint64_t materials_version_ = ~std::uint64_t{0};
     std::unique_ptr<render::TerrainMesh> mesh_;
-    /// A prepared mesh not uploaded yet: the next update() uploads it whole.
-    std::optional<render::MeshUpdate> prepared_upload_;
     std::unique_ptr<ChangeReader> mesh_changes_;        ///< the mesh's reader of the journal
     std::unique_ptr<gpu::TinMirror> mirror_;            ///< syncs from a reader of its own
     std::unique_ptr<ChangeReader> normal_map_changes_;  ///< the bake's dirty rectangle

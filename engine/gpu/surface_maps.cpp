@@ -178,8 +178,11 @@ void SurfaceMaps::bake_region(const MapGrid& grid, const Rect& region, TexelRect
     p.row0 = texels.row0;
     p.col1 = texels.col1;
     p.row1 = texels.row1;
+    // An empty region recomputes no normal: no dispatch at all (a band of a new map after the
+    // first, 10^6 vertices' worth of threads that would each find themselves outside it).
+    const bool any_normals = whole || !region.empty();
     mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
-        record_normals(cb, n, creased);
+        if (any_normals) record_normals(cb, n, creased);
         shader_barrier(cb);
         bake_kernel_.dispatch(cb, p.count, &p);
         if (then) then(cb);

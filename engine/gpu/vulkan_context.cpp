@@ -364,7 +364,16 @@ uint32_t VulkanContext::memory_type(uint32_t type_bits, VkMemoryPropertyFlags re
     return *fallback;
 }
 
+void VulkanContext::wait_idle() const {
+    // Its failure (a lost device) is left to the next submission to report: this also runs
+    // in destructors.
+    const std::lock_guard lock(queue_mutex_);
+    static_cast<void>(vkDeviceWaitIdle(device_.get()));
+}
+
 void VulkanContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const {
+    // The pool and the fence are shared: host access to both must be externally synchronised.
+    const std::lock_guard one_shot(one_shot_mutex_);
     VkDevice device = device_.get();
     VkCommandBufferAllocateInfo ai{};
     ai.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO;

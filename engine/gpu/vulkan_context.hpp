@@ -13,7 +13,9 @@
 // The context owns the surface and destroys it before the instance. It picks one queue family
 // that supports graphics + compute (+ present when a surface exists) and creates one queue from
 // it: every submission in sandtin goes to that queue. VkQueue is externally synchronised, so
-// callers that submit from several threads must hold queue_mutex().
+// callers that submit from several threads must hold queue_mutex(); submit_and_wait() and
+// wait_idle() take it themselves, and may be called from any thread (the editor uploads an
+// opened scene on a worker while the UI thread draws).
 //
 // Device choice: discrete > integrated > virtual > CPU; SANDTIN_DEVICE (index or name
 // substring) overrides. Throws GpuUnavailable when there is no Vulkan device at all.
@@ -109,8 +111,12 @@ class VulkanContext {
 
     // Records commands with `record` into a one-time command buffer, submits to queue() and
     // waits for completion. For uploads, read-backs and tests; per-frame work uses its own
-    // command buffers.
+    // command buffers. Any thread: calls from two threads take turns (the one-shot pool and
+    // fence are shared), so `record` must not call it again.
     void submit_and_wait(const std::function<void(VkCommandBuffer)>& record) const;
+    // vkDeviceWaitIdle under queue_mutex(): waiting for the device is a use of its queue.
+    // Never throws (it runs in destructors); a lost device fails the next submission.
+    void wait_idle() const;
 
     // Called by the debug messenger.
     void on_validation_message(const char* message);
@@ -147,7 +153,8 @@ class VulkanContext {
     UniqueCommandPool one_shot_pool_;
     UniqueFence one_shot_fence_;
 
-    mutable std::mutex queue_mutex_;
+    mutable std::mutex one_shot_mutex_;  ///< held for a whole submit_and_wait()
+    mutable std::mutex queue_mutex_;     ///< taken after one_shot_mutex_, never before
 };
 
 }  // namespace sandtin::gpu

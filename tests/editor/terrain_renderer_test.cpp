@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "gpu/gpu_error.hpp"
+#include "gpu/render/normal_map.hpp"
 #include "gpu/render/terrain_mesh.hpp"
 #include "gpu/render/terrain_renderer.hpp"
 #include "gpu/vk_handle.hpp"
@@ -166,7 +168,7 @@ TEST_F(Renderer, AViewPreparedOnAWorkerDrawsWhatAViewBuiltWholeDraws) {
     editor::TerrainView prepared_view(*ctx_, prepared_renderer);
     whole_view.rebuild(whole);
     std::optional<editor::PreparedView> made;
-    std::thread worker([&] { made.emplace(editor::TerrainView::prepare(prepared)); });
+    std::thread worker([&] { made.emplace(editor::TerrainView::prepare(prepared, *ctx_)); });
     worker.join();
     ASSERT_TRUE(made.has_value());
     prepared_view.rebuild(prepared, std::move(*made));
@@ -207,6 +209,7 @@ TEST_F(Renderer, AViewPreparedOnAWorkerDrawsWhatAViewBuiltWholeDraws) {
         EXPECT_EQ(whole_view.contrast_low(), prepared_view.contrast_low());
         EXPECT_EQ(whole_view.contrast_high(), prepared_view.contrast_high());
     };
+    EXPECT_FALSE(prepared_view.baking_normal_map()) << "the map comes baked from the worker";
     expect_same("after the rebuilds", true);
     ASSERT_FALSE(whole_view.mesh().constrained_edges().empty()) << "the rim is in the scene";
 
@@ -224,7 +227,7 @@ TEST_F(Renderer, AViewPreparedOnAWorkerDrawsWhatAViewBuiltWholeDraws) {
 
     // Prepared, then the terrain changes before the upload: the view shows the new terrain.
     std::optional<editor::PreparedView> behind;
-    std::thread second([&] { behind.emplace(editor::TerrainView::prepare(prepared)); });
+    std::thread second([&] { behind.emplace(editor::TerrainView::prepare(prepared, *ctx_)); });
     second.join();
     const auto lift = [](editor::Document& doc) {
         const VertexId v = doc.tin().locate({0.3, 0.7}).corners[0];
@@ -235,6 +238,66 @@ TEST_F(Renderer, AViewPreparedOnAWorkerDrawsWhatAViewBuiltWholeDraws) {
     lift(whole);
     whole_view.update(whole, [] {});
     expect_same("prepared, then lifted before the upload", false);
+}
+
+// A view is prepared on a worker (its mirror uploaded and its normal map baked there) while
+// the UI thread goes on submitting work of its own to the same queue, as the editor draws and
+// bakes while a scene opens. The validation layer's thread-safety checks (TearDown) see every
+// submission; what the worker built is what the UI thread builds from the same scene.
+TEST_F(Renderer, AViewPreparedWhileTheUIThreadSubmitsIsTheViewBuiltAfterwards) {
+    const Rect domain{{0, 0}, {1, 1}};
+    const std::filesystem::path scene =
+        std::filesystem::temp_directory_path() / "sandtin-prepared-concurrently.sandtin";
+    {
+        Tin tin = Tin::random_points(domain, 20000, 3,
+                                     [](Vec2 p) { return 0.1 + 0.05 * p.x - 0.03 * p.y; });
+        save_session(scene, Session{tin.snapshot(), 0, "{}", {}});
+    }
+    editor::Document prepared = editor::Document::open(scene);
+    editor::Document whole = editor::Document::open(scene);
+    std::filesystem::remove(scene);
+
+    // The UI thread's own work meanwhile: a small terrain lifted, synced and baked again.
+    Tin busy = Tin::random_points(domain, 2000, 5, [](Vec2) { return 0.05; });
+    gpu::TinMirror busy_mirror(*ctx_, busy);
+    busy_mirror.sync();
+    TerrainNormalMap busy_map(busy_mirror, domain, 256);
+    std::atomic<bool> done{false};
+    std::optional<editor::PreparedView> made;
+    std::thread worker([&] {
+        made.emplace(editor::TerrainView::prepare(prepared, *ctx_));
+        done = true;
+    });
+    int rounds = 0;
+    const VertexId lifted = busy.locate({0.5, 0.5}).corners[0];
+    while (!done || rounds == 0) {
+        busy.set_height(lifted, busy.height(lifted) + 1e-3);
+        busy_mirror.sync();
+        busy_map.bake_all();
+        ++rounds;
+    }
+    worker.join();
+    ASSERT_TRUE(made.has_value());
+    EXPECT_GE(rounds, 1);
+
+    TerrainRenderer prepared_renderer(*ctx_, pass_.get());
+    TerrainRenderer whole_renderer(*ctx_, pass_.get());
+    editor::TerrainView prepared_view(*ctx_, prepared_renderer);
+    editor::TerrainView whole_view(*ctx_, whole_renderer);
+    prepared_view.rebuild(prepared, std::move(*made));
+    whole_view.rebuild(whole);
+    for (int k = 0; k < 64 && whole_view.baking_normal_map(); ++k)
+        whole_view.update(whole, [] {});
+    ASSERT_FALSE(whole_view.baking_normal_map());
+    EXPECT_FALSE(prepared_view.baking_normal_map());
+    expect_draws(prepared_renderer, prepared_view.mesh());
+    const auto a = whole_renderer.drawn_vertex_bytes();
+    const auto b = prepared_renderer.drawn_vertex_bytes();
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size()), 0);
+    EXPECT_EQ(whole_view.normal_map()->read_back(), prepared_view.normal_map()->read_back());
+    EXPECT_TRUE(prepared_view.mirror().graph().matches(prepared.tin()));
+    EXPECT_EQ(whole_view.mirror().graph().targets(), prepared_view.mirror().graph().targets());
 }
 
 }  // namespace

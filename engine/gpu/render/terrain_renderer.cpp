@@ -178,10 +178,7 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
 }
 
 void TerrainRenderer::ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage) {
-    if (buffer && buffer.size() >= bytes) return;
-    // Grow by half again so a terrain that gains vertices does not reallocate every edit.
-    buffer = gpu::Buffer(context_, std::max<VkDeviceSize>(bytes + bytes / 2, 256), usage,
-                         gpu::MemoryUse::Upload);
+    ensure_mesh_buffer(context_, buffer, bytes, usage);
 }
 
 void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) {
@@ -190,45 +187,43 @@ void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) 
     if (v.empty() || idx.empty()) return;
     const VkDeviceSize vbytes = v.size() * sizeof(RenderVertex);
     const VkDeviceSize ibytes = idx.size() * sizeof(std::uint32_t);
-    const bool grew =
-        !vertices_ || vertices_.size() < vbytes || !indices_ || indices_.size() < ibytes;
-    ensure(vertices_, vbytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    ensure(indices_, ibytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    auto* vdst = static_cast<std::uint8_t*>(vertices_.mapped());
-    auto* idst = static_cast<std::uint8_t*>(indices_.mapped());
-    if (grew || update.resized) {
-        std::memcpy(vdst, v.data(), vbytes);
-        std::memcpy(idst, idx.data(), ibytes);
-        bytes_uploaded_ += vbytes + ibytes;
-    } else {
-        for (const IdRange& r : update.vertices) {
-            const std::size_t at = std::size_t{r.begin} * sizeof(RenderVertex);
-            std::memcpy(vdst + at, v.data() + r.begin,
-                        std::size_t{r.size()} * sizeof(RenderVertex));
-        }
-        for (const IdRange& r : update.slots) {
-            const std::size_t at = std::size_t{r.begin} * 3 * sizeof(std::uint32_t);
-            std::memcpy(idst + at, idx.data() + std::size_t{r.begin} * 3,
-                        std::size_t{r.size()} * 3 * sizeof(std::uint32_t));
-        }
-        bytes_uploaded_ += update.bytes();
+    const bool fits = mesh_.vertices && mesh_.vertices.size() >= vbytes && mesh_.indices &&
+                      mesh_.indices.size() >= ibytes;
+    if (!fits || update.resized) {
+        bytes_uploaded_ += write_whole_mesh(context_, mesh, mesh_);
+        wire_stale_ = true;
+        return;
     }
-    vertices_.flush(context_);
-    indices_.flush(context_);
-    index_count_ = static_cast<std::uint32_t>(idx.size());
-    vertex_bytes_ = static_cast<std::size_t>(vbytes);
-    if (update.edges_changed || update.resized || grew) {
-        const auto& e = mesh.constrained_edges();
-        constrained_count_ = static_cast<std::uint32_t>(e.size());
-        if (!e.empty()) {
-            ensure(constrained_, e.size() * sizeof(std::uint32_t),
-                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-            std::memcpy(constrained_.mapped(), e.data(), e.size() * sizeof(std::uint32_t));
-            constrained_.flush(context_);
-            bytes_uploaded_ += e.size() * sizeof(std::uint32_t);
-        }
+    auto* vdst = static_cast<std::uint8_t*>(mesh_.vertices.mapped());
+    auto* idst = static_cast<std::uint8_t*>(mesh_.indices.mapped());
+    for (const IdRange& r : update.vertices) {
+        const std::size_t at = std::size_t{r.begin} * sizeof(RenderVertex);
+        std::memcpy(vdst + at, v.data() + r.begin, std::size_t{r.size()} * sizeof(RenderVertex));
     }
-    if (!update.slots.empty() || update.resized || grew) wire_stale_ = true;
+    for (const IdRange& r : update.slots) {
+        const std::size_t at = std::size_t{r.begin} * 3 * sizeof(std::uint32_t);
+        std::memcpy(idst + at, idx.data() + std::size_t{r.begin} * 3,
+                    std::size_t{r.size()} * 3 * sizeof(std::uint32_t));
+    }
+    bytes_uploaded_ += update.bytes();
+    mesh_.vertices.flush(context_);
+    mesh_.indices.flush(context_);
+    mesh_.index_count = static_cast<std::uint32_t>(idx.size());
+    mesh_.vertex_bytes = static_cast<std::size_t>(vbytes);
+    if (update.edges_changed) bytes_uploaded_ += write_constrained_edges(context_, mesh, mesh_);
+    if (!update.slots.empty()) wire_stale_ = true;
+}
+
+void TerrainRenderer::adopt(MeshBuffers buffers, const TerrainMesh& mesh) {
+    if (buffers.index_count != mesh.indices().size() ||
+        buffers.vertex_bytes != mesh.vertices().size() * sizeof(RenderVertex))
+        throw gpu::GpuError("TerrainRenderer::adopt: the buffers do not hold that mesh");
+    bytes_uploaded_ += buffers.vertex_bytes + std::uint64_t{buffers.index_count} * 4 +
+                       std::uint64_t{buffers.constrained_count} * 4;
+    mesh_ = std::move(buffers);
+    wire_ = gpu::Buffer();
+    wire_count_ = 0;
+    wire_stale_ = true;
 }
 
 void TerrainRenderer::set_normal_map(VkImageView view, VkSampler sampler) {
@@ -248,38 +243,33 @@ void TerrainRenderer::use_vertex_normals() {
 }
 
 void TerrainRenderer::drop_mesh() {
-    vertices_ = gpu::Buffer();
-    indices_ = gpu::Buffer();
-    constrained_ = gpu::Buffer();
+    mesh_ = MeshBuffers{};
     wire_ = gpu::Buffer();
-    index_count_ = 0;
-    vertex_bytes_ = 0;
-    constrained_count_ = 0;
     wire_count_ = 0;
     wire_stale_ = true;
 }
 
 std::span<const std::byte> TerrainRenderer::drawn_vertex_bytes() const {
-    if (!vertices_) return {};
-    return {static_cast<const std::byte*>(vertices_.mapped()), vertex_bytes_};
+    if (!mesh_.vertices) return {};
+    return {static_cast<const std::byte*>(mesh_.vertices.mapped()), mesh_.vertex_bytes};
 }
 
 std::span<const std::byte> TerrainRenderer::drawn_index_bytes() const {
-    if (!indices_) return {};
-    return {static_cast<const std::byte*>(indices_.mapped()),
-            std::size_t{index_count_} * sizeof(std::uint32_t)};
+    if (!mesh_.indices) return {};
+    return {static_cast<const std::byte*>(mesh_.indices.mapped()),
+            std::size_t{mesh_.index_count} * sizeof(std::uint32_t)};
 }
 
 void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
                            const TerrainMesh& mesh) {
-    if (index_count_ == 0) return;
+    if (mesh_.index_count == 0) return;
     VkViewport viewport{
         0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
         0.0f, 1.0f};
     VkRect2D scissor{{0, 0}, extent};
     vkCmdSetViewport(cb, 0, 1, &viewport);
     vkCmdSetScissor(cb, 0, 1, &scissor);
-    const VkBuffer vb = vertices_.get();
+    const VkBuffer vb = mesh_.vertices.get();
     const VkDeviceSize offset = 0;
     vkCmdBindVertexBuffers(cb, 0, 1, &vb, &offset);
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, terrain_pipeline_.get());
@@ -288,8 +278,8 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
     vkCmdPushConstants(cb, terrain_layout_.get(),
                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(TerrainPush), &push);
-    vkCmdBindIndexBuffer(cb, indices_.get(), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexed(cb, index_count_, 1, 0, 0, 0);
+    vkCmdBindIndexBuffer(cb, mesh_.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cb, mesh_.index_count, 1, 0, 0, 0);
 
     if (push.overlays[0] < 0.5f) return;  // the wireframe passes cost nothing when off
     if (wire_stale_) {
@@ -315,15 +305,15 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
         vkCmdBindIndexBuffer(cb, wire_.get(), 0, VK_INDEX_TYPE_UINT32);
         vkCmdDrawIndexed(cb, wire_count_, 1, 0, 0, 0);
     }
-    if (constrained_count_ > 0) {
+    if (mesh_.constrained_count > 0) {
         lp.colour[0] = 1.0f;
         lp.colour[1] = 0.1f;
         lp.colour[2] = 0.6f;
         vkCmdPushConstants(cb, lines_layout_.get(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof(LinesPush), &lp);
-        vkCmdBindIndexBuffer(cb, constrained_.get(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cb, constrained_count_, 1, 0, 0, 0);
+        vkCmdBindIndexBuffer(cb, mesh_.constrained.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cb, mesh_.constrained_count, 1, 0, 0, 0);
     }
 }
 

@@ -14,6 +14,7 @@
 #include <span>
 
 #include "gpu/buffer.hpp"
+#include "gpu/render/mesh_buffers.hpp"
 #include "gpu/render/terrain_mesh.hpp"
 #include "gpu/render/vertex_normal_placeholder.hpp"
 #include "gpu/vulkan_context.hpp"
@@ -40,6 +41,10 @@ class TerrainRenderer {
     /// Copies the ranges `update` names from `mesh` (everything when it says resized). The GPU
     /// must not be reading the buffers (the caller waits for the previous frame).
     void upload(const TerrainMesh& mesh, const MeshUpdate& update);
+    /// Draws from `buffers` from now on: a whole mesh written elsewhere (write_whole_mesh, on
+    /// a worker thread that opened a scene), in place of whatever was drawn before. `mesh` is
+    /// what they hold. The GPU must not be drawing.
+    void adopt(MeshBuffers buffers, const TerrainMesh& mesh);
     /// The baked normal map terrain.frag samples (TerrainNormalMap). Set again when the map is
     /// replaced; the GPU must not be drawing.
     void set_normal_map(VkImageView view, VkSampler sampler);
@@ -82,14 +87,9 @@ class TerrainRenderer {
     gpu::UniquePipeline terrain_pipeline_;
     gpu::UniquePipelineLayout lines_layout_;
     gpu::UniquePipeline lines_pipeline_;
-    gpu::Buffer vertices_;
-    gpu::Buffer indices_;
-    gpu::Buffer constrained_;
+    MeshBuffers mesh_;
     gpu::Buffer wire_;
     gpu::Buffer outline_;
-    std::uint32_t index_count_ = 0;
-    std::size_t vertex_bytes_ = 0;  ///< of the mesh last uploaded
-    std::uint32_t constrained_count_ = 0;
     std::uint32_t wire_count_ = 0;
     bool wire_stale_ = true;
     std::uint64_t bytes_uploaded_ = 0;
