@@ -238,18 +238,9 @@ ExportOptions Document::export_options() const {
     return options;
 }
 
-ExportReport Document::export_to(const std::filesystem::path& path) const {
-    return export_terrain(*tin_, path, export_format_for(path), export_options());
-}
-
-ExportJob Document::export_job(const std::filesystem::path& path) const {
-    return ExportJob{path, export_format_for(path), export_options(), tin_->snapshot()};
-}
-
-ExportReport ExportJob::run(const ProgressCallback& progress) const {
-    if (progress) progress({0.0, "copying the terrain"});
-    const Tin tin = Tin::from_snapshot(terrain);
-    return export_terrain(tin, path, format, options, progress_part(progress, 0.05, 1.0));
+ExportReport Document::export_to(const std::filesystem::path& path,
+                                 const ProgressCallback& progress) const {
+    return export_terrain(*tin_, path, export_format_for(path), export_options(), progress);
 }
 
 void Document::mark_edited(std::chrono::steady_clock::time_point now) {

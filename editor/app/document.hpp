@@ -27,18 +27,6 @@
 
 namespace sandtin::editor {
 
-/// An export with its own copy of the terrain and options (Document::export_job).
-struct ExportJob {
-    std::filesystem::path path;
-    ExportFormat format = ExportFormat::Obj;
-    ExportOptions options;
-    TinSnapshot terrain;
-
-    /// Builds the terrain again from the copy and exports it, as Document::export_to does.
-    /// `progress` may throw (Cancelled): the export then writes nothing.
-    ExportReport run(const ProgressCallback& progress = {}) const;
-};
-
 /// What an undo or redo did, for the status line.
 struct UndoOutcome {
     bool done = false;
@@ -131,12 +119,11 @@ class Document {
     /// scene's file is `path`, with nothing unsaved.
     void saved_as(const std::filesystem::path& path);
     /// The terrain as `sandtin export` writes it (format from the extension), with the
-    /// materials as they are now, unsaved edits included. Throws on failure.
-    ExportReport export_to(const std::filesystem::path& path) const;
-    /// What an export to `path` needs, copied: the export can then run on a worker thread
-    /// while this document goes on being edited (or is replaced). Throws std::invalid_argument
-    /// for an extension no format has, at once.
-    ExportJob export_job(const std::filesystem::path& path) const;
+    /// materials as they are now, unsaved edits included. Throws on failure; `progress` may
+    /// throw (Cancelled), and the export then writes nothing. Only reads the document: a worker
+    /// thread may run it while nothing edits the document (App::export_reporting).
+    ExportReport export_to(const std::filesystem::path& path,
+                           const ProgressCallback& progress = {}) const;
     /// The session a save or an autosave writes.
     Session session() const;
     /// Edits were made: the scene needs saving, and an autosave once the interval passed.
@@ -149,7 +136,7 @@ class Document {
     bool keep_in_autosave(AutosaveWriter& writer);
 
   private:
-    /// The options `sandtin export` would take from this scene (export_to, export_job).
+    /// The options `sandtin export` would take from this scene (export_to).
     ExportOptions export_options() const;
     /// Undo (`back`) or redo: a material edit or a terrain level of the history.
     UndoOutcome step_back_or_forward(bool back);
