@@ -61,6 +61,9 @@ void App::start_job(const std::string& kind, const std::string& title, Backgroun
     job_done_ = std::move(done);
     job_record_ = {{"kind", kind},    {"title", title},       {"frames", 0},
                    {"bar_frames", 0}, {"outcome", "running"}, {"fractions_shown", 0}};
+    // A job may read the document on its worker (Save, Export) while the frames take the
+    // journal's changes: those takes must not recycle dead ids, which the worker reads.
+    if (doc_.has_terrain()) doc_.tin().hold_id_recycling(true);
     job_ = std::make_unique<BackgroundJob>(title, std::move(work), job_pause_at_);
     job_popup_open_ = true;
 }
@@ -106,6 +109,7 @@ void App::poll_job() {
     std::function<void()> done = std::move(job_done_);
     job_done_ = nullptr;
     job_.reset();
+    if (doc_.has_terrain()) doc_.tin().hold_id_recycling(false);  // the worker is done with it
     job_record_["outcome"] = cancelled ? "cancelled" : to_string(outcome);
     job_record_["seconds"] = last.elapsed_seconds;
     const bool startup = std::exchange(startup_open_, false);
@@ -215,9 +219,9 @@ void App::save(const std::filesystem::path& p, std::function<void()> then) {
     autosave_writer_.cancel();
     // The scene as it is at this click: nothing edits the document while the job runs (the
     // tools, the erosion and the document commands wait for it), and the UI thread only reads
-    // the terrain meanwhile (frames draw it; the readers of its journal take their changes, which
-    // the copy does not read). So the copy is the worker's too: it was 0.12-0.45 s of a
-    // 10^6-vertex save's frame on the UI thread.
+    // the terrain meanwhile (frames draw it; the readers of its journal take their changes,
+    // recycling no ids while the job holds it, start_job). So the copy is the worker's too: it
+    // was 0.12-0.45 s of a 10^6-vertex save's frame on the UI thread.
     const Document* doc = &doc_;
     start_job(
         "save", "Saving " + p.filename().string(),

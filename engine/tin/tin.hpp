@@ -408,6 +408,12 @@ class Tin {
     std::uint32_t open_change_reader();
     void close_change_reader(std::uint32_t reader);
     ChangeSet take_changes(std::uint32_t reader);
+    /// While held, a take leaves the dead ids and slots it has seen pending instead of making
+    /// them free again, and so writes nothing but the journal: another thread may then read
+    /// the TIN through its const methods (snapshot(), vertex_count(), an export) while this one
+    /// takes changes, as long as nothing edits it. The first take after it is let go recycles
+    /// what was held.
+    void hold_id_recycling(bool held);
 
     /// Inserted points within this distance (m) of an existing vertex reuse that vertex (which
     /// keeps its height), so rounding-level near-duplicates never make sliver triangles.

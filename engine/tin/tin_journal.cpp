@@ -113,8 +113,9 @@ ChangeSet take_reader(Tin::Impl& m, std::uint32_t reader) {
         cs.vertices = merge_into_ranges(std::move(taken.vertices));
         cs.triangles = merge_into_ranges(std::move(taken.slots));
     }
-    // This reader has now seen the deaths it reports: those every reader has seen are recycled.
-    m.recycle_seen_deaths();
+    // This reader has now seen the deaths it reports: those every reader has seen are recycled
+    // (unless recycling is held: then at the first take after it is let go).
+    if (!m.recycling_held) m.recycle_seen_deaths();
     return cs;
 }
 
@@ -124,6 +125,10 @@ ChangeSet Tin::take_changes() {
     Impl& m = *impl_;
     if (m.default_reader == Impl::kNoReader) return counts_only(m);
     return take_reader(m, m.default_reader);
+}
+
+void Tin::hold_id_recycling(bool held) {
+    impl_->recycling_held = held;
 }
 
 bool Tin::tracks_changes() const {
@@ -150,7 +155,7 @@ void Tin::close_change_reader(std::uint32_t reader) {
     Impl& m = *impl_;
     if (reader == m.default_reader || !m.journal.is_open(reader)) return;
     m.journal.close_range_reader(reader);
-    m.recycle_seen_deaths();
+    if (!m.recycling_held) m.recycle_seen_deaths();
 }
 
 ChangeSet Tin::take_changes(std::uint32_t reader) {

@@ -121,6 +121,24 @@ TEST(ChangeReader, ClosingTheLastLaggingReaderLetsItsDeathsBeRecycled) {
     EXPECT_EQ(tin.insert_point({2.02, 1.07}, 1.0), dead);
 }
 
+// The editor holds recycling while a job reads the terrain on another thread: the frames'
+// takes then leave the allocators as they are, and the first take after it lets go recycles.
+TEST(ChangeReader, WhileRecyclingIsHeldATakenDeathStaysPendingUntilTheNextTakeAfter) {
+    Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 200, 8, reader_hills,
+                                 TinOptions{.track_changes = false});
+    ChangeReader a(tin);
+    a.take();
+    const VertexId dead = interior_vertex(tin);
+    ASSERT_TRUE(tin.remove_vertex(dead));
+    tin.hold_id_recycling(true);
+    a.take();
+    tin.hold_id_recycling(false);
+    EXPECT_NE(tin.insert_point({1.01, 2.03}, 1.0), dead) << "not recycled by the held take";
+    a.take();
+    EXPECT_EQ(tin.insert_point({2.02, 1.07}, 1.0), dead) << "recycled by the take after it";
+    EXPECT_TRUE(tin.check_valid().ok());
+}
+
 TEST(ChangeReader, WithoutReadersADeadIdIsRecycledAtOnce) {
     Tin tin = Tin::random_points(Rect::from_size(4.0, 4.0), 200, 7, reader_hills,
                                  TinOptions{.track_changes = false});

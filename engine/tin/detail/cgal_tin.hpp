@@ -339,6 +339,8 @@ struct Tin::Impl {
     detail::JournalReaders journal;
     static constexpr std::uint32_t kNoReader = ~std::uint32_t{0};
     std::uint32_t default_reader = kNoReader;
+    /// Tin::hold_id_recycling: takes leave dead ids and slots pending.
+    bool recycling_held = false;
     /// Opens the default reader when options.track_changes asks for it. Before anything is
     /// built: the builders mark what they create.
     void open_default_reader() {
