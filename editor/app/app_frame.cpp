@@ -117,6 +117,7 @@ void App::update_simulation() {
         report(m);
     times_.push(times_.physics, ms_since(t0));
     times_.push(times_.tool, sculpting_.take_tool_ms());
+    doc_.follow_edits_for_autosave();
     autosave_if_due();
 }
 

@@ -29,6 +29,9 @@ Document Document::make(Tin t, Generation next_generation, const std::filesystem
     d.tin_->set_track_changes(false);
     d.solver_ = std::make_unique<SandPhysics>(*d.tin_, d.materials_);
     d.history_ = std::make_unique<History>(*d.tin_);
+    // Copied whole here, on the thread that builds the document (the worker of Open, Import,
+    // Recover and New): the frame then pays only for its edits when an autosave is due.
+    d.autosave_copy_ = std::make_unique<SessionKeeper>(*d.tin_);
     d.path_ = p;
     return d;
 }
@@ -92,6 +95,7 @@ Document::Document(Document&& o) noexcept
       context_(std::move(o.context_)),
       solver_(std::move(o.solver_)),
       history_(std::move(o.history_)),
+      autosave_copy_(std::move(o.autosave_copy_)),
       undo_log_(std::move(o.undo_log_)),
       materials_(std::move(o.materials_)),
       materials_version_(o.materials_version_),
@@ -108,6 +112,7 @@ Document& Document::operator=(Document&& o) noexcept {
     context_ = std::move(o.context_);
     solver_ = std::move(o.solver_);
     history_ = std::move(o.history_);
+    autosave_copy_ = std::move(o.autosave_copy_);
     undo_log_ = std::move(o.undo_log_);
     materials_ = std::move(o.materials_);
     // Views compare versions: a new document's table is new to them, whatever its count.
@@ -124,6 +129,7 @@ Document::~Document() {
 }
 
 void Document::close() {
+    autosave_copy_.reset();
     history_.reset();
     solver_.reset();
     context_.reset();
@@ -250,14 +256,23 @@ void Document::mark_edited(std::chrono::steady_clock::time_point now) {
 
 void Document::autosave_if_due(AutosaveWriter& writer, std::chrono::steady_clock::time_point now) {
     if (path_.empty() || !autosave_schedule_.due(now)) return;
-    writer.submit(path_, session());
+    writer.submit(path_, autosave_source());
     autosave_schedule_.saved(now);
 }
 
 bool Document::keep_in_autosave(AutosaveWriter& writer) {
     if (!dirty_ || path_.empty()) return false;
-    writer.submit(path_, session());
+    writer.submit(path_, autosave_source());
     return true;
+}
+
+SessionSource Document::autosave_source() {
+    return autosave_copy_->hand_out(context_->peek_generation(),
+                                    session_metadata(materials_, metadata_json_));
+}
+
+void Document::follow_edits_for_autosave() {
+    if (autosave_copy_) autosave_copy_->follow();
 }
 
 }  // namespace sandtin::editor

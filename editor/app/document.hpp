@@ -21,6 +21,7 @@
 #include "io/progress.hpp"
 #include "io/scene_materials.hpp"
 #include "io/session_file.hpp"
+#include "io/session_keeper.hpp"
 #include "physics/terrain_solver.hpp"
 #include "tools/sculpt_context.hpp"
 #include "undo_log.hpp"
@@ -134,6 +135,9 @@ class Document {
     /// Unsaved edits of a scene with a file go to its autosave now (closing, replacing it).
     /// True when something was submitted.
     bool keep_in_autosave(AutosaveWriter& writer);
+    /// Brings the copy autosaves are made from up to the terrain: what this frame's edits
+    /// touched. Once a frame, after the edits.
+    void follow_edits_for_autosave();
 
   private:
     /// The options `sandtin export` would take from this scene (export_to).
@@ -145,12 +149,16 @@ class Document {
     void apply_materials(MaterialTable table);
     /// Drops the parts that refer to the TIN before the TIN.
     void close();
+    /// The session an autosave writes, made on the writer's thread from the kept copy.
+    SessionSource autosave_source();
 
     std::filesystem::path path_;
     std::unique_ptr<Tin> tin_;
     std::unique_ptr<SculptContext> context_;
     std::unique_ptr<RelaxationSolver> solver_;
     std::unique_ptr<History> history_;
+    /// The copy autosaves are made from (io/session_keeper.hpp), followed once a frame.
+    std::unique_ptr<SessionKeeper> autosave_copy_;
     UndoLog undo_log_;  ///< terrain levels (history_) and material edits, in order
     MaterialTable materials_ = MaterialTable::presets();
     std::uint64_t materials_version_ = 0;

@@ -1,6 +1,7 @@
 #include "io/autosave_writer.hpp"
 
 #include <exception>
+#include <memory>
 #include <utility>
 
 namespace sandtin {
@@ -18,16 +19,25 @@ AutosaveWriter::~AutosaveWriter() {
 
 void AutosaveWriter::submit(std::filesystem::path scene, Session session,
                             WriteInterruption interruption) {
+    auto made = std::make_shared<Session>(std::move(session));
+    submit(
+        std::move(scene), [made] { return std::move(*made); }, std::move(interruption));
+}
+
+void AutosaveWriter::submit(std::filesystem::path scene, SessionSource source,
+                            WriteInterruption interruption) {
+    std::optional<Job> replaced;  // dropped outside the lock
     {
         const std::lock_guard lock(mutex_);
-        queued_ = Job{std::move(scene), std::move(session), std::move(interruption)};
+        replaced = std::exchange(queued_,
+                                 Job{std::move(scene), std::move(source), std::move(interruption)});
     }
     work_.notify_all();
 }
 
 void AutosaveWriter::cancel() {
     std::unique_lock lock(mutex_);
-    queued_.reset();
+    queued_.reset();  // its source, dropped uncalled
     idle_.wait(lock, [this] { return !writing_; });
 }
 
@@ -57,10 +67,13 @@ void AutosaveWriter::run() {
         lock.unlock();
         std::optional<std::string> failure;
         try {
-            write_autosave(job.scene, job.session, job.interruption);
+            const Session session = job.source();
+            job.source = nullptr;  // a loaned copy goes back before the write
+            write_autosave(job.scene, session, job.interruption);
         } catch (const std::exception& e) {
             failure = e.what();
         }
+        job = Job{};  // what the job held goes before the next one is taken
         lock.lock();
         writing_ = false;
         if (failure) {

@@ -1,7 +1,8 @@
 #pragma once
 // Autosaves written on a worker thread. Encoding and writing a large scene takes a while
-// (0.26 s for 10^6 vertices, measured), which would stall the editor's frame once a minute;
-// the frame only takes the snapshot (20-40 ms at 10^6) and hands it over.
+// (0.26 s for 10^6 vertices, measured), which would stall the editor's frame once a minute.
+// The frame hands over a session, or a source that makes it here (SessionKeeper: the copy of
+// the terrain is then made on this thread too).
 //
 // A failed write (full disk, read-only folder) never throws into the caller: its message is
 // kept for the caller to show (take_error), and the next autosave tries again. An autosave
@@ -32,6 +33,11 @@ class AutosaveWriter {
     /// autosave that has not started is replaced: only the newest state is worth writing.
     /// `interruption` is the atomic writer's test hook.
     void submit(std::filesystem::path scene, Session session, WriteInterruption interruption = {});
+    /// The same with the session made on the writer's thread, by calling `source` once when its
+    /// turn comes (SessionKeeper::hand_out: the frame then never copies the terrain). A source
+    /// replaced or cancelled before its turn is dropped uncalled.
+    void submit(std::filesystem::path scene, SessionSource source,
+                WriteInterruption interruption = {});
     /// Drops a queued autosave that has not started and waits for the one being written. Call
     /// it before saving the scene or discarding its autosave, so that no late autosave brings
     /// back a file the caller just retired.
@@ -46,7 +52,7 @@ class AutosaveWriter {
   private:
     struct Job {
         std::filesystem::path scene;
-        Session session;
+        SessionSource source;
         WriteInterruption interruption;
     };
     void run();

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,6 +35,10 @@ struct Session {
     /// one), so the editor can say a save will upgrade an older file.
     std::uint32_t format_version = kSessionFormatVersion;
 };
+
+/// A session made when it is needed, on the thread that needs it (SessionKeeper::hand_out,
+/// AutosaveWriter::submit). Called at most once.
+using SessionSource = std::function<Session()>;
 
 std::vector<std::uint8_t> encode_session(const Session& session);
 /// Throws std::runtime_error with a message naming the problem (not a session, corrupted

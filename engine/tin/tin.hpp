@@ -431,6 +431,14 @@ class Tin {
 
     /// A complete copy: vertices by id, triangles by slot, constraints and free lists.
     TinSnapshot snapshot() const;
+    /// Brings `copy`, a snapshot of this TIN taken earlier, up to date for what `changes` names
+    /// (every change since then, as a range reader reported them): the named vertex ids and
+    /// slots are copied again and the arrays take the present capacities. The free lists and
+    /// constraints are left for copy_lists_into(); the lumped areas, which a restore
+    /// recomputes, are not kept. O(changes): a copy kept this way costs what the edits touched.
+    void copy_changes_into(TinSnapshot& copy, const ChangeSet& changes) const;
+    /// The free lists and constraints of `copy`, from this TIN (O(free ids + constraints)).
+    void copy_lists_into(TinSnapshot& copy) const;
 
     struct Impl;
 

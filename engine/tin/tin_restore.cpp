@@ -48,12 +48,51 @@ TinSnapshot Tin::snapshot() const {
     s.domain = m.domain;
     s.vertices = m.va;
     s.vertices.resize(m.events.vertex_ids.capacity());
-    s.vertex_free_list = handout_order(m.events.vertex_ids);
     s.slots.resize(m.events.slots.capacity(), {kNoSlot, kNoSlot, kNoSlot});
     for (std::uint32_t slot = 0; slot < s.slots.size(); ++slot) {
         if (m.events.face_of_slot[slot] != nullptr) s.slots[slot] = m.slot_cache[slot].corners;
     }
+    copy_lists_into(s);
+    return s;
+}
+
+void Tin::copy_changes_into(TinSnapshot& copy, const ChangeSet& changes) const {
+    const Impl& m = *impl_;
+    copy.domain = m.domain;
+    // Ids past the live arrays' end (capacity reserved ahead) hold the defaults, as in
+    // snapshot().
+    const std::uint32_t vertex_capacity = m.events.vertex_ids.capacity();
+    copy.vertices.resize(vertex_capacity);
+    const auto known = static_cast<std::uint32_t>(m.va.size());
+    VertexArrays& to = copy.vertices;
+    for (const IdRange r : changes.vertices) {
+        const std::uint32_t end = std::min({r.end, vertex_capacity, known});
+        for (std::uint32_t v = r.begin; v < end; ++v) {
+            to.position[v] = m.va.position[v];
+            to.height[v] = m.va.height[v];
+            to.bedrock[v] = m.va.bedrock[v];
+            to.material[v] = m.va.material[v];
+            to.moisture[v] = m.va.moisture[v];
+            to.slide[v] = m.va.slide[v];
+            to.alive[v] = m.va.alive[v];
+        }
+    }
+    const std::uint32_t slot_capacity = m.events.slots.capacity();
+    copy.slots.resize(slot_capacity, {kNoSlot, kNoSlot, kNoSlot});
+    for (const IdRange r : changes.triangles) {
+        for (std::uint32_t slot = r.begin; slot < std::min(r.end, slot_capacity); ++slot) {
+            copy.slots[slot] = m.events.face_of_slot[slot] != nullptr
+                                   ? m.slot_cache[slot].corners
+                                   : std::array<std::uint32_t, 3>{kNoSlot, kNoSlot, kNoSlot};
+        }
+    }
+}
+
+void Tin::copy_lists_into(TinSnapshot& s) const {
+    const Impl& m = *impl_;
+    s.vertex_free_list = handout_order(m.events.vertex_ids);
     s.slot_free_list = handout_order(m.events.slots);
+    s.constraints.clear();
     for (const ConstraintInfo& c : constraints()) {
         ConstraintRecord r;
         r.id = c.id.value;
@@ -64,7 +103,6 @@ TinSnapshot Tin::snapshot() const {
     }
     s.constraint_capacity = m.constraint_ids.capacity();
     s.constraint_free_list = handout_order(m.constraint_ids);
-    return s;
 }
 
 namespace {

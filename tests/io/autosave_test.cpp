@@ -9,10 +9,12 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <thread>
 
 #include "io/autosave.hpp"
 #include "io/autosave_writer.hpp"
+#include "io/session_keeper.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
 
@@ -176,6 +178,38 @@ TEST_F(Autosave, WriterWritesOnItsOwnThread) {
     EXPECT_FALSE(writer.take_error().has_value());
     EXPECT_FALSE(fs::exists(scene_)) << "an autosave never writes the scene itself";
     EXPECT_EQ(read_file(autosave_path(scene_)), encode_session(s));
+}
+
+// The editor's autosave: the frame hands the writer a source (SessionKeeper) and goes on
+// editing while the writer copies the kept terrain on its own thread. Under ThreadSanitizer
+// (test.sh) this is the check that the frame never writes the copy the writer is reading.
+TEST_F(Autosave, WriterMakesAKeptSessionOnItsThreadWhileTheFrameEdits) {
+    Tin tin = Tin::random_points(Rect::from_size(3.0, 2.0), 20000, 6,
+                                 [](Vec2 p) { return 0.1 + 0.01 * p.x; });
+    tin.set_track_changes(false);
+    SessionKeeper keeper(tin);
+    AutosaveWriter writer;
+    std::mt19937_64 rng = test::test_rng(3);
+    std::uniform_real_distribution<double> x(0.05, 2.95), y(0.05, 1.95);
+    std::vector<std::uint8_t> last_submitted;
+    for (int frame = 0; frame < 48; ++frame) {
+        for (int k = 0; k < 10; ++k) {
+            const VertexId v = tin.insert_point({x(rng), y(rng)}, 0.12);
+            tin.set_height(v, tin.height(v) + 1e-3);
+        }
+        keeper.follow();
+        if (frame % 8 != 0) continue;
+        Session now;
+        now.terrain = tin.snapshot();
+        now.next_generation = static_cast<Generation>(frame + 1);
+        now.metadata_json = R"({"name":"beach"})";
+        last_submitted = encode_session(now);
+        writer.submit(scene_, keeper.hand_out(now.next_generation, now.metadata_json));
+    }
+    writer.flush();
+    EXPECT_FALSE(writer.take_error().has_value());
+    EXPECT_GE(writer.written(), 1u);
+    EXPECT_EQ(read_file(autosave_path(scene_)), last_submitted);
 }
 
 TEST_F(Autosave, WriterKeepsOnlyTheNewestQueuedAutosave) {
