@@ -134,15 +134,22 @@ PreparedView TerrainView::prepare(Document& doc, gpu::VulkanContext& context,
 
 ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_idle) {
     ViewUpdate out;
+    // The colours and slope ratios of the vertices whose material was edited: recomputed and
+    // uploaded before this frame's changes (which may overwrite some of them again).
+    std::optional<render::MeshUpdate> recoloured;
     if (doc.materials_version() != materials_version_) {
-        // Colours and slope ratios of every vertex.
-        mesh_->set_materials(doc.materials());
+        const std::vector<std::uint16_t> changed = mesh_->set_materials(doc.materials());
         mirror_->set_materials(doc.materials());
         materials_version_ = doc.materials_version();
-        stale_ = true;
+        if (!stale_ && !changed.empty()) recoloured = mesh_->recolour(doc.tin(), changed);
     }
     // The journal says what changed; nothing changed means no recomputation and no upload.
     const ChangeSet changes = mesh_changes_->take();
+    if (recoloured) {
+        wait_idle();
+        renderer_.upload(*mesh_, *recoloured);
+        mesh_recomputed_ += count_in_ranges(recoloured->vertices);
+    }
     if (!stale_ && changes.empty() && active_flipped_.empty() && !baking_normal_map()) return out;
     const auto t0 = Clock::now();
     mesh_->set_active(active_);

@@ -135,6 +135,8 @@ class TinMirror {
     void grow(uint32_t vertices, uint32_t slots, uint32_t edges, const Uploaded& uploaded,
               SyncStats& stats);
     void upload_vertex_range(const Tin& tin, IdRange r);
+    // tan(repose) of the ids in `r` (0 for dead ones), computed and uploaded.
+    void upload_tan_alpha(const Tin& tin, IdRange r);
     // `flags`: the rows' constrained flags by pool slot, when known (the seed's), else read
     // from the TIN.
     void upload_rows(const Tin& tin, const std::vector<uint32_t>& rows,

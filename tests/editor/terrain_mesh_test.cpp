@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include "gpu/render/terrain_mesh.hpp"
 #include "physics/material.hpp"
@@ -112,6 +113,44 @@ TEST(TerrainMesh, IncrementalUpdatesEqualAFreshBuild) {
         fresh.rebuild(tin);
         expect_same(mesh, fresh, tin);
     }
+}
+
+// A material edit recolours the vertices of the edited materials only (albedo and tan of the
+// angle of repose), and the mesh is then what a fresh build with the new table gives.
+TEST(TerrainMesh, AMaterialEditRecoloursItsVerticesAsAFreshBuildWithTheNewTable) {
+    Tin tin = Tin::random_points({{0, 0}, {2, 1}}, 3000, 12,
+                                 [](Vec2 p) { return 0.1 + 0.05 * std::sin(3.0 * p.x) * p.y; });
+    const VertexId removed = tin.locate({1.0, 0.5}).corners[0];
+    ASSERT_TRUE(tin.remove_vertex(removed, VolumePolicy::Report));  // a dead id among them
+    std::vector<std::uint32_t> gravel;                              // live ids, ascending
+    for (std::uint32_t id : {5u, 17u, 400u, 1200u})
+        if (tin.is_alive(VertexId{id}) && gravel.size() < 3) gravel.push_back(id);
+    ASSERT_EQ(gravel.size(), 3u);
+    for (std::uint32_t id : gravel) {
+        tin.set_material(VertexId{id}, 2);
+        tin.set_moisture(VertexId{id}, 0.5f);
+    }
+    MaterialTable before = MaterialTable::presets();
+    TerrainMesh mesh(before);
+    mesh.rebuild(tin);
+    std::vector<Material> all = before.all();
+    all[2].colour[1] = 0.25f;
+    all[2].repose_wet += 0.1;
+    const MaterialTable after(all);
+    const std::vector<std::uint16_t> changed = mesh.set_materials(after);
+    ASSERT_EQ(changed, std::vector<std::uint16_t>{2});
+    const MeshUpdate u = mesh.recolour(tin, changed);
+    EXPECT_FALSE(u.resized);
+    std::vector<std::uint32_t> recoloured;
+    for (const IdRange& r : u.vertices)
+        for (std::uint32_t i = r.begin; i < r.end; ++i)
+            recoloured.push_back(i);
+    EXPECT_EQ(recoloured, gravel);
+    TerrainMesh fresh(after);
+    fresh.rebuild(tin);
+    expect_same(mesh, fresh, tin);
+    // An unchanged table recolours nothing.
+    EXPECT_TRUE(mesh.set_materials(after).empty());
 }
 
 TEST(TerrainMesh, AStampOnALargeTerrainUploadsATinyFraction) {

@@ -188,6 +188,38 @@ TEST_F(GpuTest, ASecondMirrorOnTheSameTinStartsComplete) {
     expect_mirror_equals_tin(ctx(), second, tin);
 }
 
+// A material edit re-uploads tan(repose) of every vertex from the new table, and nothing
+// else: the rest of the mirror stays as it was.
+TEST_F(GpuTest, AMaterialEditUploadsTheNewAnglesOfReposeOnly) {
+    Tin tin = Tin::random_points(kUnitSquare, 2000, 23, [](Vec2 p) { return 0.2 * p.x; });
+    for (uint32_t v = 0; v < 2000; v += 7)
+        if (tin.is_alive(VertexId{v})) tin.set_material(VertexId{v}, 1);
+    tin.set_moisture(VertexId{3}, 0.6f);
+    TinMirror mirror(ctx(), tin);
+    mirror.sync();
+    std::vector<Material> all = MaterialTable::presets().all();
+    all[1].repose_dry += 0.05;
+    all[0].repose_wet += 0.05;
+    const MaterialTable table(all);
+    mirror.set_materials(table);
+    const SyncStats s = mirror.sync();
+    const uint32_t n = static_cast<uint32_t>(tin.vertices().size());
+    EXPECT_EQ(s.bytes, uint64_t{n} * 4) << "one float per vertex";
+    const auto tan_alpha = read_as<float>(ctx(), mirror.vertex_buffer(VertexBuffer::TanAlpha), n);
+    const VertexArrays& va = tin.vertices();
+    int bad = 0;
+    for (uint32_t v = 0; v < n && bad < 5; ++v) {
+        const float want =
+            va.alive[v] ? static_cast<float>(table.at(va.material[v]).talus_slope(va.moisture[v]))
+                        : 0.0f;
+        if (tan_alpha[v] != want) {
+            ADD_FAILURE() << "vertex " << v << ": " << tan_alpha[v] << " against " << want;
+            ++bad;
+        }
+    }
+    expect_mirror_equals_tin(ctx(), mirror, tin);
+}
+
 // A mirror seeded on another thread (prepare_mirror_seed, as the editor's worker does when it
 // opens a scene) holds what a mirror that built everything itself holds, constrained edges
 // included; and a seed the TIN moved on from (edits between the seed and the first sync)

@@ -48,6 +48,40 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     out.position[0] = static_cast<float>(p.x - origin.x);
     out.position[1] = static_cast<float>(p.y - origin.y);
     out.position[2] = static_cast<float>(h);
+    colour_vertex(tin, id);
+    out.overlay[1] =
+        va.bedrock[id] <= kNoBedrock ? 0.0f : static_cast<float>(std::max(0.0, h - va.bedrock[id]));
+    out.overlay[2] = id < active_.size() && active_[id] ? 1.0f : 0.0f;
+    out.slide[0] = va.slide[id].x;
+    out.slide[1] = va.slide[id].y;
+}
+
+namespace {
+
+/// Whether two materials give every vertex the same albedo and the same tan(repose).
+bool drawn_alike(const Material& a, const Material& b) {
+    return a.colour[0] == b.colour[0] && a.colour[1] == b.colour[1] && a.colour[2] == b.colour[2] &&
+           a.repose_dry == b.repose_dry && a.repose_wet == b.repose_wet &&
+           a.moisture_scale == b.moisture_scale && a.slurry_start == b.slurry_start &&
+           a.repose_saturated == b.repose_saturated;
+}
+
+}  // namespace
+
+std::vector<std::uint16_t> TerrainMesh::set_materials(MaterialTable materials) {
+    std::vector<std::uint16_t> changed;
+    for (std::size_t k = 0; k < materials.size(); ++k) {
+        const auto id = static_cast<std::uint16_t>(k);
+        if (k >= materials_.size() || !drawn_alike(materials_.at(id), materials.at(id)))
+            changed.push_back(id);
+    }
+    materials_ = std::move(materials);
+    return changed;
+}
+
+void TerrainMesh::colour_vertex(const Tin& tin, std::uint32_t id) {
+    const VertexArrays& va = tin.vertices();
+    RenderVertex& out = vertices_[id];
     const Material& m = materials_.at(va.material[id]);
     const float wet = 1.0f - (1.0f - kWetReflectance) * std::clamp(va.moisture[id], 0.0f, 1.0f);
     for (int j = 0; j < 3; ++j)
@@ -55,11 +89,26 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     // The Slope overlay judges each face's own gradient (the fragment shader takes it from the
     // face's plane) against tan(alpha) interpolated from its corners: this vertex's.
     out.overlay[0] = static_cast<float>(m.talus_slope(va.moisture[id]));
-    out.overlay[1] =
-        va.bedrock[id] <= kNoBedrock ? 0.0f : static_cast<float>(std::max(0.0, h - va.bedrock[id]));
-    out.overlay[2] = id < active_.size() && active_[id] ? 1.0f : 0.0f;
-    out.slide[0] = va.slide[id].x;
-    out.slide[1] = va.slide[id].y;
+}
+
+MeshUpdate TerrainMesh::recolour(const Tin& tin, std::span<const std::uint16_t> changed) {
+    if (vertices_.empty()) return rebuild(tin);
+    std::vector<std::uint8_t> recoloured(materials_.size(), 0);
+    for (std::uint16_t k : changed)
+        if (k < recoloured.size()) recoloured[k] = 1;
+    const VertexArrays& va = tin.vertices();
+    const auto n = static_cast<std::uint32_t>(std::min(vertices_.size(), va.size()));
+    MeshUpdate u;
+    for (std::uint32_t id = 0; id < n; ++id) {
+        const std::uint16_t k = va.material[id];
+        if (!va.alive[id] || k >= recoloured.size() || !recoloured[k]) continue;
+        colour_vertex(tin, id);
+        if (!u.vertices.empty() && u.vertices.back().end == id)
+            ++u.vertices.back().end;
+        else
+            u.vertices.push_back({id, id + 1});
+    }
+    return u;
 }
 
 void TerrainMesh::write_slot(const Tin& tin, TriangleSlot slot) {

@@ -49,8 +49,15 @@ class TerrainMesh {
     /// Applies `changes` (from tin.take_changes()) and the vertices whose active flag flipped.
     MeshUpdate update(const Tin& tin, const ChangeSet& changes,
                       std::span<const VertexId> active_flipped = {});
-    /// New material table (colours, angles of repose); call rebuild() afterwards.
-    void set_materials(MaterialTable materials) { materials_ = std::move(materials); }
+    /// New material table (colours, angles of repose). Returns the indices whose entries draw
+    /// differently from before (colour, or tan of the angle of repose at some moisture), for
+    /// recolour().
+    std::vector<std::uint16_t> set_materials(MaterialTable materials);
+    /// The material-dependent parts (albedo, tan of the angle of repose) of every live vertex
+    /// whose material is one of `changed` (material indices), from the table set last; the
+    /// geometry is left alone. O(vertices), with no walk of the triangulation: a material edit
+    /// at 10^6 vertices took a 405 ms rebuild of the whole mesh on the UI thread.
+    MeshUpdate recolour(const Tin& tin, std::span<const std::uint16_t> changed);
     /// Active (eroding) flags by VertexId, read by update() for the vertices it recomputes.
     void set_active(std::span<const std::uint8_t> active) { active_ = active; }
 
@@ -63,6 +70,7 @@ class TerrainMesh {
 
   private:
     void compute_vertex(const Tin& tin, std::uint32_t id, std::vector<VertexId>& ring);
+    void colour_vertex(const Tin& tin, std::uint32_t id);
     void write_slot(const Tin& tin, TriangleSlot slot);
     void collect_constrained(const Tin& tin);
 
