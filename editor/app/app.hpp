@@ -237,12 +237,17 @@ class App {
     void redo();
     /// The Materials panel's edit of material `index` (released control): an undo level.
     void edit_material(int index, const Material& m);
-    /// Autosaves a document with unsaved edits a minute after the first of them (on the
-    /// writer's thread: the frame only takes the snapshot), and shows a failed write.
+    /// Autosaves a document with unsaved edits a minute after the first of them (copied and
+    /// written on the writer's thread: the frame only hands over its kept copy), and shows a
+    /// failed write.
     void autosave_if_due();
-    /// Before the document is replaced or the editor closes: unsaved edits of a scene with a
-    /// file go to its autosave, which is offered for recovery when the scene is opened again.
+    /// Before the editor closes (or a script asks): unsaved edits of a scene with a file go to
+    /// its autosave, which is offered for recovery when the scene is opened again, and the write
+    /// is waited for and its failure shown.
     void keep_unsaved_edits();
+    /// Before the document is replaced: the same, without waiting for the write (a 10^6-vertex
+    /// one takes 0.4 s); a failure shows at the next frame's autosave_if_due.
+    void hand_unsaved_edits_to_autosave();
     void frame_terrain();
     /// The length settings follow the new document's terrain size (terrain_scale.hpp), and the
     /// document's sculpting context takes the panel's simplification tolerance. Returns the

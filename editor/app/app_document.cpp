@@ -79,7 +79,7 @@ void App::new_document() {
             return Document::sandbox();
         },
         [this](PreparedDocument next) {
-            keep_unsaved_edits();
+            hand_unsaved_edits_to_autosave();
             install_document(std::move(next), "new sandbox");
         });
 }
@@ -174,18 +174,27 @@ void App::request_save(const std::filesystem::path& p, std::function<void()> the
 }
 
 void App::keep_unsaved_edits() {
-    if (autosaves() && doc_.keep_in_autosave(autosave_writer_))
-        report("unsaved edits of " + doc_.path().string() + " kept in its autosave");
+    hand_unsaved_edits_to_autosave();
     autosave_writer_.flush();
     if (const std::optional<std::string> error = autosave_writer_.take_error())
         report("autosave failed: " + *error);
 }
 
+void App::hand_unsaved_edits_to_autosave() {
+    if (autosaves() && doc_.keep_in_autosave(autosave_writer_))
+        report("unsaved edits of " + doc_.path().string() + " kept in its autosave");
+}
+
 void App::autosave_if_due() {
     const auto now = Clock::now();
-    if (const std::optional<std::string> error = autosave_writer_.take_error()) {
-        report("autosave failed, will retry: " + *error);
-        doc_.mark_edited(now);  // due again one interval from now
+    if (const std::optional<AutosaveWriter::Failure> failure = autosave_writer_.take_failure()) {
+        if (doc_.path() == failure->scene) {
+            report("autosave failed, will retry: " + failure->message);
+            doc_.mark_edited(now);  // due again one interval from now
+        } else {
+            // A scene the editor has left (its edits were handed over as it was replaced).
+            report("autosave failed: " + failure->message);
+        }
     }
     if (autosaves()) doc_.autosave_if_due(autosave_writer_, now);
 }

@@ -168,7 +168,7 @@ void App::open_reporting(const std::filesystem::path& p) {
         "open", "Opening " + p.filename().string(),
         [p](const ProgressCallback& progress) { return Document::open(p, progress); },
         [this, p](PreparedDocument next) {
-            keep_unsaved_edits();
+            hand_unsaved_edits_to_autosave();
             set_scene_field(p.string());
             note_recent_file(settings_.recent_files, p);
             install_document(std::move(next), "opened " + p.string());
@@ -197,7 +197,7 @@ void App::import_document(const std::filesystem::path& heightmap) {
 }
 
 void App::finish_import(const std::filesystem::path& heightmap, PreparedDocument next) {
-    keep_unsaved_edits();
+    hand_unsaved_edits_to_autosave();
     // An imported model is a scene of its own, with a name of its own in the Scene field,
     // so Save never writes it over the scene it replaced.
     const std::filesystem::path name = scene_name_for_import(heightmap);

@@ -47,6 +47,12 @@ void AutosaveWriter::flush() {
 }
 
 std::optional<std::string> AutosaveWriter::take_error() {
+    const std::optional<Failure> failure = take_failure();
+    if (!failure) return std::nullopt;
+    return failure->message;
+}
+
+std::optional<AutosaveWriter::Failure> AutosaveWriter::take_failure() {
     const std::lock_guard lock(mutex_);
     return std::exchange(error_, std::nullopt);
 }
@@ -65,13 +71,13 @@ void AutosaveWriter::run() {
         queued_.reset();
         writing_ = true;
         lock.unlock();
-        std::optional<std::string> failure;
+        std::optional<Failure> failure;
         try {
             const Session session = job.source();
             job.source = nullptr;  // a loaned copy goes back before the write
             write_autosave(job.scene, session, job.interruption);
         } catch (const std::exception& e) {
-            failure = e.what();
+            failure = Failure{job.scene, e.what()};
         }
         job = Job{};  // what the job held goes before the next one is taken
         lock.lock();

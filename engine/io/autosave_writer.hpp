@@ -46,6 +46,13 @@ class AutosaveWriter {
     void flush();
     /// The message of the last failed write since the previous call, naming the file.
     std::optional<std::string> take_error();
+    /// The same with the scene whose autosave failed (the editor may have moved on to another
+    /// scene since it submitted it).
+    struct Failure {
+        std::filesystem::path scene;
+        std::string message;
+    };
+    std::optional<Failure> take_failure();
     /// Autosaves written since construction.
     std::size_t written() const;
 
@@ -63,7 +70,7 @@ class AutosaveWriter {
     std::optional<Job> queued_;
     bool writing_ = false;
     bool stop_ = false;
-    std::optional<std::string> error_;
+    std::optional<Failure> error_;
     std::size_t written_ = 0;
     std::thread worker_;  ///< last: starts once the members above exist
 };

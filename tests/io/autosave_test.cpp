@@ -265,6 +265,24 @@ TEST_F(Autosave, WriterKeepsFailuresForTheCallerAndCarriesOn) {
     EXPECT_TRUE(fs::exists(autosave_path(scene_)));
 }
 
+// The editor hands a replaced scene's edits over without waiting, and learns of a failure
+// later, when another scene may be open: the failure names the scene it was for.
+TEST_F(Autosave, WriterNamesTheSceneOfAFailure) {
+    const fs::path unwritable = dir_ / "no-such-folder" / "beach.sandtin";
+    AutosaveWriter writer;
+    writer.submit(unwritable, session_with(20, 1.0));
+    writer.submit(scene_, session_with(20, 2.0));  // replaces it before it starts, or after
+    writer.flush();
+    writer.submit(unwritable, session_with(20, 3.0));
+    writer.flush();
+    const std::optional<AutosaveWriter::Failure> failure = writer.take_failure();
+    ASSERT_TRUE(failure.has_value());
+    EXPECT_EQ(failure->scene, unwritable);
+    EXPECT_NE(failure->message.find("no-such-folder"), std::string::npos) << failure->message;
+    EXPECT_FALSE(writer.take_failure().has_value()) << "each failure is reported once";
+    EXPECT_TRUE(fs::exists(autosave_path(scene_)));
+}
+
 TEST_F(Autosave, WriterFinishesTheQueueWhenDestroyed) {
     const Session first = session_with(30, 1.0), second = session_with(40, 2.0);
     {
