@@ -3,7 +3,8 @@
 // offscreen target alike): one indexed draw of the lit surface (baked normal map sampled by
 // world xy, detail normal, material albedo,
 // contrast curve, overlays and tool cursor, all in terrain.frag), then, only when the wireframe
-// overlay is on, a line pass over every edge and one over the constrained edges. Buffers mirror
+// overlay is on, a line pass over every edge (the triangles' outlines) and one over the
+// constrained edges. Buffers mirror
 // TerrainMesh and receive only the ranges an update names.
 
 #include <vulkan/vulkan.h>
@@ -87,6 +88,9 @@ class TerrainRenderer {
     gpu::UniquePipeline terrain_pipeline_;
     gpu::UniquePipelineLayout lines_layout_;
     gpu::UniquePipeline lines_pipeline_;
+    /// The wireframe drawn from the triangles with line polygons (null without the device's
+    /// fillModeNonSolid: then an edge list, wire_, is built on the CPU).
+    gpu::UniquePipeline wire_pipeline_;
     MeshBuffers mesh_;
     gpu::Buffer wire_;
     gpu::Buffer outline_;
