@@ -184,7 +184,7 @@ TEST_F(Autosave, WriterWritesOnItsOwnThread) {
 // editing while the writer copies the kept terrain on its own thread. Under ThreadSanitizer
 // (test.sh) this is the check that the frame never writes the copy the writer is reading.
 TEST_F(Autosave, WriterMakesAKeptSessionOnItsThreadWhileTheFrameEdits) {
-    Tin tin = Tin::random_points(Rect::from_size(3.0, 2.0), 20000, 6,
+    Tin tin = Tin::random_points(Rect::from_size(3.0, 2.0), 8000, 6,
                                  [](Vec2 p) { return 0.1 + 0.01 * p.x; });
     tin.set_track_changes(false);
     SessionKeeper keeper(tin);
