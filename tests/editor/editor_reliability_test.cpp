@@ -293,9 +293,10 @@ void check_typed_values_are_clamped(const char* text) {
         if (*s.tool != '\0') ops += std::string(R"({"op": "tool", "name": ")") + s.tool + R"("}, )";
         ops += type_into(s.widget, text) + ", ";
     }
-    // Then a stroke with the clamped values: it must cut, not quit.
+    // Then a stroke with the clamped values: it must cut, not quit. Five centimetres: at the low
+    // ends (a 5 mm tool stamped every 0.1 mm) that is already 500 stamps.
     ops += R"({"op": "tool", "name": "Circle"},
-                  {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10},
+                  {"op": "drag", "path": [[0.5, 0.5], [0.55, 0.5]], "steps": 10},
                   {"op": "save_settings"}, {"op": "wait", "frames": 2}])";
     const std::string settings = fresh_settings(std::string("typed") + text);
     const EditorRun r =
@@ -323,7 +324,7 @@ void check_typed_values_are_clamped(const char* text) {
     if (!low) return;
     const EditorRun again = run_editor(std::string("typed-again") + text,
                                        R"([{"op": "tool", "name": "Circle"},
-                {"op": "drag", "path": [[0.5, 0.5], [0.7, 0.5]], "steps": 10}])",
+                {"op": "drag", "path": [[0.5, 0.5], [0.55, 0.5]], "steps": 10}])",
                                        settings);
     EXPECT_EQ(again.exit_code, 0) << again.log;
 }
