@@ -50,9 +50,9 @@ Document Document::open(const std::filesystem::path& path, const ProgressCallbac
     // Shares measured on a large scene: decoding the file and building the TIN (its
     // triangulation checked) about equally, setting up the solver and the history the rest.
     if (progress) progress({0.0, "reading the scene"});
-    const Session s = load_session(path);
+    Session s = load_session(path);
     if (progress) progress({0.45, "building the terrain"});
-    Tin tin = session_terrain(s, path);
+    Tin tin = take_session_terrain(s, path);
     if (progress) progress({0.85, "setting up the solver and the history"});
     Document d = make(std::move(tin), s.next_generation, path,
                       materials_or_presets(s.metadata_json), s.metadata_json);
@@ -77,9 +77,9 @@ Document Document::imported(const std::filesystem::path& heightmap,
 Document Document::recovered(const std::filesystem::path& scene, const ProgressCallback& progress) {
     // The stages and shares of open().
     if (progress) progress({0.0, "reading the autosave"});
-    const Session s = recover_autosave(scene);
+    Session s = recover_autosave(scene);
     if (progress) progress({0.45, "building the terrain"});
-    Tin tin = Tin::from_snapshot(s.terrain);
+    Tin tin = Tin::from_snapshot(std::move(s.terrain));
     if (progress) progress({0.85, "setting up the solver and the history"});
     Document d = make(std::move(tin), s.next_generation, scene,
                       materials_or_presets(s.metadata_json), s.metadata_json);

@@ -5,6 +5,7 @@
 
 #include <iomanip>
 #include <iostream>
+#include <utility>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -92,7 +93,7 @@ int run_demo(const std::vector<std::string>& raw) {
     Session session = load_session(scene);
     TinOptions options;
     options.track_changes = false;
-    Tin tin = Tin::from_snapshot(session.terrain, options);
+    Tin tin = Tin::from_snapshot(std::move(session.terrain), options);
     const double volume_before = tin.volume();
 
     const nlohmann::json script_json = demo_script(tin.domain());

@@ -105,10 +105,10 @@ int run_export(const std::vector<std::string>& raw) {
     if (!(format == ExportFormat::NormalPng || (textured_mesh && options.textures)))
         refuse("--faceted", "normal maps, and the textures of .obj, .gltf and .glb");
 
-    const Session session = load_session(args.positionals()[0]);
+    Session session = load_session(args.positionals()[0]);
     TinOptions tin_options;
     tin_options.track_changes = false;
-    const Tin tin = session_terrain(session, args.positionals()[0], tin_options);
+    const Tin tin = take_session_terrain(session, args.positionals()[0], tin_options);
     // Maps and simplification sample the grid the terrain was imported on while it still lies
     // on it, so that export followed by import gives the same samples; a finer one once edits
     // put vertices between those samples.

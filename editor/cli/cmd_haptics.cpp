@@ -161,7 +161,7 @@ int run_haptics(const std::vector<std::string>& raw) {
                 args.has("--seed"))
                 throw UsageError("-i and a generated terrain (--size ...) exclude each other");
             session = load_session(args.text("-i"));
-            return session_terrain(session, args.text("-i"), tin_options);
+            return take_session_terrain(session, args.text("-i"), tin_options);
         }
         ScriptTerrain t;
         if (args.has("--size")) t.size = {args.number("--size", 0), args.number("--size", 1)};

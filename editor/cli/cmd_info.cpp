@@ -17,12 +17,12 @@ int run_info(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--json", 0}});
     args.require_positionals(1, "sandtin info scene.sandtin [--json]");
     const std::string path = args.positionals()[0];
-    const Session session = load_session(path);
+    Session session = load_session(path);
     TinOptions options;
     options.track_changes = false;
-    const Tin tin = session_terrain(session, path, options);
-    // Valid: from_snapshot ends with check_valid() and refuses the file on any problem (a
-    // second check cost a quarter of `info` on a 10^6-vertex scene).
+    const Tin tin = take_session_terrain(session, path, options);
+    // Valid: whatever from_snapshot accepts passes check_valid() (its checks refuse the file on
+    // any problem; a second check cost a quarter of `info` on a 10^6-vertex scene).
     nlohmann::json j = describe_terrain(tin, false);
     j["valid"] = true;
     j["slopes"] = describe_slopes(tin, materials_or_presets(session.metadata_json));

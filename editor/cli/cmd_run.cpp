@@ -102,7 +102,7 @@ int run_run(const std::vector<std::string>& raw) {
     Tin tin = [&] {
         if (args.has("-i")) {
             session = load_session(args.text("-i"));
-            return session_terrain(session, args.text("-i"), options);
+            return take_session_terrain(session, args.text("-i"), options);
         }
         if (!script.terrain) {
             throw UsageError(

@@ -12,6 +12,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 static_assert(std::endian::native == std::endian::little, "sandtin files are little-endian");
@@ -63,7 +65,9 @@ class ByteReader {
         const auto count = get<std::uint64_t>();
         if (count > max_count) fail("an array of " + std::to_string(count) + " items is too long");
         need(count * sizeof(T), "an array of " + std::to_string(count) + " items");
-        std::vector<T> values(count);
+        std::vector<T> values;
+        reserve_for_writing(values, count);  // a terrain's arrays run to tens of MB
+        values.resize(count);
         if (count > 0) std::memcpy(values.data(), data_.data() + pos_, count * sizeof(T));
         pos_ += count * sizeof(T);
         return values;

@@ -160,8 +160,10 @@ class Tin {
     static Tin from_points(Rect domain, std::span<const Vec2> positions,
                            std::span<const double> heights, TinOptions options = {});
     /// Rebuilds exactly the saved triangulation, ids and slots. Throws std::runtime_error with a
-    /// description when the snapshot is inconsistent (corrupted or crafted input).
-    static Tin from_snapshot(const TinSnapshot& snapshot, TinOptions options = {});
+    /// description when the snapshot is inconsistent (corrupted or crafted input): whatever it
+    /// accepts passes check_valid(). Takes the snapshot by value: a caller done with it moves
+    /// it in, and its vertex arrays become the TIN's. Its checks run on every core.
+    static Tin from_snapshot(TinSnapshot snapshot, TinOptions options = {});
 
     Tin(Tin&&) noexcept;
     Tin& operator=(Tin&&) noexcept;
@@ -444,9 +446,9 @@ class Tin {
 
   private:
     explicit Tin(std::unique_ptr<Impl> impl);
-    /// check_valid(); `recompute_lumped_areas` false skips comparing each vertex's lumped area
-    /// with a fresh recomputation (for from_snapshot, which has just computed them).
-    ValidationReport validate(bool recompute_lumped_areas) const;
+    /// The part of check_valid() that from_snapshot's own checks leave: the constraint
+    /// registry against CGAL's constraint hierarchy and the box grid.
+    ValidationReport check_constraint_registry() const;
     std::unique_ptr<Impl> impl_;
 };
 

@@ -1,23 +1,30 @@
-// Tin: snapshots, exact restore from a snapshot, and the validity check.
+// Tin: snapshots, and exact restore from a snapshot (the validity check is tin_validate.cpp).
 //
 // Restoring rebuilds CGAL's triangulation data structure face by face instead of re-inserting
 // the points: on cocircular input (grids, imported rasters) re-insertion may choose other
 // diagonals, and a loaded session must equal the saved one. Because snapshots come from files,
-// every structural property is verified before CGAL sees the data.
+// every structural property is verified (on the plain arrays of detail/triangle_soup.hpp, on
+// every core) before CGAL is asked anything about the triangulation; what the checks accept
+// passes check_valid().
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "tin/detail/cgal_tin.hpp"
-#include "tin/detail/half_edge_twins.hpp"
 #include "tin/detail/impl_helpers.hpp"
+#include "tin/detail/triangle_soup.hpp"
 #include "util/compensated_sum.hpp"
+#include "util/prepare_for_writing.hpp"
+#include "util/thread_pool.hpp"
 
 namespace sandtin {
 
@@ -146,6 +153,8 @@ void check_snapshot_vertices(const TinSnapshot& s) {
         if (!std::isfinite(sv.height[i]) || !std::isfinite(sv.bedrock[i])) {
             corrupt("vertex " + std::to_string(i) + " has a non-finite height or bedrock");
         }
+        if (sv.bedrock[i] > sv.height[i])
+            corrupt("vertex " + std::to_string(i) + " has bedrock above its surface");
         if (!(sv.moisture[i] >= 0.0f && sv.moisture[i] <= 1.0f)) {
             corrupt("vertex " + std::to_string(i) + " has moisture outside [0, 1]");
         }
@@ -187,44 +196,46 @@ std::vector<std::uint8_t> check_snapshot_slots(const TinSnapshot& s) {
     return slot_used;
 }
 
-/// Gives `m` the snapshot's domain, options, ids, slots and vertex attributes; no triangles yet.
-void start_restore(Tin::Impl& m, const TinSnapshot& s, TinOptions options) {
-    const Rect& d = s.domain;
-    const VertexArrays& sv = s.vertices;
-    const std::size_t n = sv.height.size();
-    const auto vertex_capacity = static_cast<std::uint32_t>(n);
+/// Gives `m` the snapshot's domain, options, ids and vertex attributes (moved out of the
+/// snapshot); no triangles yet.
+void start_restore(Tin::Impl& m, TinSnapshot& s, TinOptions options) {
+    const std::size_t n = s.vertices.size();
     const std::size_t slot_count = s.slots.size();
-    m.domain = d;
-    m.constraint_boxes = BoxGrid(d);
+    m.domain = s.domain;
+    m.constraint_boxes = BoxGrid(s.domain);
     m.options = options;
     m.open_default_reader();
-    m.snap_distance = default_snap_distance(d);
+    m.snap_distance = default_snap_distance(s.domain);
     m.cdt.snap_distance = m.snap_distance;
-    m.events.vertex_ids.restore(vertex_capacity, s.vertex_free_list);
+    m.events.vertex_ids.restore(static_cast<std::uint32_t>(n), s.vertex_free_list);
     m.events.slots.restore(static_cast<std::uint32_t>(slot_count), s.slot_free_list);
-    m.va = sv;
+    m.va = std::move(s.vertices);
     m.va.lumped_area.assign(n, 0.0);
+    reserve_for_writing(m.events.vertex_of_id, n);
     m.events.vertex_of_id.assign(n, nullptr);
+    reserve_for_writing(m.slot_cache, slot_count);
     m.slot_cache.assign(slot_count, SlotRecord{});
+    reserve_for_writing(m.events.face_of_slot, slot_count);
     m.events.face_of_slot.assign(slot_count, nullptr);
 }
 
-/// Builds the triangulation data structure directly: the vertices, a face per used slot, and
-/// the faces' neighbours from their paired half-edges. Returns the faces in slot order.
-std::vector<Fh> build_faces(Tin::Impl& m, const TinSnapshot& s,
+/// CGAL's vertices, and a face per used slot with its corners; no neighbours yet. Returns the
+/// faces in slot order (the soup's triangle order).
+std::vector<Fh> build_faces(Tin::Impl& m, const std::vector<std::array<std::uint32_t, 3>>& slots,
                             const std::vector<std::uint8_t>& slot_used) {
-    const VertexArrays& sv = s.vertices;
-    const auto vertex_capacity = static_cast<std::uint32_t>(sv.height.size());
-    const std::size_t slot_count = s.slots.size();
+    const VertexArrays& va = m.va;
+    const auto vertex_capacity = static_cast<std::uint32_t>(va.size());
     detail::Tds& tds = m.cdt.tds();
     tds.clear();
     tds.set_dimension(2);
+    const std::size_t used =
+        static_cast<std::size_t>(std::count(slot_used.begin(), slot_used.end(), std::uint8_t{1}));
     const Vh infinite = tds.create_vertex();
     m.cdt.set_infinite_vertex(infinite);
     for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-        if (!sv.alive[i]) continue;
+        if (!va.alive[i]) continue;
         const Vh v = tds.create_vertex();
-        v->set_point(detail::Point(sv.position[i].x, sv.position[i].y));
+        v->set_point(detail::Point(va.position[i].x, va.position[i].y));
         v->id = i;
         m.events.vertex_of_id[i] = &*v;
     }
@@ -232,117 +243,70 @@ std::vector<Fh> build_faces(Tin::Impl& m, const TinSnapshot& s,
         return c == kOutsideCorner ? infinite : m.handle(c);
     };
     std::vector<Fh> faces;
-    std::vector<std::array<std::uint32_t, 3>> corners;  // the vertex at infinity numbered n
-    faces.reserve(slot_count);
-    corners.reserve(slot_count);
-    for (std::uint32_t t = 0; t < slot_count; ++t) {
+    reserve_for_writing(faces, used);
+    for (std::uint32_t t = 0; t < slots.size(); ++t) {
         if (!slot_used[t]) continue;
-        const auto& c = s.slots[t];
+        const auto& c = slots[t];
         const Fh f = tds.create_face(vertex_handle(c[0]), vertex_handle(c[1]), vertex_handle(c[2]));
         f->slot = t;
         m.events.face_of_slot[t] = &*f;
         faces.push_back(f);
-        std::array<std::uint32_t, 3> numbered{};
-        for (std::size_t i = 0; i < 3; ++i) {
-            numbered[i] = c[i] == kOutsideCorner ? vertex_capacity : c[i];
-            f->vertex(static_cast<int>(i))->set_face(f);
-        }
-        corners.push_back(numbered);
+        // The last face naming a vertex is its face, as the soup's fan_start says.
+        for (int i = 0; i < 3; ++i)
+            f->vertex(i)->set_face(f);
     }
-    std::vector<std::uint32_t> twin;
-    switch (detail::pair_half_edges(corners, vertex_capacity + 1, twin)) {
-        case detail::TwinProblem::RepeatedHalfEdge:
-            corrupt("two triangles share the same oriented edge");
-        case detail::TwinProblem::MissingTwin:
-            corrupt("the triangles do not close up (an edge has no twin)");
-        case detail::TwinProblem::CornerOutOfRange:  // the corners were checked above
-            corrupt("a triangle names an unknown vertex");
-        case detail::TwinProblem::None:
-            break;
-    }
-    for (std::size_t k = 0; k < twin.size(); ++k)
-        faces[k / 3]->set_neighbor(static_cast<int>(k % 3), faces[twin[k] / 3]);
     if (faces.empty()) corrupt("no triangles");
     return faces;
 }
 
-/// Every vertex's star must be one cycle of faces (a manifold), else CGAL's circulators would
-/// loop or skip.
-void check_manifold(const Tin::Impl& m, const std::vector<Fh>& faces, const VertexArrays& sv) {
-    const std::size_t n = sv.height.size();
-    const auto vertex_capacity = static_cast<std::uint32_t>(n);
-    const Vh infinite = m.cdt.infinite_vertex();
-    std::vector<std::uint32_t> references(n, 0);
-    std::uint32_t infinite_references = 0;
-    for (const Fh f : faces) {
-        for (int i = 0; i < 3; ++i) {
-            if (f->vertex(i) == infinite) {
-                ++infinite_references;
-            } else {
-                ++references[f->vertex(i)->id];
-            }
+/// The soup's checks, spread over the pool: fans and lumped areas per vertex range; tiling,
+/// orientation and the in-circle test per triangle range, with CGAL's neighbours set from the
+/// twins on the way. Returns the edges that are not locally Delaunay (fine if constrained).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> check_soup(Tin::Impl& m,
+                                                                const detail::TriangleSoup& soup,
+                                                                const std::vector<Fh>& faces,
+                                                                ThreadPool& pool) {
+    const auto parts = static_cast<std::size_t>(pool.threads());
+    std::vector<std::string> problems(parts);
+    std::vector<CompensatedSum> areas(parts);
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> not_delaunay(parts);
+    pool.parallel_for(soup.size(), [&](std::size_t begin, std::size_t end, int part) {
+        const auto k = static_cast<std::size_t>(part);
+        for (std::size_t t = begin; t < end; ++t) {
+            for (int i = 0; i < 3; ++i)
+                faces[t]->set_neighbor(i,
+                                       faces[soup.twin[3 * t + static_cast<std::size_t>(i)] / 3]);
         }
-    }
-    auto star_size = [&](Vh v) {
-        const Fh start = v->face();
-        Fh f = start;
-        std::uint32_t count = 0;
-        do {
-            ++count;
-            if (count > faces.size()) return count;
-            f = f->neighbor(CdtPlus::ccw(f->index(v)));
-        } while (f != start);
-        return count;
-    };
-    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-        if (!sv.alive[i]) continue;
-        if (references[i] == 0) corrupt("vertex " + std::to_string(i) + " is in no triangle");
-        if (star_size(m.handle(i)) != references[i]) {
-            corrupt("the triangles around vertex " + std::to_string(i) + " do not form one fan");
-        }
-    }
-    if (infinite_references < 3 || star_size(infinite) != infinite_references) {
-        corrupt("the terrain border is not a single closed loop");
-    }
-}
-
-/// Geometry: finite triangles counter-clockwise, the border on the domain rectangle, and the
-/// triangles exactly tiling it.
-void check_tiling(const Tin::Impl& m, const std::vector<Fh>& faces, const TinSnapshot& s) {
-    const Rect& d = s.domain;
-    const VertexArrays& sv = s.vertices;
-    const Vh infinite = m.cdt.infinite_vertex();
+        problems[k] = detail::check_tiling(soup, m.va.position, m.domain, begin, end, areas[k]);
+        detail::find_non_delaunay_edges(soup, m.va.position, begin, end, not_delaunay[k]);
+    });
+    for (const std::string& p : problems)
+        if (!p.empty()) corrupt(p);
     CompensatedSum area;
-    const auto orientation = detail::Kernel().orientation_2_object();
-    for (const Fh f : faces) {
-        const int inf = f->has_vertex(infinite) ? f->index(infinite) : -1;
-        if (inf < 0) {
-            if (orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) !=
-                CGAL::LEFT_TURN) {
-                corrupt("triangle in slot " + std::to_string(f->slot) +
-                        " is not counter-clockwise");
-            }
-            area.add(triangle_area(sv.position[f->vertex(0)->id], sv.position[f->vertex(1)->id],
-                                   sv.position[f->vertex(2)->id]));
-        } else {
-            const Vec2 a = sv.position[f->vertex(CdtPlus::ccw(inf))->id];
-            const Vec2 b = sv.position[f->vertex(CdtPlus::cw(inf))->id];
-            const bool on_border =
-                (a.x == d.min.x && b.x == d.min.x) || (a.x == d.max.x && b.x == d.max.x) ||
-                (a.y == d.min.y && b.y == d.min.y) || (a.y == d.max.y && b.y == d.max.y);
-            if (!on_border) corrupt("a border edge does not lie on the domain rectangle");
-        }
-    }
-    const double domain_area = d.width() * d.height();
-    if (std::abs(area.value() - domain_area) > 1e-9 * domain_area) {
+    for (const CompensatedSum& a : areas)
+        area.add(a.value());
+    const double domain_area = m.domain.width() * m.domain.height();
+    if (std::abs(area.value() - domain_area) > 1e-9 * domain_area)
         corrupt("the triangles do not tile the domain (overlaps or holes)");
-    }
+
+    pool.parallel_for(std::size_t{soup.vertex_count} + 1,
+                      [&](std::size_t begin, std::size_t end, int part) {
+                          problems[static_cast<std::size_t>(part)] = detail::check_fans(
+                              soup, m.va.alive, m.va.position, static_cast<std::uint32_t>(begin),
+                              static_cast<std::uint32_t>(end), m.va.lumped_area);
+                      });
+    for (const std::string& p : problems)
+        if (!p.empty()) corrupt(p);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (const auto& part : not_delaunay)
+        edges.insert(edges.end(), part.begin(), part.end());
+    return edges;
 }
 
 /// Constraints: every segment must already be an edge, so inserting them changes nothing.
 void restore_constraints(Tin::Impl& m, const TinSnapshot& s) {
-    const VertexArrays& sv = s.vertices;
-    const std::size_t n = sv.height.size();
+    const VertexArrays& va = m.va;
+    const std::size_t n = va.size();
     if (s.constraint_capacity >= (1u << 31)) corrupt("too many constraints");
     std::vector<std::uint8_t> constraint_used(s.constraint_capacity, 0);
     m.constraints.assign(s.constraint_capacity, {});
@@ -356,7 +320,7 @@ void restore_constraints(Tin::Impl& m, const TinSnapshot& s) {
         std::vector<Vh> handles;
         for (std::size_t i = 0; i < r.vertices.size(); ++i) {
             const std::uint32_t v = r.vertices[i];
-            if (v >= n || !sv.alive[v])
+            if (v >= n || !va.alive[v])
                 corrupt("constraint " + std::to_string(r.id) + " names a dead vertex");
             if (i > 0) {
                 Fh f;
@@ -372,7 +336,7 @@ void restore_constraints(Tin::Impl& m, const TinSnapshot& s) {
         const detail::CgalConstraintId cid = m.cdt.insert_polyline(handles, false);
         Rect bounds;
         for (std::uint32_t v : r.vertices)
-            bounds.expand(sv.position[v]);
+            bounds.expand(va.position[v]);
         m.constraints[r.id] = {cid, r.generation, true, bounds};
         m.file_constraint(r.id);
         m.constraint_of_cgal[cid.vl_ptr()] = r.id;
@@ -385,278 +349,94 @@ void restore_constraints(Tin::Impl& m, const TinSnapshot& s) {
     }
 }
 
-/// Slot cache and lumped areas, and everything dirty for the first take_changes().
-void fill_caches(Tin::Impl& m, const std::vector<Fh>& faces, const TinSnapshot& s) {
-    const VertexArrays& sv = s.vertices;
-    const auto vertex_capacity = static_cast<std::uint32_t>(sv.height.size());
-    const std::size_t slot_count = s.slots.size();
-    for (const Fh f : faces) {
-        const SlotRecord r = m.read_face(*f);
-        m.slot_cache[f->slot] = r;
-        if (r.finite()) ++m.live_triangles;
+/// An edge whose far corner lies inside a triangle's circumcircle is fine only when it is
+/// constrained (the constrained Delaunay property).
+void check_delaunay_exceptions(const Tin::Impl& m,
+                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+    for (const auto& [a, b] : edges) {
+        Fh f;
+        int i = 0;
+        if (!m.cdt.is_edge(m.handle(a), m.handle(b), f, i) || !f->is_constrained(i)) {
+            corrupt("edge " + std::to_string(a) + "-" + std::to_string(b) +
+                    " is not locally Delaunay");
+        }
     }
-    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-        if (sv.alive[i]) m.va.lumped_area[i] = m.recompute_lumped_area(i);
-    }
+}
+
+/// The slot cache, and everything dirty for the first take_changes().
+void fill_caches(Tin::Impl& m, const std::vector<Fh>& faces, ThreadPool& pool) {
+    std::vector<std::uint32_t> finite(static_cast<std::size_t>(pool.threads()), 0);
+    pool.parallel_for(faces.size(), [&](std::size_t begin, std::size_t end, int part) {
+        std::uint32_t count = 0;
+        for (std::size_t k = begin; k < end; ++k) {
+            const SlotRecord r = m.read_face(*faces[k]);
+            m.slot_cache[faces[k]->slot] = r;
+            count += r.finite() ? 1 : 0;
+        }
+        finite[static_cast<std::size_t>(part)] = count;
+    });
+    for (std::uint32_t c : finite)
+        m.live_triangles += c;
     if (!m.journal.has_range_readers()) return;  // nobody to tell
+    const auto vertex_capacity = static_cast<std::uint32_t>(m.va.size());
     for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-        if (sv.alive[i]) m.journal.note_vertex(i);
+        if (m.va.alive[i]) m.journal.note_vertex(i);
     }
-    for (std::uint32_t t = 0; t < slot_count; ++t)
+    for (std::uint32_t t = 0; t < m.slot_cache.size(); ++t)
         m.journal.note_slot(t);
+}
+
+int restore_threads() {
+    return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
 }
 
 }  // namespace
 
-Tin Tin::from_snapshot(const TinSnapshot& s, TinOptions options) {
+Tin Tin::from_snapshot(TinSnapshot s, TinOptions options) {
     NoEventScope quiet;
+    // Phase 1: the snapshot's own arrays, before anything is built from them.
     const Rect& d = s.domain;
     if (!(is_finite(d.min) && is_finite(d.max) && d.width() > 0.0 && d.height() > 0.0)) {
         corrupt("domain is not a finite rectangle with positive size");
     }
     check_snapshot_vertices(s);
     const std::vector<std::uint8_t> slot_used = check_snapshot_slots(s);
+    const auto vertex_capacity = static_cast<std::uint32_t>(s.vertices.size());
+
+    // Phase 2: the triangle soup and its twins on a worker, while this thread builds CGAL's
+    // vertices and faces (its containers cannot be filled from two threads).
+    auto soup_job = std::async(std::launch::async, [&] {
+        detail::TriangleSoup soup =
+            detail::make_triangle_soup(s.slots, slot_used, vertex_capacity, kOutsideCorner);
+        std::string problem = detail::pair_soup_twins(soup);
+        return std::make_pair(std::move(soup), std::move(problem));
+    });
     auto impl = std::make_unique<Impl>();
     Impl& m = *impl;
-    start_restore(m, s, options);
-    const std::vector<Fh> faces = build_faces(m, s, slot_used);
-    check_manifold(m, faces, s.vertices);
-    check_tiling(m, faces, s);
+    std::vector<Fh> faces;
+    try {
+        start_restore(m, s, options);
+        faces = build_faces(m, s.slots, slot_used);
+    } catch (...) {
+        soup_job.wait();  // it reads the snapshot
+        throw;
+    }
+    auto [soup, twin_problem] = soup_job.get();
+    if (!twin_problem.empty()) corrupt(twin_problem);
+
+    // Phase 3: the soup's checks on every core; CGAL's neighbours from the twins.
+    ThreadPool pool(restore_threads());
+    const auto not_delaunay = check_soup(m, soup, faces, pool);
+
+    // Phase 4: the constraints, then what needed them.
     restore_constraints(m, s);
-    fill_caches(m, faces, s);
+    check_delaunay_exceptions(m, not_delaunay);
+    fill_caches(m, faces, pool);
 
     Tin tin(std::move(impl));
-    // Everything else is checked; the lumped areas were computed just above.
-    const ValidationReport report = tin.validate(false);
+    const ValidationReport report = tin.check_constraint_registry();
     if (!report.ok()) corrupt(report.problems.front());
     return tin;
-}
-
-namespace {
-
-/// Collects up to 20 problems into a report.
-class Problems {
-  public:
-    explicit Problems(ValidationReport& report) : report_(report) {}
-    void operator()(const std::string& what) {
-        if (report_.problems.size() < 20) report_.problems.push_back(what);
-    }
-
-  private:
-    ValidationReport& report_;
-};
-
-/// CGAL's structural checks: face and vertex links, orientation of every face, the constraint
-/// flag equal on both sides of each edge. (Constrained_Delaunay_triangulation_2::is_valid would
-/// add an in-circle test per edge and side; validate_edges makes that test once per edge and
-/// names the edge. Measured on 15 000 vertices: 6.7 ms -> 4.5 ms.) False when the rest cannot
-/// be checked.
-bool validate_structure(const Tin::Impl& m, Problems& problem) {
-    const detail::Cdt::Ctr& structure = m.cdt;
-    if (!structure.is_valid()) problem("CGAL reports an invalid triangulation");
-    if (m.cdt.dimension() != 2) {
-        problem("triangulation is not two-dimensional");
-        return false;
-    }
-    return true;
-}
-
-/// Vertices and ids, attributes and lumped areas. False when the rest cannot be checked.
-bool validate_vertices(const Tin::Impl& m, bool recompute_lumped_areas, Problems& problem) {
-    const VertexArrays& va = m.va;
-    const std::uint32_t capacity = m.events.vertex_ids.capacity();
-    if (va.size() != capacity || m.events.vertex_of_id.size() != capacity) {
-        problem("vertex arrays do not match the id capacity");
-        return false;
-    }
-
-    // Vertices and ids.
-    std::size_t finite_vertices = 0;
-    for (auto v = m.cdt.finite_vertices_begin(); v != m.cdt.finite_vertices_end(); ++v) {
-        ++finite_vertices;
-        const std::uint32_t id = v->id;
-        if (id >= capacity || m.events.vertex_of_id[id] != &*v || !va.alive[id]) {
-            problem("a CGAL vertex has no valid id");
-            continue;
-        }
-        const Vec2 p{v->point().x(), v->point().y()};
-        if (!(p == va.position[id]))
-            problem("vertex " + std::to_string(id) + " position differs from CGAL's");
-        if (!m.domain.contains(p))
-            problem("vertex " + std::to_string(id) + " lies outside the domain");
-    }
-    // Every vertex's lumped area from scratch: one pass over the faces adds a third of each
-    // face's area to its corners. Circulating around each vertex instead visits every face
-    // three times; in a stress session, which validates after every operation, that was a
-    // tenth of the run time.
-    std::vector<double> recomputed_area;
-    if (recompute_lumped_areas) {
-        recomputed_area.assign(capacity, 0.0);
-        for (auto f = m.cdt.finite_faces_begin(); f != m.cdt.finite_faces_end(); ++f) {
-            const std::array<std::uint32_t, 3> ids{f->vertex(0)->id, f->vertex(1)->id,
-                                                   f->vertex(2)->id};
-            if (ids[0] >= capacity || ids[1] >= capacity || ids[2] >= capacity) continue;
-            const Vec2 a = va.position[ids[0]];
-            const double area = 0.5 * cross(va.position[ids[1]] - a, va.position[ids[2]] - a);
-            for (const std::uint32_t id : ids)
-                recomputed_area[id] += area;
-        }
-    }
-    std::size_t alive = 0;
-    CompensatedSum total_area;
-    for (std::uint32_t id = 0; id < capacity; ++id) {
-        if (!va.alive[id]) {
-            if (m.events.vertex_of_id[id] != nullptr)
-                problem("dead id " + std::to_string(id) + " still maps to a vertex");
-            continue;
-        }
-        ++alive;
-        if (m.events.vertex_of_id[id] == nullptr) {
-            problem("live id " + std::to_string(id) + " maps to no vertex");
-            continue;
-        }
-        if (!std::isfinite(va.height[id]) || !std::isfinite(va.bedrock[id]) ||
-            !std::isfinite(va.slide[id].x) || !std::isfinite(va.slide[id].y) ||
-            !(va.moisture[id] >= 0.0f && va.moisture[id] <= 1.0f) ||
-            !std::isfinite(va.lumped_area[id])) {
-            problem("vertex " + std::to_string(id) + " has a non-finite or out-of-range attribute");
-        }
-        if (va.bedrock[id] > va.height[id])
-            problem("vertex " + std::to_string(id) + " has bedrock above its surface");
-        const double recomputed =
-            recompute_lumped_areas ? recomputed_area[id] / 3.0 : va.lumped_area[id];
-        if (!(std::abs(recomputed - va.lumped_area[id]) <= 1e-9 * std::max(recomputed, 1e-300)) ||
-            !(recomputed > 0.0)) {
-            problem("vertex " + std::to_string(id) + " has a stale lumped area");
-        }
-        total_area.add(va.lumped_area[id]);
-    }
-    if (alive != finite_vertices || alive != m.events.vertex_ids.live()) {
-        problem("live id count " + std::to_string(alive) + " differs from CGAL's " +
-                std::to_string(finite_vertices) + " vertices");
-    }
-    const double domain_area = m.domain.width() * m.domain.height();
-    if (std::abs(total_area.value() - domain_area) > 1e-9 * domain_area) {
-        problem("lumped areas do not sum to the domain area");
-    }
-    return true;
-}
-
-/// Slots and the slot cache. False when the rest cannot be checked.
-bool validate_slots(const Tin::Impl& m, Problems& problem) {
-    const std::uint32_t slots = m.events.slots.capacity();
-    if (m.slot_cache.size() != slots || m.events.face_of_slot.size() != slots) {
-        problem("slot arrays do not match the slot capacity");
-        return false;
-    }
-    std::vector<std::uint8_t> slot_seen(slots, 0);
-    std::uint32_t finite_faces = 0;
-    for (auto f = m.cdt.all_faces_begin(); f != m.cdt.all_faces_end(); ++f) {
-        const std::uint32_t s = f->slot;
-        if (s >= slots || slot_seen[s] || m.events.face_of_slot[s] != &*f) {
-            problem("a face has a missing, repeated or stale slot");
-            continue;
-        }
-        slot_seen[s] = 1;
-        const SlotRecord now = m.read_face(*f);
-        if (!(now == m.slot_cache[s]))
-            problem("slot " + std::to_string(s) + " cache differs from its face");
-        if (now.finite()) ++finite_faces;
-    }
-    for (std::uint32_t s = 0; s < slots; ++s) {
-        if (!slot_seen[s] && (m.events.face_of_slot[s] != nullptr || m.slot_cache[s].finite())) {
-            problem("free slot " + std::to_string(s) + " still holds a triangle");
-        }
-    }
-    if (finite_faces != m.live_triangles || finite_faces != m.cdt.number_of_faces()) {
-        problem("live triangle count is inconsistent");
-    }
-    return true;
-}
-
-/// The Delaunay property of unconstrained edges, and the constraint bookkeeping.
-void validate_edges(const Tin::Impl& m, Problems& problem) {
-    const auto in_circle = detail::Kernel().side_of_oriented_circle_2_object();
-    std::size_t constrained_edges = 0;
-    for (auto e = m.cdt.finite_edges_begin(); e != m.cdt.finite_edges_end(); ++e) {
-        const Fh f = e->first;
-        const int i = e->second;
-        const Fh g = f->neighbor(i);
-        const Vh a = f->vertex(CdtPlus::cw(i));
-        const Vh b = f->vertex(CdtPlus::ccw(i));
-        if (f->is_constrained(i)) {
-            ++constrained_edges;  // matched with the hierarchy's sub-edges below
-            continue;
-        }
-        if (m.cdt.is_infinite(f) || m.cdt.is_infinite(g)) continue;
-        const Vh opposite = g->vertex(g->index(f));
-        if (in_circle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point(),
-                      opposite->point()) == CGAL::ON_POSITIVE_SIDE) {
-            problem("edge " + std::to_string(a->id) + "-" + std::to_string(b->id) +
-                    " is not locally Delaunay");
-        }
-    }
-    // Every sub-edge of the constraint hierarchy is a constrained edge of the triangulation and
-    // belongs only to registered constraints. The sub-edges are distinct, so with equal counts
-    // every constrained edge is also a sub-edge. (Walking the hierarchy once replaces three
-    // lookups per constrained edge in its map, which compares points.)
-    std::size_t sub_edges = 0;
-    for (auto sc = m.cdt.subconstraints_begin(); sc != m.cdt.subconstraints_end(); ++sc) {
-        ++sub_edges;
-        Fh f;
-        int i = 0;
-        if (!m.cdt.is_edge(sc->first.first, sc->first.second, f, i) || !f->is_constrained(i))
-            problem("a constraint's sub-edge is not a constrained edge of the triangulation");
-        for (auto ctx : *sc->second) {  // Context::id() is not const
-            if (m.constraint_of_cgal.find(ctx.id().vl_ptr()) == m.constraint_of_cgal.end())
-                problem("a constrained edge belongs to an unregistered constraint");
-        }
-    }
-    if (constrained_edges != sub_edges) {
-        problem("constrained edge count differs from the constraint hierarchy");
-    }
-    std::size_t registered = 0;
-    for (std::uint32_t id = 0; id < m.constraints.size(); ++id) {
-        const detail::ConstraintEntry& e = m.constraints[id];
-        if (!e.alive) continue;
-        ++registered;
-        const auto it = m.constraint_of_cgal.find(e.cgal_id.vl_ptr());
-        if (it == m.constraint_of_cgal.end() || it->second != id)
-            problem("constraint registry is inconsistent");
-        if (!m.constraint_boxes.holds(id, e.bounds))
-            problem("constraint " + std::to_string(id) + " is not filed under its bounds");
-    }
-    if (registered != m.constraint_of_cgal.size() ||
-        registered != const_cast<CdtPlus&>(m.cdt).number_of_constraints() ||
-        registered != m.constraint_ids.live() || registered != m.constraint_boxes.size()) {
-        problem("constraint count differs between the registry and CGAL");
-    }
-}
-
-}  // namespace
-
-ValidationReport Tin::check_valid() const {
-    return validate(true);
-}
-
-ValidationReport Tin::validate(bool recompute_lumped_areas) const {
-    const Impl& m = *impl_;
-    ValidationReport r;
-    Problems problem(r);
-    if (validate_structure(m, problem) && validate_vertices(m, recompute_lumped_areas, problem) &&
-        validate_slots(m, problem)) {
-        validate_edges(m, problem);
-    }
-    return r;
-}
-
-std::string ValidationReport::summary() const {
-    std::string s;
-    for (const std::string& p : problems) {
-        s += p;
-        s += '\n';
-    }
-    return s;
 }
 
 }  // namespace sandtin

@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 namespace {
@@ -247,7 +249,9 @@ std::vector<std::uint8_t> read_file(const std::filesystem::path& path, std::uint
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open '" + path.string() + "'");
-    std::vector<std::uint8_t> bytes(size);
+    std::vector<std::uint8_t> bytes;
+    reserve_for_writing(bytes, size);
+    bytes.resize(size);
     if (size > 0 &&
         !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
         throw std::runtime_error("cannot read '" + path.string() + "': read failed");

@@ -1,10 +1,13 @@
 #include "bench_tin.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 
+#include "io/session_file.hpp"
+#include "io/session_terrain.hpp"
 #include "raw_cgal.hpp"
 #include "tin/tin.hpp"
 #include "tin/tin_snapshot.hpp"
@@ -216,8 +219,41 @@ nlohmann::json bench_constraints(const BenchConfig& config) {
             {"cgal_vertices_after", cgal.vertex_count()}};
 }
 
+/// Opening a saved session: reading and checking the file (load_session), then rebuilding the
+/// terrain with every validity check (take_session_terrain), in wall time, since the rebuild
+/// runs its independent checks on both cores. Medians of three.
+nlohmann::json bench_open(const TinSnapshot& snapshot) {
+    namespace fs = std::filesystem;
+    const fs::path file = fs::temp_directory_path() /
+                          ("sandtin-bench-open-" + std::to_string(snapshot.vertices.size()) + "-" +
+                           std::to_string(std::random_device{}()) + ".sandtin");
+    Session session;
+    session.terrain = snapshot;
+    save_session(file, session);
+    const auto bytes = fs::file_size(file);
+    TinOptions options;
+    options.track_changes = false;
+    std::vector<double> load, rebuild, open;
+    for (int rep = 0; rep < 3; ++rep) {
+        const Stopwatch whole;
+        Session loaded = load_session(file);
+        load.push_back(whole.ms());
+        const Stopwatch w;
+        const Tin tin = take_session_terrain(loaded, file, options);
+        rebuild.push_back(w.ms());
+        open.push_back(whole.ms());
+        if (tin.vertex_count() == 0) throw std::runtime_error("bench open: no terrain");
+    }
+    fs::remove(file);
+    return {{"file_bytes", bytes},
+            {"load_wall_ms_median", median(load)},
+            {"rebuild_wall_ms_median", median(rebuild)},
+            {"open_wall_ms_median", median(open)}};
+}
+
 /// Rebuilding a terrain from its snapshot (what loading a session does after parsing the
-/// file), split into the rebuild and the full validity check that ends it.
+/// file), split into the rebuild and the full validity check that ends it, then opening the
+/// same terrain saved as a session.
 nlohmann::json bench_restore(const BenchConfig& config, const ProgressCallback& part) {
     nlohmann::json rows = nlohmann::json::array();
     const std::vector<std::size_t> sizes =
@@ -247,11 +283,13 @@ nlohmann::json bench_restore(const BenchConfig& config, const ProgressCallback& 
             validate.push_back(v.ms());
             vertices = restored.vertex_count();
         }
-        rows.push_back({{"points", n},
-                        {"vertices", vertices},
-                        {"snapshot_cpu_ms", snapshot_ms},
-                        {"restore_cpu_ms_median", median(restore)},
-                        {"check_valid_cpu_ms_median", median(validate)}});
+        nlohmann::json row = {{"points", n},
+                              {"vertices", vertices},
+                              {"snapshot_cpu_ms", snapshot_ms},
+                              {"restore_cpu_ms_median", median(restore)},
+                              {"check_valid_cpu_ms_median", median(validate)}};
+        row["open"] = bench_open(snapshot);
+        rows.push_back(std::move(row));
     }
     progress.done();
     return rows;

@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/tin_oracles.hpp"
@@ -421,10 +423,11 @@ TEST_F(CorruptSnapshot, RandomMutationsNeverCrash) {
     std::mt19937_64 rng = test::test_rng(99);
     int rejected = 0;
     int accepted = 0;
-    for (int trial = 0; trial < 300; ++trial) {
+    std::uniform_real_distribution<double> nudge(-0.4, 0.4);
+    for (int trial = 0; trial < 600; ++trial) {
         TinSnapshot s = good;
         const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
-        switch (trial % 6) {
+        switch (trial % 8) {
             case 0:
                 s.slots[pick(s.slots.size())][pick(3)] =
                     static_cast<std::uint32_t>(pick(s.vertices.size() + 3));
@@ -447,9 +450,27 @@ TEST_F(CorruptSnapshot, RandomMutationsNeverCrash) {
                 vs[pick(vs.size())] = static_cast<std::uint32_t>(pick(s.vertices.size()));
                 break;
             }
-            default:
+            case 5:
                 std::swap(s.slots[pick(s.slots.size())], s.slots[pick(s.slots.size())]);
                 break;
+            case 6: {
+                // A vertex nudged by up to 0.4 m (the mean spacing is about 0.6 m): some moves
+                // keep every triangle counter-clockwise but make an edge non-Delaunay, some
+                // fold a triangle over, some change nothing that matters.
+                const std::size_t i = pick(s.vertices.size());
+                const Vec2 p = s.vertices.position[i];
+                const Vec2 q{p.x + nudge(rng), p.y + nudge(rng)};
+                if (s.domain.contains(q) && !test::on_domain_border(s.domain, p))
+                    s.vertices.position[i] = q;
+                break;
+            }
+            default: {
+                // A corner swapped for a corner of another triangle.
+                auto& c = s.slots[pick(s.slots.size())];
+                const auto& other = s.slots[pick(s.slots.size())];
+                c[pick(3)] = other[pick(3)];
+                break;
+            }
         }
         try {
             const Tin t = Tin::from_snapshot(s);
@@ -461,8 +482,70 @@ TEST_F(CorruptSnapshot, RandomMutationsNeverCrash) {
             ++rejected;
         }
     }
-    EXPECT_GT(rejected, 100);
+    EXPECT_GT(rejected, 200);
     EXPECT_GT(accepted, 0);  // some mutations are harmless (e.g. swapping two live slots)
+}
+
+// The restore checks its triangles in ranges spread over the cores: a damaged triangle or
+// vertex late in a large snapshot (another thread's range on a multi-core machine) is refused
+// as one early in it is, by name.
+TEST(Snapshot, DamageAnywhereInALargeSnapshotIsRefusedByName) {
+    const Tin tin = Tin::random_points(Rect::from_size(10.0, 10.0), 20000, 12, ripples);
+    const TinSnapshot good = tin.snapshot();
+    std::vector<std::uint32_t> finite_slots;
+    for (std::uint32_t t = 0; t < good.slots.size(); ++t) {
+        const auto& c = good.slots[t];
+        if (c[0] < kOutsideCorner && c[1] < kOutsideCorner && c[2] < kOutsideCorner)
+            finite_slots.push_back(t);
+    }
+    ASSERT_GT(finite_slots.size(), 30000u);
+    for (const std::uint32_t t :
+         {finite_slots.front(), finite_slots[finite_slots.size() / 2], finite_slots.back()}) {
+        TinSnapshot s = good;
+        std::swap(s.slots[t][0], s.slots[t][1]);  // clockwise, and its edges' twins gone
+        try {
+            (void)Tin::from_snapshot(s);
+            ADD_FAILURE() << "a flipped triangle in slot " << t << " was accepted";
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("invalid terrain data"), std::string::npos);
+        }
+    }
+    // A non-Delaunay edge deep in the terrain: the diagonal of two triangles late in slot
+    // order flipped, where they form a convex quadrilateral (both new triangles stay
+    // counter-clockwise, so only the in-circle test can tell).
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> slot_of_edge;
+    for (const std::uint32_t t : finite_slots) {
+        for (int i = 0; i < 3; ++i)
+            slot_of_edge[{good.slots[t][(i + 1) % 3], good.slots[t][(i + 2) % 3]}] = t;
+    }
+    for (std::size_t k = finite_slots.size(); k-- > 0;) {
+        const std::uint32_t ta = finite_slots[k];
+        for (int i = 0; i < 3; ++i) {
+            const auto& a = good.slots[ta];
+            const std::uint32_t p = a[(i + 1) % 3], q = a[(i + 2) % 3], x = a[i];
+            const auto twin = slot_of_edge.find({q, p});
+            if (twin == slot_of_edge.end()) continue;
+            const auto& b = good.slots[twin->second];
+            const std::uint32_t y = b[0] != p && b[0] != q   ? b[0]
+                                    : b[1] != p && b[1] != q ? b[1]
+                                                             : b[2];
+            const Vec2 px = good.vertices.position[p], qx = good.vertices.position[q];
+            const Vec2 xx = good.vertices.position[x], yx = good.vertices.position[y];
+            if (cross(px - xx, yx - xx) <= 0.0 || cross(qx - yx, xx - yx) <= 0.0) continue;
+            TinSnapshot s = good;
+            s.slots[ta] = {x, p, y};
+            s.slots[twin->second] = {y, q, x};
+            try {
+                (void)Tin::from_snapshot(s);
+                ADD_FAILURE() << "a flipped diagonal at slot " << ta << " was accepted";
+            } catch (const std::runtime_error& e) {
+                EXPECT_NE(std::string(e.what()).find("not locally Delaunay"), std::string::npos)
+                    << e.what();
+            }
+            return;
+        }
+    }
+    ADD_FAILURE() << "found no diagonal to flip";
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin::detail {
 
 TwinProblem pair_half_edges(std::span<const std::array<std::uint32_t, 3>> triangles,
@@ -19,7 +21,9 @@ TwinProblem pair_half_edges(std::span<const std::array<std::uint32_t, 3>> triang
     }
     for (std::size_t v = 0; v < vertex_count; ++v)
         row[v + 1] += row[v];
-    std::vector<std::uint64_t> leaving(half_edges);
+    std::vector<std::uint64_t> leaving;
+    reserve_for_writing(leaving, half_edges);
+    leaving.resize(half_edges);
     {
         std::vector<std::uint32_t> next(row.begin(), row.end() - 1);
         for (std::size_t k = 0; k < half_edges; ++k)
@@ -38,6 +42,7 @@ TwinProblem pair_half_edges(std::span<const std::array<std::uint32_t, 3>> triang
             return TwinProblem::RepeatedHalfEdge;
     }
 
+    reserve_for_writing(twin, half_edges);
     twin.resize(half_edges);
     for (std::size_t k = 0; k < half_edges; ++k) {
         // The twin leaves to(k) and reaches from(k).

@@ -1,0 +1,32 @@
+#pragma once
+// Large arrays about to be filled whole, with the kernel told first.
+//
+// Fresh memory costs a page fault per 4 KiB page on first write. On a virtual machine each
+// fault also traps to the hypervisor: on the 2-core reference machine, filling 112 MB of fresh
+// memory took 440 ms one page at a time and 18-23 ms after these hints, and a 10^6-vertex
+// session touches about 400 MB while it opens. On bare metal the saving is smaller, never a
+// loss.
+
+#include <cstddef>
+#include <vector>
+
+namespace sandtin {
+
+/// Hints that the `bytes` at `data` are about to be written whole: on Linux, backs them with
+/// transparent huge pages where the system allows (MADV_HUGEPAGE) and maps them in one call
+/// (MADV_POPULATE_WRITE, Linux 5.14) instead of one fault per page. Regions under 2 MiB are
+/// left alone (a syscall would cost more than it saves). Only a hint: on other systems, older
+/// kernels or memory that is not the process's own mapping it changes nothing but speed, and
+/// the bytes' values are never changed.
+void prepare_for_writing(void* data, std::size_t bytes);
+
+/// v.reserve(n), its storage prepared for writing when it had to grow; then fill it (assign,
+/// resize, push_back).
+template <class T>
+void reserve_for_writing(std::vector<T>& v, std::size_t n) {
+    if (v.capacity() >= n) return;
+    v.reserve(n);
+    prepare_for_writing(v.data(), v.capacity() * sizeof(T));
+}
+
+}  // namespace sandtin
