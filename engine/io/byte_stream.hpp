@@ -40,6 +40,18 @@ class ByteWriter {
         put<std::uint64_t>(s.size());
         bytes_.insert(bytes_.end(), s.begin(), s.end());
     }
+    /// Overwrites sizeof(T) bytes written earlier at `offset` (a length or checksum known only
+    /// once what follows it is written).
+    template <class T>
+    requires std::is_trivially_copyable_v<T>
+    void put_at(std::size_t offset, const T& value) {
+        if (offset + sizeof(T) > bytes_.size())
+            throw std::logic_error("ByteWriter::put_at past the bytes written");
+        std::memcpy(bytes_.data() + offset, &value, sizeof(T));
+    }
+    /// Room for `bytes` more, prepared for writing: one allocation for a whole file.
+    void reserve(std::size_t bytes) { reserve_for_writing(bytes_, bytes_.size() + bytes); }
+    std::size_t size() const { return bytes_.size(); }
     std::vector<std::uint8_t>& bytes() { return bytes_; }
 
   private:

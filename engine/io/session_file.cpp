@@ -95,38 +95,60 @@ TinSnapshot decode_terrain(ByteReader& r) {
     return t;
 }
 
+/// About the bytes a session's payload takes (the terrain's arrays dominate), so that it is
+/// written into one buffer; a little more or less only costs a reallocation.
+std::size_t estimated_payload_bytes(const Session& session) {
+    const TinSnapshot& t = session.terrain;
+    const VertexArrays& v = t.vertices;
+    std::size_t bytes = 4096 + session.metadata_json.size();
+    bytes += v.size() * (sizeof(Vec2) + 2 * sizeof(double) + sizeof(std::uint16_t) + sizeof(float) +
+                         sizeof(Vec2f) + sizeof(std::uint8_t));
+    bytes += (t.vertex_free_list.size() + t.slot_free_list.size() + t.constraint_free_list.size()) *
+             sizeof(std::uint32_t);
+    bytes += t.slots.size() * sizeof(std::array<std::uint32_t, 3>);
+    for (const ConstraintRecord& c : t.constraints)
+        bytes += 32 + c.vertices.size() * sizeof(std::uint32_t);
+    for (const auto& [id, body] : session.unknown_chunks)
+        bytes += 12 + body.size();
+    return bytes;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encode_session(const Session& session) {
-    ByteWriter payload;
-    auto chunk = [&](std::uint32_t id, const std::vector<std::uint8_t>& body) {
-        payload.put(id);
-        payload.put<std::uint64_t>(body.size());
-        payload.put_bytes(body);
-    };
-    {
-        ByteWriter w;
-        encode_terrain(w, session.terrain);
-        chunk(kTagTin, w.bytes());
-    }
-    {
-        ByteWriter w;
-        w.put<std::uint64_t>(session.next_generation);
-        chunk(kTagGeneration, w.bytes());
-    }
-    chunk(kTagMeta,
-          std::vector<std::uint8_t>(session.metadata_json.begin(), session.metadata_json.end()));
-    for (const auto& [id, body] : session.unknown_chunks)
-        chunk(id, body);
-
+    // Header and chunks written into one buffer, the lengths and checksums filled in after
+    // (a payload built apart and copied in cost two more copies of the whole file).
     ByteWriter file;
+    file.reserve(kHeaderSize + estimated_payload_bytes(session));
     file.put_bytes(kMagic);
     file.put<std::uint32_t>(kSessionFormatVersion);
     file.put<std::uint32_t>(0);
-    file.put<std::uint64_t>(payload.bytes().size());
-    file.put<std::uint32_t>(crc32_of(payload.bytes()));
-    file.put<std::uint32_t>(crc32_of(std::span(file.bytes()).first(kHeaderChecked)));
-    file.put_bytes(payload.bytes());
+    const std::size_t length_at = file.size();
+    file.put<std::uint64_t>(0);  // payload length
+    file.put<std::uint32_t>(0);  // payload CRC
+    file.put<std::uint32_t>(0);  // header CRC
+    const auto chunk = [&](std::uint32_t id, const auto& write_body) {
+        file.put(id);
+        const std::size_t size_at = file.size();
+        file.put<std::uint64_t>(0);
+        write_body();
+        file.put_at<std::uint64_t>(size_at, file.size() - size_at - sizeof(std::uint64_t));
+    };
+    chunk(kTagTin, [&] { encode_terrain(file, session.terrain); });
+    chunk(kTagGeneration, [&] { file.put<std::uint64_t>(session.next_generation); });
+    chunk(kTagMeta, [&] {
+        file.put_bytes(
+            std::span(reinterpret_cast<const std::uint8_t*>(session.metadata_json.data()),
+                      session.metadata_json.size()));
+    });
+    for (const auto& [id, body] : session.unknown_chunks)
+        chunk(id, [&] { file.put_bytes(body); });
+
+    const std::span<const std::uint8_t> payload = std::span(file.bytes()).subspan(kHeaderSize);
+    file.put_at<std::uint64_t>(length_at, payload.size());
+    file.put_at<std::uint32_t>(length_at + 8, crc32_of(payload));
+    file.put_at<std::uint32_t>(kHeaderChecked,
+                               crc32_of(std::span(file.bytes()).first(kHeaderChecked)));
     return std::move(file.bytes());
 }
 

@@ -14,6 +14,7 @@
 
 #include "tin/detail/cgal_tin.hpp"
 #include "tin/detail/impl_helpers.hpp"
+#include "util/prepare_for_writing.hpp"
 
 namespace sandtin {
 
@@ -112,8 +113,8 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
                                          Vec2{domain.min.x, domain.max.y}};
     std::vector<Vec2> pts;
     std::vector<double> hs;
-    pts.reserve(positions.size() + 4);
-    hs.reserve(positions.size() + 4);
+    reserve_for_writing(pts, positions.size() + 4);
+    reserve_for_writing(hs, positions.size() + 4);
     for (Vec2 c : corners) {
         double h = 0.0;
         double best = std::numeric_limits<double>::infinity();
@@ -138,7 +139,7 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     // position can keep the height that came first in the input (the sort does not keep equal
     // points in input order).
     std::vector<Record> sorted;
-    sorted.reserve(pts.size());
+    reserve_for_writing(sorted, pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
         sorted.push_back({to_point(pts[i]), hs[i], static_cast<std::uint32_t>(i)});
     }
@@ -146,8 +147,11 @@ std::unique_ptr<Tin::Impl> bulk_build(Rect domain, std::span<const Vec2> positio
     CGAL::spatial_sort(sorted.begin() + 4, sorted.end(), SortTraits());
 
     m.va.resize(pts.size());
+    reserve_for_writing(m.events.vertex_of_id, pts.size());
     m.events.vertex_of_id.resize(pts.size(), nullptr);
-    std::vector<std::uint32_t> source(pts.size(), kNoId);
+    std::vector<std::uint32_t> source;
+    reserve_for_writing(source, pts.size());
+    source.assign(pts.size(), kNoId);
     auto insert_one = [&](const Record& r, Fh& hint) {
         const Vh v = m.cdt.insert(r.point, hint);
         hint = v->face();
@@ -219,8 +223,8 @@ Tin Tin::random_points(Rect domain, std::size_t count, std::uint64_t seed,
     std::uniform_real_distribution<double> uy(domain.min.y, domain.max.y);
     std::vector<Vec2> pts;
     std::vector<double> hs;
-    pts.reserve(count + 4);
-    hs.reserve(count + 4);
+    reserve_for_writing(pts, count + 4);
+    reserve_for_writing(hs, count + 4);
     const std::array<Vec2, 4> corners = {domain.min, Vec2{domain.max.x, domain.min.y}, domain.max,
                                          Vec2{domain.min.x, domain.max.y}};
     for (Vec2 c : corners) {
@@ -258,7 +262,9 @@ void Tin::Impl::lay_out_faces_by_vertex() {
     const std::size_t vertex_count = va.size();
     // Counting sort of the faces by their lowest corner id (the vertex at infinity has the
     // largest id, so it never is the key of a face with a finite corner).
-    std::vector<std::uint32_t> first(vertex_count + 2, 0);
+    std::vector<std::uint32_t> first;
+    reserve_for_writing(first, vertex_count + 2);
+    first.assign(vertex_count + 2, 0);
     auto key = [&](const detail::Face& f) {
         const std::uint32_t k = std::min({f.vertex(0)->id, f.vertex(1)->id, f.vertex(2)->id});
         return k == kNoId ? static_cast<std::uint32_t>(vertex_count) : k;
@@ -273,7 +279,9 @@ void Tin::Impl::lay_out_faces_by_vertex() {
         std::array<std::uint32_t, 3> neighbour;  ///< new positions
         std::array<bool, 3> constrained;
     };
-    std::vector<FaceRecord> records(face_count);
+    std::vector<FaceRecord> records;
+    reserve_for_writing(records, face_count);
+    records.resize(face_count);
     // The slot field is unused until the slots are handed out below: it holds the new position.
     for (auto f = tds.faces().begin(); f != tds.faces().end(); ++f)
         f->slot = first[key(*f)]++;
@@ -286,7 +294,9 @@ void Tin::Impl::lay_out_faces_by_vertex() {
         }
     }
     tds.faces().clear();
-    std::vector<Fh> created(face_count);
+    std::vector<Fh> created;
+    reserve_for_writing(created, face_count);
+    created.resize(face_count);
     for (std::size_t k = 0; k < face_count; ++k) {
         const FaceRecord& r = records[k];
         created[k] = tds.create_face(r.corner[0], r.corner[1], r.corner[2]);
@@ -310,8 +320,8 @@ void Tin::Impl::finish_bulk_build() {
     // Headroom: the first edits of a fresh terrain would otherwise grow these per-slot arrays
     // at once, copying them whole in the middle of a stroke (measured: 15 ms at 10^6 points).
     const std::size_t faces = cdt.tds().number_of_full_dim_faces();
-    slot_cache.reserve(faces + faces / 8 + 1024);
-    events.face_of_slot.reserve(faces + faces / 8 + 1024);
+    reserve_for_writing(slot_cache, faces + faces / 8 + 1024);
+    reserve_for_writing(events.face_of_slot, faces + faces / 8 + 1024);
     const Vh infinite = cdt.infinite_vertex();
     for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f) {
         const std::uint32_t slot = events.slots.allocate();

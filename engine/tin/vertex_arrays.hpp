@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geom/vec2.hpp"
+#include "util/prepare_for_writing.hpp"
 
 namespace sandtin {
 
@@ -31,6 +32,7 @@ struct VertexArrays {
 
     std::size_t size() const { return height.size(); }
     void resize(std::size_t n) {
+        if (n > size()) reserve_for_writing(n);
         position.resize(n);
         height.resize(n, 0.0);
         bedrock.resize(n, kNoBedrock);
@@ -39,6 +41,18 @@ struct VertexArrays {
         slide.resize(n);
         lumped_area.resize(n, 0.0);
         alive.resize(n, 0);
+    }
+
+  private:
+    void reserve_for_writing(std::size_t n) {
+        sandtin::reserve_for_writing(position, n);
+        sandtin::reserve_for_writing(height, n);
+        sandtin::reserve_for_writing(bedrock, n);
+        sandtin::reserve_for_writing(material, n);
+        sandtin::reserve_for_writing(moisture, n);
+        sandtin::reserve_for_writing(slide, n);
+        sandtin::reserve_for_writing(lumped_area, n);
+        sandtin::reserve_for_writing(alive, n);
     }
 };
 

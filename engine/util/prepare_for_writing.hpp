@@ -7,6 +7,7 @@
 // session touches about 400 MB while it opens. On bare metal the saving is smaller, never a
 // loss.
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -20,12 +21,13 @@ namespace sandtin {
 /// the bytes' values are never changed.
 void prepare_for_writing(void* data, std::size_t bytes);
 
-/// v.reserve(n), its storage prepared for writing when it had to grow; then fill it (assign,
-/// resize, push_back).
+/// Room for n elements in v, its new storage prepared for writing; then fill it (assign,
+/// resize, push_back). Grows at least twofold, as push_back does, so that growing a vector one
+/// step at a time through it stays amortised O(1); an empty vector gets exactly n.
 template <class T>
 void reserve_for_writing(std::vector<T>& v, std::size_t n) {
     if (v.capacity() >= n) return;
-    v.reserve(n);
+    v.reserve(std::max(n, 2 * v.capacity()));
     prepare_for_writing(v.data(), v.capacity() * sizeof(T));
 }
 
