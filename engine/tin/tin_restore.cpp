@@ -47,29 +47,13 @@ std::vector<std::uint32_t> handout_order(const IdAllocator& a) {
     return out;
 }
 
-/// The first from.size() entries of every array of `to` (at least that long) from `from`.
-void copy_vertex_arrays(const VertexArrays& from, VertexArrays& to) {
-    const auto copy = [](const auto& a, auto& b) { std::copy(a.begin(), a.end(), b.begin()); };
-    copy(from.position, to.position);
-    copy(from.height, to.height);
-    copy(from.bedrock, to.bedrock);
-    copy(from.material, to.material);
-    copy(from.moisture, to.moisture);
-    copy(from.slide, to.slide);
-    copy(from.lumped_area, to.lumped_area);
-    copy(from.alive, to.alive);
-}
-
 }  // namespace
 
 TinSnapshot Tin::snapshot() const {
     const Impl& m = *impl_;
     TinSnapshot s;
     s.domain = m.domain;
-    // Sized first (the storage prepared for writing, VertexArrays::resize), then copied: a
-    // copy-constructed array would take its fresh pages one fault at a time.
-    s.vertices.resize(std::max<std::size_t>(m.events.vertex_ids.capacity(), m.va.size()));
-    copy_vertex_arrays(m.va, s.vertices);
+    s.vertices = m.va;
     s.vertices.resize(m.events.vertex_ids.capacity());
     reserve_for_writing(s.slots, m.events.slots.capacity());
     s.slots.resize(m.events.slots.capacity(), {kNoSlot, kNoSlot, kNoSlot});
