@@ -122,6 +122,37 @@ TEST(Snapshot, RoundTripWithAConstraintNextToAnotherConstraintsVertex) {
     ASSERT_NO_THROW(expect_round_trip(tin));
 }
 
+// VertexArrays' copy (it prepares its storage for writing rather than copying vector by
+// vector): every array equal, the copy independent of its source, and self-assignment a no-op.
+TEST(Snapshot, VertexArraysCopyEveryArrayAndStayIndependent) {
+    const Tin tin = busy_terrain();
+    const VertexArrays& from = tin.vertices();
+    const auto same = [](const VertexArrays& a, const VertexArrays& b) {
+        return a.position == b.position && a.height == b.height && a.bedrock == b.bedrock &&
+               a.material == b.material && a.moisture == b.moisture && a.slide == b.slide &&
+               a.lumped_area == b.lumped_area && a.alive == b.alive;
+    };
+    VertexArrays copy(from);
+    EXPECT_TRUE(same(copy, from));
+    VertexArrays assigned;
+    assigned.resize(3);  // smaller storage, grown by the assignment
+    assigned = from;
+    EXPECT_TRUE(same(assigned, from));
+    VertexArrays larger;
+    larger.resize(from.size() * 2);  // larger storage, shrunk to the source's length
+    larger = from;
+    EXPECT_TRUE(same(larger, from));
+    const double height0 = from.height[0];
+    const std::uint8_t alive1 = from.alive[1];
+    copy.height[0] += 1.0;
+    copy.alive[1] = alive1 == 0 ? 1 : 0;
+    EXPECT_EQ(from.height[0], height0);
+    EXPECT_EQ(from.alive[1], alive1);
+    VertexArrays& self = assigned;
+    assigned = self;
+    EXPECT_TRUE(same(assigned, from));
+}
+
 TEST(Snapshot, RestoredTinKeepsEditingLikeTheOriginal) {
     Tin a = busy_terrain();
     a.take_changes();
