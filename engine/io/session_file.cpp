@@ -141,8 +141,8 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
             std::span(reinterpret_cast<const std::uint8_t*>(session.metadata_json.data()),
                       session.metadata_json.size()));
     });
-    for (const auto& [id, body] : session.unknown_chunks)
-        chunk(id, [&] { file.put_bytes(body); });
+    for (const auto& unknown : session.unknown_chunks)  // (clang 14 captures no bindings)
+        chunk(unknown.first, [&] { file.put_bytes(unknown.second); });
 
     const std::span<const std::uint8_t> payload = std::span(file.bytes()).subspan(kHeaderSize);
     file.put_at<std::uint64_t>(length_at, payload.size());

@@ -13,6 +13,7 @@
 namespace sandtin {
 
 using detail::CdtPlus;
+using detail::SlotRecord;
 using Vh = Tin::Impl::Vh;
 using Fh = Tin::Impl::Fh;
 
