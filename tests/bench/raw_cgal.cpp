@@ -1,6 +1,7 @@
 #include "raw_cgal.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <memory>
@@ -51,6 +52,43 @@ void RawCgalTin::constrain_ring(std::span<const Vec2> ring) {
 }
 
 std::size_t RawCgalTin::vertex_count() const {
+    return impl_->cdt.number_of_vertices();
+}
+
+using CdtPlus = CGAL::Constrained_triangulation_plus_2<Cdt>;
+
+struct RawCgalPlusTin::Impl {
+    CdtPlus cdt;
+    CdtPlus::Vertex_handle last;
+};
+
+RawCgalPlusTin::RawCgalPlusTin() : impl_(std::make_unique<Impl>()) {}
+RawCgalPlusTin::~RawCgalPlusTin() = default;
+
+void RawCgalPlusTin::insert(std::span<const Vec2> points) {
+    std::vector<Kernel::Point_2> pts;
+    pts.reserve(points.size());
+    for (Vec2 p : points)
+        pts.emplace_back(p.x, p.y);
+    impl_->cdt.insert(pts.begin(), pts.end());
+}
+
+void RawCgalPlusTin::constrain_ring(std::span<const Vec2> ring) {
+    std::vector<CdtPlus::Vertex_handle> vs;
+    CdtPlus::Face_handle hint =
+        impl_->last != CdtPlus::Vertex_handle() ? impl_->last->face() : CdtPlus::Face_handle();
+    for (Vec2 p : ring) {
+        vs.push_back(impl_->cdt.insert(Kernel::Point_2(p.x, p.y), hint));
+        hint = vs.back()->face();
+    }
+    // Segment by segment, each a constraint of its own: CGAL's polyline insertion takes points
+    // and locates them again without a hint.
+    for (std::size_t i = 0; i < vs.size(); ++i)
+        impl_->cdt.insert_constraint(vs[i], vs[(i + 1) % vs.size()]);
+    impl_->last = vs.front();
+}
+
+std::size_t RawCgalPlusTin::vertex_count() const {
     return impl_->cdt.number_of_vertices();
 }
 

@@ -30,4 +30,25 @@ class RawCgalTin {
     std::unique_ptr<Impl> impl_;
 };
 
+/// The same triangulation with CGAL's constraint hierarchy on top
+/// (Constrained_triangulation_plus_2), as sandtin's TIN keeps it: constraints with ids, their
+/// crossings split into sub-constraints. It tells how much of the TIN's cost over RawCgalTin is the
+/// hierarchy and how much is the TIN's own bookkeeping (ids, slots, lumped areas, the journal).
+class RawCgalPlusTin {
+  public:
+    RawCgalPlusTin();
+    ~RawCgalPlusTin();
+    RawCgalPlusTin(const RawCgalPlusTin&) = delete;
+    RawCgalPlusTin& operator=(const RawCgalPlusTin&) = delete;
+
+    void insert(std::span<const Vec2> points);
+    /// Inserts the ring's points and constrains its closed polygon, segment by segment.
+    void constrain_ring(std::span<const Vec2> ring);
+    std::size_t vertex_count() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
 }  // namespace sandtin::bench
