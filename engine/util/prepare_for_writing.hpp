@@ -21,14 +21,16 @@ namespace sandtin {
 /// the bytes' values are never changed.
 void prepare_for_writing(void* data, std::size_t bytes);
 
-/// Room for n elements in v, its new storage prepared for writing; then fill it (assign,
-/// resize, push_back). Grows at least twofold, as push_back does, so that growing a vector one
-/// step at a time through it stays amortised O(1); an empty vector gets exactly n.
+/// Room for n elements in v, the first n prepared for writing; then fill it (assign, resize,
+/// push_back). Grows at least twofold, as push_back does, so that growing a vector one step at a
+/// time through it stays amortised O(1); an empty vector gets exactly n. Capacity past n is
+/// left to be mapped when it is used: a terrain one vertex past its arrays' capacity would
+/// otherwise map twice its size at once.
 template <class T>
 void reserve_for_writing(std::vector<T>& v, std::size_t n) {
     if (v.capacity() >= n) return;
     v.reserve(std::max(n, 2 * v.capacity()));
-    prepare_for_writing(v.data(), v.capacity() * sizeof(T));
+    prepare_for_writing(v.data(), n * sizeof(T));
 }
 
 }  // namespace sandtin
