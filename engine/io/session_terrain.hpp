@@ -10,11 +10,9 @@
 
 namespace sandtin {
 
-/// Tin::from_snapshot(session.terrain, options); its errors are prefixed with "'<file>': ".
-Tin session_terrain(const Session& session, const std::filesystem::path& file,
-                    TinOptions options = {});
-/// The same, moving the session's terrain into the TIN rather than copying it (about 50 MB at
-/// 10^6 vertices); session.terrain is left empty, the rest of the session as it was.
+/// Tin::from_snapshot(session.terrain, options), its errors prefixed with "'<file>': ". Moves
+/// the session's terrain into the TIN rather than copying it (about 50 MB at 10^6 vertices):
+/// session.terrain is left empty, the rest of the session as it was.
 Tin take_session_terrain(Session& session, const std::filesystem::path& file,
                          TinOptions options = {});
 

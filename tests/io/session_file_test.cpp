@@ -279,18 +279,23 @@ TEST_F(SessionFile, AnInvalidTerrainInAnIntactFileNamesTheFile) {
     ASSERT_FALSE(s.terrain.slots.empty());
     s.terrain.slots.front()[0] = 1000000;
     save_session(path("bad-topology.sandtin"), s);
-    const Session loaded = load_session(path("bad-topology.sandtin"));
+    Session loaded = load_session(path("bad-topology.sandtin"));
     try {
-        (void)session_terrain(loaded, path("bad-topology.sandtin"));
+        (void)take_session_terrain(loaded, path("bad-topology.sandtin"));
         ADD_FAILURE() << "an invalid triangulation was accepted";
     } catch (const std::exception& e) {
         const std::string m = e.what();
         EXPECT_EQ(m.rfind("'" + path("bad-topology.sandtin").string() + "': ", 0), 0u) << m;
     }
-    // An intact one loads the same as Tin::from_snapshot.
-    const Session good = make_session(20);
-    EXPECT_EQ(session_terrain(good, "x").vertex_count(),
-              Tin::from_snapshot(good.terrain).vertex_count());
+    // An intact one loads the same as Tin::from_snapshot, and leaves the session's terrain empty
+    // (moved into the TIN) and the rest of the session as it was.
+    Session good = make_session(20);
+    const Session copy = good;
+    EXPECT_EQ(take_session_terrain(good, "x").vertex_count(),
+              Tin::from_snapshot(copy.terrain).vertex_count());
+    EXPECT_EQ(good.terrain.vertices.size(), 0u);
+    EXPECT_EQ(good.metadata_json, copy.metadata_json);
+    EXPECT_EQ(good.next_generation, copy.next_generation);
 }
 
 TEST_F(SessionFile, CraftedFilesWithValidChecksum) {
