@@ -88,6 +88,14 @@ class ActiveSet {
             quiet_[list[k]] = quiet[k];
         }
     }
+    /// Room for ids below n now (a physics being created), so that activating them later
+    /// never grows the arrays in the middle of an edit.
+    void reserve_ids(std::size_t n) {
+        if (n > quiet_.size()) {
+            quiet_.resize(n, 0);
+            bits_.resize((n + 63) / 64, 0);
+        }
+    }
     void clear() {
         for (std::uint32_t v : list_)
             bits_[v >> 6] = 0;

@@ -1,5 +1,7 @@
 #include "physics/adjacency_graph.hpp"
 
+#include "util/prepare_for_writing.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -41,10 +43,13 @@ double across_length(Vec2 p, Vec2 a, Vec2 b) {
 void AdjacencyGraph::refresh_row_summary(std::uint32_t v) {
     double m = 0.0;
     std::uint32_t lo = v, hi = v;
-    for (std::uint32_t k = offset_[v]; k < offset_[v] + degree_[v]; ++k) {
+    const std::uint32_t begin = offset_[v], end = offset_[v] + degree_[v];
+    if (corners_.size() < across_.size()) corners_.resize(across_.size());
+    for (std::uint32_t k = begin; k < end; ++k) {
         m = std::max(m, length_[k]);
         lo = std::min(lo, target_[k]);
         hi = std::max(hi, target_[k]);
+        corners_[k] = face_corner(length_[k], length_[k + 1 == end ? begin : k + 1], across_[k]);
     }
     longest_[v] = m;
     row_words_[v] = {lo >> 6, (hi >> 6) + 1};
@@ -63,6 +68,14 @@ void AdjacencyGraph::ensure_vertices(std::uint32_t n) {
 
 void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     const std::uint32_t n = numbering != nullptr ? numbering->size() : tin.vertex_capacity();
+    // Tens of megabytes at 10⁶ vertices, filled now and read at scattered ids: prepared
+    // (util/prepare_for_writing.hpp), which also backs them with huge pages where the system
+    // allows, sparing the TLB misses of the kernels' scattered reads.
+    reserve_for_writing(offset_, n);
+    reserve_for_writing(degree_, n);
+    reserve_for_writing(capacity_, n);
+    reserve_for_writing(longest_, n);
+    reserve_for_writing(row_words_, n);
     offset_.assign(n, 0);
     degree_.assign(n, 0);
     capacity_.assign(n, 0);
@@ -72,15 +85,28 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     reverse_.clear();
     length_.clear();
     across_.clear();
+    corners_.clear();
     slack_ = 0;
     // A planar triangulation's mean degree is under 6; rows with slack round up to a multiple
     // of 4 with 2 spare. Reserving that once spares the pool's repeated growth (its copies and
     // fresh pages): a 10^6-vertex rebuild went from 2.0 s to 1.3 s.
     const std::size_t live = tin.vertex_count();
     const std::size_t per_row = slack_policy_ == RowSlack::Some ? 10 : 6;
-    target_.reserve(live * per_row + 64);
-    length_.reserve(live * per_row + 64);
-    across_.reserve(live * per_row + 64);
+    // An eighth more room than the rows take: a row that outgrows its slots moves to the end of
+    // the pool, and without room the first such row doubled it (at 10⁶ vertices a 240 MB copy:
+    // the first stamp's erosion took 0.7 s). Only the rows' part is prepared; the room is
+    // mapped as rows move into it.
+    const std::size_t slots = live * per_row + 64;
+    const std::size_t room = slots + slots / 8;
+    auto reserve = [&](auto& pool) {
+        if (pool.capacity() < room) pool.reserve(room);
+        prepare_for_writing(pool.data(), slots * sizeof(pool[0]));
+    };
+    reserve(target_);
+    reserve(length_);
+    reserve(across_);
+    reserve(corners_);
+    reserve(reverse_);
     std::vector<VertexId> ring;
     const VertexArrays& va = tin.vertices();
     for (std::uint32_t v = 0; v < n; ++v) {
@@ -117,6 +143,18 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     }
 }
 
+void AdjacencyGraph::grow_pool(std::uint32_t slots) {
+    const std::size_t n = target_.size() + slots;
+    if (n <= target_.capacity()) return;
+    // The pool doubles (as push_back would), into prepared memory: the copy then takes no page
+    // fault per page (at 10⁶ vertices, the first row that outgrows its slots moved 200 MB).
+    reserve_for_writing(target_, n);
+    reserve_for_writing(length_, n);
+    reserve_for_writing(across_, n);
+    reserve_for_writing(corners_, n);
+    reserve_for_writing(reverse_, n);
+}
+
 void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering, std::uint32_t v,
                                std::vector<VertexId>& ring) {
     const VertexArrays& va = tin.vertices();
@@ -130,6 +168,7 @@ void AdjacencyGraph::write_row(const Tin& tin, const VertexNumbering* numbering,
     tin.neighbours(VertexId{t}, ring);
     const auto deg = static_cast<std::uint32_t>(ring.size());
     if (deg > capacity_[v]) {
+        grow_pool(row_capacity(deg, RowSlack::Some));
         slack_ += capacity_[v];
         offset_[v] = static_cast<std::uint32_t>(target_.size());
         capacity_[v] = row_capacity(deg, RowSlack::Some);  // it grew: it may grow again
@@ -248,13 +287,15 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
         capacity_[v] = degree_[v];
         target_.insert(target_.end(), rows[v].begin(), rows[v].end());
         length_.insert(length_.end(), lengths[v].begin(), lengths[v].end());
-        refresh_row_summary(v);
     }
     across_.assign(target_.size(), 0.0);
     if (across != nullptr) {
         for (std::uint32_t v = 0; v < n; ++v)
             std::copy((*across)[v].begin(), (*across)[v].end(), across_.begin() + offset_[v]);
     }
+    corners_.assign(target_.size(), FaceCorner{});
+    for (std::uint32_t v = 0; v < n; ++v)
+        refresh_row_summary(v);
     reverse_.assign(target_.size(), kNone);
     for (std::uint32_t v = 0; v < n; ++v)
         fix_reverse(v);
@@ -315,6 +356,11 @@ bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) c
                 return false;
             const Vec2 next = va.position[ring[(k + 1) % ring.size()].value];
             if (!(across_[slot] == across_length(va.position[t], va.position[ring[k].value], next)))
+                return false;
+            // The corner's shape, bit for bit what the kernel would work out from the lengths.
+            const std::uint32_t after = offset_[v] + (k + 1) % degree_[v];
+            const FaceCorner want = face_corner(length_[slot], length_[after], across_[slot]);
+            if (!(corners_[slot].foot == want.foot && corners_[slot].altitude == want.altitude))
                 return false;
         }
     }

@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "physics/face_kernel.hpp"
 #include "physics/vertex_numbering.hpp"
 #include "tin/tin.hpp"
 
@@ -69,6 +70,8 @@ class AdjacencyGraph {
     std::uint32_t offset(std::uint32_t v) const { return offset_[v]; }
     std::uint32_t degree(std::uint32_t v) const { return v < degree_.size() ? degree_[v] : 0; }
     std::size_t slot_count() const { return target_.size(); }
+    /// Slots the pool holds room for: slot_count() stays below this until the pool grows.
+    std::size_t slot_capacity() const { return target_.capacity(); }
     /// Longest edge of v's row (m).
     double longest_edge(std::uint32_t v) const { return v < longest_.size() ? longest_[v] : 0.0; }
 
@@ -80,6 +83,9 @@ class AdjacencyGraph {
     /// Per slot k: |target(k) target(next k)| (m) when v, target(k), target(next k) is a face
     /// (counter-clockwise), else 0. See above.
     const std::vector<double>& across() const { return across_; }
+    /// Per slot: across() and the face's shape seen from the row's vertex (face_corner), for
+    /// the face rule's kernel.
+    FaceRows face_rows() const { return {across_.data(), corners_.data()}; }
     const std::vector<double>& longest_edges() const { return longest_; }
     /// Per vertex: the bitmap words its row touches. A kernel that marks v and some of its
     /// neighbours in a bitmap widens its word range once per row with this, not once per mark.
@@ -94,8 +100,10 @@ class AdjacencyGraph {
     void write_row(const Tin& tin, const VertexNumbering* numbering, std::uint32_t v,
                    std::vector<VertexId>& scratch);
     void fix_reverse(std::uint32_t v);
+    /// Room in the slot pool for `slots` more at its end.
+    void grow_pool(std::uint32_t slots);
     void ensure_vertices(std::uint32_t n);
-    /// longest_ and row_words_ of v, from its row.
+    /// longest_, row_words_ and the face corners of v, from its row.
     void refresh_row_summary(std::uint32_t v);
 
     std::vector<std::uint32_t> offset_;
@@ -105,6 +113,7 @@ class AdjacencyGraph {
     std::vector<std::uint32_t> reverse_;
     std::vector<double> length_;
     std::vector<double> across_;
+    std::vector<FaceCorner> corners_;
     std::vector<double> longest_;
     std::vector<RowWords> row_words_;
     RowSlack slack_policy_ = RowSlack::Some;

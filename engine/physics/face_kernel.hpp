@@ -37,6 +37,33 @@
 
 namespace sandtin {
 
+/// Corner i's view of its face (i, j, l), with |ij| = a, |il| = b, |jl| = c (m): the foot of
+/// the altitude from i onto the line jl, as a fraction of |jl| from j (it may fall outside
+/// [0, 1]), and the altitude (m), 0 when i lies on the line jl (no plane to judge) or there is
+/// no face (c == 0). It depends on the plan only, so the graph keeps one per slot
+/// (AdjacencyGraph::face_rows) and a row's faces pay no division or root for their shape.
+struct FaceCorner {
+    double foot = 0.0;
+    double altitude = 0.0;
+};
+
+inline FaceCorner face_corner(double a, double b, double c) {
+    if (!(c > 0.0)) return {};
+    const double dj = (a * a + c * c - b * b) / (2.0 * c);  // foot of the altitude, from j
+    const double alt2 = a * a - dj * dj;
+    if (!(alt2 > 1e-14 * a * a)) return {};
+    return {dj / c, std::sqrt(alt2)};
+}
+
+/// A graph's faces, slot by slot: the across length (AdjacencyGraph::across) and the corner's
+/// shape (face_corner of the slot's and the next slot's lengths and the across length).
+struct FaceRows {
+    const double* across = nullptr;
+    const FaceCorner* corner = nullptr;
+    /// The same rows seen from slot k (a kernel that indexes a row from 0).
+    FaceRows from(std::uint32_t k) const { return {across + k, corner + k}; }
+};
+
 namespace detail {
 
 /// One face's excess (m, at the settle margin) and its receivers' shares, or nothing.
@@ -51,26 +78,25 @@ struct FaceShed {
     }
 };
 
-/// The face (i, j, l): |ij| = a, |il| = b, |jl| = c (m), heights hi, hj, hl (m).
-inline FaceShed face_shed(double a, double b, double c, double hi, double hj, double hl,
-                          double tan_alpha, const TalusParameters& p, double floor) {
+/// The face (i, j, l): |ij| = a, |il| = b, |jl| = c (m), i's corner (face_corner(a, b, c)),
+/// heights hi, hj, hl (m).
+inline FaceShed face_shed(FaceCorner corner, double a, double b, double c, double hi, double hj,
+                          double hl, double tan_alpha, const TalusParameters& p, double floor) {
     FaceShed out;
-    const double dj = (a * a + c * c - b * b) / (2.0 * c);  // foot of the altitude, from j
-    const double alt2 = a * a - dj * dj;
-    if (!(alt2 > 1e-14 * a * a)) return out;  // i on the line jl: no plane to judge
-    const double alt = std::sqrt(alt2);
-    const double s = dj / c;
+    const double alt = corner.altitude;
+    if (!(alt > 0.0)) return out;  // i on the line jl: no plane to judge
+    const double s = corner.foot;
     const double gt = (hl - hj) / c;
     if (std::abs(gt) < tan_alpha) {
-        const double trigger =
-            hi - (hj + s * (hl - hj) + alt * std::sqrt(tan_alpha * tan_alpha - gt * gt));
+        const double at_foot = hj + s * (hl - hj);
+        const double trigger = hi - (at_foot + alt * std::sqrt(tan_alpha * tan_alpha - gt * gt));
         if (!(trigger > p.rest_tolerance * alt * tan_alpha) || !(trigger > floor)) return out;
         // Levelled towards (1 - m) T where a plane through j and l can be that gentle, else
         // towards T itself (the opposite edge is between the two).
         const double margin_tan = (1.0 - p.settle_margin) * tan_alpha;
         const double level_tan = std::abs(gt) < margin_tan ? margin_tan : tan_alpha;
         const double w = std::sqrt(level_tan * level_tan - gt * gt);
-        out.excess = hi - (hj + s * (hl - hj) + alt * w);
+        out.excess = hi - (at_foot + alt * w);
         // Where the steepest-descent line of the levelled plane meets the line jl.
         const double t = std::clamp(s - gt * alt / (w * c), 0.0, 1.0);
         out.to_j = 1.0 - t;
@@ -92,19 +118,24 @@ inline FaceShed face_shed(double a, double b, double c, double hi, double hj, do
     return out;
 }
 
+/// face_shed with i's corner worked out here (tests; the kernels read the graph's).
+inline FaceShed face_shed(double a, double b, double c, double hi, double hj, double hl,
+                          double tan_alpha, const TalusParameters& p, double floor) {
+    return face_shed(face_corner(a, b, c), a, b, c, hi, hj, hl, tan_alpha, p, floor);
+}
+
 }  // namespace detail
 
 /// talus_row_scale under the face rule: writes q[k] (m³) for every slot of i's row, the volume
 /// that would level the faces that send to target[k] alone, and returns the factor s that
-/// scales them all (0 exactly when nothing leaves; every q[k] is +0.0 then). `across` is the
-/// graph's across() (see physics/adjacency_graph.hpp).
+/// scales them all (0 exactly when nothing leaves; every q[k] is +0.0 then). `faces` is the
+/// graph's face_rows() (see physics/adjacency_graph.hpp).
 template <bool kRelocation, class NeedsSplit>
 inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
-                             const std::uint32_t* target, const double* length,
-                             const double* across, const double* longest, const double* height,
-                             const double* area, const double* bedrock, double tan_alpha,
-                             const TalusParameters& p, double random_factor, double* q,
-                             NeedsSplit&& needs_split) {
+                             const std::uint32_t* target, const double* length, FaceRows faces,
+                             const double* longest, const double* height, const double* area,
+                             const double* bedrock, double tan_alpha, const TalusParameters& p,
+                             double random_factor, double* q, NeedsSplit&& needs_split) {
     const std::uint32_t end = begin + degree;
     const double hi = height[i];
     const double floor = detail::excess_floor(hi);
@@ -115,12 +146,12 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
         q[k] = 0.0;
     detail::RowExcess excess;
     for (std::uint32_t k = begin; k < end; ++k) {
-        const double c = across[k];
+        const double c = faces.across[k];
         if (!(c > 0.0)) continue;
         const std::uint32_t kn = k + 1 == end ? begin : k + 1;
         const std::uint32_t j = target[k], l = target[kn];
-        detail::FaceShed f = detail::face_shed(length[k], length[kn], c, hi, height[j], height[l],
-                                               tan_alpha, p, floor);
+        detail::FaceShed f = detail::face_shed(faces.corner[k], length[k], length[kn], c, hi,
+                                               height[j], height[l], tan_alpha, p, floor);
         if (!(f.excess > 0.0)) continue;
         if constexpr (kRelocation) {
             if (length[k] > r_limit || length[kn] > r_limit) {
@@ -172,25 +203,25 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
 /// Jacobi schedule scales as it sends).
 template <class NeedsSplit>
 inline double face_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
-                         const std::uint32_t* target, const double* length, const double* across,
+                         const std::uint32_t* target, const double* length, FaceRows faces,
                          const double* longest, const double* height, const double* area,
                          const double* bedrock, double tan_alpha, const TalusParameters& p,
                          double random_factor, double* q, NeedsSplit&& needs_split) {
     if (p.relocation_radius > 0.0)
-        return face_row_scale<true>(i, begin, degree, target, length, across, longest, height, area,
+        return face_row_scale<true>(i, begin, degree, target, length, faces, longest, height, area,
                                     bedrock, tan_alpha, p, random_factor, q, needs_split);
-    return face_row_scale<false>(i, begin, degree, target, length, across, longest, height, area,
+    return face_row_scale<false>(i, begin, degree, target, length, faces, longest, height, area,
                                  bedrock, tan_alpha, p, random_factor, q, needs_split);
 }
 
 /// talus_outflow under the face rule: q[k] (m³) for every slot, and their total.
 template <class NeedsSplit>
 inline double face_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t degree,
-                           const std::uint32_t* target, const double* length, const double* across,
+                           const std::uint32_t* target, const double* length, FaceRows faces,
                            const double* longest, const double* height, const double* area,
                            const double* bedrock, double tan_alpha, const TalusParameters& p,
                            double random_factor, double* q, NeedsSplit&& needs_split) {
-    const double scale = face_scale(i, begin, degree, target, length, across, longest, height, area,
+    const double scale = face_scale(i, begin, degree, target, length, faces, longest, height, area,
                                     bedrock, tan_alpha, p, random_factor, q, needs_split);
     if (scale == 0.0) return 0.0;
     double sent = 0.0;

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settings,
@@ -26,6 +28,13 @@ SandPhysics::SandPhysics(Tin& tin, MaterialTable materials, TalusSettings settin
     }
     graph_.rebuild(tin_, &numbering_);
     grow_local();
+    prepare_work_arrays();
+}
+
+void SandPhysics::prepare_work_arrays() {
+    solver_.prepare(graph_, height_.size());
+    active_.reserve_ids(height_.size());
+    if (write_pending_.size() < height_.size()) write_pending_.resize(height_.size(), 0);
 }
 
 void SandPhysics::load(std::uint32_t l) {
@@ -44,9 +53,13 @@ void SandPhysics::grow_local() {
     const std::uint32_t n = numbering_.size();
     const auto old = static_cast<std::uint32_t>(height_.size());
     if (n <= old) return;
+    reserve_for_writing(height_, n);
+    reserve_for_writing(tan_alpha_, n);
     height_.resize(n);
     tan_alpha_.resize(n);
     if (!numbering_.identity()) {
+        reserve_for_writing(area_, n);
+        reserve_for_writing(bedrock_, n);
         area_.resize(n);
         bedrock_.resize(n);
     }
@@ -115,6 +128,7 @@ void SandPhysics::renumber() {
     }
     active_.renumber(new_id, VertexNumbering::kNone);
     graph_.rebuild(tin_, &numbering_);
+    prepare_work_arrays();
     ++renumberings_;
 }
 

@@ -100,6 +100,9 @@ class SandPhysics final : public RelaxationSolver {
     /// Grows the local arrays to the numbering and loads area, bedrock and height of local id
     /// l from the TIN (the strip numbering keeps its own copies of area and bedrock).
     void grow_local();
+    /// Sizes the solver's and the active set's arrays to the graph and the numbering (at
+    /// creation and renumbering, so an edit's first iteration allocates nothing O(terrain)).
+    void prepare_work_arrays();
     void load(std::uint32_t l);
     /// The arrays the solver reads, in local ids.
     TalusArrays arrays();

@@ -2,6 +2,7 @@
 
 #include "physics/face_kernel.hpp"
 #include "physics/talus_kernel_avx512.hpp"
+#include "util/prepare_for_writing.hpp"
 
 #include <algorithm>
 #include <array>
@@ -119,12 +120,23 @@ double TalusSolver::random_factor(const TalusArrays& a, std::uint32_t v) const {
 }
 
 void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
-    if (settings_.schedule == Schedule::Sequential && q_.size() < g.slot_count())
-        q_.resize(g.slot_count(), 0.0);
+    // Grown with the kernel told (util/prepare_for_writing.hpp): at 10⁶ vertices these are tens
+    // of megabytes, read at scattered ids, so huge pages also spare the TLB.
+    // Per slot, as many as the graph's pool has room for: rows that move to the end of the pool
+    // then need no growth here (it doubled at the second stamp at 10⁶ vertices).
+    const std::size_t slots = std::max(g.slot_count(), g.slot_capacity());
+    if (settings_.schedule == Schedule::Sequential && q_.size() < slots) {
+        reserve_for_writing(q_, slots);
+        q_.resize(slots, 0.0);
+    }
     // Slots move when the graph rewrites or compacts rows, but every one is zero here.
-    if (settings_.schedule == Schedule::Jacobi && inflow_.size() < g.slot_count())
-        inflow_.resize(g.slot_count(), 0.0);
+    if (settings_.schedule == Schedule::Jacobi && inflow_.size() < slots) {
+        reserve_for_writing(inflow_, slots);
+        inflow_.resize(slots, 0.0);
+    }
     if (out_.size() < vertices) {
+        reserve_for_writing(out_, vertices);
+        reserve_for_writing(changed_, vertices);
         out_.resize(vertices, 0.0);
         changed_.resize(vertices, 0);
     }
@@ -202,7 +214,7 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
     const std::uint32_t* target = g.targets().data();
     const double* length = g.lengths().data();
     const double* longest = g.longest_edges().data();
-    const double* across = g.across().data();
+    const FaceRows faces = g.face_rows();
     const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
     double* q = q_.data();
     for (std::uint32_t i : active.list()) {
@@ -214,7 +226,7 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
             if (split_around != nullptr) split_around->push_back(v);
         };
         const double sent =
-            face_rule ? face_outflow(i, begin, degree, target, length, across, longest, a.height,
+            face_rule ? face_outflow(i, begin, degree, target, length, faces, longest, a.height,
                                      a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
                                      random_factor(a, i), q, split)
                       : talus_outflow(i, begin, degree, target, length, longest, a.height, a.area,
@@ -413,7 +425,7 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
     const std::uint32_t* target = g.targets().data();
     const std::uint32_t* reverse = g.reverses().data();
     const double* length = g.lengths().data();
-    const double* across = g.across().data();
+    const FaceRows faces = g.face_rows();
     const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
     const double* longest = g.longest_edges().data();
     const double* prefetch_longest =
@@ -446,8 +458,8 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         if constexpr (kPasses == RowPasses::Branching) {
             // The face rule, from the same old heights (its rows always branch; see jacobi()).
             scale = face_rule
-                        ? face_scale(i, 0, deg, target + row, length + row, across + row, longest,
-                                     a.height, a.area, a.bedrock, a.tan_alpha[i],
+                        ? face_scale(i, 0, deg, target + row, length + row, faces.from(row),
+                                     longest, a.height, a.area, a.bedrock, a.tan_alpha[i],
                                      settings_.parameters, random_factor(a, i), q, split)
                         : talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
                                                a.height, a.area, a.bedrock, a.tan_alpha[i],

@@ -169,6 +169,13 @@ class TalusSolver {
     double random_factor(const TalusArrays& a, std::uint32_t v) const;
     void ensure(const AdjacencyGraph& g, std::size_t vertices);
 
+  public:
+    /// Sizes the per-slot and per-vertex work arrays for `g` and `vertices` now (a physics
+    /// being created), instead of in the first iteration after an edit: at 10⁶ vertices they
+    /// are tens of megabytes, and the first stamp's erosion paid for them.
+    void prepare(const AdjacencyGraph& g, std::size_t vertices) { ensure(g, vertices); }
+
+  private:
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;

@@ -25,6 +25,24 @@ double repose_tan() {
     return MaterialTable::presets().at(0).talus_slope(0.0);
 }
 
+TEST(FaceCorner, FootAndAltitudeOfKnownTriangles) {
+    // i at (0, 1), j at (-1, 0), l at (2, 0): the altitude from i meets jl at (0, 0), a third of
+    // the way from j, 1 m below i.
+    const FaceCorner inside = face_corner(std::sqrt(2.0), std::sqrt(5.0), 3.0);
+    EXPECT_NEAR(inside.foot, 1.0 / 3.0, 1e-15);
+    EXPECT_NEAR(inside.altitude, 1.0, 1e-15);
+    // i at (3, 2) over j (0, 0) and l (1, 0): the foot (3, 0) lies past l, at 3 |jl| from j.
+    const FaceCorner outside = face_corner(std::sqrt(13.0), std::sqrt(8.0), 1.0);
+    EXPECT_NEAR(outside.foot, 3.0, 1e-14);
+    EXPECT_NEAR(outside.altitude, 2.0, 1e-14);
+    // i on the line jl (at its middle), and a pair of neighbours with no face between them:
+    // nothing to judge, and the face rule skips both.
+    EXPECT_EQ(face_corner(1.0, 1.0, 2.0).altitude, 0.0);
+    EXPECT_EQ(face_corner(1.0, 1.0, 0.0).altitude, 0.0);
+    TalusParameters p;
+    EXPECT_EQ(detail::face_shed(1.0, 1.0, 2.0, 10.0, 0.0, 0.0, repose_tan(), p, 0.0).excess, 0.0);
+}
+
 TEST(FaceShed, ALevelledFaceHasTheGradientOfRepose) {
     // i at (0, 1), j at (-1, 0), l at (2, 0): a = sqrt 2, b = sqrt 5, c = 3.
     const double a = std::sqrt(2.0), b = std::sqrt(5.0), c = 3.0;

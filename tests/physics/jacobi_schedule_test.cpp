@@ -52,16 +52,15 @@ class ReferenceJacobi {
             auto split = [&](std::uint32_t v) { splits.push_back(v); };
             // The face rule has no second kernel: its own (face_outflow) is used from the old
             // heights, so the schedule's bookkeeping is what is checked for it.
-            out[i] =
-                settings_.parameters.rule == SlopeRule::Face
-                    ? face_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
-                                   g.lengths().data(), g.across().data(), g.longest_edges().data(),
-                                   a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                   settings_.parameters, jitter, q.data(), split)
-                    : test::reference_talus_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
-                                                    g.lengths().data(), g.longest_edges().data(),
-                                                    a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                                    settings_.parameters, jitter, q.data(), split);
+            out[i] = settings_.parameters.rule == SlopeRule::Face
+                         ? face_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
+                                        g.lengths().data(), g.face_rows(), g.longest_edges().data(),
+                                        a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                        settings_.parameters, jitter, q.data(), split)
+                         : test::reference_talus_outflow(
+                               i, g.offset(i), g.degree(i), g.targets().data(), g.lengths().data(),
+                               g.longest_edges().data(), a.height, a.area, a.bedrock,
+                               a.tan_alpha[i], settings_.parameters, jitter, q.data(), split);
             st.volume_moved += out[i];
             if (out[i] > 0.0) {
                 receiver[i] = 1;
