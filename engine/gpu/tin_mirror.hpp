@@ -151,7 +151,7 @@ class TinMirror {
     std::optional<MirrorSeed> seed_;  ///< until the first sync
     MaterialTable materials_;
     StagingRing ring_;
-    AdjacencyGraph graph_;
+    AdjacencyGraph graph_{RowSlack::Some, FaceShapes::Skip};  ///< the shader needs no shapes
     bool first_sync_ = true;
     bool materials_dirty_ = false;
     Vec2 origin_{};

@@ -44,12 +44,14 @@ void AdjacencyGraph::refresh_row_summary(std::uint32_t v) {
     double m = 0.0;
     std::uint32_t lo = v, hi = v;
     const std::uint32_t begin = offset_[v], end = offset_[v] + degree_[v];
-    if (corners_.size() < across_.size()) corners_.resize(across_.size());
+    if (keep_shapes_ && corners_.size() < across_.size()) corners_.resize(across_.size());
     for (std::uint32_t k = begin; k < end; ++k) {
         m = std::max(m, length_[k]);
         lo = std::min(lo, target_[k]);
         hi = std::max(hi, target_[k]);
-        corners_[k] = face_corner(length_[k], length_[k + 1 == end ? begin : k + 1], across_[k]);
+        if (keep_shapes_)
+            corners_[k] =
+                face_corner(length_[k], length_[k + 1 == end ? begin : k + 1], across_[k]);
     }
     longest_[v] = m;
     row_words_[v] = {lo >> 6, (hi >> 6) + 1};
@@ -105,7 +107,7 @@ void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     reserve(target_);
     reserve(length_);
     reserve(across_);
-    reserve(corners_);
+    if (keep_shapes_) reserve(corners_);
     reserve(reverse_);
     std::vector<VertexId> ring;
     const VertexArrays& va = tin.vertices();
@@ -151,7 +153,7 @@ void AdjacencyGraph::grow_pool(std::uint32_t slots) {
     reserve_for_writing(target_, n);
     reserve_for_writing(length_, n);
     reserve_for_writing(across_, n);
-    reserve_for_writing(corners_, n);
+    if (keep_shapes_) reserve_for_writing(corners_, n);
     reserve_for_writing(reverse_, n);
 }
 
@@ -293,7 +295,7 @@ void AdjacencyGraph::assign(const std::vector<std::vector<std::uint32_t>>& rows,
         for (std::uint32_t v = 0; v < n; ++v)
             std::copy((*across)[v].begin(), (*across)[v].end(), across_.begin() + offset_[v]);
     }
-    corners_.assign(target_.size(), FaceCorner{});
+    if (keep_shapes_) corners_.assign(target_.size(), FaceCorner{});
     for (std::uint32_t v = 0; v < n; ++v)
         refresh_row_summary(v);
     reverse_.assign(target_.size(), kNone);
@@ -360,7 +362,8 @@ bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) c
             // The corner's shape, bit for bit what the kernel would work out from the lengths.
             const std::uint32_t after = offset_[v] + (k + 1) % degree_[v];
             const FaceCorner want = face_corner(length_[slot], length_[after], across_[slot]);
-            if (!(corners_[slot].foot == want.foot && corners_[slot].altitude == want.altitude))
+            if (keep_shapes_ &&
+                !(corners_[slot].foot == want.foot && corners_[slot].altitude == want.altitude))
                 return false;
         }
     }

@@ -43,10 +43,16 @@ struct RowWords {
     std::uint32_t lo = 0, hi = 0;
 };
 
+/// Whether the graph keeps each slot's face shape (face_kernel.hpp's FaceCorner, 16 bytes a
+/// slot) for the face rule's CPU kernel. Skip: a graph no CPU kernel relaxes (the GPU mirror's:
+/// its shader works the shape out itself); a kernel given it works the shape out too.
+enum class FaceShapes : std::uint8_t { Keep, Skip };
+
 class AdjacencyGraph {
   public:
     AdjacencyGraph() = default;
-    explicit AdjacencyGraph(RowSlack slack) : slack_policy_(slack) {}
+    explicit AdjacencyGraph(RowSlack slack, FaceShapes shapes = FaceShapes::Keep)
+        : slack_policy_(slack), keep_shapes_(shapes == FaceShapes::Keep) {}
 
     /// Builds the rows of every live vertex. With a numbering, every live vertex must be
     /// numbered, and the numbering must outlive the graph's next rebuild/update/matches call.
@@ -85,7 +91,9 @@ class AdjacencyGraph {
     const std::vector<double>& across() const { return across_; }
     /// Per slot: across() and the face's shape seen from the row's vertex (face_corner), for
     /// the face rule's kernel.
-    FaceRows face_rows() const { return {across_.data(), corners_.data()}; }
+    FaceRows face_rows() const {
+        return {across_.data(), keep_shapes_ ? corners_.data() : nullptr};
+    }
     const std::vector<double>& longest_edges() const { return longest_; }
     /// Per vertex: the bitmap words its row touches. A kernel that marks v and some of its
     /// neighbours in a bitmap widens its word range once per row with this, not once per mark.
@@ -117,6 +125,7 @@ class AdjacencyGraph {
     std::vector<double> longest_;
     std::vector<RowWords> row_words_;
     RowSlack slack_policy_ = RowSlack::Some;
+    bool keep_shapes_ = true;  ///< corners_ is kept (FaceShapes::Keep)
     std::size_t slack_ = 0;
     std::vector<std::uint32_t> dirty_rows_;
     std::vector<std::uint8_t> dirty_flag_;

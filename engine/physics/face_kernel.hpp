@@ -56,12 +56,15 @@ inline FaceCorner face_corner(double a, double b, double c) {
 }
 
 /// A graph's faces, slot by slot: the across length (AdjacencyGraph::across) and the corner's
-/// shape (face_corner of the slot's and the next slot's lengths and the across length).
+/// shape (face_corner of the slot's and the next slot's lengths and the across length), or no
+/// shapes (null: a graph that keeps none, FaceShapes::Skip; the kernel works them out).
 struct FaceRows {
     const double* across = nullptr;
     const FaceCorner* corner = nullptr;
     /// The same rows seen from slot k (a kernel that indexes a row from 0).
-    FaceRows from(std::uint32_t k) const { return {across + k, corner + k}; }
+    FaceRows from(std::uint32_t k) const {
+        return {across + k, corner != nullptr ? corner + k : nullptr};
+    }
 };
 
 namespace detail {
@@ -150,8 +153,10 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
         if (!(c > 0.0)) continue;
         const std::uint32_t kn = k + 1 == end ? begin : k + 1;
         const std::uint32_t j = target[k], l = target[kn];
-        detail::FaceShed f = detail::face_shed(faces.corner[k], length[k], length[kn], c, hi,
-                                               height[j], height[l], tan_alpha, p, floor);
+        const FaceCorner corner =
+            faces.corner != nullptr ? faces.corner[k] : face_corner(length[k], length[kn], c);
+        detail::FaceShed f = detail::face_shed(corner, length[k], length[kn], c, hi, height[j],
+                                               height[l], tan_alpha, p, floor);
         if (!(f.excess > 0.0)) continue;
         if constexpr (kRelocation) {
             if (length[k] > r_limit || length[kn] > r_limit) {

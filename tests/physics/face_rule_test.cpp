@@ -9,6 +9,7 @@
 #include <cstring>
 #include <vector>
 
+#include "physics/adjacency_graph.hpp"
 #include "physics/cone.hpp"
 #include "physics/face_kernel.hpp"
 #include "physics/face_slopes.hpp"
@@ -41,6 +42,53 @@ TEST(FaceCorner, FootAndAltitudeOfKnownTriangles) {
     EXPECT_EQ(face_corner(1.0, 1.0, 0.0).altitude, 0.0);
     TalusParameters p;
     EXPECT_EQ(detail::face_shed(1.0, 1.0, 2.0, 10.0, 0.0, 0.0, repose_tan(), p, 0.0).excess, 0.0);
+}
+
+TEST(FaceCorner, AGraphWithoutShapesSendsWhatOneWithThemSends) {
+    // The GPU mirror's graph keeps no shapes (FaceShapes::Skip) and the kernel then works them
+    // out per face, as it did before graphs kept them: both must send the same, bit for bit.
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 600, 41);
+    std::vector<VertexId> ids;
+    std::vector<double> heights;
+    for (std::uint32_t v = 0; v < tin.vertices().size(); ++v) {
+        if (!tin.vertices().alive[v]) continue;
+        const Vec2 p = tin.vertices().position[v];
+        ids.push_back(VertexId{v});
+        heights.push_back(0.3 * std::sin(9.0 * p.x) * std::cos(7.0 * p.y) + 0.4 * p.x);
+    }
+    tin.set_heights(ids, heights);
+    AdjacencyGraph kept(RowSlack::None, FaceShapes::Keep);
+    AdjacencyGraph skipped(RowSlack::None, FaceShapes::Skip);
+    kept.rebuild(tin);
+    skipped.rebuild(tin);
+    ASSERT_NE(kept.face_rows().corner, nullptr);
+    ASSERT_EQ(skipped.face_rows().corner, nullptr);
+    const VertexArrays& va = tin.vertices();
+    TalusParameters p;
+    std::vector<double> q_kept(kept.slot_count()), q_skipped(skipped.slot_count());
+    std::size_t sending = 0;
+    auto no_split = [](std::uint32_t) {};
+    for (VertexId v : ids) {
+        const std::uint32_t i = v.value;
+        const double a = face_outflow(
+            i, kept.offset(i), kept.degree(i), kept.targets().data(), kept.lengths().data(),
+            kept.face_rows(), kept.longest_edges().data(), va.height.data(), va.lumped_area.data(),
+            va.bedrock.data(), repose_tan(), p, 1.0, q_kept.data(), no_split);
+        const double b =
+            face_outflow(i, skipped.offset(i), skipped.degree(i), skipped.targets().data(),
+                         skipped.lengths().data(), skipped.face_rows(),
+                         skipped.longest_edges().data(), va.height.data(), va.lumped_area.data(),
+                         va.bedrock.data(), repose_tan(), p, 1.0, q_skipped.data(), no_split);
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "vertex " << i;
+        for (std::uint32_t k = 0; k < kept.degree(i); ++k)
+            ASSERT_EQ(std::memcmp(&q_kept[kept.offset(i) + k], &q_skipped[skipped.offset(i) + k],
+                                  sizeof(double)),
+                      0);
+        sending += a > 0.0 ? 1 : 0;
+    }
+    EXPECT_GT(sending, ids.size() / 10);  // the surface is steep enough for the test to bite
+    EXPECT_TRUE(kept.matches(tin));
+    EXPECT_TRUE(skipped.matches(tin));
 }
 
 TEST(FaceShed, ALevelledFaceHasTheGradientOfRepose) {
