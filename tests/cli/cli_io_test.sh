@@ -244,6 +244,9 @@ scenario_bench_import() {
     holds "0.2 m points" "a <= 16257" "$(json bench.out /sandtin/2/points)"
     check_eq "0.2 m bound" "$(json bench.out /sandtin/2/bound_met)" true
     check_eq "delatin skipped" "$(json bench.out /delatin/available)" false
+    check_eq "rough tile" "$(json bench.out /rough_tiles/0/tile)" fbm-256
+    check_eq "rough tile bound" "$(json bench.out /rough_tiles/0/sandtin/0/bound_met)" true
+    holds "rough tile relief (m)" "a > 1000" "$(json bench.out /rough_tiles/0/raster/relief_m)"
 }
 
 case "$SCENARIO" in
