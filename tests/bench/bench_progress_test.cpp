@@ -89,11 +89,16 @@ TEST(BenchProgress, GrooveReportsSizesLocalityAndTraces) {
 TEST(BenchProgress, ImportReportsEachErrorLevelAndDelatin) {
     Recorded r;
     const nlohmann::json j = bench_import(recording(r));
-    // Quick: one run at each of the 3 errors, delatin (run or found missing), done.
-    expect_contract(r, 5);
-    EXPECT_TRUE(any_stage_contains(r, "sandtin to 0.2 m"));
-    EXPECT_TRUE(any_stage_contains(r, "delatin"));
+    // Quick: one run at each of bay-hills' 3 errors and delatin (run or found missing), then
+    // the same on the rough 256² tile at 10 m, done.
+    expect_contract(r, 6);
+    EXPECT_TRUE(any_stage_contains(r, "sandtin on bay-hills to 0.2 m"));
+    EXPECT_TRUE(any_stage_contains(r, "delatin on bay-hills"));
+    EXPECT_TRUE(any_stage_contains(r, "sandtin on fbm-256 to 10 m"));
+    EXPECT_TRUE(any_stage_contains(r, "delatin on fbm-256"));
     EXPECT_EQ(j["sandtin"].size(), 3u);
+    ASSERT_EQ(j["rough_tiles"].size(), 1u);
+    EXPECT_EQ(j["rough_tiles"][0]["sandtin"].size(), 1u);
 }
 
 }  // namespace
