@@ -107,11 +107,7 @@ class ActiveSet {
     friend class TalusSolver;
 
     void ensure(std::uint32_t v) {
-        if (v >= quiet_.size()) {
-            const std::size_t n = static_cast<std::size_t>(v) + 1 + quiet_.size() / 2;
-            quiet_.resize(n, 0);
-            bits_.resize((n + 63) / 64, 0);
-        }
+        if (v >= quiet_.size()) reserve_ids(static_cast<std::size_t>(v) + 1 + quiet_.size() / 2);
     }
     std::vector<std::uint32_t> list_;
     std::vector<std::uint64_t> bits_;  ///< membership, bit v & 63 of word v >> 6

@@ -70,9 +70,9 @@ void AdjacencyGraph::ensure_vertices(std::uint32_t n) {
 
 void AdjacencyGraph::rebuild(const Tin& tin, const VertexNumbering* numbering) {
     const std::uint32_t n = numbering != nullptr ? numbering->size() : tin.vertex_capacity();
-    // Tens of megabytes at 10⁶ vertices, filled now and read at scattered ids: prepared
-    // (util/prepare_for_writing.hpp), which also backs them with huge pages where the system
-    // allows, sparing the TLB misses of the kernels' scattered reads.
+    // Tens of megabytes at 10⁶ vertices, filled now: prepared (util/prepare_for_writing.hpp), so
+    // filling them takes no page fault per page. (Whether they sit on huge pages made no
+    // measurable difference to the kernels' scattered reads.)
     reserve_for_writing(offset_, n);
     reserve_for_writing(degree_, n);
     reserve_for_writing(capacity_, n);
@@ -149,7 +149,7 @@ void AdjacencyGraph::grow_pool(std::uint32_t slots) {
     const std::size_t n = target_.size() + slots;
     if (n <= target_.capacity()) return;
     // The pool doubles (as push_back would), into prepared memory: the copy then takes no page
-    // fault per page (at 10⁶ vertices, the first row that outgrows its slots moved 200 MB).
+    // fault per page (growing the 27 MB pool of a 10⁵-vertex groove: 74 -> 42 ms).
     reserve_for_writing(target_, n);
     reserve_for_writing(length_, n);
     reserve_for_writing(across_, n);
@@ -360,11 +360,12 @@ bool AdjacencyGraph::matches(const Tin& tin, const VertexNumbering* numbering) c
             if (!(across_[slot] == across_length(va.position[t], va.position[ring[k].value], next)))
                 return false;
             // The corner's shape, bit for bit what the kernel would work out from the lengths.
-            const std::uint32_t after = offset_[v] + (k + 1) % degree_[v];
-            const FaceCorner want = face_corner(length_[slot], length_[after], across_[slot]);
-            if (keep_shapes_ &&
-                !(corners_[slot].foot == want.foot && corners_[slot].altitude == want.altitude))
-                return false;
+            if (keep_shapes_) {
+                const std::uint32_t after = offset_[v] + (k + 1) % degree_[v];
+                const FaceCorner want = face_corner(length_[slot], length_[after], across_[slot]);
+                if (!(corners_[slot].foot == want.foot && corners_[slot].altitude == want.altitude))
+                    return false;
+            }
         }
     }
     return true;

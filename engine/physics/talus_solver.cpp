@@ -119,11 +119,11 @@ double TalusSolver::random_factor(const TalusArrays& a, std::uint32_t v) const {
     return 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, id, iteration_);
 }
 
-void TalusSolver::ensure(const AdjacencyGraph& g, std::size_t vertices) {
-    // Grown with the kernel told (util/prepare_for_writing.hpp): at 10⁶ vertices these are tens
-    // of megabytes, read at scattered ids, so huge pages also spare the TLB.
-    // Per slot, as many as the graph's pool has room for: rows that move to the end of the pool
-    // then need no growth here (it doubled at the second stamp at 10⁶ vertices).
+void TalusSolver::prepare(const AdjacencyGraph& g, std::size_t vertices) {
+    // Grown into prepared memory (util/prepare_for_writing.hpp): at 10⁶ vertices these are tens
+    // of megabytes. Per slot, as many as the graph's pool has room for: rows that move to the
+    // end of the pool then need no growth here (sized to the pool's size, it doubled at the
+    // second stamp at 10⁶ vertices).
     const std::size_t slots = std::max(g.slot_count(), g.slot_capacity());
     if (settings_.schedule == Schedule::Sequential && q_.size() < slots) {
         reserve_for_writing(q_, slots);
@@ -188,7 +188,7 @@ IterationStats TalusSolver::iterate(const AdjacencyGraph& graph, const TalusArra
     if (active.empty()) return {};
     std::size_t vertices = std::max<std::size_t>(arrays.size, graph.vertex_capacity());
     vertices = std::max(vertices, active.quiet_.size());
-    ensure(graph, vertices);
+    prepare(graph, vertices);
     IterationStats stats;
     if (settings_.schedule == Schedule::Sequential) {
         stats = sequential(graph, arrays, active, split_around);

@@ -94,6 +94,11 @@ class TalusSolver {
     /// Updates the active set (changed vertices and their neighbours stay or become active).
     IterationStats iterate(const AdjacencyGraph& graph, const TalusArrays& arrays,
                            ActiveSet& active, std::vector<std::uint32_t>* split_around = nullptr);
+    /// Sizes the per-slot and per-vertex work arrays for `g` and `vertices`. iterate() does it
+    /// too; a physics being created calls it first, so the first iteration after an edit
+    /// allocates nothing (at 10⁶ vertices tens of megabytes, which the first stamp's erosion
+    /// paid for).
+    void prepare(const AdjacencyGraph& g, std::size_t vertices);
 
     /// The kernel's passes the next Jacobi iteration will take (chosen from how much of the last
     /// one flowed; the results are the same either way). Always Branching under the face rule.
@@ -167,15 +172,6 @@ class TalusSolver {
     void measure_row_kernels(bool threaded);
     /// The jitter of vertex v (an index into the arrays).
     double random_factor(const TalusArrays& a, std::uint32_t v) const;
-    void ensure(const AdjacencyGraph& g, std::size_t vertices);
-
-  public:
-    /// Sizes the per-slot and per-vertex work arrays for `g` and `vertices` now (a physics
-    /// being created), instead of in the first iteration after an edit: at 10⁶ vertices they
-    /// are tens of megabytes, and the first stamp's erosion paid for them.
-    void prepare(const AdjacencyGraph& g, std::size_t vertices) { ensure(g, vertices); }
-
-  private:
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;

@@ -221,27 +221,29 @@ nlohmann::json bench_import(const BenchConfig& config) {
     j["raster"] = {{"width", raster.width}, {"height", raster.height}, {"read_ms", read_ms}};
     j["repetitions"] = reps;
 
-    // Rough tiles made here (bench/fbm_tile.hpp): 512² and 2048² samples 30 m apart, 1.5 km of
-    // relief with strong fine detail; in --quick one 256² tile, for the smoke test.
+    // Rough tiles made here (bench/fbm_tile.hpp): 512² and 2048² samples 30 m apart, octaves
+    // from 1.5 km down with gain 0.6 (the relief each tile reaches is reported); in --quick one
+    // 256² tile, for the smoke test.
     struct Rough {
         FbmTileSpec spec;
         std::vector<double> errors;
         int reps;
+        /// Progress weight of its coarsest level, bay-hills' being 1: its samples over
+        /// bay-hills' times 3 (rough terrain keeps more points). Shapes the percentages only.
+        double weight = 0.0;
     };
     std::vector<Rough> rough;
     if (config.quick) {
-        rough.push_back({{256, 30.0, 1500.0, 0.6, 128.0, 7}, {10.0}, 1});
+        rough.push_back({{256, 30.0, 1500.0, 0.6, 128.0, 7}, {10.0}, 1, 0.0});
     } else {
-        rough.push_back({{512, 30.0, 1500.0, 0.6, 256.0, 7}, {10.0, 1.0}, 5});
-        rough.push_back({{2048, 30.0, 1500.0, 0.6, 1024.0, 11}, {10.0, 3.0}, 3});
+        rough.push_back({{512, 30.0, 1500.0, 0.6, 256.0, 7}, {10.0, 1.0}, 5, 0.0});
+        rough.push_back({{2048, 30.0, 1500.0, 0.6, 1024.0, 11}, {10.0, 3.0}, 3, 0.0});
     }
-    // Progress weights: bay-hills' coarsest level is 1, a rough tile's about its samples over
-    // bay-hills' times 3 (rough terrain keeps more points). They shape the percentages only.
     double work = 31.0 * 2.0 * reps;
-    for (const Rough& r : rough) {
-        const double w = 3.0 * r.spec.size * r.spec.size / static_cast<double>(raster.size());
+    for (Rough& r : rough) {
+        r.weight = 3.0 * r.spec.size * r.spec.size / static_cast<double>(raster.size());
         for (std::size_t k = 0; k < r.errors.size(); ++k)
-            work += 2.0 * w * std::pow(5.0, static_cast<double>(k)) * r.reps;
+            work += 2.0 * r.weight * std::pow(5.0, static_cast<double>(k)) * r.reps;
     }
     WeightedProgress progress(config.progress, work);
 
@@ -258,18 +260,15 @@ nlohmann::json bench_import(const BenchConfig& config) {
         Stopwatch make;
         const HeightRaster tile_raster = fbm_tile(r.spec);
         const double make_ms = make.ms();
-        double lo = tile_raster.heights.front(), hi = lo;
-        for (double h : tile_raster.heights) {
-            lo = std::min(lo, h);
-            hi = std::max(hi, h);
-        }
-        const double w = 3.0 * r.spec.size * r.spec.size / static_cast<double>(raster.size());
-        nlohmann::json t = compare_on_tile(name, tile_raster, r.errors, r.reps, {}, progress, w);
+        const auto [lo, hi] =
+            std::minmax_element(tile_raster.heights.begin(), tile_raster.heights.end());
+        nlohmann::json t =
+            compare_on_tile(name, tile_raster, r.errors, r.reps, {}, progress, r.weight);
         t["tile"] = name;
         t["raster"] = {{"width", tile_raster.width},
                        {"height", tile_raster.height},
                        {"cell_size_m", tile_raster.cell_size},
-                       {"relief_m", hi - lo},
+                       {"relief_m", *hi - *lo},
                        {"fbm_gain", r.spec.gain},
                        {"seed", r.spec.seed},
                        {"make_ms", make_ms}};

@@ -2,19 +2,17 @@
 
 #include <cmath>
 
+#include "physics/talus_kernel.hpp"
+
 namespace sandtin::bench {
 
 namespace {
 
-/// Splitmix64 of a lattice point and octave, to [-1, 1).
+/// The lattice value at (x, y) of an octave, in [-1, 1): the relaxation's own hash
+/// (physics/talus_kernel.hpp), with the octave folded into the seed.
 double lattice_value(std::uint64_t seed, std::int64_t x, std::int64_t y, int octave) {
-    std::uint64_t z = seed ^ (static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull) ^
-                      (static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full) ^
-                      (static_cast<std::uint64_t>(octave) * 0x165667B19E3779F9ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+    return signed_unit_hash(seed ^ (static_cast<std::uint64_t>(octave) * 0x165667B19E3779F9ull),
+                            static_cast<std::uint64_t>(x), static_cast<std::uint64_t>(y));
 }
 
 /// Smooth (C1) value noise at (x, y) in lattice units.
