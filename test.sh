@@ -59,7 +59,7 @@ if has_pass asan || has_pass fuzz; then
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-clang-asan --output-on-failure -j"$jobs" \
       -L '^(tin|io|geom|tools|terrain_io|physics|stress|tsan|history|water)$' \
-      -E '^(stress\.session_seed_|LongStroke\.|Conservation\.|AnalyticPile\.(AgainstAWall|TwoTriangleFlatTerrainGrows)|Jacobi\.OneAndTwoThreads|JacobiSchedule\.(OneThreadMatchesItsDefinitionBitForBit|TwoThreadsMatch)|ErodeScript\.AGrooveErodedWithARelocationRadius|Script\.AnErodeThatProjectsFirst)'
+      -E '^(stress\.session_seed_|LongStroke\.|Conservation\.|AnalyticPile\.(AgainstAWall|TwoTriangleFlatTerrainGrows)|Jacobi\.OneAndTwoThreads|JacobiSchedule\.(OneThreadMatchesItsDefinitionBitForBit|TwoThreadsMatch)|ErodeScript\.AGrooveErodedWithARelocationRadius|Script\.AnErodeThatProjectsFirst|ShallowWater\.(Ritters|Stokers|Thackers))'
   fi
   if has_pass fuzz; then
     ctest --test-dir build-clang-asan --output-on-failure -j"$jobs" -L '^fuzz$'

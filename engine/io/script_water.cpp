@@ -103,7 +103,7 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         for (double& z : rock) {
             if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
         }
-        sediment.emplace(water, std::move(rock));
+        sediment.emplace(water.mesh(), std::move(rock));
     }
     std::vector<double> deepest(water.vertex_count(), 0.0);
     SourceReport sources;

@@ -4,14 +4,25 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace sandtin {
 
-SedimentTransport::SedimentTransport(const VirtualPipes& water, std::vector<double> bedrock,
+namespace {
+
+std::span<const VirtualPipes::Pipe> edges_of(const VirtualPipes& w) {
+    return w.pipes();
+}
+std::span<const ShallowWater::Interface> edges_of(const ShallowWater& w) {
+    return w.interfaces();
+}
+
+}  // namespace
+
+SedimentTransport::SedimentTransport(const WaterMesh& m, std::vector<double> bedrock,
                                      SedimentOptions options)
     : bedrock_(std::move(bedrock)), options_(options) {
-    const WaterMesh& m = water.mesh();
     if (bedrock_.size() != m.bed.size())
         throw std::invalid_argument("sediment: bedrock must have one entry per vertex");
     for (std::size_t v = 0; v < bedrock_.size(); ++v) {
@@ -35,12 +46,13 @@ double SedimentTransport::suspended() const {
     return sum;
 }
 
-void SedimentTransport::step(VirtualPipes& water, double dt) {
+template <class Water>
+void SedimentTransport::step(Water& water, double dt) {
     const WaterMesh& m = water.mesh();
     const std::size_t n = held_.size();
     // Phase 1: each vertex's flow speed and steepest bed slope, from its pipes.
     std::vector<double> discharge(n, 0.0), slope(n, 0.0);
-    for (const VirtualPipes::Pipe& p : water.pipes()) {
+    for (const auto& p : edges_of(water)) {
         discharge[p.a] += 0.5 * std::abs(p.flux);
         discharge[p.b] += 0.5 * std::abs(p.flux);
         const double s =
@@ -52,7 +64,8 @@ void SedimentTransport::step(VirtualPipes& water, double dt) {
     for (std::size_t v = 0; v < n; ++v) {
         const double area = m.area[v], depth = water.depth(v);
         if (!(area > 0.0)) continue;
-        const double speed = depth > 0.0 ? discharge[v] / (depth * std::sqrt(area)) : 0.0;
+        double speed = depth > 0.0 ? discharge[v] / (depth * std::sqrt(area)) : 0.0;
+        if constexpr (std::is_same_v<Water, ShallowWater>) speed = length(water.velocity(v));
         const double capacity =
             std::min(options_.capacity * speed * std::max(slope[v], options_.least_slope) * area,
                      options_.max_concentration * depth * area);
@@ -73,7 +86,7 @@ void SedimentTransport::step(VirtualPipes& water, double dt) {
     // Phase 3: the suspended sand moves with the water, at the upwind vertex's concentration
     // (suspended m³ per m³ of water), each vertex giving at most what it holds.
     std::vector<double> out(n, 0.0);
-    for (const VirtualPipes::Pipe& p : water.pipes()) {
+    for (const auto& p : edges_of(water)) {
         if (p.flux == 0.0) continue;
         const std::uint32_t from = p.flux > 0.0 ? p.a : p.b;
         const double water_there = water.depth(from) * m.area[from];
@@ -83,7 +96,7 @@ void SedimentTransport::step(VirtualPipes& water, double dt) {
     for (std::size_t v = 0; v < n; ++v) {
         if (out[v] > held_[v]) scale[v] = held_[v] / out[v];
     }
-    for (const VirtualPipes::Pipe& p : water.pipes()) {
+    for (const auto& p : edges_of(water)) {
         if (p.flux == 0.0) continue;
         const std::uint32_t from = p.flux > 0.0 ? p.a : p.b, to = from == p.a ? p.b : p.a;
         const double water_there = water.depth(from) * m.area[from];
@@ -96,7 +109,8 @@ void SedimentTransport::step(VirtualPipes& water, double dt) {
         held_[v] = std::max(0.0, held_[v] + change[v]);
 }
 
-void SedimentTransport::settle_all(VirtualPipes& water) {
+template <class Water>
+void SedimentTransport::settle_all(Water& water) {
     const WaterMesh& m = water.mesh();
     for (std::size_t v = 0; v < held_.size(); ++v) {
         if (!(held_[v] > 0.0) || !(m.area[v] > 0.0)) continue;
@@ -104,5 +118,10 @@ void SedimentTransport::settle_all(VirtualPipes& water) {
         held_[v] = 0.0;
     }
 }
+
+template void SedimentTransport::step(VirtualPipes&, double);
+template void SedimentTransport::step(ShallowWater&, double);
+template void SedimentTransport::settle_all(VirtualPipes&);
+template void SedimentTransport::settle_all(ShallowWater&);
 
 }  // namespace sandtin

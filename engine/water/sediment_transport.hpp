@@ -7,6 +7,7 @@
 //   capacity  C = min(K_c x |u| x max(slope, s_min) x area, c_max x depth x area)
 //             (m³ of sand the water can hold: no more than c_max of its own volume)
 //   |u|       = (half the sum of |Q| through v's pipes) / (depth x sqrt(area))   (m/s)
+//             (the pipes carry no velocity; under the finite-volume scheme, |u| is its own)
 //   slope     = the steepest bed slope along v's pipes
 //   if the water holds less than C: it takes min(K_s (C - held) dt, the sand above the rock)
 //   else it drops K_d (held - C) dt
@@ -23,6 +24,7 @@
 
 #include <vector>
 
+#include "water/shallow_water.hpp"
 #include "water/virtual_pipes.hpp"
 
 namespace sandtin {
@@ -37,16 +39,21 @@ struct SedimentOptions {
 
 class SedimentTransport {
   public:
-    /// Sediment on `water`'s mesh, with `bedrock` per vertex (m; -inf where there is none),
-    /// which must lie at or below the bed. Throws std::invalid_argument otherwise.
-    SedimentTransport(const VirtualPipes& water, std::vector<double> bedrock,
+    /// Sediment on `mesh` (a water scheme's mesh()), with `bedrock` per vertex (m; -inf where
+    /// there is none), which must lie at or below the bed. Throws std::invalid_argument
+    /// otherwise.
+    SedimentTransport(const WaterMesh& mesh, std::vector<double> bedrock,
                       SedimentOptions options = {});
 
     /// After water.step(dt): picks up, drops and carries sand over dt seconds, and writes the
-    /// new bed into `water` (VirtualPipes::set_bed).
-    void step(VirtualPipes& water, double dt);
+    /// new bed into `water` (set_bed). Either scheme: the pipes' fluxes or the finite
+    /// volumes' interface fluxes carry the sand; the speed is the scheme's own (the pipes'
+    /// estimate below, or the finite volumes' velocity).
+    template <class Water>
+    void step(Water& water, double dt);
     /// Drops every grain still suspended where it is (the end of a run).
-    void settle_all(VirtualPipes& water);
+    template <class Water>
+    void settle_all(Water& water);
 
     double suspended() const;  ///< m³ in the water
     double suspended(std::size_t v) const { return held_[v]; }
@@ -56,5 +63,10 @@ class SedimentTransport {
     std::vector<double> held_;  ///< m³ suspended per vertex
     SedimentOptions options_;
 };
+
+extern template void SedimentTransport::step(VirtualPipes&, double);
+extern template void SedimentTransport::step(ShallowWater&, double);
+extern template void SedimentTransport::settle_all(VirtualPipes&);
+extern template void SedimentTransport::settle_all(ShallowWater&);
 
 }  // namespace sandtin

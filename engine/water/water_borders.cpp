@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 namespace sandtin {
 
-double open_borders(VirtualPipes& water, Rect domain, OpenSides sides) {
+template <class Water>
+double open_borders(Water& water, Rect domain, OpenSides sides) {
     const WaterMesh& m = water.mesh();
     const double tolerance =
         1e-9 * std::max(domain.max.x - domain.min.x, domain.max.y - domain.min.y);
@@ -39,9 +41,17 @@ double open_borders(VirtualPipes& water, Rect domain, OpenSides sides) {
         width[edge.second] += half;
         total += 2.0 * half;
     }
-    for (std::size_t v = 0; v < width.size(); ++v)
-        water.set_outflow_width(v, width[v]);
+    for (std::size_t v = 0; v < width.size(); ++v) {
+        if constexpr (std::is_same_v<Water, ShallowWater>) {
+            water.set_open_border(v, width[v] > 0.0);
+        } else {
+            water.set_outflow_width(v, width[v]);
+        }
+    }
     return total;
 }
+
+template double open_borders(VirtualPipes&, Rect, OpenSides);
+template double open_borders(ShallowWater&, Rect, OpenSides);
 
 }  // namespace sandtin

@@ -1,9 +1,11 @@
 #pragma once
 // Which sides of the domain let water out (issue 40, item 2): each open side's border edges
 // (edges of one face only, both ends on that side) give half their length to each end as its
-// outflow width (VirtualPipes::set_outflow_width). A closed side is a wall.
+// outflow width (VirtualPipes::set_outflow_width), or open that end's border to free outflow
+// (ShallowWater::set_open_border). A closed side is a wall.
 
 #include "geom/rect.hpp"
+#include "water/shallow_water.hpp"
 #include "water/virtual_pipes.hpp"
 
 namespace sandtin {
@@ -18,6 +20,9 @@ struct OpenSides {
 /// Sets the outflow width of every vertex of `water` from the open `sides` of `domain` (the
 /// others are closed again); a vertex lies on a side within 1e-9 of the domain's larger
 /// extent. Returns the open border's total length (m).
-double open_borders(VirtualPipes& water, Rect domain, OpenSides sides);
+template <class Water>
+double open_borders(Water& water, Rect domain, OpenSides sides);
+extern template double open_borders(VirtualPipes&, Rect, OpenSides);
+extern template double open_borders(ShallowWater&, Rect, OpenSides);
 
 }  // namespace sandtin

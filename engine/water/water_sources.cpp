@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace sandtin {
 
@@ -47,7 +48,8 @@ std::size_t nearest_wet_capable(const WaterMesh& m, Vec2 p) {
 
 }  // namespace
 
-SourceReport apply_sources(VirtualPipes& water, const WaterSources& sources, double dt) {
+template <class Water>
+SourceReport apply_sources(Water& water, const WaterSources& sources, double dt) {
     check(sources, dt);
     const WaterMesh& m = water.mesh();
     SourceReport report;
@@ -57,7 +59,11 @@ SourceReport apply_sources(VirtualPipes& water, const WaterSources& sources, dou
         for (std::size_t v = 0; v < m.area.size(); ++v) {
             if (!(m.area[v] > 0.0)) continue;
             if (r.radius > 0.0 && length(m.position[v] - r.centre) > r.radius) continue;
-            water.set_depth(v, water.depth(v) + rise);
+            if constexpr (std::is_same_v<Water, ShallowWater>) {
+                water.add_water(v, m.area[v] * rise);  // no momentum of its own
+            } else {
+                water.set_depth(v, water.depth(v) + rise);
+            }
             report.added += m.area[v] * rise;
         }
     }
@@ -79,5 +85,8 @@ SourceReport apply_sources(VirtualPipes& water, const WaterSources& sources, dou
     }
     return report;
 }
+
+template SourceReport apply_sources(VirtualPipes&, const WaterSources&, double);
+template SourceReport apply_sources(ShallowWater&, const WaterSources&, double);
 
 }  // namespace sandtin

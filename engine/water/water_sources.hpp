@@ -1,12 +1,16 @@
 #pragma once
 // Water that comes and goes (issue 40, item 2): rain over the whole terrain or a disc, nozzles
-// at points, and evaporation, applied to a VirtualPipes state over a time step, with the
-// volumes they moved counted so that the balance can be checked exactly:
-//   volume now = volume before + added - evaporated - VirtualPipes::volume_left().
+// at points, and evaporation, applied to either water scheme's state (VirtualPipes or
+// ShallowWater) over a time step, with the volumes they moved counted so that the balance can
+// be checked exactly:
+//   volume now = volume before + added - evaporated - volume_left().
+// Rain and nozzle water arrive with no horizontal momentum; evaporation leaves the rest of
+// the water moving as it did.
 
 #include <vector>
 
 #include "geom/vec2.hpp"
+#include "water/shallow_water.hpp"
 #include "water/virtual_pipes.hpp"
 
 namespace sandtin {
@@ -36,6 +40,9 @@ struct SourceReport {
 /// Adds the rain and the nozzles' water for `dt` seconds, then evaporates (a vertex loses at
 /// most the water it holds). Throws std::invalid_argument for a negative or non-finite rate,
 /// radius or dt, and leaves the water as it was.
-SourceReport apply_sources(VirtualPipes& water, const WaterSources& sources, double dt);
+template <class Water>
+SourceReport apply_sources(Water& water, const WaterSources& sources, double dt);
+extern template SourceReport apply_sources(VirtualPipes&, const WaterSources&, double);
+extern template SourceReport apply_sources(ShallowWater&, const WaterSources&, double);
 
 }  // namespace sandtin

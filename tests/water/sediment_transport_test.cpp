@@ -19,7 +19,8 @@ namespace sandtin {
 namespace {
 namespace sediment_transport_test {
 
-double sand_on_bed(const VirtualPipes& w) {
+template <class Water>
+double sand_on_bed(const Water& w) {
     double sum = 0.0;
     for (std::size_t v = 0; v < w.vertex_count(); ++v)
         sum += w.mesh().area[v] * w.mesh().bed[v];
@@ -33,24 +34,27 @@ Tin sandy_slope() {
         TinOptions{false});
 }
 
-std::vector<double> rock_under(const VirtualPipes& w, double sand) {
+template <class Water>
+std::vector<double> rock_under(const Water& w, double sand) {
     std::vector<double> rock(w.vertex_count());
     for (std::size_t v = 0; v < rock.size(); ++v)
         rock[v] = w.mesh().bed[v] - sand;
     return rock;
 }
 
-TEST(SedimentTransport, AStreamDownASandySlopeCutsItAndDropsTheSandLowerHoldingEveryGrain) {
+/// A nozzle's stream down the slope for `seconds`, under either water scheme.
+template <class Water>
+void stream_down_a_sandy_slope(double seconds) {
     const Tin tin = sandy_slope();
-    VirtualPipes w(water_mesh_of(tin));
+    Water w(water_mesh_of(tin));
     const std::vector<double> bed_before = w.mesh().bed;
     const std::vector<double> rock = rock_under(w, 0.05);
-    SedimentTransport sediment(w, rock);
+    SedimentTransport sediment(w.mesh(), rock);
     WaterSources nozzle;
     nozzle.nozzles.push_back({{0.9, 0.25}, 0.5});
     const double sand_before = sand_on_bed(w);
     double t = 0.0;
-    while (t < 20.0) {
+    while (t < seconds) {
         const double dt = std::min(w.stable_time_step(), 0.05);
         apply_sources(w, nozzle, dt);
         w.step(dt);
@@ -79,6 +83,14 @@ TEST(SedimentTransport, AStreamDownASandySlopeCutsItAndDropsTheSandLowerHoldingE
     EXPECT_LT(fill_x, cut_x) << "the sand went uphill";
 }
 
+TEST(SedimentTransport, AStreamDownASandySlopeCutsItAndDropsTheSandLowerHoldingEveryGrain) {
+    stream_down_a_sandy_slope<VirtualPipes>(20.0);
+}
+
+TEST(SedimentTransport, UnderFiniteVolumesTooAStreamCutsAndDropsHoldingEveryGrain) {
+    stream_down_a_sandy_slope<ShallowWater>(4.0);
+}
+
 TEST(SedimentTransport, StillWaterMovesNoSand) {
     const Tin tin = Tin::regular_grid(
         Rect::from_size(1.0, 1.0), 20, 20,
@@ -87,7 +99,7 @@ TEST(SedimentTransport, StillWaterMovesNoSand) {
     for (std::size_t v = 0; v < w.vertex_count(); ++v)
         w.set_depth(v, std::max(0.0, 0.02 - w.mesh().bed[v]));
     const std::vector<double> before = w.mesh().bed;
-    SedimentTransport sediment(w, rock_under(w, 0.1));
+    SedimentTransport sediment(w.mesh(), rock_under(w, 0.1));
     for (int k = 0; k < 300; ++k) {
         const double dt = w.stable_time_step();
         w.step(dt);
@@ -102,7 +114,7 @@ TEST(SedimentTransport, BareRockIsNeverCut) {
     const Tin tin = sandy_slope();
     VirtualPipes w(water_mesh_of(tin));
     const std::vector<double> rock = w.mesh().bed;  // no sand at all
-    SedimentTransport sediment(w, rock);
+    SedimentTransport sediment(w.mesh(), rock);
     WaterSources nozzle;
     nozzle.nozzles.push_back({{0.9, 0.25}, 1.0});
     for (int k = 0; k < 200; ++k) {
@@ -116,12 +128,12 @@ TEST(SedimentTransport, BareRockIsNeverCut) {
     // Bedrock above the bed, or not a number, is refused.
     std::vector<double> above = rock;
     above[3] += 0.01;
-    EXPECT_THROW(SedimentTransport(w, above), std::invalid_argument);
+    EXPECT_THROW(SedimentTransport(w.mesh(), above), std::invalid_argument);
     above[3] = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_THROW(SedimentTransport(w, above), std::invalid_argument);
+    EXPECT_THROW(SedimentTransport(w.mesh(), above), std::invalid_argument);
     SedimentOptions negative;
     negative.drop_rate = -1.0;
-    EXPECT_THROW(SedimentTransport(w, rock, negative), std::invalid_argument);
+    EXPECT_THROW(SedimentTransport(w.mesh(), rock, negative), std::invalid_argument);
 }
 
 }  // namespace sediment_transport_test
