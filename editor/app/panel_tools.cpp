@@ -103,11 +103,14 @@ void App::tool_sliders() {
                 range_slider("Height", "/dab", settings_.brush_strength, kBrushStrengthRange, size,
                              "%.1f");
                 ui("Height", "Height a Raise or Lower dab adds or takes at its centre");
-            } else if (tool.brush == BrushKind::Smooth || tool.brush == BrushKind::Flatten) {
+            } else if (tool.brush == BrushKind::Smooth || tool.brush == BrushKind::Flatten ||
+                       tool.brush == BrushKind::Weather) {
                 plain_slider("Strength", settings_.brush_blend, kBrushBlendRange, "%.2f");
                 ui("Strength",
                    "Fraction of the way to the smooth surface (Smooth) or to the stroke's\n"
-                   "starting level (Flatten) that one dab goes at the brush centre");
+                   "starting level (Flatten) that one dab goes at the brush centre; for\n"
+                   "Weather, the fraction of a full weathering step (a tenth of the local\n"
+                   "edge length at the sharpest crest)");
             }
             if (tool.brush != BrushKind::PaintMaterial) {
                 int falloff = static_cast<int>(

@@ -45,6 +45,8 @@ inline constexpr ToolEntry kTools[] = {
     {"Smooth", ToolKind::Brush, nullptr, BrushKind::Smooth, 'S', "Brush: smooth bumps (key S)"},
     {"Flatten", ToolKind::Brush, nullptr, BrushKind::Flatten, 'T',
      "Brush: level the surface to its height where the stroke began (key T)"},
+    {"Weather", ToolKind::Brush, nullptr, BrushKind::Weather, 'W',
+     "Brush: weather the sand, rounding crests and filling hollows with their sand (key W)"},
     {"Paint", ToolKind::Brush, nullptr, BrushKind::PaintMaterial, 'P',
      "Brush: paint the selected material (key P)"},
 };

@@ -287,15 +287,17 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
     if (op == "brush") {
         BrushOp b;
         const std::string kind =
-            f.choice("kind", "raise", {"raise", "lower", "smooth", "flatten", "paint"});
+            f.choice("kind", "raise", {"raise", "lower", "smooth", "flatten", "weather", "paint"});
         b.settings.kind = kind == "raise"     ? BrushKind::Raise
                           : kind == "lower"   ? BrushKind::Lower
                           : kind == "smooth"  ? BrushKind::Smooth
                           : kind == "flatten" ? BrushKind::Flatten
+                          : kind == "weather" ? BrushKind::Weather
                                               : BrushKind::PaintMaterial;
         b.settings.radius = f.positive("radius", b.settings.radius);
-        const bool fraction =
-            b.settings.kind == BrushKind::Smooth || b.settings.kind == BrushKind::Flatten;
+        const bool fraction = b.settings.kind == BrushKind::Smooth ||
+                              b.settings.kind == BrushKind::Flatten ||
+                              b.settings.kind == BrushKind::Weather;
         b.settings.strength = fraction
                                   ? f.in_range("strength", 0.5, 0.0, 1.0)
                                   : f.in_range("strength", b.settings.strength, 0.0, kMaxHeight);
@@ -345,6 +347,8 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         return SaveOp{base_dir / path};
     }
     if (op == "water") return parse_water_op(f);
+    if (op == "dry") return parse_dry_op(f);
+    if (op == "weather") return parse_weather_op(f);
     if (op == "simplify") {
         SimplifyOp s;
         if (f.has("tolerance")) s.tolerance = f.positive("tolerance", 0.0);
@@ -728,6 +732,16 @@ nlohmann::json ScriptRunner::run_op(const SaveOp& op) {
 
 nlohmann::json ScriptRunner::run_op(const WaterOp& op) {
     return run_water_op(op, tin_);
+}
+
+// Moisture changes reach the physics through the TIN's vertex feed, as the water's do: its
+// next sync recomputes the angle of repose of every vertex whose moisture changed.
+nlohmann::json ScriptRunner::run_op(const DryOp& op) {
+    return run_dry_op(op, tin_);
+}
+
+nlohmann::json ScriptRunner::run_op(const WeatherOp& op) {
+    return run_weather_op(op, tin_);
 }
 
 nlohmann::json ScriptRunner::run_op(const CustomOp& op) {

@@ -34,6 +34,7 @@
 
 #include "io/progress.hpp"
 #include "io/script_water.hpp"
+#include "io/script_weather.hpp"
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/talus_solver.hpp"
@@ -104,7 +105,7 @@ struct CustomOp {
 };
 
 using ScriptOperation = std::variant<StampOp, StrokeOp, PourOp, BrushOp, ErodeOp, SimplifyOp,
-                                     SaveOp, WaterOp, CustomOp>;
+                                     SaveOp, WaterOp, DryOp, WeatherOp, CustomOp>;
 
 struct ScriptStep {
     ScriptOperation operation;
@@ -198,6 +199,8 @@ class ScriptRunner {
     nlohmann::json run_op(const SimplifyOp& op);
     nlohmann::json run_op(const SaveOp& op);
     nlohmann::json run_op(const WaterOp& op);
+    nlohmann::json run_op(const DryOp& op);
+    nlohmann::json run_op(const WeatherOp& op);
     nlohmann::json run_op(const CustomOp& op);
     /// Tells the current step's progress that `done` of its `total` points are placed.
     void report_points_done(std::size_t done, std::size_t total) const;

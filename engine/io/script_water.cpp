@@ -9,6 +9,7 @@
 
 #include "tin/vertex_arrays.hpp"
 #include "water/sediment_transport.hpp"
+#include "water/shallow_water.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
 
@@ -41,6 +42,33 @@ Nozzle parse_nozzle(const nlohmann::json& object, const std::string& context) {
     nozzle.litres_per_second = n.in_range("litres_per_second", 0.0, 0.0, 1e4);
     n.reject_unknown();
     return nozzle;
+}
+
+/// The moisture fields a "water" or "dry" operation shares; the defaults are the engine's.
+MoistureSettings parse_moisture_settings(JsonFields& f) {
+    MoistureSettings s;
+    // Up to 1e-3 m²/s: beyond any soil-water diffusivity, and each tenfold costs ten times
+    // the sub-steps.
+    s.diffusivity = f.in_range("diffusivity", s.diffusivity, 0.0, 1e-3);
+    s.drying_half_life = f.positive("drying_half_life", s.drying_half_life);
+    return s;
+}
+
+nlohmann::json moisture_report(const MoistureReport& r, const Tin& tin) {
+    nlohmann::json wettest = nullptr;
+    if (r.wettest.valid()) {
+        const Vec2 at = tin.position(r.wettest);
+        wettest = {
+            {"vertex", r.wettest.value}, {"at", {at.x, at.y}}, {"moisture", r.wettest_moisture}};
+    }
+    return {{"seconds", r.seconds},
+            {"sub_steps", r.sub_steps},
+            {"vertices_computed", r.vertices_computed},
+            {"vertices_changed", r.vertices_changed},
+            {"vertices_slowed", r.vertices_slowed},
+            {"moisture_before_m2", r.total_before},
+            {"moisture_after_m2", r.total_after},
+            {"wettest", wettest}};
 }
 
 }  // namespace
@@ -82,20 +110,37 @@ WaterOp parse_water_op(JsonFields& f) {
                 f.fail_field("open_sides", "names a side other than west, east, south, north");
         }
     }
+    const std::string scheme = f.choice("scheme", "pipes", {"pipes", "shallow_water"});
+    op.scheme = scheme == "pipes" ? WaterScheme::Pipes : WaterScheme::ShallowWater;
+    if (op.scheme == WaterScheme::Pipes && f.has("manning"))
+        f.fail_field("manning", "applies to \"scheme\": \"shallow_water\"; the pipes take 'friction'");
+    if (op.scheme == WaterScheme::ShallowWater && f.has("friction"))
+        f.fail_field("friction", "applies to the pipes; \"shallow_water\" takes 'manning'");
     op.friction = f.in_range("friction", op.friction, 0.0, 1e3);
+    op.manning = f.in_range("manning", op.manning, 0.0, 1.0);
     op.wet_moisture = f.in_range("wet_moisture", op.wet_moisture, 0.0, 1.0);
     op.wet_depth = f.positive("wet_depth", op.wet_depth);
     op.erode = f.boolean("erode", false);
+    op.moisture = parse_moisture_settings(f);
     if (op.sources.rain.empty() && op.sources.nozzles.empty())
         f.fail("give 'rain' or 'nozzles': water needs a source");
     f.reject_unknown();
     return op;
 }
 
-nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
-    VirtualPipeOptions options;
-    options.friction = op.friction;
-    VirtualPipes water(water_mesh_of(tin), options);
+namespace {
+
+/// What the water did, whichever scheme ran.
+struct Flow {
+    std::size_t steps = 0;
+    SourceReport sources;
+    std::vector<double> deepest;  ///< per vertex, m
+    double left = 0.0, water = 0.0, sand_moved = 0.0, volume_change = 0.0;
+};
+
+template <class Water>
+Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
+    Flow flow;
     open_borders(water, tin.domain(), op.open);
     std::optional<SedimentTransport> sediment;
     if (op.erode) {
@@ -105,25 +150,25 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         }
         sediment.emplace(water.mesh(), std::move(rock));
     }
-    std::vector<double> deepest(water.vertex_count(), 0.0);
-    SourceReport sources;
+    std::vector<double>& deepest = flow.deepest;
+    deepest.assign(water.vertex_count(), 0.0);
     double t = 0.0;
-    std::size_t steps = 0;
     while (t < op.seconds) {
         const double dt = std::min({water.stable_time_step(), kLongestStep, op.seconds - t});
         const SourceReport r = apply_sources(water, op.sources, dt);
-        sources.added += r.added;
-        sources.evaporated += r.evaporated;
+        flow.sources.added += r.added;
+        flow.sources.evaporated += r.evaporated;
         water.step(dt);
         if (sediment) sediment->step(water, dt);
         for (std::size_t v = 0; v < deepest.size(); ++v)
             deepest[v] = std::max(deepest[v], water.depth(v));
         t += dt;
-        ++steps;
+        ++flow.steps;
     }
     // The sand the water moved, into the terrain (journaled, so the GPU mirror and undo see
     // it): what is still suspended settles where it is.
-    double sand_moved = 0.0, volume_change = 0.0;
+    double& sand_moved = flow.sand_moved;
+    double& volume_change = flow.volume_change;
     if (sediment) {
         sediment->settle_all(water);
         std::vector<VertexId> moved;
@@ -140,6 +185,27 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         }
         tin.set_heights(moved, heights);
     }
+    flow.left = water.volume_left();
+    flow.water = water.volume();
+    return flow;
+}
+
+}  // namespace
+
+nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
+    Flow flow;
+    if (op.scheme == WaterScheme::Pipes) {
+        VirtualPipeOptions options;
+        options.friction = op.friction;
+        VirtualPipes water(water_mesh_of(tin), options);
+        flow = run_flow(water, op, tin);
+    } else {
+        ShallowWaterOptions options;
+        options.manning = op.manning;
+        ShallowWater water(water_mesh_of(tin), options);
+        flow = run_flow(water, op, tin);
+    }
+    const std::vector<double>& deepest = flow.deepest;
     std::size_t wetted = 0;
     double max_depth = 0.0;
     const auto moisture = static_cast<float>(op.wet_moisture);
@@ -151,11 +217,36 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         ++wetted;
         if (tin.vertices().moisture[v] < moisture) tin.set_moisture(id, moisture);
     }
-    return {{"seconds", op.seconds},          {"steps", steps},
-            {"added_m3", sources.added},      {"evaporated_m3", sources.evaporated},
-            {"left_m3", water.volume_left()}, {"water_m3", water.volume()},
-            {"wetted_vertices", wetted},      {"max_depth_m", max_depth},
-            {"sand_moved_m3", sand_moved},    {"volume_change", volume_change}};
+    // Then the moisture spreads and dries over the same seconds.
+    const MoistureReport spread = spread_and_dry_moisture(tin, op.seconds, op.moisture);
+    return {{"seconds", op.seconds},
+            {"scheme", op.scheme == WaterScheme::Pipes ? "pipes" : "shallow_water"},
+            {"steps", flow.steps},
+            {"added_m3", flow.sources.added},
+            {"evaporated_m3", flow.sources.evaporated},
+            {"left_m3", flow.left},
+            {"water_m3", flow.water},
+            {"wetted_vertices", wetted},
+            {"max_depth_m", max_depth},
+            {"sand_moved_m3", flow.sand_moved},
+            {"moisture", moisture_report(spread, tin)},
+            {"volume_change", flow.volume_change}};
+}
+
+DryOp parse_dry_op(JsonFields& f) {
+    DryOp op;
+    op.seconds = f.in_range("seconds", 0.0, 0.0, 1e7);
+    if (!(op.seconds > 0.0)) f.fail_field("seconds", "must be a positive number of seconds");
+    op.moisture = parse_moisture_settings(f);
+    f.reject_unknown();
+    return op;
+}
+
+nlohmann::json run_dry_op(const DryOp& op, Tin& tin) {
+    nlohmann::json report =
+        moisture_report(spread_and_dry_moisture(tin, op.seconds, op.moisture), tin);
+    report["volume_change"] = 0.0;  // moisture moves no sand
+    return report;
 }
 
 }  // namespace sandtin

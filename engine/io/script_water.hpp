@@ -3,37 +3,76 @@
 // from rain, nozzles and evaporation, draining through open sides (engine/water); with
 // "erode", carrying sand; and the sand it wets taking a moisture, so that the relaxation
 // afterwards lets wet sand stand at its steeper angle. The water itself is not kept between
-// operations: the terrain and its moisture are.
+// operations: the terrain and its moisture are. The moisture spreads into dry sand and dries
+// (water/moisture_diffusion.hpp): over a "water" operation's seconds, after the wetting, and
+// over a "dry" operation's, where time passes with no water.
+
+#include <cstdint>
 
 #include <nlohmann/json.hpp>
 
 #include "tin/tin.hpp"
 #include "util/json_fields.hpp"
+#include "water/moisture_diffusion.hpp"
 #include "water/water_borders.hpp"
 #include "water/water_sources.hpp"
 
 namespace sandtin {
 
+/// Which water scheme a "water" operation runs (engine/water).
+enum class WaterScheme : std::uint8_t {
+    /// Virtual pipes (virtual_pipes.hpp): fast, but without momentum its fronts move at the
+    /// linear wave speed (a dam break's front 25 % short of Ritter's).
+    Pipes,
+    /// Finite volumes with momentum (shallow_water.hpp): SWASHES's dam breaks and Thacker's
+    /// lake within 0.3-4 %, at tens of times the pipes' cost per simulated second.
+    ShallowWater,
+};
+
 struct WaterOp {
     double seconds = 0.0;  ///< s of water, > 0
     WaterSources sources;
     OpenSides open;
-    double friction = VirtualPipeOptions{}.friction;  ///< 1/s
+    WaterScheme scheme = WaterScheme::Pipes;
+    double friction = VirtualPipeOptions{}.friction;  ///< 1/s, the pipes' linear friction
+    /// Manning's n (s/m^(1/3)) of the shallow-water scheme: a sand bed's.
+    double manning = 0.025;
     /// Sand the water reached at least wet_depth deep takes at least this moisture, in [0, 1].
     double wet_moisture = 1.0;
     double wet_depth = 1e-3;  ///< m
     /// The water carries sand (water/sediment_transport.hpp): it cuts where it runs fast and
     /// drops the sand where it slows; what is still suspended at the end settles where it is.
     bool erode = false;
+    /// How the moisture spreads and dries over the same seconds, after the wetting: the sand
+    /// the water reached is wetted with what it reached by the end, then that moisture (and
+    /// any already in the sand) spreads and dries for `seconds`. (Sand wetted late in the
+    /// operation spreads and dries a little more than it would have; early, a little less.)
+    MoistureSettings moisture;
+};
+
+/// Time passes with no water: the moisture in the sand spreads into drier sand and dries.
+struct DryOp {
+    double seconds = 0.0;  ///< s, > 0
+    MoistureSettings moisture;
 };
 
 /// Parses the fields of a "water" operation (rain, nozzles, evaporation_mm_per_hour,
-/// open_sides, seconds, friction, wet_moisture, wet_depth). Throws JsonInputError naming the
-/// field.
+/// open_sides, seconds, scheme, friction (pipes) or manning (shallow_water), wet_moisture,
+/// wet_depth, erode, diffusivity, drying_half_life). Throws JsonInputError naming the field.
 WaterOp parse_water_op(JsonFields& f);
 
 /// Runs `op` on `tin` and reports what the water did (m³ added, evaporated, left through the
-/// open sides and still on the terrain at the end; the wetted vertices; the deepest water).
+/// open sides and still on the terrain at the end; the wetted vertices; the deepest water),
+/// and under "moisture" what the moisture did afterwards (as run_dry_op reports it).
 nlohmann::json run_water_op(const WaterOp& op, Tin& tin);
+
+/// Parses the fields of a "dry" operation (seconds, required; diffusivity, drying_half_life).
+/// Throws JsonInputError naming the field.
+DryOp parse_dry_op(JsonFields& f);
+
+/// Runs `op` on `tin`. Reports the seconds, the sub-steps, the vertices computed, changed and
+/// slowed (water/moisture_diffusion.hpp), the moisture sum A m (m²) before and after, and the
+/// wettest vertex afterwards ({"vertex", "at", "moisture"}, or null when all is dry).
+nlohmann::json run_dry_op(const DryOp& op, Tin& tin);
 
 }  // namespace sandtin

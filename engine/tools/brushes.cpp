@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "physics/curvature_weathering.hpp"
 #include "tools/refine.hpp"
 
 namespace sandtin {
@@ -47,8 +48,11 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
         throw std::invalid_argument("brush: radius must be positive");
     if (!std::isfinite(s.strength) || s.strength < 0.0)
         throw std::invalid_argument("brush: strength must be zero or positive");
-    if ((s.kind == BrushKind::Smooth || s.kind == BrushKind::Flatten) && s.strength > 1.0) {
-        throw std::invalid_argument("brush: smooth and flatten strength must lie in [0, 1]");
+    if ((s.kind == BrushKind::Smooth || s.kind == BrushKind::Flatten ||
+         s.kind == BrushKind::Weather) &&
+        s.strength > 1.0) {
+        throw std::invalid_argument(
+            "brush: smooth, flatten and weather strength must lie in [0, 1]");
     }
     BrushReport report;
     const Rect d = tin.domain();
@@ -116,6 +120,18 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
                 const double h = va.height[disc[i].value];
                 target[i] = h + s.strength * weight[i] * (level - h);
             }
+            break;
+        }
+        case BrushKind::Weather: {
+            // Crests in the disc wear and their sand settles downhill, the volume kept; the
+            // falloff weighs each vertex's wear. Its own writes, not targets: sand also lands
+            // on neighbours just outside the disc.
+            WeatheringSettings w;
+            w.strength = s.strength;
+            const WeatheringReport r = weather_vertices(tin, disc, weight, w);
+            report.vertices_changed = r.vertices_worn + r.vertices_raised;
+            for (std::size_t i = 0; i < disc.size(); ++i)
+                target[i] = va.height[disc[i].value];
             break;
         }
         case BrushKind::PaintMaterial:

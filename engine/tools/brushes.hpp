@@ -1,7 +1,7 @@
 #pragma once
-// Artist brushes: raise/lower, smooth, flatten and paint material, applied as dabs inside a
-// radius with a falloff. Before a dab, edges longer than the brush spacing inside the disc are
-// split so the brush has the resolution it needs.
+// Artist brushes: raise/lower, smooth, flatten, weather and paint material, applied as dabs
+// inside a radius with a falloff. Before a dab, edges longer than the brush spacing inside the disc
+// are split so the brush has the resolution it needs.
 
 #include <cstdint>
 #include <optional>
@@ -12,13 +12,14 @@
 
 namespace sandtin {
 
-enum class BrushKind : std::uint8_t { Raise, Lower, Smooth, Flatten, PaintMaterial };
+enum class BrushKind : std::uint8_t { Raise, Lower, Smooth, Flatten, PaintMaterial, Weather };
 
 struct BrushSettings {
     BrushKind kind = BrushKind::Raise;
     double radius = 0.05;  ///< metres
     /// Raise/Lower: metres at the centre per dab. Smooth/Flatten: fraction in [0, 1] of the
-    /// way to the target per dab.
+    /// way to the target per dab. Weather: fraction in [0, 1] of one weathering iteration's
+    /// largest wear (physics/curvature_weathering.hpp) at the centre per dab.
     double strength = 0.005;
     Falloff falloff = Falloff::Smooth;
     /// Longest edge inside the disc before the dab (m); 0 = radius / 6.

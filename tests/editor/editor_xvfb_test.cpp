@@ -972,12 +972,13 @@ std::vector<std::pair<double, double>> shared_heights(const Tin& before, const T
     return out;
 }
 
-TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
+TEST_F(EditorXvfb, LowerFlattenFootAndWeatherToolsDoWhatTheirNamesSay) {
     // One run, a save after each tool, with a settings file of its own. Simplification only
     // of exactly planar patches, which moves no volume: otherwise a removal would shift the
     // heights around it to keep the volume, and blur the exact oracles below.
     const fs::path s0 = kWork / "brushes-0.sandtin", s1 = kWork / "brushes-1.sandtin",
-                   s2 = kWork / "brushes-2.sandtin", s3 = kWork / "brushes-3.sandtin";
+                   s2 = kWork / "brushes-2.sandtin", s3 = kWork / "brushes-3.sandtin",
+                   s4 = kWork / "brushes-4.sandtin";
     const auto save = [](const fs::path& p) {
         return R"({"op": "save", "path": ")" + p.string() + R"("})";
     };
@@ -994,7 +995,10 @@ TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
             {"op": "drag", "path": [[0.45, 0.58], [0.55, 0.58]], "steps": 1}, )" +
         save(s2) + R"(, {"op": "tool", "name": "Foot"},
             {"op": "drag", "path": [[0.6, 0.42], [0.72, 0.45]], "steps": 12}, )" +
-        save(s3) + "]";
+        save(s3) + R"(, {"op": "tool", "name": "Weather"},
+            {"op": "set", "brush_blend": 1.0, "falloff": "constant"},
+            {"op": "drag", "path": [[0.55, 0.7], [0.7, 0.7]], "steps": 16}, )" +
+        save(s4) + "]";
     const fs::path settings = kWork / "brushes-settings.json";
     fs::remove(settings);
     const EditorRun r = run_editor("brushes", ops, "--settings " + settings.string());
@@ -1004,6 +1008,7 @@ TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
     const Tin t1 = Tin::from_snapshot(load_session(s1).terrain);
     const Tin t2 = Tin::from_snapshot(load_session(s2).terrain);
     const Tin t3 = Tin::from_snapshot(load_session(s3).terrain);
+    const Tin t4 = Tin::from_snapshot(load_session(s4).terrain);
 
     {
         // Lower with a constant falloff: the vertices within the radius of the dab went down
@@ -1075,6 +1080,38 @@ TEST_F(EditorXvfb, LowerFlattenAndFootToolsDoWhatTheirNamesSay) {
             << "net " << t3.volume() - t2.volume() << " m^3, cut " << cut;
         EXPECT_GT(t3.constrained_edge_count(), 0u);  // the print's rims are constrained edges
         std::printf("[ info     ] foot stroke cut %.3g m^3\n", cut);
+    }
+    {
+        // A Weather stroke across the dunes: where it reached, the crests wore and their sand
+        // landed lower down, so the volume stays (a sampled cut against the exact volumes)
+        // and the highest point there came down; it reached a stroke's width, not the
+        // terrain (the drag's window coordinates are not the terrain's, so the reached
+        // region is found from the surfaces).
+        const Rect d = t4.domain();
+        constexpr int kN = 400;
+        const double cell = d.width() * d.height() / (kN * kN);
+        double cut = 0.0, top_before = -1e9, top_after = -1e9;
+        int reached = 0;
+        for (int j = 0; j < kN; ++j) {
+            for (int i = 0; i < kN; ++i) {
+                const Vec2 p{d.min.x + (i + 0.5) * d.width() / kN,
+                             d.min.y + (j + 0.5) * d.height() / kN};
+                const double z3 = *t3.height_at(p), z4 = *t4.height_at(p);
+                cut += std::max(0.0, z3 - z4) * cell;
+                if (std::abs(z4 - z3) <= 1e-12) continue;
+                ++reached;
+                top_before = std::max(top_before, z3);
+                top_after = std::max(top_after, z4);
+            }
+        }
+        EXPECT_GT(cut, 1e-7) << "cut " << cut << " m^3";
+        EXPECT_LE(std::abs(t4.volume() - t3.volume()), 1e-3 * cut)
+            << "net " << t4.volume() - t3.volume() << " m^3, cut " << cut;
+        EXPECT_LT(top_after, top_before);
+        EXPECT_GT(reached, 100);
+        EXPECT_LT(reached, kN * kN / 10);
+        std::printf("[ info     ] weather stroke moved %.3g m^3, net %.3g m^3\n", cut,
+                    t4.volume() - t3.volume());
     }
 }
 

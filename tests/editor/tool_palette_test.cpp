@@ -38,7 +38,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     }
     EXPECT_EQ(stamps, shipped);
     for (const BrushKind b : {BrushKind::Raise, BrushKind::Lower, BrushKind::Smooth,
-                              BrushKind::Flatten, BrushKind::PaintMaterial}) {
+                              BrushKind::Flatten, BrushKind::PaintMaterial, BrushKind::Weather}) {
         EXPECT_EQ(brushes.count(b), 1u) << "brush kind " << static_cast<int>(b);
     }
     EXPECT_TRUE(pour);
