@@ -113,7 +113,8 @@ WaterOp parse_water_op(JsonFields& f) {
     const std::string scheme = f.choice("scheme", "pipes", {"pipes", "shallow_water"});
     op.scheme = scheme == "pipes" ? WaterScheme::Pipes : WaterScheme::ShallowWater;
     if (op.scheme == WaterScheme::Pipes && f.has("manning"))
-        f.fail_field("manning", "applies to \"scheme\": \"shallow_water\"; the pipes take 'friction'");
+        f.fail_field("manning",
+                     "applies to \"scheme\": \"shallow_water\"; the pipes take 'friction'");
     if (op.scheme == WaterScheme::ShallowWater && f.has("friction"))
         f.fail_field("friction", "applies to the pipes; \"shallow_water\" takes 'manning'");
     op.friction = f.in_range("friction", op.friction, 0.0, 1e3);
@@ -121,6 +122,9 @@ WaterOp parse_water_op(JsonFields& f) {
     op.wet_moisture = f.in_range("wet_moisture", op.wet_moisture, 0.0, 1.0);
     op.wet_depth = f.positive("wet_depth", op.wet_depth);
     op.erode = f.boolean("erode", false);
+    if (!op.erode && f.has("label_depth"))
+        f.fail_field("label_depth", "applies with \"erode\": true");
+    op.label_depth = f.positive("label_depth", op.label_depth);
     op.moisture = parse_moisture_settings(f);
     if (op.sources.rain.empty() && op.sources.nozzles.empty())
         f.fail("give 'rain' or 'nozzles': water needs a source");
@@ -136,6 +140,7 @@ struct Flow {
     SourceReport sources;
     std::vector<double> deepest;  ///< per vertex, m
     double left = 0.0, water = 0.0, sand_moved = 0.0, volume_change = 0.0;
+    std::size_t relabelled = 0;  ///< vertices that took the material of the sand laid on them
 };
 
 template <class Water>
@@ -148,7 +153,7 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
         for (double& z : rock) {
             if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
         }
-        sediment.emplace(water.mesh(), std::move(rock));
+        sediment.emplace(water.mesh(), std::move(rock), SedimentOptions{}, tin.vertices().material);
     }
     std::vector<double>& deepest = flow.deepest;
     deepest.assign(water.vertex_count(), 0.0);
@@ -174,6 +179,7 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
         std::vector<VertexId> moved;
         std::vector<double> heights;
         const VertexArrays& va = tin.vertices();
+        std::vector<std::pair<VertexId, std::uint16_t>> relabelled;
         for (std::size_t v = 0; v < va.size(); ++v) {
             const double z = water.mesh().bed[v];
             if (!va.alive[v] || z == va.height[v]) continue;
@@ -182,8 +188,16 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
             volume_change += change;
             moved.push_back(VertexId{static_cast<std::uint32_t>(v)});
             heights.push_back(z);
+            // Sand laid down at least label_depth thick is of the material it came from:
+            // gravel washed onto sand shows, and slides, as gravel.
+            const std::uint16_t laid = sediment->deposited_material(v);
+            if (z - va.height[v] >= op.label_depth && laid != va.material[v])
+                relabelled.emplace_back(moved.back(), laid);
         }
         tin.set_heights(moved, heights);
+        for (const auto& [id, material] : relabelled)
+            tin.set_material(id, material);
+        flow.relabelled = relabelled.size();
     }
     flow.left = water.volume_left();
     flow.water = water.volume();
@@ -229,6 +243,7 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
             {"wetted_vertices", wetted},
             {"max_depth_m", max_depth},
             {"sand_moved_m3", flow.sand_moved},
+            {"material_changed_vertices", flow.relabelled},
             {"moisture", moisture_report(spread, tin)},
             {"volume_change", flow.volume_change}};
 }

@@ -43,6 +43,10 @@ struct WaterOp {
     /// The water carries sand (water/sediment_transport.hpp): it cuts where it runs fast and
     /// drops the sand where it slows; what is still suspended at the end settles where it is.
     bool erode = false;
+    /// m: with erode, a vertex the water built up by at least this much takes the material
+    /// of the sand it laid there (water/sediment_transport.hpp): gravel washed onto sand
+    /// shows, and slides, as gravel. A vertex has one material; a thinner film leaves it.
+    double label_depth = 1e-3;
     /// How the moisture spreads and dries over the same seconds, after the wetting: the sand
     /// the water reached is wetted with what it reached by the end, then that moisture (and
     /// any already in the sand) spreads and dries for `seconds`. (Sand wetted late in the

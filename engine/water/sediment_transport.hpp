@@ -21,7 +21,13 @@
 // Conservation: sand taken from the bed is suspended, suspended sand moved between vertices or
 // dropped on the bed; so sum(area x bed) + suspended is exact to rounding. The rock is never
 // eroded: a vertex gives at most the sand above its bedrock.
+//
+// Materials travel with the sand: what the water picks up is of the bed's material there,
+// the suspension keeps a volume per material (moved and dropped in proportion), and each
+// vertex counts the volume of each material dropped on it, so gravel washed out of a gravel
+// bed and laid down over sand is known as gravel (deposited_material).
 
+#include <cstdint>
 #include <vector>
 
 #include "water/shallow_water.hpp"
@@ -42,8 +48,9 @@ class SedimentTransport {
     /// Sediment on `mesh` (a water scheme's mesh()), with `bedrock` per vertex (m; -inf where
     /// there is none), which must lie at or below the bed. Throws std::invalid_argument
     /// otherwise.
+    /// `material`: the bed's material index per vertex (empty: all 0).
     SedimentTransport(const WaterMesh& mesh, std::vector<double> bedrock,
-                      SedimentOptions options = {});
+                      SedimentOptions options = {}, std::vector<std::uint16_t> material = {});
 
     /// After water.step(dt): picks up, drops and carries sand over dt seconds, and writes the
     /// new bed into `water` (set_bed). Either scheme: the pipes' fluxes or the finite
@@ -57,11 +64,27 @@ class SedimentTransport {
 
     double suspended() const;  ///< m³ in the water
     double suspended(std::size_t v) const { return held_[v]; }
+    /// m³ of sand dropped at v since construction (settle_all included), of all materials.
+    double dropped(std::size_t v) const;
+    /// The material that makes up most of the sand dropped at v; the bed's own where none was.
+    std::uint16_t deposited_material(std::size_t v) const;
 
   private:
+    /// Moves `share` of v's suspension, material by material, into `into` (a vertex's counts
+    /// in change_by_kind_ or dropped_by_kind_); v's own counts lose it at apply_changes().
+    void move_suspension(std::size_t v, double share, double* into);
+    void apply_changes();
+    /// k of the material on top at v: what was dropped there most, else the bed's.
+    std::size_t top_kind(std::size_t v) const;
+
     std::vector<double> bedrock_;
     std::vector<double> held_;  ///< m³ suspended per vertex
     SedimentOptions options_;
+    std::vector<std::uint16_t> palette_;   ///< the materials present, by index k
+    std::vector<std::uint16_t> bed_kind_;  ///< per vertex: k of its bed's material
+    std::vector<double> held_by_kind_;     ///< per vertex and k: m³ suspended
+    std::vector<double> dropped_by_kind_;  ///< per vertex and k: m³ dropped
+    std::vector<double> change_by_kind_;   ///< scratch of step()
 };
 
 extern template void SedimentTransport::step(VirtualPipes&, double);

@@ -181,7 +181,8 @@ TEST(ScriptWater, AWallOfWetSandStandsUntilItDriesAndThenSlidesToTheDryAngle) {
 void a_nozzle_erodes(const std::string& scheme, double seconds) {
     const Script s = parse_water_script(R"({"version": 1,
         "terrain": {"size": [1, 1], "points": 2000, "seed": 8, "sand_depth": 0.02},
-        "operations": [{"op": "water", "seconds": )" + std::to_string(seconds) +
+        "operations": [{"op": "water", "seconds": )" +
+                                        std::to_string(seconds) +
                                         R"(, "erode": true, "scheme": ")" + scheme + R"(",
                         "nozzles": [{"at": [0.5, 0.5], "litres_per_second": 0.5}]}]})");
     EXPECT_TRUE(std::get<WaterOp>(s.steps.at(0).operation).erode);
@@ -218,6 +219,39 @@ TEST(ScriptWater, WaterThatErodesMovesSandHoldingItsVolumeAndNeverCutsTheRock) {
 
 TEST(ScriptWater, UnderTheShallowWaterSchemeTooErodingWaterHoldsTheSandsVolume) {
     a_nozzle_erodes("shallow_water", 1.0);
+}
+
+TEST(ScriptWater, SandTheWaterLaysDownTakesTheMaterialItCameFrom) {
+    // Gravel painted round a nozzle on sand: the jet washes gravel out and lays it beyond the
+    // painted disc, where those vertices become gravel; every vertex relabelled was built up
+    // at least label_depth (0.1 mm here: the jet spreads what it carries thinly), and the
+    // report counts them.
+    const Script s = parse_water_script(R"({"version": 1,
+        "terrain": {"size": [1, 1], "points": 2000, "seed": 8, "sand_depth": 0.02},
+        "operations": [
+          {"op": "brush", "kind": "paint", "material": 2, "at": [0.5, 0.5], "radius": 0.08},
+          {"op": "water", "seconds": 5, "erode": true, "label_depth": 0.0001,
+           "nozzles": [{"at": [0.5, 0.5], "litres_per_second": 0.5}]}]})");
+    Tin tin = make_script_terrain(*s.terrain);
+    SculptContext context(tin.domain());
+    Script paint = s;
+    paint.steps.resize(1);
+    run_script(paint, tin, context);
+    const std::vector<double> height = tin.vertices().height;
+    const std::vector<std::uint16_t> material = tin.vertices().material;
+    Script water = s;
+    water.steps.erase(water.steps.begin());
+    const nlohmann::json report = run_script(water, tin, context).at(0);
+    const VertexArrays& va = tin.vertices();
+    std::size_t changed = 0, gravel_outside = 0;
+    for (std::size_t v = 0; v < material.size(); ++v) {
+        if (!va.alive[v] || va.material[v] == material[v]) continue;
+        ++changed;
+        EXPECT_GE(va.height[v] - height[v], 1e-4 - 1e-15) << v;
+        if (va.material[v] == 2 && length(va.position[v] - Vec2{0.5, 0.5}) > 0.08) ++gravel_outside;
+    }
+    EXPECT_EQ(report.at("material_changed_vertices").get<std::size_t>(), changed);
+    EXPECT_GT(gravel_outside, 0u);
 }
 
 TEST(ScriptWater, BadFieldsAreNamed) {

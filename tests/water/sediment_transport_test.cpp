@@ -88,7 +88,52 @@ TEST(SedimentTransport, AStreamDownASandySlopeCutsItAndDropsTheSandLowerHoldingE
 }
 
 TEST(SedimentTransport, UnderFiniteVolumesTooAStreamCutsAndDropsHoldingEveryGrain) {
-    stream_down_a_sandy_slope<ShallowWater>(4.0);
+    stream_down_a_sandy_slope<ShallowWater>(2.0);
+}
+
+TEST(SedimentTransport, GravelWashedDownstreamIsLaidDownAsGravel) {
+    // 5 cm of gravel (material 2) on the slope's upper fifth (x > 0.8, where the nozzle is);
+    // below it bare rock labelled sand (0), which the water cannot cut. Every grain dropped
+    // below the gravel came from it, so wherever sand was dropped there, it is gravel; where
+    // none was, the bed keeps its own label.
+    const Tin tin = sandy_slope();
+    VirtualPipes w(water_mesh_of(tin));
+    std::vector<std::uint16_t> material(w.vertex_count(), 0);
+    std::vector<double> rock = w.mesh().bed;
+    for (std::size_t v = 0; v < material.size(); ++v) {
+        if (w.mesh().position[v].x > 0.8) {
+            material[v] = 2;
+            rock[v] -= 0.05;
+        }
+    }
+    SedimentTransport sediment(w.mesh(), rock, {}, material);
+    WaterSources nozzle;
+    nozzle.nozzles.push_back({{0.9, 0.25}, 0.5});
+    for (double t = 0.0; t < 3.0;) {
+        const double dt = std::min(w.stable_time_step(), 0.05);
+        apply_sources(w, nozzle, dt);
+        w.step(dt);
+        sediment.step(w, dt);
+        t += dt;
+    }
+    sediment.settle_all(w);
+    std::size_t gravel_below = 0, untouched = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        if (sediment.dropped(v) == 0.0) {
+            ++untouched;
+            EXPECT_EQ(sediment.deposited_material(v), material[v]);
+        } else if (w.mesh().position[v].x < 0.79) {
+            EXPECT_EQ(sediment.deposited_material(v), 2) << "at x = " << w.mesh().position[v].x;
+            ++gravel_below;
+        }
+    }
+    EXPECT_GT(gravel_below, 5u) << "no gravel reached the rock below";
+    EXPECT_GT(untouched, 0u);
+    // Without materials, everything is material 0.
+    SedimentTransport plain(w.mesh(), rock_under(w, 0.05));
+    EXPECT_EQ(plain.deposited_material(0), 0);
+    EXPECT_THROW(SedimentTransport(w.mesh(), rock_under(w, 0.05), {}, {1, 2}),
+                 std::invalid_argument);
 }
 
 TEST(SedimentTransport, StillWaterMovesNoSand) {
