@@ -7,6 +7,7 @@
 #include "bench_history.hpp"
 #include "bench_import.hpp"
 #include "bench_tin.hpp"
+#include "bench_water.hpp"
 #include "commands.hpp"
 #include "progress_line.hpp"
 
@@ -22,7 +23,8 @@ int run_bench(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--quick", 0}, {"--json", 0}, {"--tool", 1}});
     args.require_positionals(
         1,
-        "sandtin bench (tin | groove [--tool NAME] | import | history | erosion | gpu | haptics) "
+        "sandtin bench (tin | groove [--tool NAME] | import | history | water | erosion | gpu | "
+        "haptics) "
         "[--quick] [--json]");
     bench::BenchConfig config;
     config.quick = args.has("--quick");
@@ -31,9 +33,11 @@ int run_bench(const std::vector<std::string>& raw) {
         if (which != "groove") throw UsageError("--tool applies to 'bench groove' only");
         config.tool = args.text("--tool");
     }
-    if (which != "tin" && which != "groove" && which != "import" && which != "history") {
+    if (which != "tin" && which != "groove" && which != "import" && which != "history" &&
+        which != "water") {
         throw UsageError("unknown benchmark '" + which +
-                         "' (available: tin, groove, import, history, erosion, gpu, haptics)");
+                         "' (available: tin, groove, import, history, water, erosion, gpu, "
+                         "haptics)");
     }
     ProgressLine progress("bench " + which);
     config.progress = progress.callback();
@@ -44,6 +48,8 @@ int run_bench(const std::vector<std::string>& raw) {
         result = bench::bench_groove(config);
     } else if (which == "import") {
         result = bench::bench_import(config);
+    } else if (which == "water") {
+        result = bench::bench_water(config);
     } else {
         result = bench::bench_history(config, config.progress);
     }
