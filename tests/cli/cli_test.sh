@@ -217,7 +217,7 @@ scenario_bad_input() {
     expect_error unknown_command "frobnicate" frobnicate
     expect_error no_arguments "usage"
     expect_error info_no_file "usage" info
-    expect_error bench_unknown "unknown benchmark .nosuchbench. (available: tin, groove, import, history, erosion, gpu, haptics)" bench nosuchbench
+    expect_error bench_unknown "unknown benchmark .nosuchbench. (available: tin, groove, import, history, water, erosion, gpu, haptics)" bench nosuchbench
     expect_error demo_extra "usage" demo extra-argument
     # The good file is still fine after all that.
     expect_ok good_info info good.sandtin --json && check_eq "good valid" "$(json good_info.out /valid)" true
