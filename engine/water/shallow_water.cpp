@@ -148,6 +148,12 @@ void ShallowWater::build_cells() {
     residual_.assign(n, {0.0, 0.0, 0.0});
     slopes_.assign(n, Slopes{});
     outgoing_.assign(n, 0.0);
+    scratch_.resize(n);
+    half_.resize(interfaces_.size());
+    for (std::size_t k = 0; k < interfaces_.size(); ++k) {
+        const Interface& f = interfaces_[k];
+        half_[k] = 0.5 * (mesh_.position[f.b] - mesh_.position[f.a]);
+    }
     border_.assign(n, BorderFlux{});
     flux_.assign(interfaces_.size(), InterfaceFlux{});
 }
@@ -209,7 +215,8 @@ double ShallowWater::stable_time_step() const {
     const double g = options_.gravity;
     // Per cell: the fastest wave it meets (a dry neighbour's front runs at |u| + 2c) times
     // its perimeter, against its area.
-    std::vector<double> reach(depth_.size(), 0.0);
+    std::vector<double>& reach = scratch_.reach;
+    std::fill(reach.begin(), reach.end(), 0.0);
     bool wet = false;
     for (std::size_t v = 0; v < depth_.size(); ++v) {
         if (!(depth_[v] > 0.0)) continue;
@@ -219,7 +226,8 @@ double ShallowWater::stable_time_step() const {
     }
     if (!wet) return std::numeric_limits<double>::infinity();
     double limit = std::numeric_limits<double>::infinity();
-    std::vector<double> sum(depth_.size(), 0.0);
+    std::vector<double>& sum = scratch_.sum;
+    std::fill(sum.begin(), sum.end(), 0.0);
     for (const Interface& f : interfaces_) {
         const double s = std::max(reach[f.a], reach[f.b]) * f.span;
         sum[f.a] += s;
@@ -232,25 +240,27 @@ double ShallowWater::stable_time_step() const {
     return options_.courant * limit;
 }
 
-void ShallowWater::reconstruct(std::span<const double> h, std::span<const Vec2> q) {
+void ShallowWater::reconstruct(std::span<const double> h) {
     // Green-Gauss gradients over the median dual, of the surface eta = z + h, the depth and
     // the two velocities; then Barth and Jespersen's limiter, which keeps every reconstructed
     // value within the cell's and its neighbours' (so depths stay >= 0). A cell that is dry
     // or has a dry neighbour stays first order: at a shore the surface's slope is the bed's.
     const std::size_t n = h.size();
-    struct Range {
-        std::array<double, 4> lo, hi;
-    };
-    std::vector<Range> range(n);
-    std::vector<std::array<double, 4>> value(n);
+    auto& value = scratch_.value;
+    auto& lo = scratch_.lo;
+    auto& hi = scratch_.hi;
+    auto& gradient = scratch_.gradient;
+    auto& limiter = scratch_.limiter;
     for (std::size_t v = 0; v < n; ++v) {
-        const Vec2 u = velocity_of(h[v], q[v]);
+        const Vec2 u = scratch_.velocity[v];
         value[v] = {mesh_.bed[v] + h[v], h[v], u.x, u.y};
-        range[v] = {value[v], value[v]};
+        lo[v] = value[v];
+        hi[v] = value[v];
+        gradient[v] = {};
+        limiter[v] = {1.0, 1.0, 1.0, 1.0};
         slopes_[v] = Slopes{};
         slopes_[v].first_order = !(h[v] > options_.dry_depth);
     }
-    std::vector<std::array<Vec2, 4>> gradient(n);
     for (const Interface& f : interfaces_) {
         const bool dry = !(h[f.a] > options_.dry_depth) || !(h[f.b] > options_.dry_depth);
         slopes_[f.a].first_order = slopes_[f.a].first_order || dry;
@@ -259,13 +269,12 @@ void ShallowWater::reconstruct(std::span<const double> h, std::span<const Vec2> 
             const double mean = 0.5 * (value[f.a][k] + value[f.b][k]);
             gradient[f.a][k] += mean * f.normal;
             gradient[f.b][k] -= mean * f.normal;
-            range[f.a].lo[k] = std::min(range[f.a].lo[k], value[f.b][k]);
-            range[f.a].hi[k] = std::max(range[f.a].hi[k], value[f.b][k]);
-            range[f.b].lo[k] = std::min(range[f.b].lo[k], value[f.a][k]);
-            range[f.b].hi[k] = std::max(range[f.b].hi[k], value[f.a][k]);
+            lo[f.a][k] = std::min(lo[f.a][k], value[f.b][k]);
+            hi[f.a][k] = std::max(hi[f.a][k], value[f.b][k]);
+            lo[f.b][k] = std::min(lo[f.b][k], value[f.a][k]);
+            hi[f.b][k] = std::max(hi[f.b][k], value[f.a][k]);
         }
     }
-    std::vector<std::array<double, 4>> limiter(n, {1.0, 1.0, 1.0, 1.0});
     for (std::size_t v = 0; v < n; ++v) {
         if (slopes_[v].first_order || !(mesh_.area[v] > 0.0)) continue;
         for (int k = 0; k < 4; ++k)
@@ -276,15 +285,15 @@ void ShallowWater::reconstruct(std::span<const double> h, std::span<const Vec2> 
         for (int k = 0; k < 4; ++k) {
             const double change = dot(gradient[v][k], r);
             double phi = 1.0;
-            if (change > 0.0) phi = (range[v].hi[k] - value[v][k]) / change;
-            if (change < 0.0) phi = (range[v].lo[k] - value[v][k]) / change;
+            if (change > 0.0) phi = (hi[v][k] - value[v][k]) / change;
+            if (change < 0.0) phi = (lo[v][k] - value[v][k]) / change;
             limiter[v][k] = std::min(limiter[v][k], std::max(0.0, phi));
         }
     };
-    for (const Interface& f : interfaces_) {
-        const Vec2 half = 0.5 * (mesh_.position[f.b] - mesh_.position[f.a]);
-        limit_side(f.a, half);
-        limit_side(f.b, -1.0 * half);
+    for (std::size_t k = 0; k < interfaces_.size(); ++k) {
+        const Interface& f = interfaces_[k];
+        limit_side(f.a, half_[k]);
+        limit_side(f.b, -1.0 * half_[k]);
     }
     for (std::size_t v = 0; v < n; ++v) {
         if (slopes_[v].first_order) continue;
@@ -295,11 +304,10 @@ void ShallowWater::reconstruct(std::span<const double> h, std::span<const Vec2> 
     }
 }
 
-ShallowWater::Side ShallowWater::side_at(std::span<const double> h, std::span<const Vec2> q,
-                                         std::size_t v, Vec2 r) const {
+ShallowWater::Side ShallowWater::side_at(std::span<const double> h, std::size_t v, Vec2 r) const {
     const Slopes& s = slopes_[v];
     Side side;
-    side.velocity = velocity_of(h[v], q[v]);
+    side.velocity = scratch_.velocity[v];
     side.depth = h[v];
     side.bed = mesh_.bed[v];
     if (second_order() && !s.first_order) {
@@ -316,7 +324,9 @@ double ShallowWater::residual(std::span<const double> h, std::span<const Vec2> q
     const double g = options_.gravity;
     for (auto& r : residual_)
         r = {0.0, 0.0, 0.0};
-    if (second_order()) reconstruct(h, q);
+    for (std::size_t v = 0; v < h.size(); ++v)
+        scratch_.velocity[v] = velocity_of(h[v], q[v]);
+    if (second_order()) reconstruct(h);
     // Phase 1: interfaces, with the hydrostatic reconstruction.
     for (std::size_t k = 0; k < interfaces_.size(); ++k) {
         const Interface& f = interfaces_[k];
@@ -326,9 +336,8 @@ double ShallowWater::residual(std::span<const double> h, std::span<const Vec2> q
         const double span = f.span;
         if (!(span > 0.0)) continue;
         const Vec2 n = (1.0 / span) * f.normal;
-        const Vec2 half = 0.5 * (mesh_.position[f.b] - mesh_.position[f.a]);
-        const Side a = side_at(h, q, f.a, half);
-        const Side b = side_at(h, q, f.b, -1.0 * half);
+        const Side a = side_at(h, f.a, half_[k]);
+        const Side b = side_at(h, f.b, -1.0 * half_[k]);
         const double top = std::max(a.bed, b.bed);
         const double star_a = std::max(0.0, a.depth + a.bed - top);
         const double star_b = std::max(0.0, b.depth + b.bed - top);
@@ -350,7 +359,7 @@ double ShallowWater::residual(std::span<const double> h, std::span<const Vec2> q
         const double span = wall_span_[v];
         if (!(h[v] > 0.0) || !(span > 0.0)) continue;
         const Vec2 n = (1.0 / span) * wall_[v];
-        const Vec2 u = velocity_of(h[v], q[v]);
+        const Vec2 u = scratch_.velocity[v];
         const double un = dot(u, n);
         Flux f;
         if (open_[v] && un > 0.0) {

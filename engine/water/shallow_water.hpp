@@ -129,8 +129,9 @@ class ShallowWater {
     void build_cells();
     bool second_order() const { return options_.order == 2; }
     Vec2 velocity_of(double h, Vec2 q) const;
-    void reconstruct(std::span<const double> h, std::span<const Vec2> q);
-    Side side_at(std::span<const double> h, std::span<const Vec2> q, std::size_t v, Vec2 r) const;
+    /// Fills slopes_ for the depths h and the velocities in scratch_.velocity.
+    void reconstruct(std::span<const double> h);
+    Side side_at(std::span<const double> h, std::size_t v, Vec2 r) const;
     /// Fills residual_ with the fluxes into each cell for the state (h, q), adds `weight`
     /// times each interface's mass flux to Interface::flux, and returns the m³/s leaving
     /// through open borders.
@@ -162,8 +163,30 @@ class ShallowWater {
         Vec2 momentum;
     };
     std::vector<BorderFlux> border_;  ///< per vertex, scratch of residual()
-    std::vector<double> outgoing_;    ///< per vertex: outflow (m³/s), then its scale in [0, 1]
-    std::vector<double> stage_h_;     ///< Heun's intermediate state
+    std::vector<double> outgoing_;
+    std::vector<Vec2> half_;  ///< per interface: from a to the edge's midpoint (m)
+    /// Per-cell work arrays of step() and stable_time_step(), kept between calls (mutable:
+    /// stable_time_step() is logically const).
+    struct Scratch {
+        std::vector<Vec2> velocity;                 ///< of the state being evaluated
+        std::vector<std::array<double, 4>> value;   ///< surface, depth, u, v
+        std::vector<std::array<double, 4>> lo, hi;  ///< over the cell and its neighbours
+        std::vector<std::array<Vec2, 4>> gradient;
+        std::vector<std::array<double, 4>> limiter;
+        std::vector<double> reach, sum;
+        void resize(std::size_t n) {
+            velocity.resize(n);
+            value.resize(n);
+            lo.resize(n);
+            hi.resize(n);
+            gradient.resize(n);
+            limiter.resize(n);
+            reach.resize(n);
+            sum.resize(n);
+        }
+    };
+    mutable Scratch scratch_;      ///< per vertex: outflow (m³/s), then its scale in [0, 1]
+    std::vector<double> stage_h_;  ///< Heun's intermediate state
     std::vector<Vec2> stage_q_;
     double volume_left_ = 0.0;
     bool moving_ = false;

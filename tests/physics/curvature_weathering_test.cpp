@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "physics/curvature_weathering.hpp"
+#include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_arrays.hpp"
 
@@ -24,26 +25,17 @@ Tin ridge(std::size_t points = 6000) {
     });
 }
 
-double highest(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    double z = -1e30;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v]) z = std::max(z, va.height[v]);
-    }
-    return z;
-}
-
 TEST(CurvatureWeathering, ARidgeWearsAtItsCrestAndFillsItsFeetKeepingTheVolume) {
     Tin tin = ridge();
     const double volume0 = tin.volume();
     const std::vector<double> h0 = tin.vertices().height;
-    double crest = highest(tin);
+    double crest = test::highest_height(tin);
     double moved = 0.0;
     for (int it = 0; it < 30; ++it) {
         const WeatheringReport r = weather_terrain(tin, 1, {});
         ASSERT_GT(r.vertices_worn, 0u) << it;
         moved += r.volume_moved;
-        const double now = highest(tin);
+        const double now = test::highest_height(tin);
         EXPECT_LT(now, crest) << "the crest wears every iteration (" << it << ")";
         crest = now;
     }

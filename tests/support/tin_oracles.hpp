@@ -103,6 +103,29 @@ inline double brute_force_volume(const Tin& tin, double datum = 0.0) {
 }
 
 /// Lumped areas recomputed from triangles(): a third of every incident triangle's area.
+/// The highest live vertex's height (m); -inf for no vertex.
+inline double highest_height(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    double z = -std::numeric_limits<double>::infinity();
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v]) z = std::max(z, va.height[v]);
+    }
+    return z;
+}
+
+/// sum A m of the terrain's moisture (m²), in long double: a sum independent of the code's.
+inline double brute_force_moisture(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    long double sum = 0.0L;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v]) {
+            sum += static_cast<long double>(va.lumped_area[v]) *
+                   static_cast<long double>(va.moisture[v]);
+        }
+    }
+    return static_cast<double>(sum);
+}
+
 inline std::vector<double> brute_force_lumped_areas(const Tin& tin) {
     std::vector<long double> acc(tin.vertex_capacity(), 0.0L);
     for (const Tri& t : tin.triangles()) {

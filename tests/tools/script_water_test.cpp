@@ -15,6 +15,7 @@
 
 #include "io/script.hpp"
 #include "physics/material.hpp"
+#include "support/tin_oracles.hpp"
 #include "tin/vertex_arrays.hpp"
 #include "util/json_fields.hpp"
 
@@ -81,18 +82,6 @@ TEST(ScriptWater, RainOnADiscWetsTheSandUnderItAndAddsWhatItsRateSays) {
     EXPECT_EQ(report.at("moisture").at("wettest").at("moisture").get<double>(), 0.8f);
 }
 
-/// sum A m over the terrain (m²), in long double.
-double moisture_sum(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    long double sum = 0.0L;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v])
-            sum += static_cast<long double>(va.lumped_area[v]) *
-                   static_cast<long double>(va.moisture[v]);
-    }
-    return static_cast<double>(sum);
-}
-
 TEST(ScriptWater, TheMoistureTheWaterLeavesSpreadsAndDriesOverItsSeconds) {
     // Drying is the same factor everywhere, so it commutes with the spreading (which
     // conserves sum A m): whatever the spreading did, the sum after is the sum the wetting
@@ -110,8 +99,9 @@ TEST(ScriptWater, TheMoistureTheWaterLeavesSpreadsAndDriesOverItsSeconds) {
     EXPECT_GT(wetted, 0.8 * 0.05);  // 0.8 over the disc's 0.07 m² and more
     // Up to float rounding (2^-24 of it) and the moisture below 1e-6 that drying clears at
     // the end (at most 1e-6 x the 1 m² of the terrain).
-    EXPECT_NEAR(moisture_sum(tin), 0.5 * wetted, std::ldexp(wetted, -24) + 1e-6);
-    EXPECT_NEAR(moisture.at("moisture_after_m2").get<double>(), moisture_sum(tin), 1e-12 * wetted);
+    EXPECT_NEAR(test::brute_force_moisture(tin), 0.5 * wetted, std::ldexp(wetted, -24) + 1e-6);
+    EXPECT_NEAR(moisture.at("moisture_after_m2").get<double>(), test::brute_force_moisture(tin),
+                1e-12 * wetted);
     EXPECT_LE(moisture.at("wettest").at("moisture").get<double>(), 0.4 * (1.0 + 1e-6));
     EXPECT_GT(moisture.at("vertices_changed").get<std::size_t>(),
               report.at("wetted_vertices").get<std::size_t>());
@@ -167,7 +157,7 @@ TEST(ScriptWater, AWallOfWetSandStandsUntilItDriesAndThenSlidesToTheDryAngle) {
                    tin, context);
     EXPECT_EQ(dried.at(0).at("moisture_after_m2").get<double>(), 0.0);
     EXPECT_TRUE(dried.at(0).at("wettest").is_null());
-    EXPECT_EQ(moisture_sum(tin), 0.0);
+    EXPECT_EQ(test::brute_force_moisture(tin), 0.0);
     EXPECT_TRUE(dried.at(1).at("at_rest").get<bool>());
     EXPECT_LE(steepest_face(tin), std::tan(32.0 * deg) * (1.0 + 1e-3));
     // At 32 degrees through the same volume the face pivots about its middle: the crest at

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/script.hpp"
+#include "support/tin_oracles.hpp"
 #include "tin/vertex_arrays.hpp"
 #include "util/json_fields.hpp"
 
@@ -24,15 +25,6 @@ std::string weather_error(const std::string& op) {
         return e.what();
     }
     return "";
-}
-
-double highest(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    double z = -1e30;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v]) z = std::max(z, va.height[v]);
-    }
-    return z;
 }
 
 /// A terrain with a sharp-crested heap on it: 0.5 L poured in a narrow disc, not eroded.
@@ -55,10 +47,10 @@ Heap poured_heap() {
 
 TEST(ScriptWeather, AHeapsCrestWearsAndItsSandSettlesLowerWithTheVolumeKept) {
     Heap heap = poured_heap();
-    const double top = highest(heap.tin), volume = heap.tin.volume();
+    const double top = test::highest_height(heap.tin), volume = heap.tin.volume();
     const Script s = parse_script(R"([{"op": "weather", "iterations": 20}])", "w.json", ".");
     const nlohmann::json r = run_script(s, heap.tin, heap.context).at(0);
-    EXPECT_LT(highest(heap.tin), top);
+    EXPECT_LT(test::highest_height(heap.tin), top);
     EXPECT_GT(r.at("vertices_worn").get<int>(), 0);
     EXPECT_GT(r.at("volume_moved_m3").get<double>(), 0.0);
     EXPECT_EQ(r.at("iterations").get<int>(), 20);
@@ -92,7 +84,7 @@ TEST(ScriptWeather, OnlyTheGivenDiscWeathers) {
 
 TEST(ScriptWeather, TheWeatherBrushWearsTheHeapUnderIt) {
     Heap heap = poured_heap();
-    const double top = highest(heap.tin), volume = heap.tin.volume();
+    const double top = test::highest_height(heap.tin), volume = heap.tin.volume();
     const Script s = parse_script(
         R"([{"op": "brush", "kind": "weather", "strength": 1, "radius": 0.08,
              "path": [[0.35, 0.5], [0.45, 0.5]]}])",
@@ -100,7 +92,7 @@ TEST(ScriptWeather, TheWeatherBrushWearsTheHeapUnderIt) {
     const auto& brush = std::get<BrushOp>(s.steps.at(0).operation);
     EXPECT_EQ(brush.settings.kind, BrushKind::Weather);
     run_script(s, heap.tin, heap.context);
-    EXPECT_LT(highest(heap.tin), top);
+    EXPECT_LT(test::highest_height(heap.tin), top);
     EXPECT_NEAR(heap.tin.volume(), volume, 1e-9 * volume);
 }
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_arrays.hpp"
 #include "tin/vertex_change_feed.hpp"
@@ -24,18 +25,6 @@ namespace {
 namespace moisture_diffusion_test {
 
 const Rect kSandbox = Rect::from_size(1.0, 1.0);
-
-/// sum A m of the terrain's moisture, in long double (an independent sum from the code's).
-double total_moisture(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    long double sum = 0.0L;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v])
-            sum += static_cast<long double>(va.lumped_area[v]) *
-                   static_cast<long double>(va.moisture[v]);
-    }
-    return static_cast<double>(sum);
-}
 
 /// A vertex's moisture, in double.
 double moisture_at(const Tin& tin, VertexId v) {
@@ -74,7 +63,7 @@ Tin constrained_random_tin(std::size_t points, std::uint64_t seed) {
 TEST(MoistureDiffusion, ConservesTheTotalMoistureWithoutDrying) {
     Tin tin = constrained_random_tin(4000, 3);
     wet_patches(tin, 11);
-    const double before = total_moisture(tin);
+    const double before = test::brute_force_moisture(tin);
     MoistureSettings s;
     s.diffusivity = 1e-5;  // spreads about 15 cm in the 600 s
     s.drying_half_life = std::numeric_limits<double>::infinity();
@@ -85,7 +74,7 @@ TEST(MoistureDiffusion, ConservesTheTotalMoistureWithoutDrying) {
     EXPECT_NEAR(r.total_before, before, 1e-12 * before);
     EXPECT_NEAR(r.total_computed, before, 1e-12 * before);
     // The terrain holds floats: each value rounds by at most 2^-24 of itself.
-    const double after = total_moisture(tin);
+    const double after = test::brute_force_moisture(tin);
     EXPECT_NEAR(after, before, (std::ldexp(1.0, -24) + 1e-12) * before);
     EXPECT_NEAR(r.total_after, after, 1e-12 * after);
     // And the moisture did move: some of it is now outside the patches it started in.
@@ -185,7 +174,7 @@ TEST(MoistureDiffusion, UniformMoistureHalvesInOneHalfLife) {
     Tin tin = constrained_random_tin(2000, 9);
     for (VertexId v : live(tin))
         tin.set_moisture(v, 0.8f);
-    const double before = total_moisture(tin);
+    const double before = test::brute_force_moisture(tin);
     const double half = 0.5 * static_cast<double>(0.8f);
     MoistureSettings s;
     s.diffusivity = 1e-5;  // many sub-steps; on uniform moisture it moves nothing
@@ -194,7 +183,7 @@ TEST(MoistureDiffusion, UniformMoistureHalvesInOneHalfLife) {
     EXPECT_GT(r.sub_steps, 10u);
     for (VertexId v : live(tin))
         ASSERT_NEAR(moisture_at(tin, v), half, 1e-12 * half) << v.value;
-    EXPECT_NEAR(total_moisture(tin), 0.5 * before, 1e-12 * before);
+    EXPECT_NEAR(test::brute_force_moisture(tin), 0.5 * before, 1e-12 * before);
     EXPECT_NEAR(r.total_computed, 0.5 * before, 1e-12 * before);
     // Without spreading: one sub-step, two half-lives.
     s.diffusivity = 0.0;
@@ -205,7 +194,7 @@ TEST(MoistureDiffusion, UniformMoistureHalvesInOneHalfLife) {
     // Long enough, the moisture falls below kNegligibleMoisture and is gone: the terrain is
     // dry again, and the next call costs nothing.
     spread_and_dry_moisture(tin, 100.0 * 20, s);
-    EXPECT_EQ(total_moisture(tin), 0.0);
+    EXPECT_EQ(test::brute_force_moisture(tin), 0.0);
     EXPECT_EQ(spread_and_dry_moisture(tin, 100.0, s).sub_steps, 0u);
 }
 
