@@ -24,10 +24,10 @@ nlohmann::json run_weather_op(const WeatherOp& op, Tin& tin) {
     WeatheringReport total;
     int run = 0;
     if (op.centre) {
-        // The disc's vertices are found once per iteration: weathering moves no vertex in the
-        // plane, so the set only changes if something else edits the terrain.
+        // The disc's vertices are found once: weathering moves no vertex in the plane and
+        // inserts none, so the set stays the same over the iterations.
+        const std::vector<VertexId> disc = tin.vertices_in_disc(*op.centre, op.radius);
         for (; run < op.iterations; ++run) {
-            const std::vector<VertexId> disc = tin.vertices_in_disc(*op.centre, op.radius);
             const WeatheringReport r = weather_vertices(tin, disc, {}, op.settings);
             total += r;
             if (r.vertices_worn == 0) break;

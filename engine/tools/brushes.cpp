@@ -1,5 +1,6 @@
 #include "tools/brushes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -128,6 +129,10 @@ BrushReport apply_brush(Tin& tin, Vec2 centre, const BrushSettings& s, SculptCon
             // on neighbours just outside the disc.
             WeatheringSettings w;
             w.strength = s.strength;
+            // The smooth falloff can round a hair below 0 near the rim; weathering takes
+            // weights in [0, 1] only.
+            for (double& x : weight)
+                x = std::clamp(x, 0.0, 1.0);
             const WeatheringReport r = weather_vertices(tin, disc, weight, w);
             report.vertices_changed = r.vertices_worn + r.vertices_raised;
             for (std::size_t i = 0; i < disc.size(); ++i)
