@@ -130,9 +130,9 @@ void ShallowWater::build_cells() {
         wall_[f.a] = wall_[f.a] - f.normal;
         wall_[f.b] = wall_[f.b] + f.normal;
     }
-    // Interior cells close exactly in exact arithmetic; what rounding leaves is not border.
     for (Interface& f : interfaces_)
         f.span = length(f.normal);
+    // Interior cells close exactly in exact arithmetic; what rounding leaves is not border.
     std::vector<std::uint8_t> border(n, 0);
     for (const auto& [ends, value] : edges) {
         if (value.second == 1) border[ends.first] = border[ends.second] = 1;

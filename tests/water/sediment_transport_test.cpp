@@ -88,7 +88,7 @@ TEST(SedimentTransport, AStreamDownASandySlopeCutsItAndDropsTheSandLowerHoldingE
 }
 
 TEST(SedimentTransport, UnderFiniteVolumesTooAStreamCutsAndDropsHoldingEveryGrain) {
-    stream_down_a_sandy_slope<ShallowWater>(2.0);
+    stream_down_a_sandy_slope<ShallowWater>(1.0);
 }
 
 TEST(SedimentTransport, GravelWashedDownstreamIsLaidDownAsGravel) {
