@@ -25,11 +25,9 @@ Rain parse_rain(const nlohmann::json& object, const std::string& context) {
     JsonFields r(object, context);
     Rain rain;
     rain.mm_per_hour = r.in_range("mm_per_hour", 0.0, 0.0, 1e4);
-    if (r.has("centre") != r.has("radius"))
-        r.fail("give both 'centre' and 'radius' for rain on a disc, or neither");
-    if (r.has("centre")) {
-        rain.centre = r.point("centre");
-        rain.radius = r.positive("radius", 0.0);
+    if (const auto disc = r.disc("for rain on a disc")) {
+        rain.centre = disc->centre;
+        rain.radius = disc->radius;
     }
     r.reject_unknown();
     return rain;

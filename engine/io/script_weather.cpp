@@ -9,11 +9,9 @@ WeatherOp parse_weather_op(JsonFields& f) {
     op.iterations = static_cast<int>(f.integer("iterations", 1, 1, 1'000'000));
     op.settings.strength = f.in_range("strength", op.settings.strength, 0.0, 1.0);
     op.settings.power = f.in_range("power", op.settings.power, 1.0, 100.0);
-    if (f.has("centre") != f.has("radius"))
-        f.fail("give both 'centre' and 'radius' to weather a disc, or neither");
-    if (f.has("centre")) {
-        op.centre = f.point("centre");
-        op.radius = f.positive("radius", 0.0);
+    if (const auto disc = f.disc("to weather a disc")) {
+        op.centre = disc->centre;
+        op.radius = disc->radius;
     }
     f.reject_unknown();
     return op;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <span>
 #include <sstream>
@@ -114,6 +115,18 @@ class JsonFields {
         fail_field(key, "is '" + v + "'; expected one of: " + list);
     }
     Vec2 point(const std::string& key) { return as_point(key, required(key)); }
+    /// A disc given as 'centre' ([x, y]) and 'radius' (> 0): both, or neither (nothing).
+    /// `purpose` finishes the error "give both 'centre' and 'radius' <purpose>, or neither".
+    struct Disc {
+        Vec2 centre;
+        double radius = 0.0;
+    };
+    std::optional<Disc> disc(const std::string& purpose) {
+        if (has("centre") != has("radius"))
+            fail("give both 'centre' and 'radius' " + purpose + ", or neither");
+        if (!has("centre")) return std::nullopt;
+        return Disc{point("centre"), positive("radius", 0.0)};
+    }
     std::vector<Vec2> points(const std::string& key, std::size_t min_count) {
         const nlohmann::json& v = required(key);
         if (!v.is_array()) fail_field(key, "must be an array of [x, y] points");
