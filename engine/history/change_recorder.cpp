@@ -39,8 +39,8 @@ ChangeRecorder::~ChangeRecorder() = default;
 VertexRecord ChangeRecorder::current(VertexId v) const {
     const VertexArrays& va = tin_.vertices();
     const std::size_t i = v.index();
-    return VertexRecord{va.position[i], va.height[i],   va.bedrock[i],
-                        va.material[i], va.moisture[i], va.slide[i]};
+    return VertexRecord{va.position[i], va.height[i], va.bedrock[i],    va.material[i],
+                        va.moisture[i], va.slide[i],  va.water_depth[i]};
 }
 
 bool ChangeRecorder::has_vertex_changes() {

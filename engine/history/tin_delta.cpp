@@ -127,6 +127,10 @@ void write_attributes(Tin& tin, VertexId v, const VertexRecord& r, ApplyReport& 
         tin.set_slide(v, r.slide);
         changed = true;
     }
+    if (va.water_depth[i] != r.water_depth) {
+        tin.set_water_depth(v, r.water_depth);
+        changed = true;
+    }
     if (changed) ++report.vertices_updated;
 }
 

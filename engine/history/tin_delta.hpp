@@ -32,6 +32,7 @@ struct VertexRecord {
     std::uint16_t material = 0;
     float moisture = 0.0f;
     Vec2f slide;
+    double water_depth = 0.0;  ///< metres
     friend bool operator==(const VertexRecord&, const VertexRecord&) = default;
 };
 

@@ -3,7 +3,9 @@
 #include <zlib.h>
 
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 #include "io/byte_stream.hpp"
@@ -25,6 +27,7 @@ constexpr std::uint32_t tag(char a, char b, char c, char d) {
 constexpr std::uint32_t kTagTin = tag('T', 'I', 'N', '1');
 constexpr std::uint32_t kTagMeta = tag('M', 'E', 'T', 'A');
 constexpr std::uint32_t kTagGeneration = tag('G', 'E', 'N', '1');
+constexpr std::uint32_t kTagWater = tag('W', 'A', 'T', '1');
 
 std::uint32_t crc32_of(std::span<const std::uint8_t> bytes) {
     uLong crc = crc32(0L, Z_NULL, 0);
@@ -77,6 +80,7 @@ TinSnapshot decode_terrain(ByteReader& r) {
     v.moisture = r.get_array<float>();
     v.slide = r.get_array<Vec2f>();
     v.alive = r.get_array<std::uint8_t>();
+    v.water_depth.assign(v.height.size(), 0.0);  // dry unless a 'WAT1' chunk says otherwise
     v.lumped_area.assign(v.height.size(), 0.0);
     t.vertex_free_list = r.get_array<std::uint32_t>();
     t.slots = r.get_array<std::array<std::uint32_t, 3>>();
@@ -101,7 +105,7 @@ std::size_t estimated_payload_bytes(const Session& session) {
     const TinSnapshot& t = session.terrain;
     const VertexArrays& v = t.vertices;
     std::size_t bytes = 4096 + session.metadata_json.size();
-    bytes += v.size() * (sizeof(Vec2) + 2 * sizeof(double) + sizeof(std::uint16_t) + sizeof(float) +
+    bytes += v.size() * (sizeof(Vec2) + 3 * sizeof(double) + sizeof(std::uint16_t) + sizeof(float) +
                          sizeof(Vec2f) + sizeof(std::uint8_t));
     bytes += (t.vertex_free_list.size() + t.slot_free_list.size() + t.constraint_free_list.size()) *
              sizeof(std::uint32_t);
@@ -111,6 +115,37 @@ std::size_t estimated_payload_bytes(const Session& session) {
     for (const auto& [id, body] : session.unknown_chunks)
         bytes += 12 + body.size();
     return bytes;
+}
+
+bool any_water(const VertexArrays& v) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (v.alive[i] && v.water_depth[i] > 0.0) return true;
+    return false;
+}
+
+struct WaterChunk {
+    std::uint32_t terrain_crc = 0;  ///< of the 'TIN1' body the depths were written with
+    std::vector<double> depth;
+};
+
+/// Gives the terrain its water, or drops water written for another version of the terrain.
+void attach_water(Session& session, std::uint32_t terrain_crc, WaterChunk water,
+                  const ByteReader& r) {
+    if (water.terrain_crc != terrain_crc) {
+        session.stale_water_dropped = true;
+        return;
+    }
+    VertexArrays& v = session.terrain.vertices;
+    if (water.depth.size() != v.size()) {
+        r.fail("the water chunk holds " + std::to_string(water.depth.size()) +
+               " depths for a terrain of " + std::to_string(v.size()) + " vertex ids");
+    }
+    for (std::size_t i = 0; i < water.depth.size(); ++i) {
+        if (!(water.depth[i] >= 0.0 && std::isfinite(water.depth[i]))) {
+            r.fail("vertex " + std::to_string(i) + " has a negative or non-finite water depth");
+        }
+    }
+    v.water_depth = std::move(water.depth);
 }
 
 }  // namespace
@@ -134,7 +169,16 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
         write_body();
         file.put_at<std::uint64_t>(size_at, file.size() - size_at - sizeof(std::uint64_t));
     };
+    const std::size_t terrain_at = file.size() + sizeof(std::uint32_t) + sizeof(std::uint64_t);
     chunk(kTagTin, [&] { encode_terrain(file, session.terrain); });
+    if (any_water(session.terrain.vertices)) {
+        const std::uint32_t terrain_crc =
+            crc32_of(std::span(file.bytes()).subspan(terrain_at, file.size() - terrain_at));
+        chunk(kTagWater, [&] {
+            file.put<std::uint32_t>(terrain_crc);
+            file.put_array<double>(session.terrain.vertices.water_depth);
+        });
+    }
     chunk(kTagGeneration, [&] { file.put<std::uint64_t>(session.next_generation); });
     chunk(kTagMeta, [&] {
         file.put_bytes(
@@ -204,6 +248,8 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
     Session session;
     session.format_version = version;
     bool have_terrain = false;
+    std::uint32_t terrain_crc = 0;
+    std::optional<WaterChunk> water;
     ByteReader r(payload, name);
     while (!r.at_end()) {
         const auto id = r.get<std::uint32_t>();
@@ -212,7 +258,10 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
         ByteReader c(body, name);
         if (id == kTagTin) {
             session.terrain = decode_terrain(c);
+            terrain_crc = crc32_of(body);
             have_terrain = true;
+        } else if (id == kTagWater) {
+            water = WaterChunk{c.get<std::uint32_t>(), c.get_array<double>()};
         } else if (id == kTagGeneration) {
             session.next_generation = c.get<std::uint64_t>();
         } else if (id == kTagMeta) {
@@ -225,6 +274,7 @@ Session decode_session(std::span<const std::uint8_t> bytes, const std::string& n
         if (!c.at_end()) c.fail("chunk has unexpected trailing bytes");
     }
     if (!have_terrain) r.fail("file holds no terrain");
+    if (water) attach_water(session, terrain_crc, std::move(*water), r);
     return session;
 }
 

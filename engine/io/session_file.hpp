@@ -7,7 +7,12 @@
 //            28 bytes (format 2; 0 in format 1, which had no header checksum)
 //   payload: chunks of {u32 tag, u64 length, bytes}. Readers skip unknown tags and keep
 //            them, so a newer minor addition survives a round trip through an older build.
-//   chunks:  'TIN1' the TinSnapshot, 'META' a JSON object of session metadata.
+//   chunks:  'TIN1' the TinSnapshot, 'GEN1' the next generation, 'META' a JSON object of
+//            session metadata, and 'WAT1' (only when some vertex holds water) the water:
+//            u32 CRC-32 of the 'TIN1' body it belongs to, then the vertex arrays' water depths
+//            (an array of f64, metres). A build that does not know 'WAT1' keeps it verbatim but
+//            may rewrite the terrain: the CRC then no longer matches, and the water, which no
+//            longer fits that terrain, is dropped on load (Session::stale_water_dropped).
 // Files are written atomically (util/atomic_file.hpp). Format 1 files still load; every
 // file is written as the current format.
 
@@ -34,6 +39,9 @@ struct Session {
     /// The format the file was read from (decode only; encoding always writes the current
     /// one), so the editor can say a save will upgrade an older file.
     std::uint32_t format_version = kSessionFormatVersion;
+    /// Decode only: the file held water for a terrain that a build without water support
+    /// rewrote since, and the water was dropped (the terrain loaded dry).
+    bool stale_water_dropped = false;
 };
 
 /// A session made when it is needed, on the thread that needs it (SessionKeeper::hand_out,

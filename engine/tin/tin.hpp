@@ -393,6 +393,8 @@ class Tin {
     void set_material(VertexId v, std::uint16_t material);
     void set_moisture(VertexId v, float moisture);
     void set_slide(VertexId v, Vec2f slide);
+    /// Water standing on v (m, finite and >= 0; throws std::invalid_argument otherwise).
+    void set_water_depth(VertexId v, double depth);
 
     // ---- Change journal and snapshots ----------------------------------------------------
     /// The default reader's dirty vertex and slot ranges since its last take (everything built,

@@ -60,6 +60,11 @@ void Tin::set_moisture(VertexId v, float moisture) {
     set_attribute(*impl_, v, impl_->va.moisture, moisture, "set_moisture");
 }
 
+void Tin::set_water_depth(VertexId v, double depth) {
+    require(std::isfinite(depth) && depth >= 0.0, "set_water_depth: depth must be finite and >= 0");
+    set_attribute(*impl_, v, impl_->va.water_depth, depth, "set_water_depth");
+}
+
 void Tin::set_slide(VertexId v, Vec2f slide) {
     require(std::isfinite(slide.x) && std::isfinite(slide.y), "set_slide: offset is not finite");
     set_attribute(*impl_, v, impl_->va.slide, slide, "set_slide");

@@ -82,6 +82,7 @@ void Tin::copy_changes_into(TinSnapshot& copy, const ChangeSet& changes) const {
             to.material[v] = m.va.material[v];
             to.moisture[v] = m.va.moisture[v];
             to.slide[v] = m.va.slide[v];
+            to.water_depth[v] = m.va.water_depth[v];
             to.alive[v] = m.va.alive[v];
         }
     }
@@ -139,7 +140,8 @@ void check_snapshot_vertices(const TinSnapshot& s) {
     const std::size_t n = sv.height.size();
     if (n >= (1u << 31)) corrupt("too many vertices");
     if (sv.position.size() != n || sv.bedrock.size() != n || sv.material.size() != n ||
-        sv.moisture.size() != n || sv.slide.size() != n || sv.alive.size() != n) {
+        sv.moisture.size() != n || sv.slide.size() != n || sv.water_depth.size() != n ||
+        sv.alive.size() != n) {
         corrupt("vertex arrays differ in length");
     }
     const auto vertex_capacity = static_cast<std::uint32_t>(n);
@@ -161,6 +163,9 @@ void check_snapshot_vertices(const TinSnapshot& s) {
         }
         if (!std::isfinite(sv.slide[i].x) || !std::isfinite(sv.slide[i].y)) {
             corrupt("vertex " + std::to_string(i) + " has a non-finite texture offset");
+        }
+        if (!(sv.water_depth[i] >= 0.0 && std::isfinite(sv.water_depth[i]))) {
+            corrupt("vertex " + std::to_string(i) + " has a negative or non-finite water depth");
         }
     }
     check_free_list(s.vertex_free_list, vertex_capacity, vertex_used, "vertex");

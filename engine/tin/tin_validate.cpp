@@ -100,6 +100,7 @@ bool validate_vertices(const Tin::Impl& m, Problems& problem) {
         if (!std::isfinite(va.height[id]) || !std::isfinite(va.bedrock[id]) ||
             !std::isfinite(va.slide[id].x) || !std::isfinite(va.slide[id].y) ||
             !(va.moisture[id] >= 0.0f && va.moisture[id] <= 1.0f) ||
+            !(va.water_depth[id] >= 0.0 && std::isfinite(va.water_depth[id])) ||
             !std::isfinite(va.lumped_area[id])) {
             problem("vertex " + std::to_string(id) + " has a non-finite or out-of-range attribute");
         }

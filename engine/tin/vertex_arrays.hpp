@@ -26,7 +26,11 @@ struct VertexArrays {
     std::vector<double> bedrock;          ///< metres, non-erodible lower surface (<= height)
     std::vector<std::uint16_t> material;  ///< index into the material table
     std::vector<float> moisture;          ///< saturation in [0, 1]
-    std::vector<Vec2f> slide;         ///< texture slide offset in texture units, wrapped to [0, 1)
+    std::vector<Vec2f> slide;  ///< texture slide offset in texture units, wrapped to [0, 1)
+    /// metres of water standing on the vertex, >= 0 (engine/water): kept between water
+    /// operations, saved with the session and undone with the terrain. Double, so that a water
+    /// volume carried from one operation to the next stays exact to rounding.
+    std::vector<double> water_depth;
     std::vector<double> lumped_area;  ///< m²: one third of the areas of the incident triangles
     std::vector<std::uint8_t> alive;  ///< 1 for live ids
 
@@ -43,6 +47,7 @@ struct VertexArrays {
         copy_array(other.material, material);
         copy_array(other.moisture, moisture);
         copy_array(other.slide, slide);
+        copy_array(other.water_depth, water_depth);
         copy_array(other.lumped_area, lumped_area);
         copy_array(other.alive, alive);
         return *this;
@@ -60,6 +65,7 @@ struct VertexArrays {
         material.resize(n, 0);
         moisture.resize(n, 0.0f);
         slide.resize(n);
+        water_depth.resize(n, 0.0);
         lumped_area.resize(n, 0.0);
         alive.resize(n, 0);
     }
@@ -80,6 +86,7 @@ struct VertexArrays {
         sandtin::reserve_for_writing(material, n);
         sandtin::reserve_for_writing(moisture, n);
         sandtin::reserve_for_writing(slide, n);
+        sandtin::reserve_for_writing(water_depth, n);
         sandtin::reserve_for_writing(lumped_area, n);
         sandtin::reserve_for_writing(alive, n);
     }

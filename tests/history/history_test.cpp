@@ -122,6 +122,33 @@ TEST(History, BrushesPourAndErosionUndoExactly) {
     EXPECT_TRUE(tin.check_valid().ok());
 }
 
+TEST(History, WaterOnTheTerrainAndAStrokeThroughItUndoExactly) {
+    Tin tin = dune_terrain(3000, 7);
+    History history(tin);
+    SculptContext context(kDomain);
+    const TinState dry = capture(tin);
+    // A pond in the middle, as a water operation leaves it (io/script_water.hpp).
+    for (std::uint32_t id = 0; id < tin.vertices().size(); ++id) {
+        const VertexId v{id};
+        if (!tin.is_alive(v)) continue;
+        const double r = length(tin.position(v) - Vec2{0.5, 0.5});
+        if (r < 0.2) tin.set_water_depth(v, 0.01 * (0.2 - r));
+    }
+    ASSERT_TRUE(history.record("water"));
+    const TinState wet = capture(tin);
+    ASSERT_NE(dry.vertices, wet.vertices);
+    // A stroke through the pond re-triangulates under the water, which the new vertices take.
+    const Tool tool = Tool::build(load_tool_asset("circle"));
+    StrokeSettings settings;
+    settings.depth = 0.01;
+    apply_stroke(tin, tool, arc_path({0.3, 0.45}, {0.7, 0.55}, 20), settings, context);
+    ASSERT_TRUE(history.record("stroke"));
+    const TinState stroked = capture(tin);
+    expect_undo_redo(tin, history, wet, stroked);
+    ASSERT_TRUE(history.undo().done);
+    expect_undo_redo(tin, history, dry, wet);
+}
+
 TEST(History, BrushOverAStrokeUndoesBothExactly) {
     // The brush refines edges of the stroke's rim, which splits its constraints: the brush's
     // level changes constraints the stroke's level created.

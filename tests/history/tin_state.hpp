@@ -26,6 +26,7 @@ struct VertexState {
     double height, bedrock;
     std::uint16_t material;
     float moisture, slide_x, slide_y;
+    double water_depth;
     friend bool operator==(const VertexState&, const VertexState&) = default;
 };
 
@@ -51,8 +52,9 @@ inline TinState capture(const Tin& tin) {
     const VertexArrays& va = snap.vertices;
     for (std::size_t i = 0; i < va.size(); ++i) {
         if (!va.alive[i]) continue;
-        s.vertices[key(va.position[i])] = VertexState{va.height[i],   va.bedrock[i], va.material[i],
-                                                      va.moisture[i], va.slide[i].x, va.slide[i].y};
+        s.vertices[key(va.position[i])] =
+            VertexState{va.height[i],  va.bedrock[i], va.material[i],   va.moisture[i],
+                        va.slide[i].x, va.slide[i].y, va.water_depth[i]};
     }
     for (TriangleSlot slot = 0; slot < snap.slots.size(); ++slot) {
         const auto c = tin.slot_triangle(slot);

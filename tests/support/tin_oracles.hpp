@@ -338,7 +338,8 @@ inline bool vertex_differs(const VertexArrays& a, const VertexArrays& b, std::si
     return !(a.position[i] == b.position[i]) || a.height[i] != b.height[i] ||
            a.bedrock[i] != b.bedrock[i] || a.material[i] != b.material[i] ||
            a.moisture[i] != b.moisture[i] || !(a.slide[i] == b.slide[i]) ||
-           a.lumped_area[i] != b.lumped_area[i] || a.alive[i] != b.alive[i];
+           a.water_depth[i] != b.water_depth[i] || a.lumped_area[i] != b.lumped_area[i] ||
+           a.alive[i] != b.alive[i];
 }
 
 inline std::vector<std::uint32_t> changed_vertices(const TinState& before, const TinState& after) {
@@ -406,6 +407,7 @@ inline void expect_snapshots_equal(const TinSnapshot& a, const TinSnapshot& b,
     EXPECT_EQ(va.material, vb.material);
     EXPECT_EQ(va.moisture, vb.moisture);
     EXPECT_EQ(va.slide, vb.slide);
+    EXPECT_EQ(va.water_depth, vb.water_depth);
     EXPECT_EQ(va.alive, vb.alive);
     ASSERT_EQ(va.lumped_area.size(), vb.lumped_area.size());
     std::size_t lumped_mismatches = 0;

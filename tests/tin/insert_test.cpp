@@ -256,8 +256,11 @@ TEST(InsertOnSurface, NewVertexInheritsInterpolatedAttributes) {
         tin.set_moisture(v, 0.5f);
         tin.set_bedrock(v, 0.25);
         tin.set_material(v, 7);
+        tin.set_water_depth(v, 0.04 * (1.0 + tin.position(v).x));  // linear in x
     }
     const VertexId v = tin.insert_point_on_surface({0.7, 0.6});
+    // Water depth, like moisture, interpolates linearly: exact for a linear field.
+    EXPECT_NEAR(tin.vertices().water_depth[v.index()], 0.04 * 1.7, 1e-15);
     EXPECT_FLOAT_EQ(tin.vertices().moisture[v.index()], 0.5f);
     EXPECT_NEAR(tin.vertices().bedrock[v.index()], 0.25, 1e-15);
     EXPECT_EQ(tin.vertices().material[v.index()], 7);

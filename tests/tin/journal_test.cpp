@@ -124,21 +124,26 @@ TEST(Journal, AttributeSettersAreJournaled) {
     tin.set_moisture(VertexId{21}, 0.75f);
     tin.set_slide(VertexId{40}, {0.5f, 0.25f});
     tin.set_bedrock(VertexId{41}, -10.0);
+    tin.set_water_depth(VertexId{60}, 0.125);
     ChangeSet cs = tin.take_changes();
-    EXPECT_EQ(expand_ranges(cs.vertices), (std::vector<std::uint32_t>{10, 20, 21, 40, 41}));
-    EXPECT_EQ(cs.vertices, (std::vector<IdRange>{{10, 11}, {20, 22}, {40, 42}}));
+    EXPECT_EQ(expand_ranges(cs.vertices), (std::vector<std::uint32_t>{10, 20, 21, 40, 41, 60}));
+    EXPECT_EQ(cs.vertices, (std::vector<IdRange>{{10, 11}, {20, 22}, {40, 42}, {60, 61}}));
     EXPECT_TRUE(cs.triangles.empty());
     EXPECT_EQ(tin.vertices().height[10], 5.0);
     EXPECT_EQ(tin.vertices().material[20], 3);
     EXPECT_EQ(tin.vertices().moisture[21], 0.75f);
     EXPECT_EQ(tin.vertices().slide[40], (Vec2f{0.5f, 0.25f}));
     EXPECT_EQ(tin.vertices().bedrock[41], -10.0);
+    EXPECT_EQ(tin.vertices().water_depth[60], 0.125);
     // Bad values and dead ids throw and journal nothing.
     EXPECT_THROW(tin.set_height(VertexId{10}, std::nan("")), std::invalid_argument);
     EXPECT_THROW(tin.set_moisture(VertexId{10}, 1.5f), std::invalid_argument);
     EXPECT_THROW(tin.set_moisture(VertexId{10}, -0.1f), std::invalid_argument);
     EXPECT_THROW(tin.set_slide(VertexId{10}, {std::nanf(""), 0.0f}), std::invalid_argument);
     EXPECT_THROW(tin.set_bedrock(VertexId{10}, std::nan("")), std::invalid_argument);
+    EXPECT_THROW(tin.set_water_depth(VertexId{10}, -1e-9), std::invalid_argument);
+    EXPECT_THROW(tin.set_water_depth(VertexId{10}, std::nan("")), std::invalid_argument);
+    EXPECT_THROW(tin.set_water_depth(VertexId{100000}, 0.1), std::invalid_argument);
     EXPECT_THROW(tin.set_height(VertexId{100000}, 1.0), std::invalid_argument);
     EXPECT_THROW(tin.set_material(VertexId{}, 1), std::invalid_argument);
     cs = tin.take_changes();

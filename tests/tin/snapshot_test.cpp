@@ -70,6 +70,7 @@ Tin busy_terrain() {
         if (v.value % 5 == 0) tin.set_moisture(v, 0.125f * static_cast<float>(v.value % 8));
         if (v.value % 3 == 0) tin.set_slide(v, {0.25f, 0.5f});
         if (v.value % 4 == 0) tin.set_bedrock(v, tin.height(v) - 0.5);
+        if (v.value % 6 == 0) tin.set_water_depth(v, 0.001 * static_cast<double>(v.value % 9));
     }
     return tin;
 }
@@ -130,7 +131,8 @@ TEST(Snapshot, VertexArraysCopyEveryArrayAndStayIndependent) {
     const auto same = [](const VertexArrays& a, const VertexArrays& b) {
         return a.position == b.position && a.height == b.height && a.bedrock == b.bedrock &&
                a.material == b.material && a.moisture == b.moisture && a.slide == b.slide &&
-               a.lumped_area == b.lumped_area && a.alive == b.alive;
+               a.water_depth == b.water_depth && a.lumped_area == b.lumped_area &&
+               a.alive == b.alive;
     };
     VertexArrays copy(from);
     EXPECT_TRUE(same(copy, from));
@@ -362,6 +364,15 @@ TEST_F(CorruptSnapshot, BadVertexValues) {
     s = good;
     s.vertices.moisture[live] = 2.0f;
     expect_rejected(s, "moisture above 1");
+    s = good;
+    s.vertices.water_depth[live] = -1e-3;
+    expect_rejected(s, "negative water depth");
+    s = good;
+    s.vertices.water_depth[live] = std::numeric_limits<double>::infinity();
+    expect_rejected(s, "infinite water depth");
+    s = good;
+    s.vertices.water_depth.pop_back();
+    expect_rejected(s, "water depths shorter");
     s = good;
     s.vertices.alive[live] = 2;
     expect_rejected(s, "alive flag 2");

@@ -82,6 +82,7 @@ void EditFinisher::prepare_born() {
         va.material[id] = 0;
         va.moisture[id] = 0.0f;
         va.slide[id] = {};
+        va.water_depth[id] = 0.0;
         va.lumped_area[id] = 0.0;
         va.alive[id] = 1;
     }
@@ -91,17 +92,22 @@ void EditFinisher::inherit(std::uint32_t id, std::span<const std::uint32_t> sour
                            std::span<const double> weights) {
     VertexArrays& va = impl_.va;
     double moisture = 0.0;
+    double water_depth = 0.0;
     double bedrock = 0.0;
     bool has_bedrock = true;
     std::size_t heaviest = 0;
     for (std::size_t i = 0; i < sources.size(); ++i) {
         const std::uint32_t s = sources[i];
         moisture += weights[i] * static_cast<double>(va.moisture[s]);
+        water_depth += weights[i] * va.water_depth[s];
         if (va.bedrock[s] <= kNoBedrock) has_bedrock = false;
         bedrock += weights[i] * va.bedrock[s];
         if (weights[i] > weights[heaviest]) heaviest = i;
     }
     va.moisture[id] = static_cast<float>(std::clamp(moisture, 0.0, 1.0));
+    // The water's depth, like the moisture, as the corners had it (not its volume: an edit
+    // that re-triangulates under water moves water as it moves sand, by interpolation).
+    va.water_depth[id] = std::max(water_depth, 0.0);
     va.bedrock[id] = has_bedrock ? bedrock : kNoBedrock;
     if (!sources.empty()) {
         va.material[id] = va.material[sources[heaviest]];
