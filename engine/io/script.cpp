@@ -275,7 +275,9 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         f.reject_unknown();
         return SaveOp{base_dir / path};
     }
-    if (op == "water") return parse_water_op(f);
+    if (op == "water") return parse_water_op(f, WaterOpKind::Water);
+    if (op == "rain") return parse_water_op(f, WaterOpKind::Rain);
+    if (op == "flow") return parse_water_op(f, WaterOpKind::Flow);
     if (op == "dry") return parse_dry_op(f);
     if (op == "weather") return parse_weather_op(f);
     if (op == "simplify") {

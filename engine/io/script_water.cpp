@@ -1,9 +1,11 @@
 #include "io/script_water.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -69,27 +71,65 @@ nlohmann::json moisture_report(const MoistureReport& r, const Tin& tin) {
             {"wettest", wettest}};
 }
 
-}  // namespace
-
-WaterOp parse_water_op(JsonFields& f) {
-    WaterOp op;
-    op.seconds = f.in_range("seconds", 0.0, 0.0, 1e6);
-    if (!(op.seconds > 0.0)) f.fail_field("seconds", "must be a positive number of seconds");
+/// The "water" operation's sources: "rain" (one or an array) and "nozzles".
+void parse_sources(JsonFields& f, WaterSources& sources) {
     if (const nlohmann::json* rain = f.get("rain")) {
         const std::string context = f.context() + ": rain";
         if (rain->is_array()) {
             for (std::size_t k = 0; k < rain->size(); ++k)
-                op.sources.rain.push_back(
+                sources.rain.push_back(
                     parse_rain((*rain)[k], context + "[" + std::to_string(k) + "]"));
         } else {
-            op.sources.rain.push_back(parse_rain(*rain, context));
+            sources.rain.push_back(parse_rain(*rain, context));
         }
     }
     if (const nlohmann::json* nozzles = f.get("nozzles")) {
         if (!nozzles->is_array()) f.fail_field("nozzles", "must be an array of nozzles");
         for (std::size_t k = 0; k < nozzles->size(); ++k)
-            op.sources.nozzles.push_back(
+            sources.nozzles.push_back(
                 parse_nozzle((*nozzles)[k], f.context() + ": nozzles[" + std::to_string(k) + "]"));
+    }
+    if (sources.rain.empty() && sources.nozzles.empty())
+        f.fail(
+            "give 'rain' or 'nozzles': water needs a source (\"flow\" runs the water "
+            "already on the terrain)");
+}
+
+/// The "rain" operation's source: one rain, its fields at the operation's top level.
+void parse_top_level_rain(JsonFields& f, WaterSources& sources) {
+    Rain rain;
+    rain.mm_per_hour = f.in_range("mm_per_hour", 0.0, 0.0, 1e4);
+    if (!(rain.mm_per_hour > 0.0)) f.fail_field("mm_per_hour", "must be a positive rate");
+    if (const auto disc = f.disc("for rain on a disc")) {
+        rain.centre = disc->centre;
+        rain.radius = disc->radius;
+    }
+    sources.rain.push_back(rain);
+}
+
+}  // namespace
+
+WaterOp parse_water_op(JsonFields& f, WaterOpKind kind) {
+    WaterOp op;
+    op.seconds = f.in_range("seconds", 0.0, 0.0, 1e6);
+    if (!(op.seconds > 0.0)) f.fail_field("seconds", "must be a positive number of seconds");
+    const std::string until = f.choice("until", "seconds", {"seconds", "dry", "rest"});
+    op.until = until == "dry"    ? WaterStop::Dry
+               : until == "rest" ? WaterStop::Rest
+                                 : WaterStop::Seconds;
+    if (op.until != WaterStop::Rest && f.has("rest_rate"))
+        f.fail_field("rest_rate", "applies with \"until\": \"rest\"");
+    if (op.until != WaterStop::Dry && f.has("rest_depth"))
+        f.fail_field("rest_depth", "applies with \"until\": \"dry\"");
+    op.rest_rate = f.positive("rest_rate", op.rest_rate);
+    op.rest_depth = f.positive("rest_depth", op.rest_depth);
+    if (kind == WaterOpKind::Water) parse_sources(f, op.sources);
+    if (kind == WaterOpKind::Rain) parse_top_level_rain(f, op.sources);
+    if (kind == WaterOpKind::Flow) {
+        for (const char* source : {"rain", "nozzles"}) {
+            if (f.has(source))
+                f.fail_field(source, "adds water, which a \"flow\" does not: use \"water\"");
+        }
     }
     op.sources.evaporation_mm_per_hour = f.in_range("evaporation_mm_per_hour", 0.0, 0.0, 1e4);
     if (const nlohmann::json* sides = f.get("open_sides")) {
@@ -124,8 +164,6 @@ WaterOp parse_water_op(JsonFields& f) {
         f.fail_field("label_depth", "applies with \"erode\": true");
     op.label_depth = f.positive("label_depth", op.label_depth);
     op.moisture = parse_moisture_settings(f);
-    if (op.sources.rain.empty() && op.sources.nozzles.empty())
-        f.fail("give 'rain' or 'nozzles': water needs a source");
     f.reject_unknown();
     return op;
 }
@@ -135,11 +173,43 @@ namespace {
 /// What the water did, whichever scheme ran.
 struct Flow {
     std::size_t steps = 0;
+    double seconds = 0.0;  ///< s run
+    const char* stopped = "seconds";
+    double start = 0.0;  ///< m³ on the terrain at the start
     SourceReport sources;
     std::vector<double> deepest;  ///< per vertex, m
     double left = 0.0, water = 0.0, sand_moved = 0.0, volume_change = 0.0;
     std::size_t relabelled = 0;  ///< vertices that took the material of the sand laid on them
 };
+
+/// No vertex holds `depth` of water or more.
+template <class Water>
+bool is_dry(const Water& water, double depth) {
+    for (std::size_t v = 0; v < water.vertex_count(); ++v)
+        if (water.depth(v) >= depth) return false;
+    return true;
+}
+
+/// The largest depth change since `before` (m).
+template <class Water>
+double fastest_change(const Water& water, const std::vector<double>& before) {
+    double fastest = 0.0;
+    for (std::size_t v = 0; v < before.size(); ++v)
+        fastest = std::max(fastest, std::abs(water.depth(v) - before[v]));
+    return fastest;
+}
+
+/// Takes the films a dry terrain still holds off it; returns their volume (m³).
+template <class Water>
+double clear_films(Water& water) {
+    double volume = 0.0;
+    for (std::size_t v = 0; v < water.vertex_count(); ++v) {
+        if (water.depth(v) == 0.0) continue;
+        volume += water.mesh().area[v] * water.depth(v);
+        water.set_depth(v, 0.0);
+    }
+    return volume;
+}
 
 template <class Water>
 Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
@@ -153,21 +223,43 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
         }
         sediment.emplace(water.mesh(), std::move(rock), SedimentOptions{}, tin.vertices().material);
     }
+    // The water the terrain holds from earlier operations, from rest.
+    const VertexArrays& start = tin.vertices();
+    for (std::size_t v = 0; v < water.vertex_count(); ++v) {
+        if (start.alive[v] && start.water_depth[v] > 0.0) water.set_depth(v, start.water_depth[v]);
+    }
+    flow.start = water.volume();
     std::vector<double>& deepest = flow.deepest;
-    deepest.assign(water.vertex_count(), 0.0);
+    deepest.assign(water.depths().begin(), water.depths().end());
+    std::vector<double> before;
     double t = 0.0;
     while (t < op.seconds) {
+        if (op.until == WaterStop::Dry && is_dry(water, op.rest_depth)) {
+            flow.stopped = "dry";
+            break;
+        }
         const double dt = std::min({water.stable_time_step(), kLongestStep, op.seconds - t});
         const SourceReport r = apply_sources(water, op.sources, dt);
         flow.sources.added += r.added;
         flow.sources.evaporated += r.evaporated;
+        if (op.until == WaterStop::Rest)
+            before.assign(water.depths().begin(), water.depths().end());
         water.step(dt);
         if (sediment) sediment->step(water, dt);
         for (std::size_t v = 0; v < deepest.size(); ++v)
             deepest[v] = std::max(deepest[v], water.depth(v));
         t += dt;
         ++flow.steps;
+        if (op.until == WaterStop::Rest && fastest_change(water, before) < op.rest_rate * dt) {
+            flow.stopped = "rest";
+            break;
+        }
     }
+    if (op.until == WaterStop::Dry && flow.stopped == std::string_view("seconds") &&
+        is_dry(water, op.rest_depth))
+        flow.stopped = "dry";
+    if (flow.stopped == std::string_view("dry")) flow.sources.evaporated += clear_films(water);
+    flow.seconds = t;
     // The sand the water moved, into the terrain (journaled, so the GPU mirror and undo see
     // it): what is still suspended settles where it is.
     double& sand_moved = flow.sand_moved;
@@ -199,6 +291,12 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
     }
     flow.left = water.volume_left();
     flow.water = water.volume();
+    // The water stays on the terrain for the next operation (journaled: saved, undone).
+    const VertexArrays& va = tin.vertices();
+    for (std::size_t v = 0; v < water.vertex_count(); ++v) {
+        if (va.alive[v] && va.water_depth[v] != water.depth(v))
+            tin.set_water_depth(VertexId{static_cast<std::uint32_t>(v)}, water.depth(v));
+    }
     return flow;
 }
 
@@ -230,10 +328,12 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
         if (tin.vertices().moisture[v] < moisture) tin.set_moisture(id, moisture);
     }
     // Then the moisture spreads and dries over the same seconds.
-    const MoistureReport spread = spread_and_dry_moisture(tin, op.seconds, op.moisture);
-    return {{"seconds", op.seconds},
+    const MoistureReport spread = spread_and_dry_moisture(tin, flow.seconds, op.moisture);
+    return {{"seconds", flow.seconds},
+            {"stopped", flow.stopped},
             {"scheme", op.scheme == WaterScheme::Pipes ? "pipes" : "shallow_water"},
             {"steps", flow.steps},
+            {"water_at_start_m3", flow.start},
             {"added_m3", flow.sources.added},
             {"evaporated_m3", flow.sources.evaporated},
             {"left_m3", flow.left},

@@ -2,10 +2,16 @@
 // The script's "water" operation (issue 40): water over the terrain as it stands for a while,
 // from rain, nozzles and evaporation, draining through open sides (engine/water); with
 // "erode", carrying sand; and the sand it wets taking a moisture, so that the relaxation
-// afterwards lets wet sand stand at its steeper angle. The water itself is not kept between
-// operations: the terrain and its moisture are. The moisture spreads into dry sand and dries
-// (water/moisture_diffusion.hpp): over a "water" operation's seconds, after the wetting, and
-// over a "dry" operation's, where time passes with no water.
+// afterwards lets wet sand stand at its steeper angle. "rain" is a "water" operation whose
+// source is rain (its fields at the top), "flow" one without a source: the water already on
+// the terrain runs for some seconds, or until it is dry or at rest.
+//
+// The water's depth is kept between operations in the terrain (Tin::set_water_depth, so it is
+// saved with the session, exported and undone); its velocity is not: each operation starts
+// the water from rest. What the water still carries at the end of an operation settles there.
+// The moisture spreads into dry sand and dries (water/moisture_diffusion.hpp): over the
+// seconds a water operation ran, after the wetting, and over a "dry" operation's, where time
+// passes with no water.
 
 #include <cstdint>
 
@@ -30,8 +36,24 @@ enum class WaterScheme : std::uint8_t {
     ShallowWater,
 };
 
+/// What ends a water operation besides its seconds (which then bound it).
+enum class WaterStop : std::uint8_t {
+    Seconds,  ///< the seconds run out
+    /// No vertex holds rest_depth or more; what is left (films thinner than that) is taken as
+    /// evaporated, so the terrain is dry.
+    Dry,
+    /// No depth changes faster than rest_rate: the water stands, or flows steadily.
+    Rest,
+};
+
+/// Which operation a WaterOp was written as; only the parsing differs.
+enum class WaterOpKind : std::uint8_t { Water, Rain, Flow };
+
 struct WaterOp {
-    double seconds = 0.0;  ///< s of water, > 0
+    double seconds = 0.0;  ///< s of water, > 0: the duration, or the longest with `until`
+    WaterStop until = WaterStop::Seconds;
+    double rest_rate = 1e-5;   ///< m/s: the fastest depth change that counts as at rest
+    double rest_depth = 1e-6;  ///< m: shallower than this counts as dry
     WaterSources sources;
     OpenSides open;
     WaterScheme scheme = WaterScheme::Pipes;
@@ -62,13 +84,17 @@ struct DryOp {
 };
 
 /// Parses the fields of a "water" operation (rain, nozzles, evaporation_mm_per_hour,
-/// open_sides, seconds, scheme, friction (pipes) or manning (shallow_water), wet_moisture,
-/// wet_depth, erode, diffusivity, drying_half_life). Throws JsonInputError naming the field.
-WaterOp parse_water_op(JsonFields& f);
+/// open_sides, seconds, until, scheme, friction (pipes) or manning (shallow_water),
+/// wet_moisture, wet_depth, erode, diffusivity, drying_half_life); of a "rain" operation
+/// (the same, with one rain's mm_per_hour, centre and radius in place of rain and nozzles); or
+/// of a "flow" operation (the same without sources). Throws JsonInputError naming the field.
+WaterOp parse_water_op(JsonFields& f, WaterOpKind kind = WaterOpKind::Water);
 
-/// Runs `op` on `tin` and reports what the water did (m³ added, evaporated, left through the
-/// open sides and still on the terrain at the end; the wetted vertices; the deepest water),
-/// and under "moisture" what the moisture did afterwards (as run_dry_op reports it).
+/// Runs `op` on `tin`, starting from the water the terrain holds, and leaves the water where
+/// it is at the end in the terrain. Reports what the water did (m³ on the terrain at the
+/// start, added, evaporated, left through the open sides and on the terrain at the end; the
+/// seconds run and why it stopped; the wetted vertices; the deepest water), and under
+/// "moisture" what the moisture did afterwards (as run_dry_op reports it).
 nlohmann::json run_water_op(const WaterOp& op, Tin& tin);
 
 /// Parses the fields of a "dry" operation (seconds, required; diffusivity, drying_half_life).
