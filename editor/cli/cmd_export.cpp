@@ -20,9 +20,9 @@ namespace {
 
 constexpr const char* kUsage =
     "sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr) "
-    "[--map height|normal|albedo] [--up y|z] [--units m|cm|mm|km|in|ft] "
+    "[--map height|normal|albedo|water] [--up y|z] [--units m|cm|mm|km|in|ft] "
     "[--base DEPTH | --skirt DEPTH] [--max-error E] [--cell-size m] [--size N] "
-    "[--no-textures] [--faceted] [--json]";
+    "[--no-textures] [--no-water] [--faceted] [--json]";
 
 }  // namespace
 
@@ -37,6 +37,7 @@ int run_export(const std::vector<std::string>& raw) {
                                {"--cell-size", 1},
                                {"--size", 1},
                                {"--no-textures", 0},
+                               {"--no-water", 0},
                                {"--faceted", 0},
                                {"--json", 0}});
     args.require_positionals(1, kUsage);
@@ -82,6 +83,7 @@ int run_export(const std::vector<std::string>& raw) {
         options.map_size = static_cast<std::uint32_t>(n);
     }
     options.textures = !args.has("--no-textures");
+    options.water = !args.has("--no-water");
     if (args.has("--faceted")) options.normal_mode = NormalMode::Faceted;
     // An option the chosen output would ignore is an error: the user expected it to act.
     const bool textured_mesh =
@@ -102,6 +104,8 @@ int run_export(const std::vector<std::string>& raw) {
     }
     if (!mesh) refuse("--units", "meshes");
     if (!textured_mesh) refuse("--no-textures", ".obj, .gltf and .glb");
+    if (format != ExportFormat::Gltf && format != ExportFormat::Glb)
+        refuse("--no-water", ".gltf and .glb (the water surface as a second mesh)");
     if (!(format == ExportFormat::NormalPng || (textured_mesh && options.textures)))
         refuse("--faceted", "normal maps, and the textures of .obj, .gltf and .glb");
 

@@ -1,5 +1,6 @@
 // sandtin info: load a session and describe its terrain.
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -10,8 +11,27 @@
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
+#include "tin/vertex_arrays.hpp"
 
 namespace sandtin::cli {
+
+namespace {
+
+/// The water standing on the terrain (VertexArrays::water_depth).
+nlohmann::json describe_water(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    double volume = 0.0, deepest = 0.0;
+    std::size_t wet = 0;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || va.water_depth[v] <= 0.0) continue;
+        ++wet;
+        volume += va.lumped_area[v] * va.water_depth[v];
+        deepest = std::max(deepest, va.water_depth[v]);
+    }
+    return {{"m3", volume}, {"wet_vertices", wet}, {"max_depth_m", deepest}};
+}
+
+}  // namespace
 
 int run_info(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--json", 0}});
@@ -26,6 +46,8 @@ int run_info(const std::vector<std::string>& raw) {
     nlohmann::json j = describe_terrain(tin, false);
     j["valid"] = true;
     j["slopes"] = describe_slopes(tin, materials_or_presets(session.metadata_json));
+    j["water"] = describe_water(tin);
+    if (session.stale_water_dropped) j["water"]["dropped_stale"] = true;
     if (args.has("--json")) {
         std::cout << j.dump(2) << "\n";
     } else {
@@ -50,6 +72,15 @@ int run_info(const std::vector<std::string>& raw) {
                    << ") m";
         }
         std::cout << slopes.str() << "\n";
+        const nlohmann::json& w = j["water"];
+        if (w["wet_vertices"].get<std::size_t>() > 0) {
+            std::cout << "  water             " << w["m3"] << " m^3 on " << w["wet_vertices"]
+                      << " vertices, deepest " << w["max_depth_m"] << " m\n";
+        }
+        if (session.stale_water_dropped) {
+            std::cout << "  water             dropped: the file's water was written for a terrain "
+                         "that an older build has since edited\n";
+        }
         std::cout << "  valid             yes\n";
     }
     return 0;

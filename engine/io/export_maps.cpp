@@ -61,10 +61,13 @@ double height_png_range(const MapImage& heights) {
     return *hi - *lo > 1e-12 * magnitude ? *hi - *lo : 1.0;
 }
 
-std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
-                                            double cell_height, const Georeference& georeference) {
-    const double z_min = *std::min_element(heights.values.begin(), heights.values.end());
-    const double range = height_png_range(heights);
+namespace {
+
+/// 16-bit gray from z_min (black) over `range` metres (white), with the keys that let
+/// `sandtin import` restore metres.
+std::vector<std::uint8_t> encode_gray16(const MapImage& heights, double z_min, double range,
+                                        double cell_size, double cell_height,
+                                        const Georeference& georeference) {
     PngImage image;
     image.width = heights.width;
     image.height = heights.height;
@@ -83,6 +86,27 @@ std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell
     }
     add_georeference(image, georeference);
     return encode_png(image);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
+                                            double cell_height, const Georeference& georeference) {
+    const double z_min = *std::min_element(heights.values.begin(), heights.values.end());
+    return encode_gray16(heights, z_min, height_png_range(heights), cell_size, cell_height,
+                         georeference);
+}
+
+double water_depth_png_range(const MapImage& depths) {
+    const double deepest = *std::max_element(depths.values.begin(), depths.values.end());
+    return deepest > 0.0 ? deepest : 1.0;
+}
+
+std::vector<std::uint8_t> encode_water_depth_png(const MapImage& depths, double cell_size,
+                                                 double cell_height,
+                                                 const Georeference& georeference) {
+    return encode_gray16(depths, 0.0, water_depth_png_range(depths), cell_size, cell_height,
+                         georeference);
 }
 
 std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,

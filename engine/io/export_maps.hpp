@@ -6,6 +6,9 @@
 //    sandtin:z_range and sandtin:cell_size let `sandtin import` restore metres exactly, and
 //    sandtin:west, sandtin:south, sandtin:crs and sandtin:horizontal_unit the georeference.
 //  - Height EXR: 32-bit float metres (io/heightmap_exr.hpp).
+//  - Water-depth PNG: 16-bit gray, black dry and white the deepest water (the range in
+//    sandtin:z_range, sandtin:z_offset 0), so it masks the water and `sandtin import` reads
+//    it back as metres; water-depth EXR: float metres, like the height EXR.
 //  - Normal PNG: 8-bit RGB, (n + 1) / 2 per component (OpenGL convention, +Y = green = north).
 //  - Albedo PNG: 8-bit RGB.
 //  Both carry their texel size and the georeference in tEXt chunks (TexelFrame).
@@ -28,6 +31,13 @@ double height_png_range(const MapImage& heights);
 std::vector<std::uint8_t> encode_height_png(const MapImage& heights, double cell_size,
                                             double cell_height = 0.0,
                                             const Georeference& georeference = {});
+/// The metres a water-depth PNG of `depths` spans from black (dry) to white: the deepest
+/// water, or 1 for a dry map.
+double water_depth_png_range(const MapImage& depths);
+/// `depths` has one channel of metres >= 0; the cell sizes and georeference as for heights.
+std::vector<std::uint8_t> encode_water_depth_png(const MapImage& depths, double cell_size,
+                                                 double cell_height = 0.0,
+                                                 const Georeference& georeference = {});
 std::vector<std::uint8_t> encode_height_exr(const MapImage& heights, double cell_size,
                                             double cell_height = 0.0,
                                             const Georeference& georeference = {});

@@ -66,10 +66,65 @@ int add_texture(tinygltf::Model& model, const std::vector<std::uint8_t>& png,
     return static_cast<int>(model.textures.size() - 1);
 }
 
+int add_indices(tinygltf::Model& model, const std::vector<std::uint32_t>& indices) {
+    tinygltf::Accessor a;
+    a.bufferView = add_view(model, indices.data(), indices.size() * sizeof(std::uint32_t),
+                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.count = indices.size();
+    a.type = TINYGLTF_TYPE_SCALAR;
+    model.accessors.push_back(a);
+    return static_cast<int>(model.accessors.size() - 1);
+}
+
+/// The water surface as its own mesh, material and node; returns the node's index.
+int add_water_node(tinygltf::Model& model, const ExportMesh& water) {
+    std::vector<float> positions;
+    std::vector<float> normals;
+    for (std::size_t i = 0; i < water.positions.size(); ++i) {
+        for (double v : {water.positions[i].x, water.positions[i].y, water.positions[i].z})
+            positions.push_back(static_cast<float>(v));
+        for (double v : {water.normals[i].x, water.normals[i].y, water.normals[i].z})
+            normals.push_back(static_cast<float>(v));
+    }
+    std::vector<std::uint32_t> indices;
+    for (const auto& t : water.triangles)
+        indices.insert(indices.end(), t.begin(), t.end());
+    tinygltf::Primitive primitive;
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    primitive.attributes["POSITION"] = add_accessor(model, positions, 3, TINYGLTF_TYPE_VEC3, true);
+    primitive.attributes["NORMAL"] = add_accessor(model, normals, 3, TINYGLTF_TYPE_VEC3, false);
+    primitive.indices = add_indices(model, indices);
+
+    tinygltf::Material material;
+    material.name = "water";
+    material.pbrMetallicRoughness.baseColorFactor = {0.05, 0.25, 0.35, 0.55};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.05;
+    material.alphaMode = "BLEND";
+    material.doubleSided =
+        true;  // seen from below through the sand's edge, or from a camera under it
+    model.materials.push_back(material);
+    primitive.material = static_cast<int>(model.materials.size() - 1);
+
+    tinygltf::Mesh mesh;
+    mesh.name = "water";
+    mesh.primitives.push_back(primitive);
+    model.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.name = "water";
+    node.mesh = static_cast<int>(model.meshes.size() - 1);
+    model.nodes.push_back(node);
+    return static_cast<int>(model.nodes.size() - 1);
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures& textures,
-                                      bool binary) {
+                                      bool binary, const ExportMesh* water) {
+    if (water != nullptr && water->up != UpAxis::Y) {
+        throw std::invalid_argument("glTF export: the water mesh must be Y-up too");
+    }
     if (mesh.up != UpAxis::Y) {
         throw std::invalid_argument("glTF export: glTF is Y-up by specification");
     }
@@ -113,16 +168,7 @@ std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures
     primitive.attributes["NORMAL"] = add_accessor(model, normals, 3, TINYGLTF_TYPE_VEC3, false);
     primitive.attributes["TANGENT"] = add_accessor(model, tangents, 4, TINYGLTF_TYPE_VEC4, false);
     primitive.attributes["TEXCOORD_0"] = add_accessor(model, uvs, 2, TINYGLTF_TYPE_VEC2, false);
-    {
-        tinygltf::Accessor a;
-        a.bufferView = add_view(model, indices.data(), indices.size() * sizeof(std::uint32_t),
-                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-        a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-        a.count = indices.size();
-        a.type = TINYGLTF_TYPE_SCALAR;
-        model.accessors.push_back(a);
-        primitive.indices = static_cast<int>(model.accessors.size() - 1);
-    }
+    primitive.indices = add_indices(model, indices);
 
     tinygltf::Material material;
     material.name = "sand";
@@ -161,6 +207,8 @@ std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures
     tinygltf::Scene scene;
     scene.name = "sandtin";
     scene.nodes.push_back(0);
+    if (water != nullptr && !water->triangles.empty())
+        scene.nodes.push_back(add_water_node(model, *water));
     model.scenes.push_back(scene);
     model.defaultScene = 0;
 

@@ -5,6 +5,11 @@
 // by specification; the mesh must use UpAxis::Y.
 //
 // .gltf output is a single self-contained JSON file (buffer as a data URI); .glb is binary.
+//
+// Water (io/export_water_mesh.hpp), when given and not empty, is a second mesh and node named
+// "water" with POSITION and NORMAL and a material of its own, "water": a blue-green base
+// colour at alpha 0.55 with alphaMode BLEND, smooth (roughness 0.05) and double-sided, so that
+// Blender and game engines import it as a separate, see-through object over the terrain.
 
 #include <cstdint>
 #include <vector>
@@ -22,6 +27,6 @@ struct GltfTextures {
 
 /// Throws std::invalid_argument for a Z-up mesh and std::runtime_error when tinygltf fails.
 std::vector<std::uint8_t> encode_gltf(const ExportMesh& mesh, const GltfTextures& textures,
-                                      bool binary);
+                                      bool binary, const ExportMesh* water = nullptr);
 
 }  // namespace sandtin

@@ -13,9 +13,11 @@
 #include "io/export_mesh_obj.hpp"
 #include "io/export_mesh_ply.hpp"
 #include "io/export_mesh_stl.hpp"
+#include "io/export_water_mesh.hpp"
 #include "io/heightmap_raster.hpp"
 #include "maps/height_map.hpp"
 #include "maps/tangent_normal_map.hpp"
+#include "maps/water_depth_map.hpp"
 #include "util/atomic_file.hpp"
 #include "util/lower_extension.hpp"
 
@@ -111,22 +113,23 @@ bool is_mesh(ExportFormat f) {
 
 ExportFormat export_format_for(const fs::path& path, const std::string& map) {
     const std::string ext = lower_extension(path);
-    if (!map.empty() && ext != ".png" && !(ext == ".exr" && map == "height")) {
-        throw std::invalid_argument("export: --map applies to .png (and 'height' to .exr), not '" +
-                                    ext + "'");
+    if (!map.empty() && ext != ".png" && !(ext == ".exr" && (map == "height" || map == "water"))) {
+        throw std::invalid_argument(
+            "export: --map applies to .png (and 'height' and 'water' to .exr), not '" + ext + "'");
     }
     if (ext == ".obj") return ExportFormat::Obj;
     if (ext == ".ply") return ExportFormat::Ply;
     if (ext == ".stl") return ExportFormat::Stl;
     if (ext == ".gltf") return ExportFormat::Gltf;
     if (ext == ".glb") return ExportFormat::Glb;
-    if (ext == ".exr") return ExportFormat::HeightExr;
+    if (ext == ".exr") return map == "water" ? ExportFormat::WaterExr : ExportFormat::HeightExr;
     if (ext == ".png") {
         if (map.empty() || map == "height") return ExportFormat::HeightPng;
         if (map == "normal") return ExportFormat::NormalPng;
         if (map == "albedo") return ExportFormat::AlbedoPng;
+        if (map == "water") return ExportFormat::WaterPng;
         throw std::invalid_argument("export: unknown map '" + map +
-                                    "' (use height, normal or albedo)");
+                                    "' (use height, normal, albedo or water)");
     }
     throw std::invalid_argument("export: unknown output type '" + ext +
                                 "' (use .obj, .ply, .stl, .gltf, .glb, .png or .exr)");
@@ -152,17 +155,37 @@ const char* to_string(ExportFormat f) {
             return "normal-png";
         case ExportFormat::AlbedoPng:
             return "albedo-png";
+        case ExportFormat::WaterPng:
+            return "water-png";
+        case ExportFormat::WaterExr:
+            return "water-exr";
     }
     return "?";
 }
 
 namespace {
 
+/// The terrain, and the water on it as a second mesh, as glTF.
+void write_gltf(const Tin& tin, const ExportMesh& mesh, const GltfTextures& textures,
+                ExportFormat format, const MeshExportOptions& mesh_options, const ExportOptions& o,
+                const fs::path& out, ExportReport& report) {
+    std::optional<ExportMesh> water;
+    if (o.water && holds_water(tin)) {
+        water = build_water_mesh(tin, mesh_options);
+        report.water_vertices = water->positions.size();
+        report.water_triangles = water->triangles.size();
+    }
+    write(out, encode_gltf(mesh, textures, format == ExportFormat::Glb, water ? &*water : nullptr),
+          report);
+}
+
 /// A height, normal or albedo map of the terrain.
 void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const ExportOptions& o,
                 ExportReport& report, const ProgressCallback& progress) {
     const Rect d = tin.domain();
-    const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
+    // Height and water-depth maps sample the corners, as an import grid does.
+    const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr ||
+                        format == ExportFormat::WaterPng || format == ExportFormat::WaterExr;
     const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
     report.map_width = grid.width;
     report.map_height = grid.height;
@@ -185,6 +208,17 @@ void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const 
             write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
         } else {
             write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
+        }
+    } else if (format == ExportFormat::WaterPng || format == ExportFormat::WaterExr) {
+        const MapImage depths = bake_water_depth_map(tin, grid);
+        encoding();
+        const double cell = report.map_spacing.x;
+        const double cell_height = report.map_spacing.y;
+        if (format == ExportFormat::WaterPng) {
+            report.height_step = water_depth_png_range(depths) / 65535.0;
+            write(out, encode_water_depth_png(depths, cell, cell_height, o.georeference), report);
+        } else {
+            write(out, encode_height_exr(depths, cell, cell_height, o.georeference), report);
         }
     } else if (format == ExportFormat::NormalPng) {
         const MapImage normals = bake_normal_map(tin, grid, o.normal_mode);
@@ -346,7 +380,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
             break;
         case ExportFormat::Gltf:
         case ExportFormat::Glb:
-            write(out, encode_gltf(mesh, textures, format == ExportFormat::Glb), report);
+            write_gltf(tin, mesh, textures, format, mesh_options, o, out, report);
             break;
         default:
             break;
@@ -373,6 +407,8 @@ nlohmann::json to_json(const ExportReport& r) {
                     {"cell_height", r.map_spacing.y}};
     }
     if (r.height_step > 0.0) j["height_step"] = r.height_step;
+    if (r.water_triangles > 0)
+        j["water"] = {{"vertices", r.water_vertices}, {"triangles", r.water_triangles}};
     if (r.simplified) {
         j["simplified"] = {{"points", r.simplified->points},
                            {"triangles", r.simplified->triangles},

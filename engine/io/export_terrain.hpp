@@ -3,8 +3,11 @@
 // `export` and the editor's File menu.
 //
 //   .obj (+ .mtl, and the albedo and normal-map PNGs next to it), .ply, .stl, .gltf, .glb
-//   .png  a 16-bit height map, or with map = "normal" / "albedo" an 8-bit RGB map
-//   .exr  a float height map
+//   .png  a 16-bit height map, or with map = "normal" / "albedo" an 8-bit RGB map, or with
+//         map = "water" a 16-bit water-depth map
+//   .exr  a float height map, or with map = "water" a float water-depth map
+// A glTF of a terrain that holds water carries the water surface as a second mesh and node,
+// "water", with a translucent material (io/export_water_mesh.hpp).
 //
 // Meshes can be closed into a solid or given a skirt, simplified to a maximum error first,
 // written Y-up or Z-up and in other units. Every file is written atomically.
@@ -36,10 +39,13 @@ enum class ExportFormat : std::uint8_t {
     HeightExr,
     NormalPng,
     AlbedoPng,
+    WaterPng,
+    WaterExr,
 };
 
 /// The format for an output path; `map` picks what a .png holds ("height", "normal" or
-/// "albedo"). Throws std::invalid_argument naming the supported extensions or maps.
+/// "albedo", or "water" for .png and .exr). Throws std::invalid_argument naming the supported
+/// extensions or maps.
 ExportFormat export_format_for(const std::filesystem::path& path, const std::string& map = "");
 const char* to_string(ExportFormat format);
 
@@ -69,6 +75,8 @@ struct ExportOptions {
     /// height maps and re-meshes only.)
     std::optional<double> texel_size;
     bool textures = true;  ///< OBJ and glTF: bake and embed/write albedo and normal maps
+    /// glTF: the water standing on the terrain as a second mesh (none when it is dry).
+    bool water = true;
     NormalMode normal_mode = NormalMode::Smooth;
     /// Albedo maps and mesh materials: the scene's materials (`export_palette`).
     MaterialColours palette = export_palette(MaterialTable::presets());
@@ -86,6 +94,8 @@ struct ExportReport {
     Vec2 map_spacing{};        ///< metres between those samples: (columns, rows)
     double height_step = 0.0;  ///< 16-bit PNG: metres per grey level
     std::optional<GreedyStats> simplified;
+    std::size_t water_vertices = 0;  ///< glTF: the water mesh's
+    std::size_t water_triangles = 0;
     double ms = 0.0;
 };
 
