@@ -1,0 +1,194 @@
+#include "water/live_water.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "tin/vertex_arrays.hpp"
+#include "water/tin_water_mesh.hpp"
+
+namespace sandtin {
+
+namespace {
+
+/// The longest step between two applications of the sources, as a script's water op takes.
+constexpr double kLongestStep = 0.05;  // s
+
+void check(bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("live water: ") + what);
+}
+
+bool same_sides(const OpenSides& a, const OpenSides& b) {
+    return a.west == b.west && a.east == b.east && a.south == b.south && a.north == b.north;
+}
+
+}  // namespace
+
+LiveWater::LiveWater(Tin& tin) : tin_(tin), reader_(tin) {
+    // The first take reports every vertex: follow_terrain() finds any water already there.
+    follow_terrain();
+}
+
+bool LiveWater::follow_terrain() {
+    const ChangeSet changes = reader_.take();
+    if (!changes.triangles.empty()) stale_ = true;
+    const VertexArrays& va = tin_.vertices();
+    const bool follow_pipes = pipes_ && !stale_ && va.size() <= pipes_->vertex_count();
+    if (pipes_ && va.size() > pipes_->vertex_count()) stale_ = true;  // new ids: rebuild
+    for (const IdRange r : changes.vertices) {
+        const std::uint32_t end =
+            std::min<std::uint32_t>(r.end, static_cast<std::uint32_t>(va.size()));
+        for (std::uint32_t v = r.begin; v < end; ++v) {
+            if (!va.alive[v]) continue;
+            if (va.water_depth[v] > 0.0) wet_ = true;
+            if (!follow_pipes) continue;
+            // Heights the erosion or a brush moved, depths an undo brought back.
+            if (pipes_->mesh().bed[v] != va.height[v]) pipes_->set_bed(v, va.height[v]);
+            if (pipes_->depth(v) != va.water_depth[v]) pipes_->set_depth(v, va.water_depth[v]);
+        }
+    }
+    return !changes.empty();
+}
+
+void LiveWater::rebuild(const LiveWaterSettings& settings) {
+    VirtualPipeOptions options;
+    options.friction = settings.friction;
+    pipes_.emplace(water_mesh_of(tin_), options);
+    const VertexArrays& va = tin_.vertices();
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (va.alive[v] && va.water_depth[v] > 0.0) pipes_->set_depth(v, va.water_depth[v]);
+    }
+    open_borders(*pipes_, tin_.domain(), settings.open);
+    pipes_friction_ = settings.friction;
+    pipes_open_ = settings.open;
+    stale_ = false;
+}
+
+bool LiveWater::idle(const LiveWaterSettings& settings) const {
+    return (!wet_ || resting_ || !settings.flowing) && nozzles_.empty() &&
+           settings.rain_mm_per_hour == 0.0;
+}
+
+LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& settings,
+                                  double budget_ms) {
+    check(std::isfinite(seconds) && seconds >= 0.0, "seconds must be finite and >= 0");
+    check(std::isfinite(budget_ms) && budget_ms >= 0.0, "the budget must be finite and >= 0");
+    check(std::isfinite(settings.rain_mm_per_hour) && settings.rain_mm_per_hour >= 0.0 &&
+              std::isfinite(settings.evaporation_mm_per_hour) &&
+              settings.evaporation_mm_per_hour >= 0.0,
+          "rain and evaporation must be finite rates >= 0");
+    check(std::isfinite(settings.friction) && settings.friction >= 0.0,
+          "friction must be finite and >= 0");
+    check(std::isfinite(settings.wet_depth) && settings.wet_depth > 0.0 &&
+              settings.wet_moisture >= 0.0f && settings.wet_moisture <= 1.0f,
+          "the wetting depth must be > 0 and its moisture in [0, 1]");
+    const auto start = std::chrono::steady_clock::now();
+    LiveWaterFrame frame;
+    if (follow_terrain()) resting_ = false;  // an edit may have disturbed the water
+    if (idle(settings) || seconds == 0.0) {
+        nozzles_.clear();
+        return frame;
+    }
+    // Phase 1: pipes that match the terrain and the settings.
+    if (!pipes_ || stale_ || pipes_friction_ != settings.friction) {
+        rebuild(settings);
+        frame.rebuilt = true;
+    } else if (!same_sides(pipes_open_, settings.open)) {
+        open_borders(*pipes_, tin_.domain(), settings.open);
+        pipes_open_ = settings.open;
+    }
+    // Phase 2: sources and steps within the budget.
+    WaterSources sources;
+    sources.nozzles = std::move(nozzles_);
+    nozzles_.clear();
+    if (settings.rain_mm_per_hour > 0.0)
+        sources.rain.push_back({settings.rain_mm_per_hour, {}, 0.0});
+    sources.evaporation_mm_per_hour = settings.evaporation_mm_per_hour;
+    const double left_before = pipes_->volume_left();
+    const auto spent_ms = [&] {
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count();
+    };
+    while (frame.seconds < seconds && (frame.steps == 0 || spent_ms() < budget_ms)) {
+        const double dt = std::min({settings.flowing ? pipes_->stable_time_step() : kLongestStep,
+                                    kLongestStep, seconds - frame.seconds});
+        const SourceReport r = apply_sources(*pipes_, sources, dt);
+        frame.added += r.added;
+        frame.evaporated += r.evaporated;
+        if (settings.flowing) pipes_->step(dt);
+        frame.seconds += dt;
+        ++frame.steps;
+    }
+    // Out of budget: the flow falls behind, but the sources give the whole frame's water (a
+    // nozzle's litres per second do not depend on the machine's speed).
+    if (frame.seconds < seconds) {
+        const SourceReport r = apply_sources(*pipes_, sources, seconds - frame.seconds);
+        frame.added += r.added;
+        frame.evaporated += r.evaporated;
+        frame.behind = seconds - frame.seconds;
+    }
+    frame.left = pipes_->volume_left() - left_before;
+    frame.ran = true;
+    // Phase 3: the depths into the terrain; at rest once they barely move with no source.
+    double fastest = 0.0;
+    write_back(settings, frame, fastest);
+    wet_ = pipes_->volume() > 0.0;
+    resting_ = sources.nozzles.empty() && sources.rain.empty() && settings.flowing &&
+               fastest < kRestRate * frame.seconds;
+    frame.ms = spent_ms();
+    return frame;
+}
+
+void LiveWater::write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame,
+                           double& fastest) {
+    const VertexArrays& va = tin_.vertices();
+    const std::size_t n = std::min(va.size(), pipes_->vertex_count());
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!va.alive[v]) continue;
+        const VertexId id{static_cast<std::uint32_t>(v)};
+        const double depth = pipes_->depth(v);
+        if (depth >= settings.wet_depth && va.moisture[v] < settings.wet_moisture) {
+            tin_.set_moisture(id, settings.wet_moisture);
+            ++frame.wetted;
+        }
+        if (va.water_depth[v] == depth) continue;
+        fastest = std::max(fastest, std::abs(va.water_depth[v] - depth));
+        tin_.set_water_depth(id, depth);
+        ++frame.written;
+    }
+    // Its own writes come back through the journal; the pipes already hold them.
+    follow_terrain();
+}
+
+double LiveWater::clear() {
+    const VertexArrays& va = tin_.vertices();
+    double volume = 0.0;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || va.water_depth[v] == 0.0) continue;
+        volume += va.lumped_area[v] * va.water_depth[v];
+        tin_.set_water_depth(VertexId{static_cast<std::uint32_t>(v)}, 0.0);
+    }
+    follow_terrain();
+    if (pipes_) {
+        for (std::size_t v = 0; v < pipes_->vertex_count(); ++v)
+            if (pipes_->depth(v) > 0.0) pipes_->set_depth(v, 0.0);
+    }
+    wet_ = false;
+    resting_ = false;
+    return volume;
+}
+
+WaterSummary LiveWater::measure() const {
+    const VertexArrays& va = tin_.vertices();
+    WaterSummary s;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || va.water_depth[v] <= 0.0) continue;
+        ++s.wet_vertices;
+        s.volume += va.lumped_area[v] * va.water_depth[v];
+        s.max_depth = std::max(s.max_depth, va.water_depth[v]);
+    }
+    return s;
+}
+
+}  // namespace sandtin

@@ -1,0 +1,109 @@
+#pragma once
+// Water that runs with the editor (issue 40, items 2 and 7): the virtual pipes
+// (virtual_pipes.hpp) kept beside a Tin that the artist edits while the water flows. The water
+// lives in the terrain (VertexArrays::water_depth), so undo, saving and exporting see it; this
+// class only moves it, a frame at a time:
+//  - it reads the terrain's change journal through a reader of its own: a re-triangulation
+//    (a stamp, a simplification) rebuilds the pipes from the terrain, and changed heights or
+//    depths (the erosion, a brush, an undo) are taken over vertex by vertex;
+//  - each frame it applies the sources (the Water tool's nozzle, rain, evaporation) and steps
+//    the water for the frame's seconds under the CFL step, within a time budget, then writes
+//    the depths that changed back into the terrain (journaled);
+//  - a dry terrain with no source costs nothing but reading the vertices the journal names:
+//    no pipes are built and no step runs; nor does water at rest (no depth changing faster
+//    than kRestRate, and no source) until the terrain under it changes.
+// Units: metres, seconds, m³; rates in mm/h and L/s as in water_sources.hpp.
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "tin/change_reader.hpp"
+#include "tin/tin.hpp"
+#include "water/virtual_pipes.hpp"
+#include "water/water_borders.hpp"
+#include "water/water_sources.hpp"
+
+namespace sandtin {
+
+/// m/s: water whose depths change more slowly than this, with no source, is at rest and stops
+/// stepping (0.36 mm an hour; the pipes' friction would take minutes more to still it fully).
+inline constexpr double kRestRate = 1e-7;
+
+struct LiveWaterSettings {
+    bool flowing = true;                   ///< false: the water stands still (sources still add)
+    double rain_mm_per_hour = 0.0;         ///< on the whole terrain, >= 0
+    double evaporation_mm_per_hour = 0.0;  ///< >= 0
+    OpenSides open;                        ///< the others are walls
+    double friction = VirtualPipeOptions{}.friction;  ///< 1/s
+    /// Sand under at least wet_depth of water takes at least wet_moisture (in [0, 1]), as a
+    /// script's water operation wets it: the relaxation then holds it at its wetter angle.
+    double wet_depth = 1e-3;  ///< m, > 0
+    float wet_moisture = 1.0f;
+};
+
+/// What one frame of water did.
+struct LiveWaterFrame {
+    bool ran = false;      ///< the water stepped, or a source added some
+    bool rebuilt = false;  ///< the pipes were built again from the terrain
+    double seconds = 0.0;  ///< the flow stepped this frame (less than asked when out of budget)
+    /// Seconds the flow fell behind for want of budget; the sources still gave the water of
+    /// all the seconds asked.
+    double behind = 0.0;
+    std::size_t steps = 0;
+    double added = 0.0, evaporated = 0.0, left = 0.0;  ///< m³ this frame
+    std::size_t written = 0;                           ///< depths written back into the terrain
+    std::size_t wetted = 0;                            ///< vertices whose moisture the water raised
+    double ms = 0.0;
+};
+
+/// The water on the terrain as a whole (LiveWater::measure).
+struct WaterSummary {
+    double volume = 0.0;  ///< m³: sum of lumped area x depth
+    std::size_t wet_vertices = 0;
+    double max_depth = 0.0;  ///< m
+};
+
+class LiveWater {
+  public:
+    /// `tin` must outlive this and stay where it is (a journal reader holds its address).
+    explicit LiveWater(Tin& tin);
+
+    /// Water enters at `nozzle` during the next advance() only (the Water tool, held there).
+    void add_nozzle(const Nozzle& nozzle) { nozzles_.push_back(nozzle); }
+    /// Advances the water by up to `seconds` (>= 0), stopping early once `budget_ms` of CPU
+    /// time is spent. Throws std::invalid_argument for negative or non-finite arguments or
+    /// settings.
+    LiveWaterFrame advance(double seconds, const LiveWaterSettings& settings, double budget_ms);
+    /// Whether advance() would do nothing, as of the last advance() (an edit since is seen by
+    /// the next one): no source, and the terrain dry, its water at rest or not flowing.
+    bool idle(const LiveWaterSettings& settings) const;
+    /// The water has come to rest (and stays so until a source or an edit disturbs it).
+    bool resting() const { return resting_; }
+    /// Takes every drop off the terrain (journaled, so one undo level can bring it back).
+    /// Returns the m³ taken.
+    double clear();
+    /// O(vertices): the water the terrain holds now.
+    WaterSummary measure() const;
+
+  private:
+    /// Takes the journal's changes: notes a re-triangulation, water that appeared, and hands
+    /// the pipes changed heights and depths. Returns whether anything changed.
+    bool follow_terrain();
+    void rebuild(const LiveWaterSettings& settings);
+    /// Writes the depths that changed, and the moisture of the sand they wet, into the
+    /// terrain; `fastest` becomes the largest depth change (m).
+    void write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame, double& fastest);
+
+    Tin& tin_;
+    ChangeReader reader_;
+    std::optional<VirtualPipes> pipes_;
+    double pipes_friction_ = -1.0;
+    OpenSides pipes_open_;
+    bool stale_ = true;  ///< the pipes no longer match the triangulation
+    bool wet_ = false;   ///< some vertex may hold water
+    bool resting_ = false;
+    std::vector<Nozzle> nozzles_;
+};
+
+}  // namespace sandtin

@@ -1,0 +1,177 @@
+// Water that runs beside an edited terrain (water/live_water.hpp): a dry terrain costs nothing;
+// a nozzle adds what its rate says and the terrain holds it (volume = rate x time, walls all
+// round); an edit that re-triangulates rebuilds the pipes and a raised vertex sheds its water;
+// depths set from outside (an undo) are taken over and not overwritten; water that comes to
+// rest stops stepping until the terrain under it changes; Clear takes all of it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "tin/tin.hpp"
+#include "tin/vertex_arrays.hpp"
+#include "water/live_water.hpp"
+
+namespace sandtin {
+namespace {
+namespace live_water_test {
+
+Tin bowl() {
+    return Tin::random_points(Rect::from_size(1.0, 1.0), 1200, 4, [](Vec2 p) {
+        return 0.2 * ((p.x - 0.5) * (p.x - 0.5) + (p.y - 0.5) * (p.y - 0.5));
+    });
+}
+
+double water_on(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    double sum = 0.0;
+    for (std::size_t v = 0; v < va.size(); ++v)
+        if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
+    return sum;
+}
+
+/// `frames` frames of 1/60 s each, with `nozzle` held (0 L/s: none).
+LiveWaterFrame frames(LiveWater& water, int count, double litres_per_second = 0.0,
+                      const LiveWaterSettings& settings = {}) {
+    LiveWaterFrame total;
+    for (int i = 0; i < count; ++i) {
+        if (litres_per_second > 0.0) water.add_nozzle({{0.5, 0.5}, litres_per_second});
+        const LiveWaterFrame f = water.advance(1.0 / 60.0, settings, 1e9);
+        total.ran = total.ran || f.ran;
+        total.rebuilt = total.rebuilt || f.rebuilt;
+        total.seconds += f.seconds;
+        total.steps += f.steps;
+        total.added += f.added;
+        total.written += f.written;
+    }
+    return total;
+}
+
+TEST(LiveWater, ADryTerrainCostsNothing) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    const LiveWaterFrame f = frames(water, 30);
+    EXPECT_FALSE(f.ran);
+    EXPECT_FALSE(f.rebuilt);
+    EXPECT_EQ(f.steps, 0u);
+    EXPECT_TRUE(water.idle({}));
+    // Nor does sculpting a dry terrain wake it.
+    tin.set_height(VertexId{100}, 0.3);
+    EXPECT_FALSE(frames(water, 5).ran);
+}
+
+TEST(LiveWater, ANozzleAddsWhatItsRateSaysAndTheTerrainHoldsIt) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    const LiveWaterFrame f = frames(water, 60, 0.1);  // 0.1 L/s for one second
+    EXPECT_TRUE(f.ran);
+    EXPECT_NEAR(f.seconds, 1.0, 1e-12);
+    EXPECT_NEAR(f.added, 1e-4, 1e-16);
+    EXPECT_NEAR(water_on(tin), 1e-4, 1e-16);
+    EXPECT_NEAR(water.measure().volume, 1e-4, 1e-16);
+    EXPECT_GT(water.measure().wet_vertices, 1u);  // it spread from the nozzle's vertex
+    // With no source, walls all round: the volume stays while the water flows.
+    frames(water, 60);
+    EXPECT_NEAR(water_on(tin), 1e-4, 1e-16);
+    EXPECT_TRUE(tin.check_valid().ok());
+}
+
+TEST(LiveWater, EditsUnderTheWaterAreFollowed) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    frames(water, 120, 0.2);
+    // A vertex raised far above the pond sheds its water.
+    VertexId wettest;
+    double deepest = 0.0;
+    for (std::uint32_t v = 0; v < tin.vertices().size(); ++v) {
+        if (tin.is_alive(VertexId{v}) && !tin.is_boundary(VertexId{v}) &&
+            tin.vertices().water_depth[v] > deepest) {
+            deepest = tin.vertices().water_depth[v];
+            wettest = VertexId{v};
+        }
+    }
+    ASSERT_GT(deepest, 0.0);
+    tin.set_height(wettest, tin.height(wettest) + 0.2);
+    frames(water, 60);
+    EXPECT_LT(tin.vertices().water_depth[wettest.index()], 0.5 * deepest);
+    // A new vertex re-triangulates: the pipes are rebuilt from the terrain, and the new vertex
+    // (in the pond) holds water.
+    const VertexId added = tin.insert_point_on_surface({0.503, 0.497});
+    const LiveWaterFrame f = frames(water, 1);
+    EXPECT_TRUE(f.rebuilt);
+    EXPECT_GT(tin.vertices().water_depth[added.index()], 0.0);
+    EXPECT_TRUE(tin.check_valid().ok());
+}
+
+TEST(LiveWater, DepthsSetFromOutsideAreTakenOver) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    frames(water, 60, 0.1);
+    // An undo takes the water away: it must not come back from the pipes.
+    for (std::uint32_t v = 0; v < tin.vertices().size(); ++v)
+        if (tin.is_alive(VertexId{v})) tin.set_water_depth(VertexId{v}, 0.0);
+    frames(water, 30);
+    EXPECT_EQ(water_on(tin), 0.0);
+    EXPECT_EQ(water.measure().wet_vertices, 0u);
+    // And a redo puts some back, which then flows.
+    tin.set_water_depth(VertexId{200}, 0.01);
+    const double put = tin.vertices().lumped_area[200] * 0.01;
+    const LiveWaterFrame f = frames(water, 30);
+    EXPECT_TRUE(f.ran);
+    EXPECT_NEAR(water_on(tin), put, 1e-12 * put);
+}
+
+TEST(LiveWater, WaterAtRestStopsSteppingUntilTheTerrainChanges) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    frames(water, 30, 0.2);
+    LiveWaterSettings still;
+    still.friction = 4.0;  // a lake that stills within a minute
+    int waited = 0;
+    while (!water.resting() && waited < 60 * 600) {
+        frames(water, 60, 0.0, still);
+        waited += 60;
+    }
+    ASSERT_TRUE(water.resting()) << "after " << waited / 60 << " s";
+    EXPECT_TRUE(water.idle(still));
+    const LiveWaterFrame quiet = frames(water, 10, 0.0, still);
+    EXPECT_FALSE(quiet.ran);
+    EXPECT_EQ(quiet.steps, 0u);
+    // Its surface is level where it is deep (the bowl's pond).
+    double low = 1e9, high = -1e9;
+    const VertexArrays& va = tin.vertices();
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || va.water_depth[v] < 1e-3) continue;
+        low = std::min(low, va.height[v] + va.water_depth[v]);
+        high = std::max(high, va.height[v] + va.water_depth[v]);
+    }
+    ASSERT_LT(low, high + 1.0);
+    EXPECT_LT(high - low, 1e-4);
+    // A stamp beside the pond wakes it: the next frame sees the edit and steps.
+    tin.set_height(VertexId{50}, tin.height(VertexId{50}) - 0.01);
+    EXPECT_TRUE(frames(water, 1, 0.0, still).ran);
+}
+
+TEST(LiveWater, ClearTakesAllTheWaterAndSaysHowMuch) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    frames(water, 60, 0.1);
+    EXPECT_NEAR(water.clear(), 1e-4, 1e-16);
+    EXPECT_EQ(water_on(tin), 0.0);
+    EXPECT_FALSE(frames(water, 10).ran);
+}
+
+TEST(LiveWater, BadArgumentsAreRefused) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    EXPECT_THROW(water.advance(-1.0, {}, 10.0), std::invalid_argument);
+    EXPECT_THROW(water.advance(std::nan(""), {}, 10.0), std::invalid_argument);
+    LiveWaterSettings bad;
+    bad.rain_mm_per_hour = -5.0;
+    EXPECT_THROW(water.advance(0.1, bad, 10.0), std::invalid_argument);
+}
+
+}  // namespace live_water_test
+}  // namespace
+}  // namespace sandtin
