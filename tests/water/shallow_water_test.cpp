@@ -165,9 +165,9 @@ TEST(ShallowWater, WallsHoldTheWaterAndTheVolumeIsExact) {
 }
 
 TEST(ShallowWater, AnOpenSideDrainsATiltedPlane) {
-    // 1 cm of water on a plane falling to the west; only the west side is open.
+    // 1 cm of water on a plane falling to the west (1 in 5); only the west side is open.
     const Tin tin =
-        support::scattered_tin(Rect::from_size(1, 1), 0.04, 25, [](Vec2 p) { return 0.05 * p.x; });
+        support::scattered_tin(Rect::from_size(1, 1), 0.05, 25, [](Vec2 p) { return 0.2 * p.x; });
     ShallowWaterOptions options;
     options.manning = 0.03;
     ShallowWater w(water_mesh_of(tin), options);
@@ -181,7 +181,7 @@ TEST(ShallowWater, AnOpenSideDrainsATiltedPlane) {
     }
     ASSERT_GT(open, 2u);
     const double volume0 = w.volume();
-    EXPECT_TRUE(run_until(w, 20.0));
+    EXPECT_TRUE(run_until(w, 6.0));
     EXPECT_LT(w.volume(), 0.2 * volume0);
     EXPECT_NEAR(w.volume() + w.volume_left(), volume0, 1e-12 * volume0);
 }
