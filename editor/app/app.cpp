@@ -114,6 +114,7 @@ LoopState App::loop_state() const {
     state.job_running = busy();
     // The sand waits while a job runs (update_simulation): its frames are the job's.
     state.eroding = !busy() && erosion_runs() && sculpting_.wants_to_erode(doc_);
+    state.water_moving = !busy() && !doc_.water().idle(water_settings(settings_));
     state.haptics_connected = haptics_ != nullptr;
     return state;
 }
@@ -333,6 +334,13 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
     s["vertices"] = doc_.tin().vertex_count();
     s["triangles"] = doc_.tin().triangle_count();
     s["undo_levels"] = doc_.undo_log().levels();
+    {
+        const WaterSummary w = doc_.water().measure();
+        s["water"] = {{"m3", w.volume},
+                      {"wet_vertices", w.wet_vertices},
+                      {"max_depth_m", w.max_depth},
+                      {"resting", doc_.water().resting()}};
+    }
     s["submissions"] = window_->swapchain().submissions();
     s["bytes_uploaded"] = window_->renderer().bytes_uploaded();
     s["mesh_updates"] = view_->mesh_updates();

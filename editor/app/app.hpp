@@ -58,6 +58,8 @@ using Clock = std::chrono::steady_clock;
 
 /// Milliseconds of relaxation per frame at most (the rest waits for the next frame).
 inline constexpr double kErosionBudgetMs = 25.0;
+/// Milliseconds of water per frame at most: the water falls behind real time beyond it.
+inline constexpr double kWaterBudgetMs = 15.0;
 
 /// Seconds a frame of a scripted run counts for (a held pour): 60 frames a second, so a
 /// script pours the same on any machine, however fast it draws.
@@ -354,6 +356,11 @@ class App {
     void stamp_size_readout();
     void panel_materials();
     void panel_erosion();
+    /// The Water panel (panel_water.cpp): flow, rain, evaporation, open sides, the depth
+    /// overlay, Clear, and how much water there is.
+    void panel_water();
+    /// One frame of water (app_frame.cpp): the held Water tool, rain, the flow.
+    void update_water();
     void panel_haptics();
     /// The Stats window's first lines: vertex and triangle counts, constrained edges and
     /// volume (their length sizes the window).
@@ -444,7 +451,12 @@ class App {
     bool left_down_ = false, right_down_ = false, middle_down_ = false;
     double mouse_x_ = 0.0, mouse_y_ = 0.0;
     std::optional<Vec3> cursor_;
-    Clock::time_point hold_clock_{};  ///< when a held button last counted its time
+    Clock::time_point hold_clock_{};                ///< when a held button last counted its time
+    Clock::time_point water_clock_ = Clock::now();  ///< when the water last counted its time
+    /// The water on the terrain as last measured: after each frame the water ran, and by
+    /// the Water panel a few times a second (an undo may change it).
+    WaterSummary water_summary_;
+    Clock::time_point water_summary_at_{};
 
     // Prompts.
     std::optional<std::filesystem::path> recovery_for_;

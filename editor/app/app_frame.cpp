@@ -89,6 +89,20 @@ std::string App::erosion_status() const {
 
 // ---- One frame ----------------------------------------------------------------------------
 
+void App::update_water() {
+    // The water's seconds are the frame's (a scripted frame counts 1/60 s), at most a tenth of
+    // a second: a stall (a long stamp, a dialog) is not made up for in one frame.
+    const auto now = Clock::now();
+    const double seconds =
+        options_.scripted()
+            ? kScriptFrameSeconds
+            : std::min(0.1, std::chrono::duration<double>(now - water_clock_).count());
+    water_clock_ = now;
+    if (busy()) return;  // a job's worker may be reading the terrain
+    const LiveWaterFrame w = sculpting_.flow_water(doc_, settings_, seconds, kWaterBudgetMs);
+    if (w.ran) water_summary_ = doc_.water().measure();
+}
+
 void App::update_simulation() {
     const auto t0 = Clock::now();
     // A held button keeps pouring with time (a scripted frame counts 1/60 s).
@@ -113,6 +127,7 @@ void App::update_simulation() {
         if (!busy()) view_->clear_active();
         update_settle({});
     }
+    update_water();
     for (const std::string& m : sculpting_.take_messages())
         report(m);
     times_.push(times_.physics, ms_since(t0));
@@ -193,16 +208,19 @@ void App::draw_terrain(const Mat4& vp) {
     push.light_dir[3] = static_cast<float>(settings_.contrast);
     const Rect domain = doc_.tin().domain();
     const Vec2 c = domain.centre();
-    const bool stamp_tool = kTools[settings_.tool].kind == ToolKind::Stamp;
+    // Stamps show their outline (below) and the nozzle is a point: both only the centre dot.
+    const bool dot_only = kTools[settings_.tool].kind == ToolKind::Stamp ||
+                          kTools[settings_.tool].kind == ToolKind::Water;
     if (cursor_) {
         push.cursor[0] = static_cast<float>(cursor_->x - c.x);
         push.cursor[1] = static_cast<float>(cursor_->y - c.y);
         // Round tools show a ring of their radius; stamp tools their outline (below), plus the
         // centre dot (radius 0 draws no ring).
-        push.cursor[2] = stamp_tool ? 0.0f : static_cast<float>(settings_.tool_radius);
+        push.cursor[2] = dot_only ? 0.0f : static_cast<float>(settings_.tool_radius);
         push.cursor[3] = 1.0f;
     }
-    push.overlays[0] = settings_.overlay_wireframe ? 1.0f : 0.0f;
+    push.overlays[0] = (settings_.overlay_wireframe ? render::kOverlayWireframe : 0.0f) +
+                       (settings_.overlay_water ? render::kOverlayWaterDepth : 0.0f);
     push.overlays[1] = settings_.overlay_active ? 1.0f : 0.0f;
     push.overlays[2] = settings_.overlay_thickness ? 1.0f : 0.0f;
     push.overlays[3] = settings_.overlay_slope ? 1.0f : 0.0f;
@@ -211,7 +229,7 @@ void App::draw_terrain(const Mat4& vp) {
     push.contrast[2] = static_cast<float>(1.0 / domain.width());
     push.contrast[3] = static_cast<float>(1.0 / domain.height());
     renderer.draw(swapchain.command_buffer(), push, swapchain.extent(), view_->mesh());
-    if (cursor_ && stamp_tool) {
+    if (cursor_ && kTools[settings_.tool].kind == ToolKind::Stamp) {
         // Stamp tools: the footprint's inner contour on the terrain, turned as the next stamp
         // will be.
         const std::vector<std::array<float, 3>> loop = footprint_outline();

@@ -294,6 +294,16 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.overlay_wireframe = v.get<bool>();
         else if (k2 == "slope")
             settings_.overlay_slope = v.get<bool>();
+        else if (k2 == "water_overlay")
+            settings_.overlay_water = v.get<bool>();
+        else if (k2 == "water_flowing")
+            settings_.water_flowing = v.get<bool>();
+        else if (k2 == "rain")
+            settings_.water_rain = kWaterRainRange.clamp(v.get<double>(), size);
+        else if (k2 == "evaporation")
+            settings_.water_evaporation = kWaterEvaporationRange.clamp(v.get<double>(), size);
+        else if (k2 == "water_nozzle")
+            settings_.water_nozzle = kWaterNozzleRange.clamp(v.get<double>(), size);
         else if (k2 == "pour_volume")
             settings_.pour_volume = kPourVolumeRange.clamp(v.get<double>(), size);
         else if (k2 == "brush_strength")

@@ -29,6 +29,7 @@ Document Document::make(Tin t, Generation next_generation, const std::filesystem
     d.tin_->set_track_changes(false);
     d.solver_ = std::make_unique<SandPhysics>(*d.tin_, d.materials_);
     d.history_ = std::make_unique<History>(*d.tin_);
+    d.water_ = std::make_unique<LiveWater>(*d.tin_);
     // Copied whole here, on the thread that builds the document (the worker of Open, Import,
     // Recover and New): the frame then pays only for its edits when an autosave is due.
     d.autosave_copy_ = std::make_unique<SessionKeeper>(*d.tin_);
@@ -95,6 +96,7 @@ Document::Document(Document&& o) noexcept
       context_(std::move(o.context_)),
       solver_(std::move(o.solver_)),
       history_(std::move(o.history_)),
+      water_(std::move(o.water_)),
       autosave_copy_(std::move(o.autosave_copy_)),
       undo_log_(std::move(o.undo_log_)),
       materials_(std::move(o.materials_)),
@@ -112,6 +114,7 @@ Document& Document::operator=(Document&& o) noexcept {
     context_ = std::move(o.context_);
     solver_ = std::move(o.solver_);
     history_ = std::move(o.history_);
+    water_ = std::move(o.water_);
     autosave_copy_ = std::move(o.autosave_copy_);
     undo_log_ = std::move(o.undo_log_);
     materials_ = std::move(o.materials_);
@@ -130,6 +133,7 @@ Document::~Document() {
 
 void Document::close() {
     autosave_copy_.reset();
+    water_.reset();
     history_.reset();
     solver_.reset();
     context_.reset();

@@ -25,6 +25,7 @@
 #include "physics/terrain_solver.hpp"
 #include "tools/sculpt_context.hpp"
 #include "undo_log.hpp"
+#include "water/live_water.hpp"
 
 namespace sandtin::editor {
 
@@ -93,6 +94,9 @@ class Document {
     void drop_solver() { solver_.reset(); }
     /// Replaces the solver (the Erosion panel's CPU/GPU switch); the old one goes first.
     void replace_solver(const std::function<std::unique_ptr<RelaxationSolver>(Tin&)>& make);
+    /// The water running over the terrain (the Water tool, rain); its depths are the TIN's.
+    LiveWater& water() { return *water_; }
+    const LiveWater& water() const { return *water_; }
     const History& history() const { return *history_; }
     const UndoLog& undo_log() const { return undo_log_; }
     const MaterialTable& materials() const { return materials_; }
@@ -157,6 +161,7 @@ class Document {
     std::unique_ptr<SculptContext> context_;
     std::unique_ptr<RelaxationSolver> solver_;
     std::unique_ptr<History> history_;
+    std::unique_ptr<LiveWater> water_;
     /// The copy autosaves are made from (io/session_keeper.hpp), followed once a frame.
     std::unique_ptr<SessionKeeper> autosave_copy_;
     UndoLog undo_log_;  ///< terrain levels (history_) and material edits, in order

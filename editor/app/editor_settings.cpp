@@ -49,6 +49,15 @@ void fields(EditorSettings& s, F&& f) {
     f("overlay_active", s.overlay_active, nullptr);
     f("overlay_thickness", s.overlay_thickness, nullptr);
     f("overlay_slope", s.overlay_slope, nullptr);
+    f("overlay_water", s.overlay_water, nullptr);
+    f("water_flowing", s.water_flowing, nullptr);
+    f("water_rain", s.water_rain, &kWaterRainRange);
+    f("water_evaporation", s.water_evaporation, &kWaterEvaporationRange);
+    f("water_open_west", s.water_open_west, nullptr);
+    f("water_open_east", s.water_open_east, nullptr);
+    f("water_open_south", s.water_open_south, nullptr);
+    f("water_open_north", s.water_open_north, nullptr);
+    f("water_nozzle", s.water_nozzle, &kWaterNozzleRange);
     f("contrast", s.contrast, &kContrastRange);
     f("vsync", s.vsync, nullptr);
     f("scene_size", s.scene_size, nullptr);

@@ -44,7 +44,20 @@ struct EditorSettings {
     bool overlay_active = false;
     bool overlay_thickness = false;
     bool overlay_slope = false;
-    double contrast = 0.5;  ///< strength of the height contrast curve, [0, 1]
+    bool overlay_water = false;  ///< water depth in false colour
+    /// The Water panel (engine/water/live_water.hpp): the water flows (else it stands still),
+    /// rain on the whole terrain and evaporation (mm/h), the sides water leaves by, and the
+    /// Water tool's nozzle (m³ per second on the 1 m sandbox, scaled by the cube of the size on
+    /// another terrain).
+    bool water_flowing = true;
+    double water_rain = 0.0;
+    double water_evaporation = 0.0;
+    bool water_open_west = false;
+    bool water_open_east = false;
+    bool water_open_south = false;
+    bool water_open_north = false;
+    double water_nozzle = 2e-5;  ///< m³/s: 0.02 L/s
+    double contrast = 0.5;       ///< strength of the height contrast curve, [0, 1]
     bool vsync = true;
     /// Metres: the size (larger domain side) of the terrain the lengths above are for. A
     /// terrain of another size rescales them (terrain_scale.hpp); 1 m is the default sandbox.
@@ -104,6 +117,10 @@ inline constexpr SettingRange kSimplifyToleranceRange{0.0, 0.005, Scaling::Lengt
 inline constexpr SettingRange kRelocationRadiusRange{0.001, 0.05, Scaling::Length};
 inline constexpr SettingRange kSettleMarginRange{0.0, 0.1};
 inline constexpr SettingRange kContrastRange{0.0, 1.0};
+inline constexpr SettingRange kWaterRainRange{0.0, 500.0};         ///< mm/h
+inline constexpr SettingRange kWaterEvaporationRange{0.0, 500.0};  ///< mm/h
+/// m³/s: a trickle (1 mL/s) to a garden hose's flow (0.5 L/s) on the sandbox.
+inline constexpr SettingRange kWaterNozzleRange{1e-6, 5e-4, Scaling::Volume};
 
 /// The range of stroke_spacing_ratio the panel offers and a settings file may hold.
 inline constexpr double kMinStrokeSpacingRatio = kStrokeSpacingRange.lo;

@@ -21,6 +21,7 @@ struct LoopState {
     bool dragging = false;           ///< a tool is being applied
     bool prompt_open = false;        ///< a modal waits for an answer
     bool eroding = false;            ///< erosion runs and the sand is not at rest
+    bool water_moving = false;       ///< water flows (or a source adds some) and is not at rest
     bool haptics_connected = false;  ///< a force loop reads the snapshots we publish
     bool job_running = false;        ///< long work on a worker: its progress bar is redrawn
 };
@@ -41,7 +42,7 @@ constexpr bool can_draw(int framebuffer_width, int framebuffer_height) {
 /// Poll for events and draw continuously (true), or block until the next event (false).
 constexpr bool wants_continuous_frames(const LoopState& s) {
     if (!can_draw(s.framebuffer_width, s.framebuffer_height)) return false;
-    return s.redraw_pending || s.dragging || s.prompt_open || s.eroding;
+    return s.redraw_pending || s.dragging || s.prompt_open || s.eroding || s.water_moving;
 }
 
 /// How long the loop may wait for events (seconds): 0 = poll and go on, kWaitForEvent = block

@@ -40,7 +40,7 @@ void App::panel_tools() {
     };
     group(headings[0], [](const ToolEntry& t) { return t.kind == ToolKind::Stamp; });
     group(headings[1], [](const ToolEntry& t) {
-        return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove;
+        return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove || t.kind == ToolKind::Water;
     });
     group(headings[2], [](const ToolEntry& t) { return t.kind == ToolKind::Brush; });
 
@@ -57,8 +57,8 @@ void App::tool_sliders() {
     if (sliders.size) {
         range_slider("Size", "", settings_.tool_radius, kToolRadiusRange, size, "%.1f");
         ui("Size", "Radius of round tools (circle, ball), brushes and the pour");
-    } else {
-        stamp_size_readout();
+    } else if (tool.kind == ToolKind::Stamp) {
+        stamp_size_readout();  // the nozzle has no size to show
     }
     if (sliders.depth) {
         range_slider("Depth", "", settings_.tool_depth, kToolDepthRange, size, "%.1f");
@@ -96,6 +96,13 @@ void App::tool_sliders() {
                "every quarter of the Size along the stroke, however fast the mouse\n"
                "moves; holding the button still adds four dabs a second (4 x this\n"
                "volume per second)");
+            break;
+        }
+        case ToolKind::Water: {
+            range_slider("Flow", "/s", settings_.water_nozzle, kWaterNozzleRange, size, "%.1f");
+            ui("Flow",
+               "Water the nozzle gives per second while the button is held (1 L = 1000 cm3).\n"
+               "The water then runs as the Water panel says");
             break;
         }
         case ToolKind::Brush: {

@@ -42,6 +42,7 @@ void App::draw_panels() {
     section("Tools", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_tools);
     section("Materials", 0, &App::panel_materials);
     section("Erosion", ImGuiTreeNodeFlags_DefaultOpen, &App::panel_erosion);
+    section("Water", 0, &App::panel_water);
     section("Haptics", 0, &App::panel_haptics);
     open_panels_.reset();
     ImGui::PopItemWidth();

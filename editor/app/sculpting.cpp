@@ -46,6 +46,7 @@ void Sculpting::drag(Document& doc, Vec3 point, const EditorSettings& settings) 
 }
 
 void Sculpting::hold(Document& doc, double seconds, const EditorSettings& settings) {
+    // The nozzle gives water as the water flows (flow_water), not per hold.
     if (!pressed_ || !pour_flow_) return;
     const auto t0 = Clock::now();
     for (Vec2 at : pour_flow_->hold(seconds))
@@ -75,6 +76,10 @@ void Sculpting::apply(Document& doc, Vec3 point, const EditorSettings& settings)
         case ToolKind::Pour:
         case ToolKind::Remove:
             pour_at(doc, {point.x, point.y}, settings);
+            break;
+        case ToolKind::Water:
+            nozzle_ = Vec2{point.x, point.y};  // flow_water() pours while it is held
+            open_level_ = "water";
             break;
     }
     tool_ms_ += ms_since(t0);
@@ -168,6 +173,35 @@ void Sculpting::end_gesture(Document& doc) {
     }
     end_pour();
     last_dab_.reset();
+    nozzle_.reset();
+}
+
+// ---- Water --------------------------------------------------------------------------------
+
+LiveWaterSettings water_settings(const EditorSettings& settings) {
+    LiveWaterSettings w;
+    w.flowing = settings.water_flowing;
+    w.rain_mm_per_hour = settings.water_rain;
+    w.evaporation_mm_per_hour = settings.water_evaporation;
+    w.open = {settings.water_open_west, settings.water_open_east, settings.water_open_south,
+              settings.water_open_north};
+    return w;
+}
+
+LiveWaterFrame Sculpting::flow_water(Document& doc, const EditorSettings& settings, double seconds,
+                                     double budget_ms) {
+    LiveWater& water = doc.water();
+    if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle});
+    const LiveWaterFrame frame = water.advance(seconds, water_settings(settings), budget_ms);
+    if (frame.written > 0 || frame.wetted > 0) {
+        if (open_level_.empty()) open_level_ = "water";
+        kick_ = kick_ || frame.wetted > 0;  // wet sand stands at another angle
+    }
+    // A level of water alone closes once the water rests (or has dried) and no gesture holds it.
+    if (open_level_ == "water" && !pressed_ && water.idle(water_settings(settings)) &&
+        doc.solver().at_rest())
+        close_level(doc);
+    return frame;
 }
 
 // ---- The undo level -----------------------------------------------------------------------

@@ -19,6 +19,7 @@
 #include "editor_settings.hpp"
 #include "pour_flow.hpp"
 #include "tools/stroke.hpp"
+#include "water/live_water.hpp"
 
 namespace sandtin::editor {
 
@@ -26,6 +27,9 @@ namespace sandtin::editor {
 /// assets are made for the 1 m sandbox), a round tool at the Size slider's radius, extrusion
 /// as the panel says. Throws for parameters the tool refuses.
 Tool build_tool(const EditorSettings& settings);
+
+/// The Water panel's settings as the live water takes them; the open sides as ticked.
+LiveWaterSettings water_settings(const EditorSettings& settings);
 
 /// What one frame of erosion did.
 struct ErosionFrame {
@@ -69,6 +73,13 @@ class Sculpting {
     /// Whether erode() would step now.
     bool wants_to_erode(const Document& doc) const { return kick_ || !doc.solver().at_rest(); }
 
+    /// One frame of water (`seconds` of it, within `budget_ms`): the Water tool's nozzle while
+    /// held, the panel's rain and evaporation, and the flow. What the water changed joins the
+    /// open level, or opens a "water" level, which closes once the water rests or dries; the
+    /// sand it wets takes its moisture, and the erosion then looks at it.
+    LiveWaterFrame flow_water(Document& doc, const EditorSettings& settings, double seconds,
+                              double budget_ms);
+
     /// Sentences for the status line since the last call (lost extrusion, a short pour, a
     /// stamp that missed the terrain).
     std::vector<std::string> take_messages();
@@ -97,6 +108,7 @@ class Sculpting {
     std::optional<Tool> tool_;      ///< the stroke's tool (the Stroke refers to it)
     std::optional<Stroke> stroke_;  ///< a stamp tool's stroke under way
     std::optional<Vec2> last_dab_;  ///< a brush stroke's last dab
+    std::optional<Vec2> nozzle_;    ///< the Water tool's, while held
     double flatten_level_ = 0.0;    ///< metres: the Flatten brush's level for this stroke
     std::optional<PourFlow> pour_flow_;
     bool pour_removes_ = false;

@@ -26,8 +26,9 @@ std::vector<HelpRow> help_rows() {
     for (const Gesture& g : kGestures)
         rows.push_back({g.input, g.action});
     rows.push_back(tool_keys_row("a stamp", [](ToolKind k) { return k == ToolKind::Stamp; }));
-    rows.push_back(tool_keys_row(
-        "a sand tool", [](ToolKind k) { return k == ToolKind::Pour || k == ToolKind::Remove; }));
+    rows.push_back(tool_keys_row("a sand or water tool", [](ToolKind k) {
+        return k == ToolKind::Pour || k == ToolKind::Remove || k == ToolKind::Water;
+    }));
     rows.push_back(tool_keys_row("a brush", [](ToolKind k) { return k == ToolKind::Brush; }));
     for (const Shortcut& s : kShortcuts)
         rows.push_back({s.keys, s.action});

@@ -10,7 +10,7 @@
 
 namespace sandtin::editor {
 
-enum class ToolKind { Stamp, Brush, Pour, Remove };
+enum class ToolKind { Stamp, Brush, Pour, Remove, Water };
 
 struct ToolEntry {
     const char* label;
@@ -40,6 +40,8 @@ inline constexpr ToolEntry kTools[] = {
      "Pour sand: hold to keep pouring (key 7)"},
     {"Remove", ToolKind::Remove, nullptr, BrushKind::Raise, '8',
      "Scoop sand away, never below bedrock (key 8)"},
+    {"Water", ToolKind::Water, nullptr, BrushKind::Raise, '9',
+     "Water from a nozzle under the cursor while held, at the Water panel's rate (key 9)"},
     {"Raise", ToolKind::Brush, nullptr, BrushKind::Raise, 'R', "Brush: raise the surface (key R)"},
     {"Lower", ToolKind::Brush, nullptr, BrushKind::Lower, 'L', "Brush: lower the surface (key L)"},
     {"Smooth", ToolKind::Brush, nullptr, BrushKind::Smooth, 'S', "Brush: smooth bumps (key S)"},
@@ -60,14 +62,14 @@ inline bool sized_by_slider(const ToolSpec& stamp) {
 
 /// Which of the Tools panel's shared sliders act on a tool, so the panel shows only those.
 struct ToolSliders {
-    bool size = false;   ///< the radius of brushes, the pour and round stamps
+    bool size = false;   ///< the radius of brushes, the pour and round stamps (not the nozzle)
     bool depth = false;  ///< how deep a stamp presses; the haptic pen's tip depth for any tool
 };
 
 /// `round_stamp`: a stamp whose asset sized_by_slider(); `haptics`: the pen is connected.
 constexpr ToolSliders sliders_for(const ToolEntry& t, bool round_stamp, bool haptics) {
     const bool stamp = t.kind == ToolKind::Stamp;
-    return {!stamp || round_stamp, stamp || haptics};
+    return {(!stamp && t.kind != ToolKind::Water) || round_stamp, stamp || haptics};
 }
 
 /// The tool a key picks (digits and upper-case letters, as GLFW's key codes), if any.

@@ -17,6 +17,7 @@ layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec3 v_albedo;
 layout(location = 3) in vec3 v_overlay;  // x: tan(repose), y: sand thickness, z: active
 layout(location = 4) in vec2 v_slide;
+layout(location = 5) in float v_water;  // water depth (m), linear across the face
 
 layout(location = 0) out vec4 out_colour;
 
@@ -78,6 +79,20 @@ void main() {
     float curve = t * t * (3.0 - 2.0 * t);
     colour *= mix(1.0, 0.6 + 0.6 * curve, pc.light_dir.w);
 
+    // Water standing on the sand, seen from above: the bed through the water, dimmed and
+    // tinted as light is absorbed on its way down and back (Beer-Lambert, e-folding at 2 cm
+    // for blue-green light in sandy water), under a faint sky reflection. A face's dry corner
+    // has depth 0, so the shore fades out along the faces that reach it.
+    if (v_water > 0.0) {
+        float absorbed = 1.0 - exp(-v_water / 0.02);
+        vec3 through = colour * vec3(0.62, 0.78, 0.84);
+        colour = mix(through, vec3(0.03, 0.16, 0.24), absorbed) + vec3(0.03, 0.05, 0.07);
+    }
+    if ((int(pc.overlays.x + 0.5) & 2) != 0) {
+        // Water depth overlay: 0 .. 5 cm from pale cyan to deep blue, dry ground untouched.
+        float d = clamp(v_water / 0.05, 0.0, 1.0);
+        if (v_water > 0.0) colour = mix(colour, mix(vec3(0.6, 0.95, 1.0), vec3(0.0, 0.1, 0.6), d), 0.7);
+    }
     if (pc.overlays.y > 0.5 && v_overlay.z > 0.5) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
     if (pc.overlays.z > 0.5) {
         float s = clamp(v_overlay.y / 0.05, 0.0, 1.0);  // 0 .. 5 cm of sand

@@ -25,7 +25,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     ASSERT_GE(shipped.size(), 6u) << dir;
     std::set<std::string> stamps;
     std::set<BrushKind> brushes;
-    bool pour = false, remove = false;
+    bool pour = false, remove = false, water = false;
     for (const ToolEntry& t : kTools) {
         if (t.kind == ToolKind::Stamp) {
             stamps.insert(t.asset);
@@ -35,6 +35,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
         if (t.kind == ToolKind::Brush) brushes.insert(t.brush);
         pour |= t.kind == ToolKind::Pour;
         remove |= t.kind == ToolKind::Remove;
+        water |= t.kind == ToolKind::Water;
     }
     EXPECT_EQ(stamps, shipped);
     for (const BrushKind b : {BrushKind::Raise, BrushKind::Lower, BrushKind::Smooth,
@@ -43,6 +44,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     }
     EXPECT_TRUE(pour);
     EXPECT_TRUE(remove);
+    EXPECT_TRUE(water);
 }
 
 // The Tools panel shows Size and Depth only for the tools they act on. Size: the circle and
@@ -64,7 +66,9 @@ TEST(ToolPalette, SizeAndDepthShowOnlyForTheToolsTheyActOn) {
         const ToolSliders alone = sliders_for(t, round, false);
         const ToolSliders with_pen = sliders_for(t, round, true);
         const std::string label = t.label;
-        const bool sized = label == "Circle" || label == "Ball" || t.kind != ToolKind::Stamp;
+        // The Water tool's nozzle is a point: no size.
+        const bool sized = label == "Circle" || label == "Ball" ||
+                           (t.kind != ToolKind::Stamp && t.kind != ToolKind::Water);
         EXPECT_EQ(alone.size, sized) << label;
         EXPECT_EQ(alone.depth, t.kind == ToolKind::Stamp) << label;
         EXPECT_TRUE(with_pen.depth) << label;
@@ -89,7 +93,7 @@ TEST(ToolPalette, EachKeyAndLabelPicksOneTool) {
             << t.label << ": " << t.help;
     }
     EXPECT_FALSE(tool_for_key('F').has_value());
-    EXPECT_FALSE(tool_for_key('9').has_value());
+    EXPECT_FALSE(tool_for_key('0').has_value());
     EXPECT_FALSE(tool_named("circle").has_value());  // labels are matched exactly
 }
 

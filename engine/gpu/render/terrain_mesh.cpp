@@ -54,6 +54,7 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     out.overlay[2] = id < active_.size() && active_[id] ? 1.0f : 0.0f;
     out.slide[0] = va.slide[id].x;
     out.slide[1] = va.slide[id].y;
+    out.water = static_cast<float>(va.water_depth[id]);
 }
 
 namespace {

@@ -26,8 +26,9 @@ struct RenderVertex {
     /// bedrock); z: 1 when the vertex is active (eroding)
     float overlay[3];
     float slide[2];  ///< texture-sliding offset, texture units
+    float water;     ///< metres of water standing on the vertex (VertexArrays::water_depth)
 };
-static_assert(sizeof(RenderVertex) == 14 * sizeof(float));
+static_assert(sizeof(RenderVertex) == 15 * sizeof(float));
 
 /// What an update changed, as ranges into vertices() and (per slot) indices().
 struct MeshUpdate {
