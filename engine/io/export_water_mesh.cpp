@@ -6,14 +6,14 @@
 
 namespace sandtin {
 
-bool holds_water(const Tin& tin) {
+bool holds_water(const Tin& tin, double min_depth) {
     const VertexArrays& va = tin.vertices();
     for (std::size_t v = 0; v < va.size(); ++v)
-        if (va.alive[v] && va.water_depth[v] > 0.0) return true;
+        if (va.alive[v] && va.water_depth[v] >= min_depth && va.water_depth[v] > 0.0) return true;
     return false;
 }
 
-ExportMesh build_water_mesh(const Tin& tin, const MeshExportOptions& options) {
+ExportMesh build_water_mesh(const Tin& tin, const MeshExportOptions& options, double min_depth) {
     if (!(std::isfinite(options.unit_scale) && options.unit_scale > 0.0))
         throw std::invalid_argument("water mesh export: the unit scale must be positive");
     ExportMesh mesh;
@@ -29,16 +29,19 @@ ExportMesh build_water_mesh(const Tin& tin, const MeshExportOptions& options) {
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
     std::vector<std::uint32_t> index_of(va.size(), kUnused);
     std::vector<Vec3> points;
+    const auto wet = [&](VertexId v) {
+        return va.water_depth[v.index()] >= min_depth && va.water_depth[v.index()] > 0.0;
+    };
     for (const std::array<VertexId, 3>& t : tin.triangles()) {
-        if (va.water_depth[t[0].index()] <= 0.0 && va.water_depth[t[1].index()] <= 0.0 &&
-            va.water_depth[t[2].index()] <= 0.0)
-            continue;
+        if (!wet(t[0]) && !wet(t[1]) && !wet(t[2])) continue;
         std::array<std::uint32_t, 3> corners{};
         for (int k = 0; k < 3; ++k) {
             const std::size_t v = t[static_cast<std::size_t>(k)].index();
             if (index_of[v] == kUnused) {
                 index_of[v] = static_cast<std::uint32_t>(points.size());
-                const double z = va.height[v] + va.water_depth[v];
+                // A film below min_depth is the shore: the surface meets the bed there.
+                const double z =
+                    va.height[v] + (wet(t[static_cast<std::size_t>(k)]) ? va.water_depth[v] : 0.0);
                 points.push_back({va.position[v].x, va.position[v].y, z});
                 mesh.z_min = std::min(mesh.z_min, z);
                 mesh.z_max = std::max(mesh.z_max, z);

@@ -128,15 +128,20 @@ double VirtualPipes::volume() const {
 }
 
 double VirtualPipes::stable_time_step() const {
-    double deepest = 0.0;
-    for (double d : depth_)
-        deepest = std::max(deepest, d);
-    if (!(deepest > 0.0)) return std::numeric_limits<double>::infinity();
+    // Each vertex's own limit, with the deepest water at either end of its pipes: a pipe's
+    // flux grows with its upwind depth, which is one of its ends'. (The deepest water anywhere
+    // bounds that too, but made a column at a nozzle hold the whole terrain to its step.)
     double limit = std::numeric_limits<double>::infinity();
-    for (std::size_t v = 0; v < depth_.size(); ++v) {
-        if (!(conductance_sum_[v] > 0.0) || !(mesh_.area[v] > 0.0)) continue;
-        limit = std::min(
-            limit, std::sqrt(mesh_.area[v] / (options_.gravity * deepest * conductance_sum_[v])));
+    const auto vertex_limit = [&](std::uint32_t v, double h) {
+        if (!(conductance_sum_[v] > 0.0) || !(mesh_.area[v] > 0.0)) return;
+        limit = std::min(limit,
+                         std::sqrt(mesh_.area[v] / (options_.gravity * h * conductance_sum_[v])));
+    };
+    for (const Pipe& p : pipes_) {
+        const double h = std::max(depth_[p.a], depth_[p.b]);
+        if (!(h > 0.0)) continue;
+        vertex_limit(p.a, h);
+        vertex_limit(p.b, h);
     }
     return options_.courant * limit;
 }
@@ -150,6 +155,8 @@ WaterStepReport VirtualPipes::step(double dt) {
     // Phase 1: fluxes from the surface difference, through the upwind depth.
     std::fill(outflow_.begin(), outflow_.end(), 0.0);
     for (Pipe& p : pipes_) {
+        // A dry pipe at rest stays so (its upwind depth is 0): most of a terrain, skipped.
+        if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
         const double drop = surface(p.a) - surface(p.b);
         const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
         p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;

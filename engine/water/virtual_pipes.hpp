@@ -88,10 +88,11 @@ class VirtualPipes {
     /// m³ that left through open borders since construction.
     double volume_left() const { return volume_left_; }
 
-    /// The longest step (s) the scheme is stable for with the deepest water now, times the
-    /// courant option: for each vertex, sqrt(area / (g h_max sum(w / L) over its pipes)),
-    /// the 2D wave CFL condition (s / (2 sqrt(g h)) on a square grid of spacing s). Infinite
-    /// when there is no water.
+    /// The longest step (s) the scheme is stable for with the water now, times the courant
+    /// option: the least over the vertices of sqrt(area / (g h sum(w / L) over its pipes)),
+    /// h the deepest water at the vertex or its neighbours (each pipe's upwind depth is one of
+    /// its ends'), the 2D wave CFL condition (s / (2 sqrt(g h)) on a square grid of spacing s).
+    /// Dry vertices with dry neighbours set no limit; infinite when there is no water.
     double stable_time_step() const;
     /// Advances the water by `dt` seconds (finite, > 0; throws otherwise). Stable for
     /// dt <= stable_time_step() / courant.

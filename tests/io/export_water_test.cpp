@@ -143,18 +143,19 @@ TEST_F(ExportWater, AGltfOfAWetTerrainCarriesTheWaterSurfaceAsASecondNode) {
     const Tin tin = wet_tin();
     ExportOptions o;
     o.textures = false;
-    // The wet triangles, counted here from the TIN: those with a corner under water.
+    // The wet triangles, counted here from the TIN: those with a corner under a tenth of a
+    // millimetre of water or more (a thinner film is the shore; the field is 0 at x = 4 and
+    // 1e-4 m at x = 4.005).
     std::size_t wet_triangles = 0;
     std::map<std::pair<double, double>, double> surface;  // (x, y) -> bed + depth, wet corners
     for (const auto& t : tin.triangles()) {
-        bool wet = false;
-        for (VertexId v : t)
-            wet = wet || tin.vertices().water_depth[v.index()] > 0.0;
-        if (!wet) continue;
+        const auto deep = [&](VertexId v) { return tin.vertices().water_depth[v.index()] >= 1e-4; };
+        if (!deep(t[0]) && !deep(t[1]) && !deep(t[2])) continue;
         ++wet_triangles;
         for (VertexId v : t) {
             const Vec2 p = tin.position(v);
-            surface[{p.x, p.y}] = tin.height(v) + tin.vertices().water_depth[v.index()];
+            surface[{p.x, p.y}] =
+                tin.height(v) + (deep(v) ? tin.vertices().water_depth[v.index()] : 0.0);
         }
     }
     ASSERT_GT(wet_triangles, 0u);
@@ -211,6 +212,15 @@ TEST_F(ExportWater, ADryTerrainExportsNoWater) {
     o.map_size = 16;
     const HeightRaster r = read_heightmap(run(tin, "dry.png", o, "water"));
     EXPECT_EQ(*std::max_element(r.heights.begin(), r.heights.end()), 0.0);
+    // A film thinner than a tenth of a millimetre (what a flow leaves on flat ground) is no
+    // water surface, though the depth map still shows it.
+    for (VertexId v : test::live_ids(tin))
+        tin.set_water_depth(v, 5e-5);
+    const WaterNode film = water_node_of(run(tin, "film.glb", o));
+    EXPECT_EQ(film.nodes, 1u);
+    EXPECT_FALSE(film.found);
+    const HeightRaster f = read_heightmap(run(tin, "film.exr", o, "water"));
+    EXPECT_NEAR(f.heights.front(), 5e-5, 5e-5 * 1e-7);  // float32 metres
 }
 
 TEST_F(ExportWater, WaterMapsAreRefusedWhereTheyCannotBeWritten) {
