@@ -1,6 +1,5 @@
 // sandtin info: load a session and describe its terrain.
 
-#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -11,7 +10,7 @@
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
 #include "terrain_report.hpp"
-#include "tin/vertex_arrays.hpp"
+#include "water/water_summary.hpp"
 
 namespace sandtin::cli {
 
@@ -19,16 +18,8 @@ namespace {
 
 /// The water standing on the terrain (VertexArrays::water_depth).
 nlohmann::json describe_water(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    double volume = 0.0, deepest = 0.0;
-    std::size_t wet = 0;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (!va.alive[v] || va.water_depth[v] <= 0.0) continue;
-        ++wet;
-        volume += va.lumped_area[v] * va.water_depth[v];
-        deepest = std::max(deepest, va.water_depth[v]);
-    }
-    return {{"m3", volume}, {"wet_vertices", wet}, {"max_depth_m", deepest}};
+    const WaterSummary w = measure_water(tin);
+    return {{"m3", w.volume}, {"wet_vertices", w.wet_vertices}, {"max_depth_m", w.max_depth}};
 }
 
 }  // namespace

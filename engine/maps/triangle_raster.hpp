@@ -67,4 +67,18 @@ void for_each_sample(const Tin& tin, const MapGrid& grid, Visit&& visit) {
     }
 }
 
+/// One channel: `per_vertex` (indexed by VertexId) interpolated linearly at every sample, so
+/// exact for any field linear over each triangle (the surface's heights, the water's depths).
+inline MapImage interpolate_per_vertex(const Tin& tin, const MapGrid& grid,
+                                       const std::vector<double>& per_vertex) {
+    MapImage map{grid.width, grid.height, 1, std::vector<double>(grid.size())};
+    for_each_sample(
+        tin, grid,
+        [&](std::size_t i, const std::array<VertexId, 3>& t, const std::array<double, 3>& w) {
+            map.values[i] = w[0] * per_vertex[t[0].index()] + w[1] * per_vertex[t[1].index()] +
+                            w[2] * per_vertex[t[2].index()];
+        });
+    return map;
+}
+
 }  // namespace sandtin

@@ -180,15 +180,7 @@ double LiveWater::clear() {
 }
 
 WaterSummary LiveWater::measure() const {
-    const VertexArrays& va = tin_.vertices();
-    WaterSummary s;
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (!va.alive[v] || va.water_depth[v] <= 0.0) continue;
-        ++s.wet_vertices;
-        s.volume += va.lumped_area[v] * va.water_depth[v];
-        s.max_depth = std::max(s.max_depth, va.water_depth[v]);
-    }
-    return s;
+    return measure_water(tin_);
 }
 
 }  // namespace sandtin

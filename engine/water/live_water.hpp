@@ -23,6 +23,7 @@
 #include "water/virtual_pipes.hpp"
 #include "water/water_borders.hpp"
 #include "water/water_sources.hpp"
+#include "water/water_summary.hpp"
 
 namespace sandtin {
 
@@ -55,13 +56,6 @@ struct LiveWaterFrame {
     std::size_t written = 0;                           ///< depths written back into the terrain
     std::size_t wetted = 0;                            ///< vertices whose moisture the water raised
     double ms = 0.0;
-};
-
-/// The water on the terrain as a whole (LiveWater::measure).
-struct WaterSummary {
-    double volume = 0.0;  ///< m³: sum of lumped area x depth
-    std::size_t wet_vertices = 0;
-    double max_depth = 0.0;  ///< m
 };
 
 class LiveWater {

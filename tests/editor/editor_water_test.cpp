@@ -11,6 +11,7 @@
 #include "editor_harness.hpp"
 #include "formats/png_image.hpp"
 #include "io/session_file.hpp"
+#include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_arrays.hpp"
 
@@ -23,14 +24,9 @@ std::string save_op(const fs::path& p) {
     return R"({"op": "save", "path": ")" + p.string() + R"("})";
 }
 
-/// m³ of water a saved scene holds: sum(lumped area x depth).
+/// m³ of water a saved scene holds.
 double water_in(const fs::path& scene) {
-    const Tin tin = Tin::from_snapshot(load_session(scene).terrain);
-    const VertexArrays& va = tin.vertices();
-    double sum = 0.0;
-    for (std::size_t v = 0; v < va.size(); ++v)
-        if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
-    return sum;
+    return test::water_volume(Tin::from_snapshot(load_session(scene).terrain));
 }
 
 std::size_t wet_vertices_in(const fs::path& scene) {

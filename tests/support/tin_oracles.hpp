@@ -62,6 +62,15 @@ inline bool close_rel(double a, double b, double rel, double abs_floor = 0.0) {
     return std::abs(a - b) <= std::max(rel * std::max(std::abs(a), std::abs(b)), abs_floor);
 }
 
+/// m³ of water the terrain holds: sum over live vertices of lumped area x water depth.
+inline double water_volume(const Tin& tin) {
+    const VertexArrays& va = tin.vertices();
+    double sum = 0.0;
+    for (std::size_t v = 0; v < va.size(); ++v)
+        if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
+    return sum;
+}
+
 inline std::vector<VertexId> live_ids(const Tin& tin) {
     std::vector<VertexId> out;
     const VertexArrays& va = tin.vertices();

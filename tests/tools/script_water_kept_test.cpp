@@ -32,15 +32,6 @@ std::string error_of(const std::string& op) {
     return "";
 }
 
-/// m³ of water the terrain holds: sum(lumped area x depth).
-double water_on(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    double sum = 0.0;
-    for (std::size_t v = 0; v < va.size(); ++v)
-        if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
-    return sum;
-}
-
 /// A flat terrain 1 m square: rain on a disc spreads out from it.
 constexpr const char* kFlat = R"("terrain": {"size": [1, 1], "points": 1500, "seed": 9,
                                              "height": 0.1})";
@@ -69,7 +60,7 @@ TEST(ScriptWaterKept, TheWaterOneOperationLeavesTheNextStartsFrom) {
         EXPECT_EQ(flow.at("stopped").get<std::string>(), "seconds");
         EXPECT_NEAR(flow.at("seconds").get<double>(), 1.0, 1e-12);
         // And the terrain holds it at the end.
-        EXPECT_NEAR(water_on(tin), rained, 1e-12 * rained);
+        EXPECT_NEAR(test::water_volume(tin), rained, 1e-12 * rained);
         EXPECT_TRUE(tin.check_valid().ok());
     }
 }
@@ -109,7 +100,7 @@ TEST(ScriptWaterKept, FlowUntilDryLeavesNoWaterAndAccountsForAllOfIt) {
     EXPECT_EQ(flow.at("stopped").get<std::string>(), "dry");
     EXPECT_LT(flow.at("seconds").get<double>(), 3600.0);
     EXPECT_EQ(flow.at("water_m3").get<double>(), 0.0);
-    EXPECT_EQ(water_on(tin), 0.0);
+    EXPECT_EQ(test::water_volume(tin), 0.0);
     const double start = flow.at("water_at_start_m3").get<double>();
     ASSERT_GT(start, 0.0);
     const double gone = flow.at("evaporated_m3").get<double>() + flow.at("left_m3").get<double>();

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_arrays.hpp"
 #include "water/live_water.hpp"
@@ -21,14 +22,6 @@ Tin bowl() {
     return Tin::random_points(Rect::from_size(1.0, 1.0), 1200, 4, [](Vec2 p) {
         return 0.2 * ((p.x - 0.5) * (p.x - 0.5) + (p.y - 0.5) * (p.y - 0.5));
     });
-}
-
-double water_on(const Tin& tin) {
-    const VertexArrays& va = tin.vertices();
-    double sum = 0.0;
-    for (std::size_t v = 0; v < va.size(); ++v)
-        if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
-    return sum;
 }
 
 /// `frames` frames of 1/60 s each, with `nozzle` held (0 L/s: none).
@@ -68,12 +61,12 @@ TEST(LiveWater, ANozzleAddsWhatItsRateSaysAndTheTerrainHoldsIt) {
     EXPECT_TRUE(f.ran);
     EXPECT_NEAR(f.seconds, 1.0, 1e-12);
     EXPECT_NEAR(f.added, 1e-4, 1e-16);
-    EXPECT_NEAR(water_on(tin), 1e-4, 1e-16);
+    EXPECT_NEAR(test::water_volume(tin), 1e-4, 1e-16);
     EXPECT_NEAR(water.measure().volume, 1e-4, 1e-16);
     EXPECT_GT(water.measure().wet_vertices, 1u);  // it spread from the nozzle's vertex
     // With no source, walls all round: the volume stays while the water flows.
     frames(water, 60);
-    EXPECT_NEAR(water_on(tin), 1e-4, 1e-16);
+    EXPECT_NEAR(test::water_volume(tin), 1e-4, 1e-16);
     EXPECT_TRUE(tin.check_valid().ok());
 }
 
@@ -112,14 +105,14 @@ TEST(LiveWater, DepthsSetFromOutsideAreTakenOver) {
     for (std::uint32_t v = 0; v < tin.vertices().size(); ++v)
         if (tin.is_alive(VertexId{v})) tin.set_water_depth(VertexId{v}, 0.0);
     frames(water, 30);
-    EXPECT_EQ(water_on(tin), 0.0);
+    EXPECT_EQ(test::water_volume(tin), 0.0);
     EXPECT_EQ(water.measure().wet_vertices, 0u);
     // And a redo puts some back, which then flows.
     tin.set_water_depth(VertexId{200}, 0.01);
     const double put = tin.vertices().lumped_area[200] * 0.01;
     const LiveWaterFrame f = frames(water, 30);
     EXPECT_TRUE(f.ran);
-    EXPECT_NEAR(water_on(tin), put, 1e-12 * put);
+    EXPECT_NEAR(test::water_volume(tin), put, 1e-12 * put);
 }
 
 TEST(LiveWater, WaterAtRestStopsSteppingUntilTheTerrainChanges) {
@@ -158,7 +151,7 @@ TEST(LiveWater, ClearTakesAllTheWaterAndSaysHowMuch) {
     LiveWater water(tin);
     frames(water, 60, 0.1);
     EXPECT_NEAR(water.clear(), 1e-4, 1e-16);
-    EXPECT_EQ(water_on(tin), 0.0);
+    EXPECT_EQ(test::water_volume(tin), 0.0);
     EXPECT_FALSE(frames(water, 10).ran);
 }
 
