@@ -179,14 +179,16 @@ void write_gltf(const Tin& tin, const ExportMesh& mesh, const GltfTextures& text
           report);
 }
 
-/// A height, normal or albedo map of the terrain.
+/// A height, water-depth, normal or albedo map of the terrain.
 void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const ExportOptions& o,
                 ExportReport& report, const ProgressCallback& progress) {
     const Rect d = tin.domain();
-    // Height and water-depth maps sample the corners, as an import grid does.
-    const bool height = format == ExportFormat::HeightPng || format == ExportFormat::HeightExr ||
-                        format == ExportFormat::WaterPng || format == ExportFormat::WaterExr;
-    const MapGrid grid = height ? corner_grid(d, o) : texture_grid(d, o);
+    const bool water = format == ExportFormat::WaterPng || format == ExportFormat::WaterExr;
+    // Metres per sample: the surface's heights, or the water's depths. Both sample the
+    // corners, as an import grid does.
+    const bool metres_map =
+        water || format == ExportFormat::HeightPng || format == ExportFormat::HeightExr;
+    const MapGrid grid = metres_map ? corner_grid(d, o) : texture_grid(d, o);
     report.map_width = grid.width;
     report.map_height = grid.height;
     report.map_spacing = grid.spacing();
@@ -195,8 +197,9 @@ void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const 
     const auto encoding = [&] {
         if (progress) progress({0.6, "encoding and writing the map"});
     };
-    if (format == ExportFormat::HeightPng || format == ExportFormat::HeightExr) {
-        const MapImage heights = bake_height_map(tin, grid);
+    if (metres_map) {
+        const MapImage metres =
+            water ? bake_water_depth_map(tin, grid) : bake_height_map(tin, grid);
         encoding();
         // Both spacings: rounding a side to whole cells spaces the rows differently from
         // the columns (1 x 0.5 m at 0.3 m cells: 0.333 m and 0.25 m), and a re-import with
@@ -204,21 +207,13 @@ void export_map(const Tin& tin, const fs::path& out, ExportFormat format, const 
         const double cell = report.map_spacing.x;
         const double cell_height = report.map_spacing.y;
         if (format == ExportFormat::HeightPng) {
-            report.height_step = height_png_range(heights) / 65535.0;
-            write(out, encode_height_png(heights, cell, cell_height, o.georeference), report);
+            report.height_step = height_png_range(metres) / 65535.0;
+            write(out, encode_height_png(metres, cell, cell_height, o.georeference), report);
+        } else if (format == ExportFormat::WaterPng) {
+            report.height_step = water_depth_png_range(metres) / 65535.0;
+            write(out, encode_water_depth_png(metres, cell, cell_height, o.georeference), report);
         } else {
-            write(out, encode_height_exr(heights, cell, cell_height, o.georeference), report);
-        }
-    } else if (format == ExportFormat::WaterPng || format == ExportFormat::WaterExr) {
-        const MapImage depths = bake_water_depth_map(tin, grid);
-        encoding();
-        const double cell = report.map_spacing.x;
-        const double cell_height = report.map_spacing.y;
-        if (format == ExportFormat::WaterPng) {
-            report.height_step = water_depth_png_range(depths) / 65535.0;
-            write(out, encode_water_depth_png(depths, cell, cell_height, o.georeference), report);
-        } else {
-            write(out, encode_height_exr(depths, cell, cell_height, o.georeference), report);
+            write(out, encode_height_exr(metres, cell, cell_height, o.georeference), report);
         }
     } else if (format == ExportFormat::NormalPng) {
         const MapImage normals = bake_normal_map(tin, grid, o.normal_mode);
