@@ -69,12 +69,12 @@ TEST_F(EditorXvfb, TheWaterToolPoursWhatItsRateSaysAndTheWaterIsDrawnAndSaved) {
 TEST_F(EditorXvfb, RainAddsItsRateOverTheTerrainAndUndoTakesTheWaterAway) {
     const fs::path undone = kWork / "water-rain-undone.sandtin";
     const fs::path rained = kWork / "water-rain.sandtin";
-    // 480 mm/h for 45 scripted frames (0.75 s): 0.1 mm over the 1 m sandbox, 1e-4 m³, give or
+    // 480 mm/h for 30 scripted frames (0.5 s): 1/15 mm over the 1 m sandbox, 6.7e-5 m³, give or
     // take the frames of the ops that start and end it. The shower
     // and the flow after it are one level while the water runs: Ctrl+Z takes it all, Ctrl+Y
     // brings it back (a save closes the level, so the saves come after).
     const std::string ops = R"([{"op": "set", "erosion": false, "rain": 480},
-        {"op": "wait", "frames": 45}, {"op": "set", "rain": 0}, {"op": "wait", "frames": 2},
+        {"op": "wait", "frames": 30}, {"op": "set", "rain": 0}, {"op": "wait", "frames": 2},
         {"op": "key", "key": "z", "ctrl": true}, {"op": "wait", "frames": 2}, )" +
                             save_op(undone) + R"(, {"op": "key", "key": "y", "ctrl": true},
         {"op": "set", "water_flowing": false}, {"op": "wait", "frames": 2}, )" +
@@ -82,10 +82,11 @@ TEST_F(EditorXvfb, RainAddsItsRateOverTheTerrainAndUndoTakesTheWaterAway) {
     const EditorRun r = run_editor("water-rain", ops, fresh_settings("water-rain"));
     ASSERT_EQ(r.exit_code, 0) << r.log;
     EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
-    const double frame = 1e-4 / 45.0;
+    const double expected = 480e-3 / 3600.0 * 0.5;  // m/s x s x 1 m²
+    const double frame = expected / 30.0;
     const double fell = water_in(rained);
-    EXPECT_GE(fell, 1e-4 - 3.0 * frame);
-    EXPECT_LE(fell, 1e-4 + 3.0 * frame);
+    EXPECT_GE(fell, expected - 3.0 * frame);
+    EXPECT_LE(fell, expected + 3.0 * frame);
     EXPECT_EQ(water_in(undone), 0.0);
     EXPECT_NEAR(r.stats.at("water").at("m3").get<double>(), fell, 1e-12);
 }
