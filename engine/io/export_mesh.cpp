@@ -124,14 +124,11 @@ ExportMesh build_export_mesh(const Tin& tin, const MeshExportOptions& options) {
             normals[v] = normalised(normals[v], {0.0, 0.0, -1.0});
     }
 
-    const double s = options.unit_scale;
-    const auto frame = [&](Vec3 p) { return options.up == UpAxis::Z ? p : Vec3{p.x, p.z, -p.y}; };
     mesh.positions.reserve(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-        mesh.positions.push_back(frame(points[i]) * s);
-        mesh.normals.push_back(frame(normals[i]));
-        mesh.uvs.push_back(
-            {(points[i].x - d.min.x) / d.width(), (d.max.y - points[i].y) / d.height()});
+        mesh.positions.push_back(to_output_frame(points[i], options.up) * options.unit_scale);
+        mesh.normals.push_back(to_output_frame(normals[i], options.up));
+        mesh.uvs.push_back(map_uv(d, points[i]));
     }
     return mesh;
 }

@@ -60,6 +60,18 @@ struct ExportMesh {
 /// The comment text naming a known georeference, one line, or "" when it is not known.
 std::string georeference_comment(const ExportMesh& mesh);
 
+/// A terrain-frame vector (x, y, z up) in the output frame: as is for Z-up, (x, z, -y) for
+/// Y-up. Positions then take the unit scale; normals do not.
+inline Vec3 to_output_frame(Vec3 p, UpAxis up) {
+    return up == UpAxis::Z ? p : Vec3{p.x, p.z, -p.y};
+}
+
+/// The texture coordinates of a terrain point: u east across `domain`, v down from its north
+/// edge (image rows), as the baked maps lay their texels.
+inline std::array<double, 2> map_uv(const Rect& domain, Vec3 p) {
+    return {(p.x - domain.min.x) / domain.width(), (domain.max.y - p.y) / domain.height()};
+}
+
 /// Throws std::invalid_argument for a non-positive or non-finite unit scale or base depth.
 ExportMesh build_export_mesh(const Tin& tin, const MeshExportOptions& options);
 

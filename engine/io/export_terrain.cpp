@@ -170,7 +170,7 @@ void write_gltf(const Tin& tin, const ExportMesh& mesh, const GltfTextures& text
                 ExportFormat format, const MeshExportOptions& mesh_options, const ExportOptions& o,
                 const fs::path& out, ExportReport& report) {
     std::optional<ExportMesh> water;
-    if (o.water && holds_water(tin)) {
+    if (o.water && holds_water(tin.vertices(), kWaterMeshMinDepth)) {
         water = build_water_mesh(tin, mesh_options);
         report.water_vertices = water->positions.size();
         report.water_triangles = water->triangles.size();

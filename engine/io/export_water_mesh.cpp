@@ -6,13 +6,6 @@
 
 namespace sandtin {
 
-bool holds_water(const Tin& tin, double min_depth) {
-    const VertexArrays& va = tin.vertices();
-    for (std::size_t v = 0; v < va.size(); ++v)
-        if (va.alive[v] && va.water_depth[v] >= min_depth && va.water_depth[v] > 0.0) return true;
-    return false;
-}
-
 ExportMesh build_water_mesh(const Tin& tin, const MeshExportOptions& options, double min_depth) {
     if (!(std::isfinite(options.unit_scale) && options.unit_scale > 0.0))
         throw std::invalid_argument("water mesh export: the unit scale must be positive");
@@ -64,13 +57,11 @@ ExportMesh build_water_mesh(const Tin& tin, const MeshExportOptions& options, do
         for (std::uint32_t v : t)
             normals[v] += n;
     }
-    const double s = options.unit_scale;
-    const auto frame = [&](Vec3 p) { return options.up == UpAxis::Z ? p : Vec3{p.x, p.z, -p.y}; };
     for (std::size_t i = 0; i < points.size(); ++i) {
-        mesh.positions.push_back(frame(points[i]) * s);
-        mesh.normals.push_back(frame(normalised(normals[i], {0.0, 0.0, 1.0})));
-        mesh.uvs.push_back(
-            {(points[i].x - d.min.x) / d.width(), (d.max.y - points[i].y) / d.height()});
+        mesh.positions.push_back(to_output_frame(points[i], options.up) * options.unit_scale);
+        mesh.normals.push_back(
+            to_output_frame(normalised(normals[i], {0.0, 0.0, 1.0}), options.up));
+        mesh.uvs.push_back(map_uv(d, points[i]));
     }
     return mesh;
 }

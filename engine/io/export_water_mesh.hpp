@@ -14,9 +14,6 @@ namespace sandtin {
 /// Metres: water thinner than this is left out of the water mesh (a tenth of a millimetre).
 inline constexpr double kWaterMeshMinDepth = 1e-4;
 
-/// Whether any live vertex holds at least `min_depth` of water.
-bool holds_water(const Tin& tin, double min_depth = kWaterMeshMinDepth);
-
 /// The water surface of `tin` in `options`' frame and units (its base is ignored); an empty
 /// mesh when the terrain is dry. Throws std::invalid_argument for a bad unit scale, as
 /// build_export_mesh does.

@@ -19,10 +19,6 @@ namespace sandtin {
 
 namespace {
 
-/// The longest step between two applications of the sources: rain and nozzles arrive in
-/// steps no longer than this even when the water is shallow and its CFL step long.
-constexpr double kLongestStep = 0.05;  // s
-
 Rain parse_rain(const nlohmann::json& object, const std::string& context) {
     JsonFields r(object, context);
     Rain rain;
@@ -224,10 +220,7 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
         sediment.emplace(water.mesh(), std::move(rock), SedimentOptions{}, tin.vertices().material);
     }
     // The water the terrain holds from earlier operations, from rest.
-    const VertexArrays& start = tin.vertices();
-    for (std::size_t v = 0; v < water.vertex_count(); ++v) {
-        if (start.alive[v] && start.water_depth[v] > 0.0) water.set_depth(v, start.water_depth[v]);
-    }
+    load_water_depths(water, tin);
     flow.start = water.volume();
     std::vector<double>& deepest = flow.deepest;
     deepest.assign(water.depths().begin(), water.depths().end());
@@ -238,7 +231,7 @@ Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
             flow.stopped = "dry";
             break;
         }
-        const double dt = std::min({water.stable_time_step(), kLongestStep, op.seconds - t});
+        const double dt = std::min({water.stable_time_step(), kLongestSourceStep, op.seconds - t});
         const SourceReport r = apply_sources(water, op.sources, dt);
         flow.sources.added += r.added;
         flow.sources.evaporated += r.evaporated;

@@ -117,12 +117,6 @@ std::size_t estimated_payload_bytes(const Session& session) {
     return bytes;
 }
 
-bool any_water(const VertexArrays& v) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-        if (v.alive[i] && v.water_depth[i] > 0.0) return true;
-    return false;
-}
-
 struct WaterChunk {
     std::uint32_t terrain_crc = 0;  ///< of the 'TIN1' body the depths were written with
     std::vector<double> depth;
@@ -171,7 +165,7 @@ std::vector<std::uint8_t> encode_session(const Session& session) {
     };
     const std::size_t terrain_at = file.size() + sizeof(std::uint32_t) + sizeof(std::uint64_t);
     chunk(kTagTin, [&] { encode_terrain(file, session.terrain); });
-    if (any_water(session.terrain.vertices)) {
+    if (holds_water(session.terrain.vertices)) {
         const std::uint32_t terrain_crc =
             crc32_of(std::span(file.bytes()).subspan(terrain_at, file.size() - terrain_at));
         chunk(kTagWater, [&] {

@@ -92,4 +92,11 @@ struct VertexArrays {
     }
 };
 
+/// Whether some live vertex holds water at least `min_depth` (m) deep (and some at all).
+inline bool holds_water(const VertexArrays& va, double min_depth = 0.0) {
+    for (std::size_t v = 0; v < va.size(); ++v)
+        if (va.alive[v] && va.water_depth[v] > 0.0 && va.water_depth[v] >= min_depth) return true;
+    return false;
+}
+
 }  // namespace sandtin

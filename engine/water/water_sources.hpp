@@ -15,6 +15,10 @@
 
 namespace sandtin {
 
+/// s: the longest step between two applications of the sources, whatever the scheme's CFL
+/// step: rain and nozzles arrive in steps no longer than this even on shallow, slow water.
+inline constexpr double kLongestSourceStep = 0.05;
+
 struct Rain {
     double mm_per_hour = 0.0;  ///< >= 0
     Vec2 centre;               ///< with radius > 0: rain on the vertices within the disc
