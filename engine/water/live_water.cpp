@@ -12,9 +12,6 @@ namespace sandtin {
 
 namespace {
 
-/// The longest step between two applications of the sources, as a script's water op takes.
-constexpr double kLongestStep = 0.05;  // s
-
 void check(bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("live water: ") + what);
 }
@@ -36,29 +33,38 @@ bool LiveWater::follow_terrain() {
     const VertexArrays& va = tin_.vertices();
     const bool follow_pipes = pipes_ && !stale_ && va.size() <= pipes_->vertex_count();
     if (pipes_ && va.size() > pipes_->vertex_count()) stale_ = true;  // new ids: rebuild
+    bool touched = false;
     for (const IdRange r : changes.vertices) {
         const std::uint32_t end =
             std::min<std::uint32_t>(r.end, static_cast<std::uint32_t>(va.size()));
         for (std::uint32_t v = r.begin; v < end; ++v) {
+            if (v < near_water_.size() && near_water_[v]) touched = true;  // alive or not
             if (!va.alive[v]) continue;
-            if (va.water_depth[v] > 0.0) wet_ = true;
+            if (va.water_depth[v] > 0.0) wet_ = touched = true;
             if (!follow_pipes) continue;
             // Heights the erosion or a brush moved, depths an undo brought back.
             if (pipes_->mesh().bed[v] != va.height[v]) pipes_->set_bed(v, va.height[v]);
             if (pipes_->depth(v) != va.water_depth[v]) pipes_->set_depth(v, va.water_depth[v]);
         }
     }
-    return !changes.empty();
+    return touched;
+}
+
+void LiveWater::mark_near_water() {
+    near_water_.assign(pipes_->vertex_count(), 0);
+    for (const VirtualPipes::Pipe& p : pipes_->pipes()) {
+        if (pipes_->depth(p.a) > 0.0 || pipes_->depth(p.b) > 0.0)
+            near_water_[p.a] = near_water_[p.b] = 1;
+    }
+    for (std::size_t v = 0; v < near_water_.size(); ++v)
+        if (pipes_->depth(v) > 0.0) near_water_[v] = 1;
 }
 
 void LiveWater::rebuild(const LiveWaterSettings& settings) {
     VirtualPipeOptions options;
     options.friction = settings.friction;
     pipes_.emplace(water_mesh_of(tin_), options);
-    const VertexArrays& va = tin_.vertices();
-    for (std::size_t v = 0; v < va.size(); ++v) {
-        if (va.alive[v] && va.water_depth[v] > 0.0) pipes_->set_depth(v, va.water_depth[v]);
-    }
+    load_water_depths(*pipes_, tin_);
     open_borders(*pipes_, tin_.domain(), settings.open);
     pipes_friction_ = settings.friction;
     pipes_open_ = settings.open;
@@ -85,7 +91,8 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
           "the wetting depth must be > 0 and its moisture in [0, 1]");
     const auto start = std::chrono::steady_clock::now();
     LiveWaterFrame frame;
-    if (follow_terrain()) resting_ = false;  // an edit may have disturbed the water
+    // An edit under or beside the water, or a side opened, may start it flowing again.
+    if (follow_terrain() || (pipes_ && !same_sides(pipes_open_, settings.open))) resting_ = false;
     if (idle(settings) || seconds == 0.0) {
         nozzles_.clear();
         return frame;
@@ -111,8 +118,9 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
             .count();
     };
     while (frame.seconds < seconds && (frame.steps == 0 || spent_ms() < budget_ms)) {
-        const double dt = std::min({settings.flowing ? pipes_->stable_time_step() : kLongestStep,
-                                    kLongestStep, seconds - frame.seconds});
+        const double dt =
+            std::min({settings.flowing ? pipes_->stable_time_step() : kLongestSourceStep,
+                      kLongestSourceStep, seconds - frame.seconds});
         const SourceReport r = apply_sources(*pipes_, sources, dt);
         frame.added += r.added;
         frame.evaporated += r.evaporated;
@@ -134,8 +142,10 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     double fastest = 0.0;
     write_back(settings, frame, fastest);
     wet_ = pipes_->volume() > 0.0;
+    const bool was_resting = resting_;
     resting_ = sources.nozzles.empty() && sources.rain.empty() && settings.flowing &&
                fastest < kRestRate * frame.seconds;
+    if (resting_ && !was_resting) mark_near_water();
     frame.ms = spent_ms();
     return frame;
 }

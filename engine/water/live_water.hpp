@@ -11,7 +11,9 @@
 //    the depths that changed back into the terrain (journaled);
 //  - a dry terrain with no source costs nothing but reading the vertices the journal names:
 //    no pipes are built and no step runs; nor does water at rest (no depth changing faster
-//    than kRestRate, and no source) until the terrain under it changes.
+//    than kRestRate, and no source) until the terrain under it changes: an edit of a vertex
+//    under the water or beside it, or a side opened. Edits elsewhere (the erosion sliding,
+//    a stamp away from the pond) are only noted, so they stay local.
 // Units: metres, seconds, m³; rates in mm/h and L/s as in water_sources.hpp.
 
 #include <cstddef>
@@ -82,8 +84,11 @@ class LiveWater {
 
   private:
     /// Takes the journal's changes: notes a re-triangulation, water that appeared, and hands
-    /// the pipes changed heights and depths. Returns whether anything changed.
+    /// the pipes changed heights and depths. Returns whether a change touched the water: a
+    /// vertex that holds water now, or held it or bordered it when the water came to rest.
     bool follow_terrain();
+    /// Marks the vertices under the water and their neighbours (near_water_).
+    void mark_near_water();
     void rebuild(const LiveWaterSettings& settings);
     /// Writes the depths that changed, and the moisture of the sand they wet, into the
     /// terrain; `fastest` becomes the largest depth change (m).
@@ -97,6 +102,9 @@ class LiveWater {
     bool stale_ = true;  ///< the pipes no longer match the triangulation
     bool wet_ = false;   ///< some vertex may hold water
     bool resting_ = false;
+    /// Per vertex, as the water came to rest: 1 under it or sharing a pipe with a vertex that
+    /// is. An edit elsewhere cannot start it flowing.
+    std::vector<std::uint8_t> near_water_;
     std::vector<Nozzle> nozzles_;
 };
 

@@ -2,7 +2,8 @@
 // a nozzle adds what its rate says and the terrain holds it (volume = rate x time, walls all
 // round); an edit that re-triangulates rebuilds the pipes and a raised vertex sheds its water;
 // depths set from outside (an undo) are taken over and not overwritten; water that comes to
-// rest stops stepping until the terrain under it changes; Clear takes all of it.
+// rest stops stepping until the terrain under or beside it changes, or a side opens (edits
+// elsewhere cost it nothing); Clear takes all of it.
 
 #include <gtest/gtest.h>
 
@@ -141,9 +142,46 @@ TEST(LiveWater, WaterAtRestStopsSteppingUntilTheTerrainChanges) {
     }
     ASSERT_LT(low, high + 1.0);
     EXPECT_LT(high - low, 1e-4);
-    // A stamp beside the pond wakes it: the next frame sees the edit and steps.
-    tin.set_height(VertexId{50}, tin.height(VertexId{50}) - 0.01);
+    // Edits away from the pond (the erosion sliding on a far slope) leave it at rest: they
+    // cost no step, so they stay local. A vertex far from the pond here: the bowl's corner.
+    VertexId far, wet;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        if (!far.valid() || length(va.position[v] - Vec2{0.5, 0.5}) >
+                                length(va.position[far.index()] - Vec2{0.5, 0.5}))
+            far = VertexId{v};
+        if (!wet.valid() || va.water_depth[v] > va.water_depth[wet.index()]) wet = VertexId{v};
+    }
+    ASSERT_EQ(va.water_depth[far.index()], 0.0);
+    for (int i = 0; i < 5; ++i) {
+        tin.set_height(far, tin.height(far) - 0.001);
+        EXPECT_FALSE(frames(water, 1, 0.0, still).ran) << "an edit far from the water woke it";
+    }
+    // An edit under the pond wakes it: the next frame sees the edit and steps.
+    tin.set_height(wet, tin.height(wet) - 0.01);
     EXPECT_TRUE(frames(water, 1, 0.0, still).ran);
+}
+
+TEST(LiveWater, OpeningASideWakesWaterAtRest) {
+    // A plane tilted to the west with walls all round: the water rests against the west wall
+    // until that side opens.
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 800, 5,
+                                 [](Vec2 p) { return 0.05 * p.x; });
+    LiveWater water(tin);
+    for (std::uint32_t v = 0; v < tin.vertices().size(); ++v)
+        if (tin.is_alive(VertexId{v}) && tin.position(VertexId{v}).x < 0.2)
+            tin.set_water_depth(VertexId{v}, 0.02 - 0.05 * tin.position(VertexId{v}).x);
+    LiveWaterSettings walls;
+    walls.friction = 4.0;
+    for (int s = 0; s < 600 && !water.resting(); ++s)
+        frames(water, 60, 0.0, walls);
+    ASSERT_TRUE(water.resting());
+    const double held = test::water_volume(tin);
+    LiveWaterSettings open = walls;
+    open.open.west = true;
+    const LiveWaterFrame f = frames(water, 60, 0.0, open);
+    EXPECT_TRUE(f.ran);
+    EXPECT_LT(test::water_volume(tin), held);
 }
 
 TEST(LiveWater, ClearTakesAllTheWaterAndSaysHowMuch) {
