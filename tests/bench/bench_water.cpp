@@ -7,6 +7,7 @@
 
 #include "support/scattered_tin.hpp"
 #include "support/swashes.hpp"
+#include "water/live_water.hpp"
 #include "water/shallow_water.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
@@ -217,6 +218,68 @@ nlohmann::json rain_cost(const Tin& tin, std::size_t steps) {
     return {{"step_ms_median", median(ms)}, {"dry_step_ms", dry_ms}};
 }
 
+/// The editor's water (water/live_water.hpp) on a bowl of `spacing`: CPU ms per 1/60 s frame
+/// (unbounded budget) with a 0.1 L/s nozzle held at its centre for a second; the simulated
+/// seconds until the pond rests; then the frame after an edit far from the pond (the erosion
+/// sliding on a far slope: it must not wake the water) and after one under it, and an idle
+/// frame.
+nlohmann::json live_water_cost(double spacing) {
+    Tin tin = support::scattered_tin(Rect::from_size(1, 1), spacing, 27, [](Vec2 p) {
+        return 0.2 * ((p.x - 0.5) * (p.x - 0.5) + (p.y - 0.5) * (p.y - 0.5));
+    });
+    LiveWater water(tin);
+    LiveWaterSettings settings;
+    settings.friction = 4.0;
+    constexpr double kFrame = 1.0 / 60.0;
+    const auto timed_frame = [&](std::vector<double>& ms, std::size_t* steps = nullptr) {
+        const CpuStopwatch clock;
+        const LiveWaterFrame f = water.advance(kFrame, settings, 1e9);
+        ms.push_back(clock.ms());
+        if (steps) *steps += f.steps;
+        return f;
+    };
+    std::vector<double> nozzle_ms;
+    std::size_t nozzle_steps = 0;
+    for (int i = 0; i < 60; ++i) {
+        water.add_nozzle({{0.5, 0.5}, 0.1});
+        timed_frame(nozzle_ms, &nozzle_steps);
+    }
+    double to_rest = 1.0;
+    while (!water.resting() && to_rest < 600.0) {
+        water.advance(1.0, settings, 1e9);
+        to_rest += 1.0;
+    }
+    const bool rested = water.resting();
+    // The vertex farthest from the pond, and the deepest one.
+    const VertexArrays& va = tin.vertices();
+    VertexId far, deep;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        if (!far.valid() || length(va.position[v] - Vec2{0.5, 0.5}) >
+                                length(va.position[far.index()] - Vec2{0.5, 0.5}))
+            far = VertexId{v};
+        if (!deep.valid() || va.water_depth[v] > va.water_depth[deep.index()]) deep = VertexId{v};
+    }
+    std::vector<double> far_ms, idle_ms, under_ms;
+    std::size_t woke_far = 0;
+    for (int i = 0; i < 30; ++i) {
+        tin.set_height(far, tin.height(far) - 1e-5);
+        woke_far += timed_frame(far_ms).ran ? 1 : 0;
+        timed_frame(idle_ms);
+    }
+    tin.set_height(deep, tin.height(deep) - 1e-4);
+    const bool woke_under = timed_frame(under_ms).ran;
+    return {{"cells", tin.vertex_count()},
+            {"nozzle_frame_ms_median", median(nozzle_ms)},
+            {"nozzle_steps_per_frame", static_cast<double>(nozzle_steps) / 60.0},
+            {"seconds_to_rest", rested ? nlohmann::json(to_rest) : nlohmann::json()},
+            {"far_edit_frame_ms_median", median(far_ms)},
+            {"far_edits_that_woke_it", woke_far},
+            {"idle_frame_ms_median", median(idle_ms)},
+            {"edit_under_water_frame_ms", under_ms.front()},
+            {"edit_under_water_woke_it", woke_under}};
+}
+
 }  // namespace
 
 nlohmann::json bench_water(const BenchConfig& config) {
@@ -229,7 +292,7 @@ nlohmann::json bench_water(const BenchConfig& config) {
         weight += 2.0 * 3.0 * 0.08 / s;
     for (double s : bowl_spacings)
         weight += 2.0 * 0.5 / s;
-    weight += 4.0;
+    weight += 6.0;
     WeightedProgress progress(config.progress, weight);
 
     nlohmann::json j;
@@ -250,6 +313,12 @@ nlohmann::json bench_water(const BenchConfig& config) {
                         {"finite_volume_order2", rain_cost<ShallowWater>(slope, 20)}});
     }
     j["rain_on_a_slope"] = rain;
+    progress.start("live water", 2.0);
+    nlohmann::json live = nlohmann::json::array();
+    for (const double spacing :
+         config.quick ? std::vector<double>{0.01} : std::vector<double>{0.01, 0.005})
+        live.push_back(live_water_cost(spacing));
+    j["live_water"] = live;
     progress.done();
     return j;
 }

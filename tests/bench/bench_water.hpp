@@ -6,7 +6,9 @@
 //    pipes and the finite volumes at orders 1 and 2, with fitted orders of convergence;
 //  - Thacker's planar surface in a paraboloid after one period;
 //  - a lake at rest over a bumpy bed after 10⁴ steps (its largest speed and surface error);
-//  - ms per step with rain on a slope, and a dry terrain's step.
+//  - ms per step with rain on a slope, and a dry terrain's step;
+//  - the editor's water (live_water.hpp) on a bowl: ms per frame with a nozzle held, the
+//    seconds until the pond rests, and a frame after an edit far from it (it stays at rest).
 
 #include <nlohmann/json.hpp>
 
