@@ -11,6 +11,7 @@
 #include <string>
 
 #include "editor_app.hpp"
+#include "heap_reuse.hpp"
 #include "io/session_name.hpp"
 
 namespace {
@@ -28,6 +29,7 @@ namespace {
 }  // namespace
 
 int main(int argc, char** argv) {
+    sandtin::editor::keep_freed_heap_for_reuse();
     sandtin::editor::EditorOptions o;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
