@@ -49,6 +49,7 @@
 #include "shortcuts.hpp"
 #include "stage_times.hpp"
 #include "terrain_view.hpp"
+#include "util/elapsed_ms.hpp"
 #include "widget_map.hpp"
 #include "x_input.hpp"
 
@@ -64,10 +65,6 @@ inline constexpr double kWaterBudgetMs = 15.0;
 /// Seconds a frame of a scripted run counts for (a held pour): 60 frames a second, so a
 /// script pours the same on any machine, however fast it draws.
 inline constexpr double kScriptFrameSeconds = 1.0 / 60.0;
-
-inline double ms_since(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 /// Installs the window's GLFW callbacks, which route to the App in its user pointer.
 void install_callbacks(GLFWwindow* window);

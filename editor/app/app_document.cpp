@@ -60,7 +60,7 @@ void App::install(Document next, std::optional<PreparedView> prepared, const std
     doc_.solver().activate_all();
     sculpting_.kick();
     frame_terrain();
-    if (install_ms_.size() < 100) install_ms_.push_back(ms_since(started));
+    if (install_ms_.size() < 100) install_ms_.push_back(elapsed_ms(started));
     std::string text = message;
     if (!scaled.empty()) text += text.empty() ? scaled : "; " + scaled;
     if (doc_.erosion_held() && settings_.erosion_running)

@@ -130,7 +130,7 @@ void App::update_simulation() {
     update_water();
     for (const std::string& m : sculpting_.take_messages())
         report(m);
-    times_.push(times_.physics, ms_since(t0));
+    times_.push(times_.physics, elapsed_ms(t0));
     times_.push(times_.tool, sculpting_.take_tool_ms());
     doc_.follow_edits_for_autosave();
     autosave_if_due();
@@ -278,8 +278,8 @@ bool App::frame(bool capture) {
     draw_terrain(camera_.view_projection(static_cast<double>(extent.width) / extent.height));
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), swapchain.command_buffer());
     const bool ok = swapchain.end_frame(capture);
-    times_.push(times_.render, ms_since(t1));
-    times_.push(times_.frame, ms_since(t0));
+    times_.push(times_.render, elapsed_ms(t1));
+    times_.push(times_.frame, elapsed_ms(t0));
     if (!ok) window_->recreate_swapchain(settings_.vsync);
     return true;
 }

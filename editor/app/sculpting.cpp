@@ -8,16 +8,13 @@
 #include "tools/falloff.hpp"
 #include "tools/sand.hpp"
 #include "tools/tool_json.hpp"
+#include "util/elapsed_ms.hpp"
 
 namespace sandtin::editor {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 double radians(double degrees) {
     return degrees * std::numbers::pi / 180.0;
@@ -51,7 +48,7 @@ void Sculpting::hold(Document& doc, double seconds, const EditorSettings& settin
     const auto t0 = Clock::now();
     for (Vec2 at : pour_flow_->hold(seconds))
         pour_dab(doc, at, settings);
-    tool_ms_ += ms_since(t0);
+    tool_ms_ += elapsed_ms(t0);
     kick_ = true;
 }
 
@@ -82,7 +79,7 @@ void Sculpting::apply(Document& doc, Vec3 point, const EditorSettings& settings)
             open_level_ = "water";
             break;
     }
-    tool_ms_ += ms_since(t0);
+    tool_ms_ += elapsed_ms(t0);
     kick_ = true;
 }
 
@@ -263,7 +260,7 @@ ErosionFrame Sculpting::erode(Document& doc, const EditorSettings& settings, dou
     } else {
         for (int i = 0; i < settings.erosion_steps; ++i) {
             solver.step(1, &frame.changed);
-            if (solver.at_rest() || ms_since(t0) > budget_ms) break;
+            if (solver.at_rest() || elapsed_ms(t0) > budget_ms) break;
         }
     }
     frame.active = solver.active_count();
@@ -276,7 +273,7 @@ ErosionFrame Sculpting::erode(Document& doc, const EditorSettings& settings, dou
     // makes a level of its own.
     if (!frame.changed.empty() && open_level_.empty()) open_level_ = Document::kErosionLevel;
     if (solver.at_rest() && !open_level_.empty() && !pressed_) settle(doc);
-    frame.ms = ms_since(t0);
+    frame.ms = elapsed_ms(t0);
     return frame;
 }
 

@@ -1,4 +1,5 @@
 #include "terrain_view.hpp"
+#include "util/elapsed_ms.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -8,10 +9,6 @@ namespace sandtin::editor {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
 
 /// The 2nd and 98th percentiles of the live heights (m), high at least 0.1 mm above low;
 /// nothing for fewer than two vertices.
@@ -160,17 +157,17 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
     ++mesh_updates_;
     mesh_recomputed_ += count_in_ranges(update.vertices);
     if (update.resized) ++mesh_rebuilds_;
-    out.mesh_ms = ms_since(t0);
+    out.mesh_ms = elapsed_ms(t0);
     const auto t1 = Clock::now();
     wait_idle();
     const std::uint64_t before = renderer_.bytes_uploaded();
     renderer_.upload(*mesh_, update);
     out.upload_bytes = renderer_.bytes_uploaded() - before;
     update_contrast_range(doc.tin());
-    out.upload_ms = ms_since(t1);
+    out.upload_ms = elapsed_ms(t1);
     const auto t2 = Clock::now();
     update_normal_map(doc);
-    out.bake_ms = ms_since(t2);
+    out.bake_ms = elapsed_ms(t2);
     return out;
 }
 

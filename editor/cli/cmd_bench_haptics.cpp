@@ -32,7 +32,7 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage =
+constexpr const char* kBenchHapticsUsage =
     "sandtin bench haptics [--seconds S] [--rate HZ] [--spin-us US] [--points N] [--quick] "
     "[--idle [--burn] | --probe] [--pin | --loop-cpu N] [--mlock] [--wake-latency-zero] "
     "[--keep-heap] "
@@ -301,7 +301,7 @@ int run_bench_haptics(const std::vector<std::string>& raw) {
                                {"--no-timer-slack", 0},
                                {"--no-sampler", 0},
                                {"--json", 0}});
-    args.require_positionals(0, kUsage);
+    args.require_positionals(0, kBenchHapticsUsage);
     const double seconds = args.number_or("--seconds", args.has("--quick") ? 2.0 : 10.0);
     const double rate = args.number_or("--rate", 1000.0);
     const std::uint64_t points = args.count_or("--points", 10000);

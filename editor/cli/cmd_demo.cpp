@@ -22,7 +22,7 @@ namespace sandtin::cli {
 
 namespace {
 
-constexpr const char* kUsage = "sandtin demo [-o out.sandtin] [--json]";
+constexpr const char* kDemoUsage = "sandtin demo [-o out.sandtin] [--json]";
 /// Where the result goes without -o: the current directory, under a name that says what it is.
 constexpr const char* kDefaultOutput = "sandtin-demo.sandtin";
 
@@ -86,7 +86,7 @@ void print_summary(const std::filesystem::path& scene, const std::filesystem::pa
 
 int run_demo(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"--json", 0}, {"-o", 1}});
-    args.require_positionals(0, kUsage);
+    args.require_positionals(0, kDemoUsage);
     const std::string out = args.text_or("-o", kDefaultOutput);
     check_session_output(out);  // before the work, not after it
     const std::filesystem::path scene = find_asset("scenes/default.sandtin");

@@ -18,7 +18,7 @@ namespace sandtin::cli {
 
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kExportUsage =
     "sandtin export scene.sandtin -o out.(obj|ply|stl|gltf|glb|png|exr) "
     "[--map height|normal|albedo|water] [--up y|z] [--units m|cm|mm|km|in|ft] "
     "[--base DEPTH | --skirt DEPTH] [--max-error E] [--cell-size m] [--size N] "
@@ -40,7 +40,7 @@ int run_export(const std::vector<std::string>& raw) {
                                {"--no-water", 0},
                                {"--faceted", 0},
                                {"--json", 0}});
-    args.require_positionals(1, kUsage);
+    args.require_positionals(1, kExportUsage);
     const std::string out = args.text("-o");
     check_writable(out);  // before the work, not after it
     ExportFormat format{};
@@ -93,7 +93,7 @@ int run_export(const std::vector<std::string>& raw) {
     const auto refuse = [&](const char* option, const char* applies_to) {
         if (args.has(option)) {
             throw UsageError(std::string(option) + " applies to " + applies_to + ", not to '" +
-                             out + "'\nusage: " + kUsage);
+                             out + "'\nusage: " + kExportUsage);
         }
     };
     if (args.has("--cell-size") && args.has("--size"))

@@ -23,7 +23,7 @@ namespace sandtin::cli {
 
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kHapticsUsage =
     "sandtin haptics serve -o out.sandtin [-i in.sandtin | --size W H --height Z --points N "
     "--seed S] [--port P] [--port-file F] [--tool tool.json | --tool-json '{...}'] "
     "[--spacing M] [--erode N] [--relocation-radius M] [--rate HZ] [--max-seconds S] "
@@ -144,10 +144,10 @@ int run_haptics(const std::vector<std::string>& raw) {
                                {"--record", 1},
                                {"--backup", 0},
                                {"--json", 0}});
-    args.require_positionals(1, kUsage);
+    args.require_positionals(1, kHapticsUsage);
     if (args.positionals()[0] != "serve")
         throw UsageError("unknown haptics command '" + args.positionals()[0] +
-                         "'\nusage: " + kUsage);
+                         "'\nusage: " + kHapticsUsage);
     const std::string out = args.text("-o");
 
     UdpServeOptions options = serve_options(args);

@@ -17,7 +17,7 @@ namespace sandtin::cli {
 
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kImportUsage =
     "sandtin import FILE --max-error E [--max-points N] [--pixel-size m] [--z-scale s] "
     "[--z-offset m] [--encoding auto|gray|terrain-rgb] [--nonfinite-as-nodata] "
     "[--max-size W H] -o scene.sandtin [--json]";
@@ -42,9 +42,10 @@ int run_import(const std::vector<std::string>& raw) {
                                {"--max-size", 2},
                                {"-o", 1},
                                {"--json", 0}});
-    args.require_positionals(1, kUsage);
+    args.require_positionals(1, kImportUsage);
     if (!args.has("--max-error")) {
-        throw UsageError("missing required option '--max-error'\nusage: " + std::string(kUsage));
+        throw UsageError("missing required option '--max-error'\nusage: " +
+                         std::string(kImportUsage));
     }
     const std::string out = args.text("-o");
     check_session_output(out);  // before the work, not after it

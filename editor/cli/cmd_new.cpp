@@ -15,7 +15,7 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage =
+constexpr const char* kNewUsage =
     "sandtin new (--flat W H | --grid W H NX NY) [--points N] [--seed S] [--height Z] "
     "[--sand-depth D] "
     "-o scene.sandtin [--json]";
@@ -30,22 +30,23 @@ int run_new(const std::vector<std::string>& raw) {
                                {"--sand-depth", 1},
                                {"-o", 1},
                                {"--json", 0}});
-    args.require_positionals(0, kUsage);
+    args.require_positionals(0, kNewUsage);
     if (args.has("--flat") == args.has("--grid")) {
         throw UsageError("give exactly one of --flat W H or --grid W H NX NY\nusage: " +
-                         std::string(kUsage));
+                         std::string(kNewUsage));
     }
     const std::string out = args.text("-o");
     check_session_output(out);  // before the work, not after it
     const double z = args.number_or("--height", 0.0);
     if (!(std::abs(z) <= kMaxHeight))
-        throw UsageError("--height must lie within -1e9 and 1e9 m\nusage: " + std::string(kUsage));
+        throw UsageError("--height must lie within -1e9 and 1e9 m\nusage: " +
+                         std::string(kNewUsage));
     std::optional<double> sand_depth;
     if (args.has("--sand-depth")) {
         sand_depth = args.number("--sand-depth");
         if (!(*sand_depth >= 0.0 && *sand_depth <= kMaxHeight)) {
             throw UsageError("--sand-depth must lie within 0 and 1e9 m\nusage: " +
-                             std::string(kUsage));
+                             std::string(kNewUsage));
         }
     }
     const auto constant = [z](Vec2) { return z; };

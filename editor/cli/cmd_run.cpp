@@ -23,14 +23,14 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage =
+constexpr const char* kRunUsage =
     "sandtin run (script.json | recording.haptic.json) [-i in.sandtin] -o out.sandtin "
     "[--physics auto|cpu|gpu] [--json]";
 }
 
 int run_run(const std::vector<std::string>& raw) {
     const Arguments args(raw, {{"-i", 1}, {"-o", 1}, {"--json", 0}, {"--physics", 1}});
-    args.require_positionals(1, kUsage);
+    args.require_positionals(1, kRunUsage);
     const std::filesystem::path script_path = args.positionals()[0];
     const std::string out = args.text("-o");
     check_session_output(out);  // before the work, not after it
@@ -66,7 +66,7 @@ int run_run(const std::vector<std::string>& raw) {
     const std::string choice = args.text_or("--physics", "auto");
     if (choice != "auto" && choice != "cpu" && choice != "gpu") {
         throw UsageError("--physics must be auto, cpu or gpu, not '" + choice +
-                         "'\nusage: " + std::string(kUsage));
+                         "'\nusage: " + std::string(kRunUsage));
     }
     std::unique_ptr<gpu::VulkanContext> gpu_context;
     if (choice == "gpu") {
@@ -107,7 +107,7 @@ int run_run(const std::vector<std::string>& raw) {
         if (!script.terrain) {
             throw UsageError(
                 "no terrain: give -i in.sandtin or a \"terrain\" object in the script\nusage: " +
-                std::string(kUsage));
+                std::string(kRunUsage));
         }
         return make_script_terrain(*script.terrain, options);
     }();

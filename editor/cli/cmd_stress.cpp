@@ -14,7 +14,7 @@
 namespace sandtin::cli {
 
 namespace {
-constexpr const char* kUsage =
+constexpr const char* kStressUsage =
     "sandtin stress [--seed S] [--ops N] [--points P] [--check-every K] [--work-dir DIR] "
     "[--no-minimise] [--repro FILE] [--json]";
 }
@@ -28,7 +28,7 @@ int run_stress(const std::vector<std::string>& raw) {
                                {"--no-minimise", 0},
                                {"--repro", 1},
                                {"--json", 0}});
-    args.require_positionals(0, kUsage);
+    args.require_positionals(0, kStressUsage);
     StressOptions options;
     options.seed = args.count_or("--seed", 1);
     options.operations = args.count_or("--ops", 1000);

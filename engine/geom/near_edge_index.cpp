@@ -10,7 +10,7 @@ namespace {
 /// Cells are about half the reach wide (an edge meets a few, a query's cell holds the edges
 /// of about two reaches of contour), but never more than this many on a side, so a reach tiny
 /// against the contour does not allocate a huge grid.
-constexpr double kMaxCellsPerSide = 256.0;
+constexpr double kMaxIndexCellsPerSide = 256.0;
 
 }  // namespace
 
@@ -25,8 +25,8 @@ NearEdgeIndex::NearEdgeIndex(std::span<const Vec2> polygon, double reach) : poly
     const double margin = reach * (1.0 + 1e-9) + 1e-12 * std::max(box.width(), box.height());
     const Rect extent = box.inflated(margin);
     const double side = std::max(extent.width(), extent.height());
-    grid_ =
-        UniformGrid::with_cells_per_metre(extent, std::min(2.0 / reach, kMaxCellsPerSide / side));
+    grid_ = UniformGrid::with_cells_per_metre(extent,
+                                              std::min(2.0 / reach, kMaxIndexCellsPerSide / side));
     if (!grid_.has_cells()) return;  // a density that overflows (a subnormal reach): no grid
     // Each edge is filed, in index order, in every cell its box grown by the margin covers.
     cell_edges_ = PackedCells<std::uint32_t>(grid_.cell_count(), [&](auto&& file) {

@@ -9,7 +9,7 @@ namespace {
 
 /// At most this many cells on a side: a radius tiny against the spread of the points gets
 /// larger cells rather than a huge grid (queries then read more points per cell).
-constexpr double kMaxCellsPerSide = 1024.0;
+constexpr double kMaxPointCellsPerSide = 1024.0;
 
 }  // namespace
 
@@ -27,7 +27,7 @@ PointGrid::PointGrid(std::span<const Vec2> points, double radius) {
     // Cells a hair wider than the radius, so that a point nearer than the radius to p lies in
     // p's cell or a neighbour of it whatever the rounding of the cell arithmetic.
     const double side = std::max(radius * (1.0 + 1e-9),
-                                 std::max(extent.width(), extent.height()) / kMaxCellsPerSide);
+                                 std::max(extent.width(), extent.height()) / kMaxPointCellsPerSide);
     grid_ = UniformGrid::with_cells_per_metre(extent, 1.0 / side);
     if (!grid_.has_cells()) return;  // a density that overflows (a subnormal radius): no grid
     std::vector<Vec2> finite_points;

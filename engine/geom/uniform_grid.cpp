@@ -8,14 +8,14 @@ namespace {
 
 /// A guard against a caller's density overflowing the cell indices, not a size to aim for:
 /// the indexes keep their grids to a few hundred cells a side.
-constexpr std::uint32_t kMaxCellsPerSide = 65536;
+constexpr std::uint32_t kCellLimitPerSide = 65536;
 
-/// floor(length * per_metre) + 1 cells, at most kMaxCellsPerSide; one when that is NaN (an
+/// floor(length * per_metre) + 1 cells, at most kCellLimitPerSide; one when that is NaN (an
 /// infinite length at zero density).
 std::uint32_t cells_along(double length, double per_metre) {
     const double f = length * per_metre;
     if (!(f >= 0.0)) return 1;
-    if (!(f < static_cast<double>(kMaxCellsPerSide))) return kMaxCellsPerSide;
+    if (!(f < static_cast<double>(kCellLimitPerSide))) return kCellLimitPerSide;
     return static_cast<std::uint32_t>(f) + 1;
 }
 

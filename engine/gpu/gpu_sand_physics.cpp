@@ -1,4 +1,5 @@
 #include "gpu/gpu_sand_physics.hpp"
+#include "util/elapsed_ms.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -135,8 +136,7 @@ PhysicsStepReport GpuSandPhysics::step(int iterations, std::vector<VertexId>* ch
     }
     sync();  // refinement and write-backs are on the GPU before the next caller looks
     report.at_rest = at_rest();
-    report.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.ms = elapsed_ms(t0);
     return report;
 }
 

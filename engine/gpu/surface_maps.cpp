@@ -11,8 +11,8 @@ namespace sandtin::gpu {
 
 namespace {
 
-constexpr uint32_t kBindings = 12;
-constexpr VkBufferUsageFlags kStorage =
+constexpr uint32_t kMapBindings = 12;
+constexpr VkBufferUsageFlags kMapStorage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
 
@@ -37,11 +37,12 @@ std::vector<Vec3> to_vec3(const std::vector<float>& f) {
 
 SurfaceMaps::SurfaceMaps(TinMirror& mirror)
     : mirror_(mirror),
-      vertex_kernel_(mirror.context(), "vertex_normals", shaders::vertex_normals(), kBindings,
+      vertex_kernel_(mirror.context(), "vertex_normals", shaders::vertex_normals(), kMapBindings,
                      sizeof(Push)),
-      corner_kernel_(mirror.context(), "corner_normals", shaders::corner_normals(), kBindings,
+      corner_kernel_(mirror.context(), "corner_normals", shaders::corner_normals(), kMapBindings,
                      sizeof(Push)),
-      bake_kernel_(mirror.context(), "bake_maps", shaders::bake_maps(), kBindings, sizeof(Push)) {}
+      bake_kernel_(mirror.context(), "bake_maps", shaders::bake_maps(), kMapBindings,
+                   sizeof(Push)) {}
 
 void SurfaceMaps::ensure_buffers(VkDeviceSize map_texels) {
     const VulkanContext& ctx = mirror_.context();
@@ -52,19 +53,19 @@ void SurfaceMaps::ensure_buffers(VkDeviceSize map_texels) {
     }
     bool changed = false;
     if (vcap != vertex_capacity_) {
-        vertex_normals_ = Buffer(ctx, VkDeviceSize{vcap} * 16, kStorage, MemoryUse::Device);
+        vertex_normals_ = Buffer(ctx, VkDeviceSize{vcap} * 16, kMapStorage, MemoryUse::Device);
         vertex_capacity_ = vcap;
         changed = true;
     }
     if (scap != slot_capacity_) {
-        corner_normals_ = Buffer(ctx, VkDeviceSize{scap} * 48, kStorage, MemoryUse::Device);
+        corner_normals_ = Buffer(ctx, VkDeviceSize{scap} * 48, kMapStorage, MemoryUse::Device);
         slot_capacity_ = scap;
         changed = true;
     }
     if (map_texels > map_texels_ || !height_map_) {
         const VkDeviceSize n = std::max<VkDeviceSize>(map_texels, 1);
-        height_map_ = Buffer(ctx, n * 4, kStorage, MemoryUse::Device);
-        normal_map_ = Buffer(ctx, n * 16, kStorage, MemoryUse::Device);
+        height_map_ = Buffer(ctx, n * 4, kMapStorage, MemoryUse::Device);
+        normal_map_ = Buffer(ctx, n * 16, kMapStorage, MemoryUse::Device);
         map_texels_ = n;
         changed = true;
     }
@@ -76,18 +77,18 @@ void SurfaceMaps::ensure_buffers(VkDeviceSize map_texels) {
 }
 
 void SurfaceMaps::bind_all() {
-    const std::array<VkBuffer, kBindings> b = {mirror_.vertex_buffer(VertexBuffer::Position),
-                                               mirror_.vertex_buffer(VertexBuffer::Height),
-                                               mirror_.vertex_buffer(VertexBuffer::RowOffset),
-                                               mirror_.vertex_buffer(VertexBuffer::RowDegree),
-                                               mirror_.edge_buffer(EdgeBuffer::Target),
-                                               mirror_.edge_buffer(EdgeBuffer::EdgeFlags),
-                                               vertex_normals_.get(),
-                                               mirror_.slot_buffer(SlotBuffer::Triangles),
-                                               mirror_.slot_buffer(SlotBuffer::SlotFlags),
-                                               corner_normals_.get(),
-                                               height_map_.get(),
-                                               normal_map_.get()};
+    const std::array<VkBuffer, kMapBindings> b = {mirror_.vertex_buffer(VertexBuffer::Position),
+                                                  mirror_.vertex_buffer(VertexBuffer::Height),
+                                                  mirror_.vertex_buffer(VertexBuffer::RowOffset),
+                                                  mirror_.vertex_buffer(VertexBuffer::RowDegree),
+                                                  mirror_.edge_buffer(EdgeBuffer::Target),
+                                                  mirror_.edge_buffer(EdgeBuffer::EdgeFlags),
+                                                  vertex_normals_.get(),
+                                                  mirror_.slot_buffer(SlotBuffer::Triangles),
+                                                  mirror_.slot_buffer(SlotBuffer::SlotFlags),
+                                                  corner_normals_.get(),
+                                                  height_map_.get(),
+                                                  normal_map_.get()};
     for (ComputeKernel* k : {&vertex_kernel_, &corner_kernel_, &bake_kernel_})
         k->bind(b);
     bound_generation_ = mirror_.generation();

@@ -1,4 +1,5 @@
 #include "haptics/live_session.hpp"
+#include "util/elapsed_ms.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -22,8 +23,7 @@ SessionStepReport LiveSession::step() {
     loop_.publish(editor_.snapshot());
     report.consumed = true;
     ++steps_;
-    report.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.ms = elapsed_ms(t0);
     return report;
 }
 

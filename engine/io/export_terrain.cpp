@@ -19,6 +19,7 @@
 #include "maps/tangent_normal_map.hpp"
 #include "maps/water_depth_map.hpp"
 #include "util/atomic_file.hpp"
+#include "util/elapsed_ms.hpp"
 #include "util/lower_extension.hpp"
 
 namespace sandtin {
@@ -296,9 +297,7 @@ ExportReport export_terrain(const Tin& tin, const fs::path& out, ExportFormat fo
         throw std::invalid_argument("export: the palette has no colours");
     const auto finish = [&] {
         if (progress) progress({1.0, "done"});
-        report.ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
+        report.ms = elapsed_ms(start);
         return report;
     };
 

@@ -11,15 +11,11 @@
 
 #include "io/lattice_delaunay.hpp"
 #include "io/lattice_raster.hpp"
+#include "util/elapsed_ms.hpp"
 
 namespace sandtin {
 
 namespace {
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-        .count();
-}
 
 /// A triangle corner on the sample lattice: column i, lattice row j counted from the south
 /// (j = height - 1 - raster row), and its height.

@@ -11,6 +11,7 @@
 #include "io/geotiff_gdal.hpp"
 #include "io/heightmap_exr.hpp"
 #include "util/atomic_file.hpp"
+#include "util/elapsed_ms.hpp"
 
 namespace sandtin {
 
@@ -41,11 +42,6 @@ Format detect(std::span<const std::uint8_t> b) {
         if (word == key) return Format::Ascii;
     }
     return Format::Unknown;
-}
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-        .count();
 }
 
 void check_option(std::optional<double> v, bool positive, const char* what) {

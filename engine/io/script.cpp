@@ -19,6 +19,7 @@
 #include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
 #include "tools/tool_json.hpp"
+#include "util/elapsed_ms.hpp"
 #include "util/json_document.hpp"
 #include "util/json_fields.hpp"
 
@@ -460,8 +461,7 @@ nlohmann::json ScriptRunner::run(const ScriptStep& step, const ProgressCallback&
         std::visit([&](const auto& op) -> nlohmann::json { return run_op(op); }, step.operation);
     r["op"] = step.op_name;
     r["line"] = step.line;
-    r["ms"] =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r["ms"] = elapsed_ms(t0);
     return r;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/elapsed_ms.hpp"
 #include "util/prepare_for_writing.hpp"
 
 namespace sandtin {
@@ -311,8 +312,7 @@ PhysicsStepReport SandPhysics::step(int iterations, std::vector<VertexId>* chang
     flush(changed_out);
     sync();
     report.at_rest = active_.empty();
-    report.ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.ms = elapsed_ms(t0);
     return report;
 }
 

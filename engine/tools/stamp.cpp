@@ -8,6 +8,7 @@
 
 #include "tools/detail/stamp_phases.hpp"
 #include "tools/slivers.hpp"
+#include "util/elapsed_ms.hpp"
 
 namespace sandtin {
 
@@ -48,11 +49,6 @@ std::optional<std::string> lost_extrusion_warning(const StampReport& report) {
 }
 
 namespace {
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-        .count();
-}
 
 std::string metres(double m) {
     char text[32];

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tin/vertex_arrays.hpp"
+#include "util/elapsed_ms.hpp"
 #include "water/tin_water_mesh.hpp"
 
 namespace sandtin {
@@ -113,10 +114,7 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
         sources.rain.push_back({settings.rain_mm_per_hour, {}, 0.0});
     sources.evaporation_mm_per_hour = settings.evaporation_mm_per_hour;
     const double left_before = pipes_->volume_left();
-    const auto spent_ms = [&] {
-        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
-    };
+    const auto spent_ms = [&] { return elapsed_ms(start); };
     while (frame.seconds < seconds && (frame.steps == 0 || spent_ms() < budget_ms)) {
         const double dt =
             std::min({settings.flowing ? pipes_->stable_time_step() : kLongestSourceStep,
