@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "io/greedy_decimation.hpp"
+#include "io/greedy_scan.hpp"
 #include "io/lattice_delaunay.hpp"
 #include "io/lattice_raster.hpp"
 #include "util/elapsed_ms.hpp"
@@ -17,129 +19,12 @@ namespace sandtin {
 
 namespace {
 
-/// A triangle corner on the sample lattice: column i, lattice row j counted from the south
-/// (j = height - 1 - raster row), and its height.
-struct Corner {
-    std::int64_t i = 0;
-    std::int64_t j = 0;
-    double z = 0.0;
-};
-
-/// The plane through three corners, evaluated the same way by the greedy scan and by the final
-/// measurement, so both see bit-identical heights at a sample.
-struct Plane {
-    double z0 = 0.0;
-    double i0 = 0.0;
-    double j0 = 0.0;
-    double gi = 0.0;  ///< dz per lattice column
-    double gj = 0.0;  ///< dz per lattice row
-
-    /// Corners (u, v) in lattice units, counter-clockwise, with positive doubled area. The
-    /// corners are rotated to start at the smallest (u, v), so a triangle gets bit-identical
-    /// heights whichever corner its triangulation lists first: errors that sit exactly on the
-    /// bound (common with 0.1 m Terrain-RGB steps) then compare the same in both phases.
-    static Plane through(std::array<double, 3> u, std::array<double, 3> v,
-                         std::array<double, 3> z) {
-        std::size_t first = 0;
-        for (std::size_t k = 1; k < 3; ++k) {
-            if (u[k] < u[first] || (u[k] == u[first] && v[k] < v[first])) first = k;
-        }
-        std::rotate(u.begin(), u.begin() + static_cast<std::ptrdiff_t>(first), u.end());
-        std::rotate(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(first), v.end());
-        std::rotate(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(first), z.end());
-        const double area2 = (u[1] - u[0]) * (v[2] - v[0]) - (v[1] - v[0]) * (u[2] - u[0]);
-        const double bz = z[1] - z[0];
-        const double cz = z[2] - z[0];
-        Plane p;
-        p.z0 = z[0];
-        p.i0 = u[0];
-        p.j0 = v[0];
-        p.gi = (bz * (v[2] - v[0]) - cz * (v[1] - v[0])) / area2;
-        p.gj = (cz * (u[1] - u[0]) - bz * (u[2] - u[0])) / area2;
-        return p;
-    }
-    double row_start(double j) const { return z0 + gj * (j - j0); }
-    double at(double z_row, double i) const { return from_first(z_row, i - i0); }
-    /// The height `di` columns from the first corner: for lattice columns i - i0 is an exact
-    /// integer, so a running counter gives bit-identical heights to at().
-    double from_first(double z_row, double di) const { return z_row + gi * di; }
-};
-
-struct Worst {
-    double error = 0.0;
-    std::uint32_t sample = 0;  ///< raster index of the worst sample
-};
-
-/// Raises `worst` to the largest error among columns lo..hi of one raster row (the first such
-/// column on ties). Unmasked rows take a branch-free maximum with four accumulators first,
-/// then look for the column only when the row beats `worst`: most rows do not.
-template <bool kMasked>
-inline void scan_row(const Plane& plane, double z_row, const HeightRaster& r, std::size_t row_start,
-                     std::int64_t lo, std::int64_t hi, Worst& worst) {
-    const double* h = r.heights.data() + row_start;
-    auto error = [&](std::int64_t i) {
-        return std::abs(plane.at(z_row, static_cast<double>(i)) - h[i]);
-    };
-    if constexpr (kMasked) {
-        const std::uint8_t* valid = r.valid.data() + row_start;
-        for (std::int64_t i = lo; i <= hi; ++i) {
-            if (!valid[i]) continue;
-            const double e = error(i);
-            if (e > worst.error) {
-                worst.error = e;
-                worst.sample = static_cast<std::uint32_t>(row_start + static_cast<std::size_t>(i));
-            }
-        }
-    } else {
-        double m0 = 0.0;
-        double m1 = 0.0;
-        double m2 = 0.0;
-        double m3 = 0.0;
-        std::int64_t i = lo;
-        double di = static_cast<double>(lo) - plane.i0;
-        const auto fast_error = [&](std::int64_t k, double d) {
-            return std::abs(plane.from_first(z_row, d) - h[k]);
-        };
-        for (; i + 3 <= hi; i += 4, di += 4.0) {
-            m0 = std::max(m0, fast_error(i, di));
-            m1 = std::max(m1, fast_error(i + 1, di + 1.0));
-            m2 = std::max(m2, fast_error(i + 2, di + 2.0));
-            m3 = std::max(m3, fast_error(i + 3, di + 3.0));
-        }
-        for (; i <= hi; ++i, di += 1.0)
-            m0 = std::max(m0, fast_error(i, di));
-        const double row_max = std::max(std::max(m0, m1), std::max(m2, m3));
-        if (row_max <= worst.error) return;
-        // The same arithmetic finds the column again; bounded all the same.
-        for (i = lo, di = static_cast<double>(lo) - plane.i0;
-             i < hi && fast_error(i, di) != row_max; ++i, di += 1.0) {
-        }
-        worst.error = row_max;
-        worst.sample = static_cast<std::uint32_t>(row_start + static_cast<std::size_t>(i));
-    }
-}
-
-/// The valid sample of the closed triangle a, b, c (counter-clockwise) farthest from the
-/// triangle's plane. The hot loop of the whole import.
-template <bool kMasked>
-Worst scan_triangle(const Corner& a, const Corner& b, const Corner& c, const HeightRaster& r) {
-    const auto d = [](std::int64_t x) { return static_cast<double>(x); };
-    const Plane plane =
-        Plane::through({d(a.i), d(b.i), d(c.i)}, {d(a.j), d(b.j), d(c.j)}, {a.z, b.z, c.z});
-    const std::int64_t top = static_cast<std::int64_t>(r.height) - 1;
-    Worst worst;
-    for_each_lattice_span(
-        {a.i, b.i, c.i}, {a.j, b.j, c.j}, [&](std::int64_t j, std::int64_t lo, std::int64_t hi) {
-            const std::size_t row_start = static_cast<std::size_t>(top - j) * r.width;
-            scan_row<kMasked>(plane, plane.row_start(static_cast<double>(j)), r, row_start, lo, hi,
-                              worst);
-        });
-    // A corner's own sample has no error; only rounding can put the maximum there.
-    for (const Corner* k : {&a, &b, &c}) {
-        if (worst.sample == static_cast<std::size_t>(top - k->j) * r.width + k->i) worst.error = 0;
-    }
-    return worst;
-}
+using greedy_detail::canonical;
+using greedy_detail::Corner;
+using greedy_detail::Plane;
+using greedy_detail::SampleTriangle;
+using greedy_detail::scan;
+using greedy_detail::Worst;
 
 /// Candidates per triangle id (lattice triangles, or TIN slots) in a max-heap with lazy
 /// deletion: an entry is live while its stamp equals its triangle's current stamp.
@@ -189,16 +74,21 @@ class CandidateQueue {
     std::vector<Entry> heap_;
 };
 
-Worst scan(const Corner& a, const Corner& b, const Corner& c, const HeightRaster& r) {
-    return r.valid.empty() ? scan_triangle<false>(a, b, c, r) : scan_triangle<true>(a, b, c, r);
-}
-
-/// A triangle named by its corners' raster indices, rotated to start at the smallest.
-using SampleTriangle = std::array<std::uint32_t, 3>;
-
-SampleTriangle canonical(SampleTriangle t) {
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return t;
+/// Every triangle of `mesh` as its corners' raster indices, canonically rotated, sorted.
+std::vector<SampleTriangle> sample_triangles(const LatticeMesh& mesh, const HeightRaster& r) {
+    std::vector<SampleTriangle> out;
+    out.reserve(mesh.triangles.size());
+    for (const std::array<std::uint32_t, 3>& t : mesh.triangles) {
+        SampleTriangle tri{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const LatticePoint p = mesh.points[t[k]];
+            tri[k] = (r.height - 1 - static_cast<std::uint32_t>(p.y)) * r.width +
+                     static_cast<std::uint32_t>(p.x);
+        }
+        out.push_back(canonical(tri));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 /// How far a greedy insertion has come, for progress reports. The insertion does not know how
@@ -274,24 +164,16 @@ class LatticeGreedy {
         return true;
     }
 
-    const LatticeDelaunay& triangulation() const { return dt_; }
-
-    /// Every triangle as its corners' raster indices, canonically rotated, sorted.
-    std::vector<SampleTriangle> sample_triangles() const {
-        std::vector<SampleTriangle> out;
-        out.reserve(dt_.triangle_count());
-        for (std::uint32_t t = 0; t < dt_.triangle_count(); ++t) {
-            const std::array<std::uint32_t, 3> v = dt_.triangle(t);
-            SampleTriangle tri{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                const LatticePoint p = dt_.point(v[k]);
-                tri[k] = (r_.height - 1 - static_cast<std::uint32_t>(p.y)) * r_.width +
-                         static_cast<std::uint32_t>(p.x);
-            }
-            out.push_back(canonical(tri));
-        }
-        std::sort(out.begin(), out.end());
-        return out;
+    /// The triangulation as points and triangles.
+    LatticeMesh mesh() const {
+        LatticeMesh m;
+        m.points.reserve(dt_.point_count());
+        for (std::uint32_t v = 0; v < dt_.point_count(); ++v)
+            m.points.push_back(dt_.point(v));
+        m.triangles.reserve(dt_.triangle_count());
+        for (std::uint32_t t = 0; t < dt_.triangle_count(); ++t)
+            m.triangles.push_back(dt_.triangle(t));
+        return m;
     }
 
   private:
@@ -416,22 +298,31 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
     }
     check_raster(raster, "greedy insertion");
     const auto start = std::chrono::steady_clock::now();
+    double decimate_ms = 0.0;
 
-    // A rough split of the work: the insertion is most of it, the measurement one pass.
-    const ProgressCallback insertion = progress_part(progress, 0.0, 0.85);
+    // A rough split of the work: the insertion is most of it, then the decimation, the
+    // measurement one pass.
+    const ProgressCallback insertion = progress_part(progress, 0.0, 0.75);
     GreedyProgress insertion_progress(insertion, options, raster.size());
     if (insertion) insertion({0.0, "refining: scanning the raster"});
     LatticeGreedy lattice(raster);
     const bool lattice_reached =
         lattice.run(options.max_error, options.max_points, insertion_progress);
+    LatticeMesh mesh = lattice.mesh();
+    DecimationStats decimation;
+    // After a point-limit stop the bound does not hold, and there is nothing to keep it for.
+    if (options.decimate && lattice_reached) {
+        const auto decimate_start = std::chrono::steady_clock::now();
+        decimation = decimate_within_bound(mesh, raster, options.max_error,
+                                           progress_part(progress, 0.75, 0.85));
+        decimate_ms = elapsed_ms(decimate_start);
+    }
     if (progress) progress({0.85, "building the TIN"});
-    const LatticeDelaunay& dt = lattice.triangulation();
     std::vector<Vec2> positions;
     std::vector<double> heights;
-    positions.reserve(dt.point_count());
-    heights.reserve(dt.point_count());
-    for (std::uint32_t v = 0; v < dt.point_count(); ++v) {
-        const LatticePoint p = dt.point(v);
+    positions.reserve(mesh.points.size());
+    heights.reserve(mesh.points.size());
+    for (const LatticePoint& p : mesh.points) {
         const auto col = static_cast<std::uint32_t>(p.x);
         const auto row = raster.height - 1 - static_cast<std::uint32_t>(p.y);
         positions.push_back(raster.position(col, row));
@@ -442,7 +333,7 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
     bool reached = true;
     // After a point-limit stop phase 1's triangles are not all within the bound: rescan all.
     const std::vector<SampleTriangle> settled =
-        lattice_reached ? lattice.sample_triangles() : std::vector<SampleTriangle>{};
+        lattice_reached ? sample_triangles(mesh, raster) : std::vector<SampleTriangle>{};
     if (progress) progress({0.88, "checking the TIN against the raster"});
     TinGreedy fix_up(raster, tin, settled);
     const std::size_t fix_ups = fix_up.run(options.max_error, options.max_points, reached);
@@ -453,6 +344,8 @@ GreedyResult greedy_tin(const HeightRaster& raster, const GreedyOptions& options
     stats.reached_error = reached;
     stats.build_ms = build_ms;
     stats.fix_up_points = fix_ups;
+    stats.decimated_points = decimation.removed;
+    stats.decimate_ms = decimate_ms;
     // The measurement uses the scan's arithmetic, so only a corner's rounding (which the scan
     // ignores) may exceed the bound, by a few ulps.
     double z_scale = 1.0;

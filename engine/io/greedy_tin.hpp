@@ -13,7 +13,10 @@
 // one bulk build. Phase 2 rescans every TIN triangle that is not a triangle of phase 1 (the
 // same corners give bit-identical errors) and, driven by the TIN's change journal, inserts
 // whatever the bound still needs, so the bound never rests on the two triangulations agreeing.
-// A final pass measures every sample once (max error, RMSD).
+// Between the two phases a decimation pass (io/greedy_decimation.hpp) removes the vertices the
+// bound no longer needs: greedy insertion never takes a point back, and its early points are
+// often made redundant by later ones. A final pass measures every sample once (max error,
+// RMSD).
 //
 // Units: metres. Invariants of the result: every vertex lies on a raster sample and has that
 // sample's height; the TIN is the TIN that was measured, so when `reached_error` is true every
@@ -33,6 +36,9 @@ namespace sandtin {
 struct GreedyOptions {
     double max_error = 1.0;      ///< metres; >= 0
     std::size_t max_points = 0;  ///< stop at this many vertices (0: no limit; else >= 4)
+    /// After the insertion, remove the vertices the bound no longer needs
+    /// (io/greedy_decimation.hpp). Off only to compare with plain greedy insertion.
+    bool decimate = true;
 };
 
 struct GreedyStats {
@@ -45,8 +51,11 @@ struct GreedyStats {
     /// Points the TIN needed beyond the fast lattice pass (0 when the two triangulations
     /// agree, as they should).
     std::size_t fix_up_points = 0;
-    double build_ms = 0.0;    ///< greedy insertion (wall time)
-    double measure_ms = 0.0;  ///< the final measurement pass
+    /// Vertices the decimation removed after the insertion (0 when it did not run).
+    std::size_t decimated_points = 0;
+    double build_ms = 0.0;     ///< insertion, decimation and the TIN's build (wall time)
+    double decimate_ms = 0.0;  ///< the decimation's part of build_ms
+    double measure_ms = 0.0;   ///< the final measurement pass
 };
 
 struct GreedyResult {

@@ -193,8 +193,10 @@ nlohmann::json to_json(const ImportReport& r) {
     j["rmsd"] = r.stats.rmsd;
     j["reached_error"] = r.stats.reached_error;
     j["fix_up_points"] = r.stats.fix_up_points;
+    j["decimated_points"] = r.stats.decimated_points;
     j["read_ms"] = r.read_ms;
     j["build_ms"] = r.stats.build_ms;
+    j["decimate_ms"] = r.stats.decimate_ms;
     j["measure_ms"] = r.stats.measure_ms;
     j["total_ms"] = r.total_ms;
     return j;

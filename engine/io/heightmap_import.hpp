@@ -74,7 +74,8 @@ ImportResult import_heightmap(const std::filesystem::path& path, const ImportOpt
 /// The report as JSON: source, format, raster {width, height, cell_size, cell_height,
 /// nodata_samples}, georeference {west, south, crs, horizontal_unit, vertical_unit} when known,
 /// max_error_target, max_points, points, triangles, max_error, rmsd, reached_error,
-/// fix_up_points, and times in ms. Stored in the session's metadata under "import".
+/// fix_up_points, decimated_points, and times in ms (decimate_ms is part of build_ms). Stored in
+/// the session's metadata under "import".
 nlohmann::json to_json(const ImportReport& report);
 
 }  // namespace sandtin

@@ -1,6 +1,7 @@
 #include "io/lattice_delaunay.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -34,6 +35,29 @@ std::int64_t LatticeDelaunay::orient(LatticePoint a, LatticePoint b, LatticePoin
 
 int LatticeDelaunay::perturbed_in_circle(LatticePoint p0, LatticePoint p1, LatticePoint p2,
                                          LatticePoint p) {
+    {
+        // Floating-point filter: differences and squared lengths are exact in doubles (below
+        // 2^52); the determinant's rounding error is at most about 10 epsilon times its
+        // permanent (Shewchuk's incircle bound), taken 10 times wider. Only near-cocircular
+        // cases fall through to the exact arithmetic below.
+        const double ax = double(p0.x) - p.x;
+        const double ay = double(p0.y) - p.y;
+        const double bx = double(p1.x) - p.x;
+        const double by = double(p1.y) - p.y;
+        const double cx = double(p2.x) - p.x;
+        const double cy = double(p2.y) - p.y;
+        const double a2 = ax * ax + ay * ay;
+        const double b2 = bx * bx + by * by;
+        const double c2 = cx * cx + cy * cy;
+        const double det =
+            a2 * (bx * cy - by * cx) + b2 * (cx * ay - cy * ax) + c2 * (ax * by - ay * bx);
+        const double permanent = a2 * (std::abs(bx * cy) + std::abs(by * cx)) +
+                                 b2 * (std::abs(cx * ay) + std::abs(cy * ax)) +
+                                 c2 * (std::abs(ax * by) + std::abs(ay * bx));
+        const double bound = 1e-14 * permanent;
+        if (det > bound) return 1;
+        if (det < -bound) return -1;
+    }
     const Wide ax = p0.x - p.x;
     const Wide ay = p0.y - p.y;
     const Wide bx = p1.x - p.x;

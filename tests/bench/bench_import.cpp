@@ -136,6 +136,7 @@ nlohmann::json compare_on_tile(const std::string& name, const HeightRaster& rast
         std::vector<double> build;
         std::vector<double> total;
         std::vector<double> cpu;
+        std::vector<double> decimate;
         GreedyStats stats;
         for (int r = 0; r < reps; ++r) {
             std::ostringstream stage;
@@ -148,8 +149,13 @@ nlohmann::json compare_on_tile(const std::string& name, const HeightRaster& rast
             cpu.push_back(c.ms());
             total.push_back(w.ms());
             build.push_back(result.stats.build_ms);
+            decimate.push_back(result.stats.decimate_ms);
             stats = result.stats;
         }
+        // Greedy insertion alone, once: what the decimation after it saves, in points and time.
+        GreedyOptions insertion_only{e, 0};
+        insertion_only.decimate = false;
+        const GreedyStats plain = greedy_tin(raster, insertion_only).stats;
         nlohmann::json row = {{"max_error_target", e},
                               {"points", stats.points},
                               {"triangles", stats.triangles},
@@ -157,6 +163,10 @@ nlohmann::json compare_on_tile(const std::string& name, const HeightRaster& rast
                               {"rmsd", stats.rmsd},
                               {"fix_up_points", stats.fix_up_points},
                               {"bound_met", stats.max_error <= e},
+                              {"decimated_points", stats.decimated_points},
+                              {"median_decimate_ms", median(decimate)},
+                              {"insertion_only_points", plain.points},
+                              {"insertion_only_build_ms", plain.build_ms},
                               {"median_build_ms", median(build)},
                               {"median_total_ms", median(total)},
                               {"median_total_cpu_ms", median(cpu)},
