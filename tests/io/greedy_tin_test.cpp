@@ -341,6 +341,45 @@ TEST(LatticeDelaunay, TrianglesAreCounterClockwiseAndLocallyDelaunay) {
     }
 }
 
+// The in-circle test decides most cases with a floating-point filter before its exact
+// arithmetic. Its formula must agree with the exact determinant's sign at every scale, down to
+// the nearest non-cocircular lattice cases: three points of a circle of radius up to 2^22
+// around a lattice centre and a fourth one lattice step off it (squared distance r^2 +- 1), where
+// the determinant is about 1e-13 of its terms' size. The sign is checked against a 128-bit
+// determinant written out here.
+TEST(LatticeDelaunay, InCircleAgreesWithExactArithmeticOnHugeNearCocircularPoints) {
+    __extension__ using Wide = __int128;
+    std::mt19937_64 rng = test::test_rng(4242);
+    const std::int64_t limit = LatticeDelaunay::kMaxCoordinate;
+    int decided_by_size = 0;
+    for (int k = 0; k < 20000; ++k) {
+        // A circle with a centre and radius on the lattice, its points from Pythagorean-like
+        // offsets (r, 0), (0, r), (-r, 0), then the fourth moved off by one step.
+        const std::int64_t r = 1 + static_cast<std::int64_t>(rng() % (limit / 4));
+        const std::int64_t cx = r + static_cast<std::int64_t>(rng() % (limit - 2 * r));
+        const std::int64_t cy = r + static_cast<std::int64_t>(rng() % (limit - 2 * r));
+        const auto at = [](std::int64_t x, std::int64_t y) {
+            return LatticePoint{static_cast<std::int32_t>(x), static_cast<std::int32_t>(y)};
+        };
+        const LatticePoint a = at(cx + r, cy);
+        const LatticePoint b = at(cx, cy + r);
+        const LatticePoint c = at(cx - r, cy);
+        const std::int64_t dx = static_cast<std::int64_t>(rng() % 3) - 1;
+        const std::int64_t dy = static_cast<std::int64_t>(rng() % 3) - 1;
+        const LatticePoint d = at(cx + dx, std::max<std::int64_t>(0, cy - r + dy));
+        const Wide ax = a.x - d.x, ay = a.y - d.y, bx = b.x - d.x, by = b.y - d.y;
+        const Wide ex = c.x - d.x, ey = c.y - d.y;
+        const Wide det = (ax * ax + ay * ay) * (bx * ey - by * ex) -
+                         (bx * bx + by * by) * (ax * ey - ay * ex) +
+                         (ex * ex + ey * ey) * (ax * by - ay * bx);
+        if (det == 0) continue;  // cocircular: the perturbation decides (tested above)
+        ++decided_by_size;
+        ASSERT_EQ(LatticeDelaunay::perturbed_in_circle(a, b, c, d), det > 0 ? 1 : -1)
+            << "radius " << r << " centre " << cx << ", " << cy << " offset " << dx << ", " << dy;
+    }
+    EXPECT_GT(decided_by_size, 10000);
+}
+
 TEST(LatticeDelaunay, PerturbedInCircleIsAntisymmetricAcrossAnEdge) {
     // For cocircular quadruples the decision must not depend on which side asks.
     const std::vector<std::array<LatticePoint, 4>> quads = {{{{0, 0}, {2, 0}, {2, 2}, {0, 2}}},
