@@ -10,13 +10,15 @@
 #include "io/greedy_decimation.hpp"
 #include "io/greedy_tin.hpp"
 #include "io/lattice_delaunay.hpp"
+#include "support/height_fields.hpp"
+#include "support/lattice_triangles.hpp"
 #include "support/raster_oracle.hpp"
 #include "support/tin_oracles.hpp"
 
 namespace sandtin {
 namespace {
 
-using PointTriple = std::array<std::pair<std::int64_t, std::int64_t>, 3>;
+using test::LatticeTriple;
 
 /// A hash of a sample in [-1, 1]: the raster's roughness, the same on every platform.
 double sample_noise(std::uint32_t col, std::uint32_t row, std::uint64_t seed) {
@@ -32,56 +34,21 @@ double sample_noise(std::uint32_t col, std::uint32_t row, std::uint64_t seed) {
 
 /// Smooth hills with rough detail on top (cell 1 m): where greedy insertion over-inserts.
 HeightRaster rough_raster(std::uint32_t w, std::uint32_t h, double roughness, std::uint64_t seed) {
-    HeightRaster r;
-    r.width = w;
-    r.height = h;
-    r.heights.resize(r.size());
-    for (std::uint32_t row = 0; row < h; ++row) {
-        for (std::uint32_t col = 0; col < w; ++col) {
-            const Vec2 p = r.position(col, row);
-            r.heights[r.index(col, row)] = 8.0 * std::sin(0.07 * p.x + 0.3) * std::cos(0.05 * p.y) +
-                                           3.0 * std::sin(0.21 * p.x + 0.17 * p.y) +
-                                           roughness * sample_noise(col, row, seed);
-        }
-    }
-    return r;
+    return test::raster_of(w, h, [&](double x, double y) {
+        return 8.0 * std::sin(0.07 * x + 0.3) * std::cos(0.05 * y) +
+               3.0 * std::sin(0.21 * x + 0.17 * y) +
+               roughness *
+                   sample_noise(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y), seed);
+    });
 }
 
-test::OracleRaster oracle_raster(const HeightRaster& r) {
-    test::OracleRaster o;
-    o.width = r.width;
-    o.height = r.height;
-    o.cell = r.cell_size;
-    o.heights = r.heights;
-    o.valid = r.valid;
-    return o;
-}
-
-PointTriple rotated_to_smallest(PointTriple t) {
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return t;
-}
-
-std::set<PointTriple> triangles_of_tin(const Tin& tin) {
-    std::set<PointTriple> out;
-    for (const auto& t : tin.triangles()) {
-        PointTriple tri;
-        for (std::size_t k = 0; k < 3; ++k) {
-            const Vec2 p = tin.position(t[k]);
-            tri[k] = {std::llround(p.x), std::llround(p.y)};
-        }
-        out.insert(rotated_to_smallest(tri));
-    }
-    return out;
-}
-
-std::set<PointTriple> triangles_of_mesh(const LatticeMesh& mesh) {
-    std::set<PointTriple> out;
+std::set<LatticeTriple> triangles_of_mesh(const LatticeMesh& mesh) {
+    std::set<LatticeTriple> out;
     for (const auto& t : mesh.triangles) {
-        PointTriple tri;
+        LatticeTriple tri;
         for (std::size_t k = 0; k < 3; ++k)
             tri[k] = {mesh.points[t[k]].x, mesh.points[t[k]].y};
-        out.insert(rotated_to_smallest(tri));
+        out.insert(test::rotated_to_smallest(tri));
     }
     return out;
 }
@@ -142,14 +109,15 @@ TEST(GreedyDecimation, TheMeshLeftIsTheTriangulationCgalBuildsForItsPoints) {
         const GreedyResult g = greedy_tin(r, plain);
         LatticeMesh mesh = lattice_mesh_of(g.tin, static_cast<std::int32_t>(w - 1),
                                            static_cast<std::int32_t>(h - 1));
-        ASSERT_EQ(triangles_of_mesh(mesh), triangles_of_tin(g.tin)) << "seed " << seed;
+        ASSERT_EQ(triangles_of_mesh(mesh), test::lattice_triples(g.tin)) << "seed " << seed;
         const std::size_t before = mesh.points.size();
         const DecimationStats stats = decimate_within_bound(mesh, r, bound);
         EXPECT_EQ(stats.removed, before - mesh.points.size());
         removed_in_all += stats.removed;
         const Tin left = tin_of_mesh(mesh, r);
-        EXPECT_EQ(triangles_of_mesh(mesh), triangles_of_tin(left)) << "seed " << seed;
-        EXPECT_LE(test::check_tin_against_raster(left, oracle_raster(r)).max_error, bound + 1e-9)
+        EXPECT_EQ(triangles_of_mesh(mesh), test::lattice_triples(left)) << "seed " << seed;
+        EXPECT_LE(test::check_tin_against_raster(left, test::oracle_raster_of(r)).max_error,
+                  bound + 1e-9)
             << "seed " << seed;
     }
     // Not a vacuous check: the rough rasters leave greedy insertion points to spare.
@@ -172,7 +140,8 @@ TEST(GreedyDecimation, RoughTerrainNeedsFewerPointsForTheSameBound) {
         EXPECT_EQ(without.stats.decimated_points, 0u);
         EXPECT_EQ(with.stats.fix_up_points, 0u);
         EXPECT_TRUE(with.stats.reached_error);
-        const test::RasterCheck check = test::check_tin_against_raster(with.tin, oracle_raster(r));
+        const test::RasterCheck check =
+            test::check_tin_against_raster(with.tin, test::oracle_raster_of(r));
         EXPECT_EQ(check.uncovered, 0u);
         EXPECT_LE(check.max_error, bound + 1e-9) << "bound " << bound;
         EXPECT_NEAR(with.stats.max_error, check.max_error, 1e-9);
@@ -201,7 +170,8 @@ TEST(GreedyDecimation, NoDataSamplesStayOutOfTheBoundAndOffTheVertices) {
     const double bound = 0.5;
     const GreedyResult g = greedy_tin(r, {bound, 0});
     EXPECT_GT(g.stats.decimated_points, 0u);
-    EXPECT_LE(test::check_tin_against_raster(g.tin, oracle_raster(r)).max_error, bound + 1e-9);
+    EXPECT_LE(test::check_tin_against_raster(g.tin, test::oracle_raster_of(r)).max_error,
+              bound + 1e-9);
     for (VertexId v : test::live_ids(g.tin)) {
         const Vec2 p = g.tin.position(v);
         const std::size_t k = r.index(static_cast<std::uint32_t>(p.x),

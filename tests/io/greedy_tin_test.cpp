@@ -13,6 +13,8 @@
 #include "io/heightmap_import.hpp"
 #include "io/lattice_delaunay.hpp"
 #include "io/lattice_raster.hpp"
+#include "support/height_fields.hpp"
+#include "support/lattice_triangles.hpp"
 #include "support/raster_oracle.hpp"
 #include "support/tin_oracles.hpp"
 
@@ -21,30 +23,7 @@ namespace {
 
 const std::string kTile = std::string(SANDTIN_TEST_DATA_DIR) + "/bay-hills-terrain-rgb.png";
 
-/// A raster from a height function, cell 1 m.
-HeightRaster raster_of(std::uint32_t w, std::uint32_t h, double (*f)(double, double)) {
-    HeightRaster r;
-    r.width = w;
-    r.height = h;
-    r.heights.resize(r.size());
-    for (std::uint32_t row = 0; row < h; ++row) {
-        for (std::uint32_t col = 0; col < w; ++col) {
-            const Vec2 p = r.position(col, row);
-            r.heights[r.index(col, row)] = f(p.x, p.y);
-        }
-    }
-    return r;
-}
-
-test::OracleRaster oracle_of(const HeightRaster& r) {
-    test::OracleRaster o;
-    o.width = r.width;
-    o.height = r.height;
-    o.cell = r.cell_size;
-    o.heights = r.heights;
-    o.valid = r.valid;
-    return o;
-}
+using test::raster_of;
 
 class BayHills : public ::testing::TestWithParam<std::pair<double, std::size_t>> {};
 
@@ -98,7 +77,8 @@ TEST(GreedyTin, RmsdMatchesAnIndependentSum) {
     }
     EXPECT_NEAR(g.stats.rmsd, std::sqrt(static_cast<double>(sum / r.size())), 1e-9);
     EXPECT_EQ(g.stats.samples, r.size());
-    EXPECT_LE(test::check_tin_against_raster(g.tin, oracle_of(r)).max_error, 0.25 + 1e-9);
+    EXPECT_LE(test::check_tin_against_raster(g.tin, test::oracle_raster_of(r)).max_error,
+              0.25 + 1e-9);
 }
 
 TEST(GreedyTin, APlaneNeedsOnlyTheCorners) {
@@ -116,7 +96,7 @@ TEST(GreedyTin, ZeroErrorReproducesTheRasterExactly) {
         return std::floor(std::sin(x) * 5.0) + std::floor(std::cos(y * 1.3) * 3.0);
     });
     const GreedyResult g = greedy_tin(r, {0.0, 0});
-    EXPECT_LE(test::check_tin_against_raster(g.tin, oracle_of(r)).max_error, 1e-9);
+    EXPECT_LE(test::check_tin_against_raster(g.tin, test::oracle_raster_of(r)).max_error, 1e-9);
 }
 
 TEST(GreedyTin, StopsAtThePointLimit) {
@@ -144,7 +124,8 @@ TEST(GreedyTin, NoDataSamplesAreIgnoredAndNeverBecomeVertices) {
     HeightRaster filled = r;
     EXPECT_EQ(fill_nodata(filled), 15u * 12u);
     const GreedyResult g = greedy_tin(filled, {0.05, 0});
-    const test::RasterCheck check = test::check_tin_against_raster(g.tin, oracle_of(r));
+    const test::RasterCheck check =
+        test::check_tin_against_raster(g.tin, test::oracle_raster_of(r));
     EXPECT_LE(check.max_error, 0.05 + 1e-9);
     EXPECT_EQ(check.samples, r.size() - 15u * 12u);
     for (VertexId v : test::live_ids(g.tin)) {
@@ -231,34 +212,16 @@ TEST(LatticeRaster, SpansHoldExactlyTheLatticePointsOfTheClosedTriangle) {
 
 // ---- The lattice triangulation is CGAL's, cocircular ties included --------------------------
 
-using Triangle = std::array<std::pair<std::int64_t, std::int64_t>, 3>;
+using test::LatticeTriple;
 
-Triangle canonical(Triangle t) {
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    return t;
-}
-
-std::set<Triangle> lattice_triangles(const LatticeDelaunay& dt) {
-    std::set<Triangle> out;
+std::set<LatticeTriple> lattice_triangles(const LatticeDelaunay& dt) {
+    std::set<LatticeTriple> out;
     for (std::uint32_t t = 0; t < dt.triangle_count(); ++t) {
-        Triangle tri;
+        LatticeTriple tri;
         const auto v = dt.triangle(t);
         for (std::size_t k = 0; k < 3; ++k)
             tri[k] = {dt.point(v[k]).x, dt.point(v[k]).y};
-        out.insert(canonical(tri));
-    }
-    return out;
-}
-
-std::set<Triangle> tin_triangles(const Tin& tin) {
-    std::set<Triangle> out;
-    for (const auto& t : tin.triangles()) {
-        Triangle tri;
-        for (std::size_t k = 0; k < 3; ++k) {
-            const Vec2 p = tin.position(t[k]);
-            tri[k] = {std::llround(p.x), std::llround(p.y)};
-        }
-        out.insert(canonical(tri));
+        out.insert(test::rotated_to_smallest(tri));
     }
     return out;
 }
@@ -304,7 +267,7 @@ TEST(LatticeDelaunay, EqualsCgalOnCocircularLatticePoints) {
         }
         const std::vector<double> heights(positions.size(), 0.0);
         const Tin tin = Tin::from_points(Rect{{0, 0}, {double(w), double(h)}}, positions, heights);
-        EXPECT_EQ(lattice_triangles(dt), tin_triangles(tin)) << "seed " << seed;
+        EXPECT_EQ(lattice_triangles(dt), test::lattice_triples(tin)) << "seed " << seed;
     }
 }
 

@@ -18,6 +18,7 @@
 #include "io/progress.hpp"
 #include "io/script.hpp"
 #include "io/session_file.hpp"
+#include "support/height_fields.hpp"
 
 namespace sandtin {
 namespace {
@@ -74,18 +75,9 @@ std::vector<char> file_bytes(const std::filesystem::path& p) {
 
 /// Rolling hills with fine ripples on 1 m cells: many insertions before a 1 cm bound.
 HeightRaster hills(std::uint32_t n) {
-    HeightRaster r;
-    r.width = n;
-    r.height = n;
-    r.heights.resize(r.size());
-    for (std::uint32_t row = 0; row < n; ++row) {
-        for (std::uint32_t col = 0; col < n; ++col) {
-            const Vec2 p = r.position(col, row);
-            r.heights[r.index(col, row)] = 5.0 * std::sin(0.05 * p.x) * std::cos(0.07 * p.y) +
-                                           0.3 * std::sin(0.9 * p.x + 0.4 * p.y);
-        }
-    }
-    return r;
+    return test::raster_of(n, n, [](double x, double y) {
+        return 5.0 * std::sin(0.05 * x) * std::cos(0.07 * y) + 0.3 * std::sin(0.9 * x + 0.4 * y);
+    });
 }
 
 TEST(Progress, GreedyInsertionRisesToOneAndBuildsTheSameTin) {
