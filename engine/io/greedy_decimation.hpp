@@ -43,9 +43,9 @@ struct DecimationStats {
 /// Removes vertices of `mesh`, never the rectangle's four corners, as long as every valid
 /// sample stays within `max_error` (metres, >= 0) of the surface. Preconditions: `mesh` is the
 /// perturbed Delaunay triangulation of its points (as LatticeDelaunay builds it), each of its
-/// triangles within the bound. Postconditions: the same holds for the points left, which keep
-/// their order; every triangle of the result was measured within the bound, either before
-/// this call or when its hole was.
+/// triangles within the bound. Postconditions: the same holds for the points left, which come
+/// in Z-order (renumbered along a space-filling curve, not in their old order); every triangle
+/// of the result was measured within the bound, either before this call or when its hole was.
 DecimationStats decimate_within_bound(LatticeMesh& mesh, const HeightRaster& raster,
                                       double max_error, const ProgressCallback& progress = {});
 
