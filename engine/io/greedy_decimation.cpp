@@ -107,7 +107,6 @@ class Decimator {
     std::vector<std::uint8_t> dirty_;      ///< per vertex: its star changed since it was measured
     std::vector<std::uint8_t> removable_;  ///< per vertex, as last measured
     std::vector<double> error_;            ///< per vertex: its removal's error, as last measured
-    std::size_t tested_ = 0;
     // Scratch, reused from vertex to vertex.
     std::vector<std::uint32_t> ring_;
     std::vector<std::uint32_t> polygon_;
@@ -239,7 +238,6 @@ void Decimator::measure_dirty() {
         if (!dirty_[v]) continue;
         dirty_[v] = 0;
         if (gone_[v]) continue;
-        ++tested_;
         const Removal removal = measure(v);
         removable_[v] = removal.possible ? 1 : 0;
         error_[v] = removal.error;
@@ -378,7 +376,6 @@ DecimationStats Decimator::run(const ProgressCallback& progress) {
             break;
     }
     compact();
-    stats.tested = tested_;
     if (progress) progress({1.0, "decimated"});
     return stats;
 }

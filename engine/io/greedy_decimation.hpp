@@ -37,7 +37,6 @@ struct LatticeMesh {
 struct DecimationStats {
     std::size_t removed = 0;  ///< vertices removed
     std::size_t rounds = 0;   ///< rounds run (the last one may remove nothing)
-    std::size_t tested = 0;   ///< vertex removals measured, over all rounds
 };
 
 /// Removes vertices of `mesh`, never the rectangle's four corners, as long as every valid
