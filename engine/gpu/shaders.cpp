@@ -13,6 +13,9 @@ namespace {
 #include "talus_outflow_comp.spv.h"
 #include "talus_pack_comp.spv.h"
 #include "vertex_normals_comp.spv.h"
+#include "water_depth_comp.spv.h"
+#include "water_flux_comp.spv.h"
+#include "water_measure_comp.spv.h"
 }  // namespace
 
 std::span<const uint32_t> talus_outflow() {
@@ -44,6 +47,16 @@ std::span<const uint32_t> corner_normals() {
 }
 std::span<const uint32_t> bake_maps() {
     return kSpv_bake_maps_comp;
+}
+
+std::span<const uint32_t> water_flux() {
+    return kSpv_water_flux_comp;
+}
+std::span<const uint32_t> water_depth() {
+    return kSpv_water_depth_comp;
+}
+std::span<const uint32_t> water_measure() {
+    return kSpv_water_measure_comp;
 }
 
 }  // namespace sandtin::gpu::shaders

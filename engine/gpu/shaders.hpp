@@ -16,5 +16,8 @@ std::span<const uint32_t> talus_pack();
 std::span<const uint32_t> vertex_normals();
 std::span<const uint32_t> corner_normals();
 std::span<const uint32_t> bake_maps();
+std::span<const uint32_t> water_flux();  // gpu_water.hpp
+std::span<const uint32_t> water_depth();
+std::span<const uint32_t> water_measure();
 
 }  // namespace sandtin::gpu::shaders

@@ -222,6 +222,9 @@ void TinMirror::upload_vertex_range(const Tin& tin, IdRange r) {
     put(VertexBuffer::Moisture, va.moisture.data() + r.begin, 4);
     static_assert(sizeof(Vec2f) == 8);
     put(VertexBuffer::Slide, va.slide.data() + r.begin, 8);
+    for (uint32_t i = 0; i < n; ++i)
+        f_[i] = static_cast<float>(va.water_depth[r.begin + i]);
+    put(VertexBuffer::WaterDepth, f_.data(), 4);
 }
 
 void TinMirror::upload_tan_alpha(const Tin& tin, IdRange r) {

@@ -14,6 +14,7 @@
 //     area      float m², lumped      tan_alpha float (tan of the angle of repose, from materials)
 //     material  uint                  moisture float [0, 1]
 //     slide     vec2  texture units in [0, 1), written by the relaxation (texture sliding)
+//     water_depth float metres of water over the height, >= 0 (gpu_water.hpp writes it)
 //     row_offset, row_degree uint (CSR)   longest float metres (longest edge of the row)
 //   per triangle slot s (capacity slot_capacity()):
 //     triangles uint[3] counter-clockwise corners (0, 0, 0 for a free slot: degenerate), also
@@ -58,6 +59,7 @@ enum class VertexBuffer : uint32_t {
     Material,
     Moisture,
     Slide,
+    WaterDepth,
     RowOffset,
     RowDegree,
     Longest,

@@ -9,9 +9,7 @@
 
 namespace sandtin {
 
-template <class Water>
-double open_borders(Water& water, Rect domain, OpenSides sides) {
-    const WaterMesh& m = water.mesh();
+std::vector<double> outflow_widths(const WaterMesh& m, Rect domain, OpenSides sides) {
     const double tolerance =
         1e-9 * std::max(domain.max.x - domain.min.x, domain.max.y - domain.min.y);
     const auto on_open_side = [&](Vec2 p) {
@@ -29,7 +27,6 @@ double open_borders(Water& water, Rect domain, OpenSides sides) {
         }
     }
     std::vector<double> width(m.position.size(), 0.0);
-    double total = 0.0;
     for (const auto& [edge, count] : faces_of_edge) {
         if (count != 1) continue;
         const Vec2 a = m.position[edge.first], b = m.position[edge.second];
@@ -39,9 +36,16 @@ double open_borders(Water& water, Rect domain, OpenSides sides) {
         const double half = 0.5 * length(b - a);
         width[edge.first] += half;
         width[edge.second] += half;
-        total += 2.0 * half;
     }
+    return width;
+}
+
+template <class Water>
+double open_borders(Water& water, Rect domain, OpenSides sides) {
+    const std::vector<double> width = outflow_widths(water.mesh(), domain, sides);
+    double total = 0.0;
     for (std::size_t v = 0; v < width.size(); ++v) {
+        total += width[v];
         if constexpr (std::is_same_v<Water, ShallowWater>) {
             water.set_open_border(v, width[v] > 0.0);
         } else {

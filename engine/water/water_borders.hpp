@@ -4,6 +4,8 @@
 // outflow width (VirtualPipes::set_outflow_width), or open that end's border to free outflow
 // (ShallowWater::set_open_border). A closed side is a wall.
 
+#include <vector>
+
 #include "geom/rect.hpp"
 #include "water/shallow_water.hpp"
 #include "water/virtual_pipes.hpp"
@@ -16,6 +18,12 @@ struct OpenSides {
     bool south = false;  ///< y = domain.min.y
     bool north = false;  ///< y = domain.max.y
 };
+
+/// Per vertex of `mesh`: the length of open border (m) it lets water out over, half of each
+/// border edge (an edge of one face) with both ends on an open side of `domain`; a vertex lies
+/// on a side within 1e-9 of the domain's larger extent. For the GPU water
+/// (gpu/gpu_water.hpp set_outflow_widths) and open_borders.
+std::vector<double> outflow_widths(const WaterMesh& mesh, Rect domain, OpenSides sides);
 
 /// Sets the outflow width of every vertex of `water` from the open `sides` of `domain` (the
 /// others are closed again); a vertex lies on a side within 1e-9 of the domain's larger

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_water_throughput.hpp"
 #include "support/scattered_tin.hpp"
 #include "support/swashes.hpp"
 #include "water/live_water.hpp"
@@ -292,7 +293,7 @@ nlohmann::json bench_water(const BenchConfig& config) {
         weight += 2.0 * 3.0 * 0.08 / s;
     for (double s : bowl_spacings)
         weight += 2.0 * 0.5 / s;
-    weight += 6.0;
+    weight += config.quick ? 8.0 : 30.0;
     WeightedProgress progress(config.progress, weight);
 
     nlohmann::json j;
@@ -319,6 +320,10 @@ nlohmann::json bench_water(const BenchConfig& config) {
          config.quick ? std::vector<double>{0.01} : std::vector<double>{0.01, 0.005})
         live.push_back(live_water_cost(spacing));
     j["live_water"] = live;
+    progress.start("throughput, CPU and GPU", config.quick ? 2.0 : 24.0);
+    j["throughput"] = water_throughput(
+        config.quick ? std::vector<std::size_t>{20000} : std::vector<std::size_t>{100000, 1000000},
+        config.quick ? 5 : 10);
     progress.done();
     return j;
 }

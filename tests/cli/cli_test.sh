@@ -340,6 +340,11 @@ scenario_bench_water() {
     holds "bench water rain" "a > 0 && b > 0" \
         "$(json bench_water.out /rain_on_a_slope/0/pipes/step_ms_median)" \
         "$(json bench_water.out /rain_on_a_slope/0/finite_volume_order2/step_ms_median)"
+    # Throughput rows: the CPU's always, the GPU's wherever a Vulkan device exists (timings
+    # are not judged; their presence and sense are).
+    holds "bench water CPU throughput" "a > 0 && b >= 20000" \
+        "$(json bench_water.out /throughput/0/cpu/vertex_steps_per_s)" \
+        "$(json bench_water.out /throughput/0/vertices)"
 }
 
 scenario_demo() {
