@@ -58,6 +58,7 @@ void fields(EditorSettings& s, F&& f) {
     f("water_open_south", s.water_open_south, nullptr);
     f("water_open_north", s.water_open_north, nullptr);
     f("water_nozzle", s.water_nozzle, &kWaterNozzleRange);
+    f("water_shower", s.water_shower, &kWaterShowerRange);
     f("contrast", s.contrast, &kContrastRange);
     f("vsync", s.vsync, nullptr);
     f("scene_size", s.scene_size, nullptr);

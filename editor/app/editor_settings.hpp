@@ -57,7 +57,10 @@ struct EditorSettings {
     bool water_open_south = false;
     bool water_open_north = false;
     double water_nozzle = 2e-5;  ///< m³/s: 0.02 L/s
-    double contrast = 0.5;       ///< strength of the height contrast curve, [0, 1]
+    /// The Rain tool's rate (mm/h) on its disc (the Size): a cloudburst, so that a held
+    /// shower shows within seconds on the sandbox.
+    double water_shower = 2000.0;
+    double contrast = 0.5;  ///< strength of the height contrast curve, [0, 1]
     bool vsync = true;
     /// Metres: the size (larger domain side) of the terrain the lengths above are for. A
     /// terrain of another size rescales them (terrain_scale.hpp); 1 m is the default sandbox.
@@ -121,6 +124,8 @@ inline constexpr SettingRange kWaterRainRange{0.0, 500.0};         ///< mm/h
 inline constexpr SettingRange kWaterEvaporationRange{0.0, 500.0};  ///< mm/h
 /// m³/s: a trickle (1 mL/s) to a garden hose's flow (0.5 L/s) on the sandbox.
 inline constexpr SettingRange kWaterNozzleRange{1e-6, 5e-4, Scaling::Volume};
+/// mm/h: heavy rain (10) to a hose's spray (50 000) on the Rain tool's disc.
+inline constexpr SettingRange kWaterShowerRange{10.0, 50000.0};
 
 /// The range of stroke_spacing_ratio the panel offers and a settings file may hold.
 inline constexpr double kMinStrokeSpacingRatio = kStrokeSpacingRange.lo;

@@ -40,7 +40,8 @@ void App::panel_tools() {
     };
     group(headings[0], [](const ToolEntry& t) { return t.kind == ToolKind::Stamp; });
     group(headings[1], [](const ToolEntry& t) {
-        return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove || t.kind == ToolKind::Water;
+        return t.kind == ToolKind::Pour || t.kind == ToolKind::Remove ||
+               t.kind == ToolKind::Water || t.kind == ToolKind::Rain;
     });
     group(headings[2], [](const ToolEntry& t) { return t.kind == ToolKind::Brush; });
 
@@ -103,6 +104,14 @@ void App::tool_sliders() {
             ui("Flow",
                "Water the nozzle gives per second while the button is held (1 L = 1000 cm3).\n"
                "The water then runs as the Water panel says");
+            break;
+        }
+        case ToolKind::Rain: {
+            plain_slider("Rain", settings_.water_shower, kWaterShowerRange, "%.0f mm/h");
+            ui("Rain",
+               "Rain on the disc under the cursor while the button is held (mm of water an\n"
+               "hour: 1000 mm/h is 1 L per m2 every 3.6 s). The Water panel's rain falls on\n"
+               "the whole terrain besides");
             break;
         }
         case ToolKind::Brush: {

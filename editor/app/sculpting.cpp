@@ -78,6 +78,10 @@ void Sculpting::apply(Document& doc, Vec3 point, const EditorSettings& settings)
             nozzle_ = Vec2{point.x, point.y};  // flow_water() pours while it is held
             open_level_ = "water";
             break;
+        case ToolKind::Rain:
+            shower_ = Vec2{point.x, point.y};  // flow_water() rains while it is held
+            open_level_ = "water";
+            break;
     }
     tool_ms_ += elapsed_ms(t0);
     kick_ = true;
@@ -171,6 +175,7 @@ void Sculpting::end_gesture(Document& doc) {
     end_pour();
     last_dab_.reset();
     nozzle_.reset();
+    shower_.reset();
 }
 
 // ---- Water --------------------------------------------------------------------------------
@@ -189,6 +194,7 @@ LiveWaterFrame Sculpting::flow_water(Document& doc, const EditorSettings& settin
                                      double budget_ms) {
     LiveWater& water = doc.water();
     if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle});
+    if (shower_) water.add_shower({settings.water_shower, *shower_, settings.tool_radius});
     const LiveWaterFrame frame = water.advance(seconds, water_settings(settings), budget_ms);
     if (frame.written > 0 || frame.wetted > 0) {
         if (open_level_.empty()) open_level_ = "water";

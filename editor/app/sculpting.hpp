@@ -73,10 +73,10 @@ class Sculpting {
     /// Whether erode() would step now.
     bool wants_to_erode(const Document& doc) const { return kick_ || !doc.solver().at_rest(); }
 
-    /// One frame of water (`seconds` of it, within `budget_ms`): the Water tool's nozzle while
-    /// held, the panel's rain and evaporation, and the flow. What the water changed joins the
-    /// open level, or opens a "water" level, which closes once the water rests or dries; the
-    /// sand it wets takes its moisture, and the erosion then looks at it.
+    /// One frame of water (`seconds` of it, within `budget_ms`): the Water tool's nozzle or
+    /// the Rain tool's shower while held, the panel's rain and evaporation, and the flow. What the
+    /// water changed joins the open level, or opens a "water" level, which closes once the water
+    /// rests or dries; the sand it wets takes its moisture, and the erosion then looks at it.
     LiveWaterFrame flow_water(Document& doc, const EditorSettings& settings, double seconds,
                               double budget_ms);
 
@@ -109,6 +109,7 @@ class Sculpting {
     std::optional<Stroke> stroke_;  ///< a stamp tool's stroke under way
     std::optional<Vec2> last_dab_;  ///< a brush stroke's last dab
     std::optional<Vec2> nozzle_;    ///< the Water tool's, while held
+    std::optional<Vec2> shower_;    ///< the Rain tool's disc centre, while held
     double flatten_level_ = 0.0;    ///< metres: the Flatten brush's level for this stroke
     std::optional<PourFlow> pour_flow_;
     bool pour_removes_ = false;

@@ -27,7 +27,8 @@ std::vector<HelpRow> help_rows() {
         rows.push_back({g.input, g.action});
     rows.push_back(tool_keys_row("a stamp", [](ToolKind k) { return k == ToolKind::Stamp; }));
     rows.push_back(tool_keys_row("a sand or water tool", [](ToolKind k) {
-        return k == ToolKind::Pour || k == ToolKind::Remove || k == ToolKind::Water;
+        return k == ToolKind::Pour || k == ToolKind::Remove || k == ToolKind::Water ||
+               k == ToolKind::Rain;
     }));
     rows.push_back(tool_keys_row("a brush", [](ToolKind k) { return k == ToolKind::Brush; }));
     for (const Shortcut& s : kShortcuts)

@@ -49,7 +49,8 @@ struct Gesture {
 
 inline constexpr Gesture kGestures[] = {
     {"Left drag",
-     "apply the current tool along the stroke (Pour, Remove and Water also while held still)"},
+     "apply the current tool along the stroke (Pour, Remove, Water and Rain also while held "
+     "still)"},
     {"Right drag", "orbit the camera"},
     {"Middle drag", "pan the camera"},
     {"Wheel", "zoom"},

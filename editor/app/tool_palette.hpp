@@ -10,7 +10,7 @@
 
 namespace sandtin::editor {
 
-enum class ToolKind { Stamp, Brush, Pour, Remove, Water };
+enum class ToolKind { Stamp, Brush, Pour, Remove, Water, Rain };
 
 struct ToolEntry {
     const char* label;
@@ -41,7 +41,9 @@ inline constexpr ToolEntry kTools[] = {
     {"Remove", ToolKind::Remove, nullptr, BrushKind::Raise, '8',
      "Scoop sand away, never below bedrock (key 8)"},
     {"Water", ToolKind::Water, nullptr, BrushKind::Raise, '9',
-     "Water from a nozzle under the cursor while held, at the Water panel's rate (key 9)"},
+     "Water from a nozzle under the cursor while held, at the Tools panel's Flow (key 9)"},
+    {"Rain", ToolKind::Rain, nullptr, BrushKind::Raise, '0',
+     "Rain on a disc of the Size under the cursor while held, at the Tools panel's rate (key 0)"},
     {"Raise", ToolKind::Brush, nullptr, BrushKind::Raise, 'R', "Brush: raise the surface (key R)"},
     {"Lower", ToolKind::Brush, nullptr, BrushKind::Lower, 'L', "Brush: lower the surface (key L)"},
     {"Smooth", ToolKind::Brush, nullptr, BrushKind::Smooth, 'S', "Brush: smooth bumps (key S)"},

@@ -51,6 +51,15 @@ bool LiveWater::follow_terrain() {
     return touched;
 }
 
+void LiveWater::add_shower(const Rain& shower) {
+    check(std::isfinite(shower.mm_per_hour) && shower.mm_per_hour >= 0.0,
+          "a shower's rate must be finite and >= 0");
+    check(std::isfinite(shower.radius) && shower.radius > 0.0 && std::isfinite(shower.centre.x) &&
+              std::isfinite(shower.centre.y),
+          "a shower needs a finite centre and a radius > 0");
+    showers_.push_back(shower);
+}
+
 void LiveWater::mark_near_water() {
     near_water_.assign(pipes_->vertex_count(), 0);
     for (const VirtualPipes::Pipe& p : pipes_->pipes()) {
@@ -73,7 +82,7 @@ void LiveWater::rebuild(const LiveWaterSettings& settings) {
 }
 
 bool LiveWater::idle(const LiveWaterSettings& settings) const {
-    return (!wet_ || resting_ || !settings.flowing) && nozzles_.empty() &&
+    return (!wet_ || resting_ || !settings.flowing) && nozzles_.empty() && showers_.empty() &&
            settings.rain_mm_per_hour == 0.0;
 }
 
@@ -96,6 +105,7 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     if (follow_terrain() || (pipes_ && !same_sides(pipes_open_, settings.open))) resting_ = false;
     if (idle(settings) || seconds == 0.0) {
         nozzles_.clear();
+        showers_.clear();
         return frame;
     }
     // Phase 1: pipes that match the terrain and the settings.
@@ -110,6 +120,8 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     WaterSources sources;
     sources.nozzles = std::move(nozzles_);
     nozzles_.clear();
+    sources.rain = std::move(showers_);
+    showers_.clear();
     if (settings.rain_mm_per_hour > 0.0)
         sources.rain.push_back({settings.rain_mm_per_hour, {}, 0.0});
     sources.evaporation_mm_per_hour = settings.evaporation_mm_per_hour;

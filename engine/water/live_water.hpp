@@ -67,6 +67,11 @@ class LiveWater {
 
     /// Water enters at `nozzle` during the next advance() only (the Water tool, held there).
     void add_nozzle(const Nozzle& nozzle) { nozzles_.push_back(nozzle); }
+    /// Rain falls on `shower`'s disc during the next advance() only (the Rain tool, held
+    /// there), besides the settings' rain on the whole terrain. Throws std::invalid_argument
+    /// for a negative or non-finite rate or radius, or a radius of 0 (the whole terrain is
+    /// LiveWaterSettings::rain_mm_per_hour's).
+    void add_shower(const Rain& shower);
     /// Advances the water by up to `seconds` (>= 0), stopping early once `budget_ms` of CPU
     /// time is spent. Throws std::invalid_argument for negative or non-finite arguments or
     /// settings.
@@ -106,6 +111,7 @@ class LiveWater {
     /// is. An edit elsewhere cannot start it flowing.
     std::vector<std::uint8_t> near_water_;
     std::vector<Nozzle> nozzles_;
+    std::vector<Rain> showers_;
 };
 
 }  // namespace sandtin

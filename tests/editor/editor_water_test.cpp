@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "editor_harness.hpp"
 #include "formats/png_image.hpp"
@@ -64,6 +66,43 @@ TEST_F(EditorXvfb, TheWaterToolPoursWhatItsRateSaysAndTheWaterIsDrawnAndSaved) {
     EXPECT_GT(mid.b, mid.r) << "the water at the centre is not drawn";
     const Rgb sand = pixel(im, im.width * 62 / 100, im.height * 35 / 100);
     EXPECT_GT(sand.r, sand.b) << "dry sand should stay sand-coloured";
+}
+
+TEST_F(EditorXvfb, TheRainToolRainsOnTheDiscUnderTheCursorWhileHeld) {
+    const fs::path scene = kWork / "water-shower.sandtin";
+    // 3 600 mm/h (1 mm/s) on a disc of 10 cm, held 30 scripted frames, the water standing
+    // still: every wet vertex took the same depth (0.5 mm, give or take the frames of the ops
+    // that start and end it), and the wet vertices make a disc of the Size.
+    const std::string ops = R"([{"op": "set", "erosion": false, "water_flowing": false,
+        "water_shower": 3600, "radius": 0.1},
+        {"op": "tool", "name": "Rain"},
+        {"op": "press", "at": [0.5, 0.5]}, {"op": "wait", "frames": 30}, {"op": "release"},
+        {"op": "wait", "frames": 5}, )" +
+                            save_op(scene) + "]";
+    const EditorRun r = run_editor("water-shower", ops, fresh_settings("water-shower"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    const VertexArrays& va = load_session(scene).terrain.vertices;
+    std::vector<Vec2> wet;
+    double depth = -1.0;
+    for (std::size_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v] || va.water_depth[v] == 0.0) continue;
+        if (depth < 0.0) depth = va.water_depth[v];
+        EXPECT_NEAR(va.water_depth[v], depth, 1e-12) << "the shower fell unevenly";
+        wet.push_back(va.position[v]);
+    }
+    ASSERT_GT(wet.size(), 20u);
+    const double frame = 1e-3 / 60.0;
+    EXPECT_GE(depth, 0.5e-3 - 3.0 * frame);
+    EXPECT_LE(depth, 0.5e-3 + 3.0 * frame);
+    // The wet vertices lie within a disc of the Size (the press point, in the terrain, is the
+    // editor's to find): no two are further apart than its diameter, and they span most of it.
+    double widest = 0.0;
+    for (const Vec2 p : wet)
+        for (const Vec2 q : wet)
+            widest = std::max(widest, length(p - q));
+    EXPECT_LE(widest, 0.2 + 1e-6) << "rain fell outside the disc";
+    EXPECT_GE(widest, 0.16) << "the disc is smaller than the Size";
 }
 
 TEST_F(EditorXvfb, RainAddsItsRateOverTheTerrainAndUndoTakesTheWaterAway) {

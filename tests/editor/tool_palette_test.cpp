@@ -25,7 +25,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     ASSERT_GE(shipped.size(), 6u) << dir;
     std::set<std::string> stamps;
     std::set<BrushKind> brushes;
-    bool pour = false, remove = false, water = false;
+    bool pour = false, remove = false, water = false, rain = false;
     for (const ToolEntry& t : kTools) {
         if (t.kind == ToolKind::Stamp) {
             stamps.insert(t.asset);
@@ -36,6 +36,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
         pour |= t.kind == ToolKind::Pour;
         remove |= t.kind == ToolKind::Remove;
         water |= t.kind == ToolKind::Water;
+        rain |= t.kind == ToolKind::Rain;
     }
     EXPECT_EQ(stamps, shipped);
     for (const BrushKind b : {BrushKind::Raise, BrushKind::Lower, BrushKind::Smooth,
@@ -45,6 +46,7 @@ TEST(ToolPalette, OffersEveryShippedToolAndEveryBrush) {
     EXPECT_TRUE(pour);
     EXPECT_TRUE(remove);
     EXPECT_TRUE(water);
+    EXPECT_TRUE(rain);
 }
 
 // The Tools panel shows Size and Depth only for the tools they act on. Size: the circle and
@@ -93,7 +95,7 @@ TEST(ToolPalette, EachKeyAndLabelPicksOneTool) {
             << t.label << ": " << t.help;
     }
     EXPECT_FALSE(tool_for_key('F').has_value());
-    EXPECT_FALSE(tool_for_key('0').has_value());
+    EXPECT_FALSE(tool_for_key('X').has_value());
     EXPECT_FALSE(tool_named("circle").has_value());  // labels are matched exactly
 }
 

@@ -3,7 +3,7 @@
 // round); an edit that re-triangulates rebuilds the pipes and a raised vertex sheds its water;
 // depths set from outside (an undo) are taken over and not overwritten; water that comes to
 // rest stops stepping until the terrain under or beside it changes, or a side opens (edits
-// elsewhere cost it nothing); Clear takes all of it.
+// elsewhere cost it nothing); a shower rains on its disc alone; Clear takes all of it.
 
 #include <gtest/gtest.h>
 
@@ -165,8 +165,8 @@ TEST(LiveWater, WaterAtRestStopsSteppingUntilTheTerrainChanges) {
 TEST(LiveWater, OpeningASideWakesWaterAtRest) {
     // A plane tilted to the west with walls all round: the water rests against the west wall
     // until that side opens.
-    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 800, 5,
-                                 [](Vec2 p) { return 0.05 * p.x; });
+    Tin tin =
+        Tin::random_points(Rect::from_size(1.0, 1.0), 800, 5, [](Vec2 p) { return 0.05 * p.x; });
     LiveWater water(tin);
     for (std::uint32_t v = 0; v < tin.vertices().size(); ++v)
         if (tin.is_alive(VertexId{v}) && tin.position(VertexId{v}).x < 0.2)
@@ -191,6 +191,46 @@ TEST(LiveWater, ClearTakesAllTheWaterAndSaysHowMuch) {
     EXPECT_NEAR(water.clear(), 1e-4, 1e-16);
     EXPECT_EQ(test::water_volume(tin), 0.0);
     EXPECT_FALSE(frames(water, 10).ran);
+}
+
+TEST(LiveWater, AShowerRainsItsRateOnItsDiscAlone) {
+    // The Rain tool's shower, 3 600 mm/h (1 mm/s) on a disc of 15 cm, held 30 frames with the
+    // water standing still: every vertex in the disc takes 0.5 mm, none outside any, and the
+    // volume is 0.5 mm over the disc's vertices' lumped areas (water_sources.hpp: rain falls on
+    // the vertices within the disc).
+    Tin tin = bowl();
+    LiveWater water(tin);
+    LiveWaterSettings still;
+    still.flowing = false;
+    const Vec2 centre{0.4, 0.6};
+    const double radius = 0.15;
+    for (int i = 0; i < 30; ++i) {
+        water.add_shower({3600.0, centre, radius});
+        water.advance(1.0 / 60.0, still, 1e9);
+    }
+    const VertexArrays& va = tin.vertices();
+    double area_inside = 0.0;
+    std::size_t inside = 0;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        const double r = length(va.position[v] - centre);
+        if (r < radius - 1e-9) {
+            EXPECT_NEAR(va.water_depth[v], 0.5e-3, 1e-12) << "vertex " << v;
+            area_inside += va.lumped_area[v];
+            ++inside;
+        } else if (r > radius + 1e-9) {
+            EXPECT_EQ(va.water_depth[v], 0.0) << "vertex " << v << " outside the disc";
+        }
+    }
+    EXPECT_GT(inside, 50u);
+    EXPECT_NEAR(test::water_volume(tin), 0.5e-3 * area_inside, 1e-12);
+    // Released: no more rain, and the still water stays as it is.
+    const double held = test::water_volume(tin);
+    water.advance(1.0 / 60.0, still, 1e9);
+    EXPECT_EQ(test::water_volume(tin), held);
+    EXPECT_THROW(water.add_shower({-1.0, centre, radius}), std::invalid_argument);
+    EXPECT_THROW(water.add_shower({100.0, centre, 0.0}), std::invalid_argument);
+    EXPECT_THROW(water.add_shower({100.0, {std::nan(""), 0.5}, radius}), std::invalid_argument);
 }
 
 TEST(LiveWater, BadArgumentsAreRefused) {
