@@ -296,6 +296,8 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.overlay_slope = v.get<bool>();
         else if (k2 == "water_overlay")
             settings_.overlay_water = v.get<bool>();
+        else if (k2 == "speed_overlay")
+            settings_.overlay_water_speed = v.get<bool>();
         else if (k2 == "water_flowing")
             settings_.water_flowing = v.get<bool>();
         else if (k2 == "rain")

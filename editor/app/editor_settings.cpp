@@ -50,6 +50,7 @@ void fields(EditorSettings& s, F&& f) {
     f("overlay_thickness", s.overlay_thickness, nullptr);
     f("overlay_slope", s.overlay_slope, nullptr);
     f("overlay_water", s.overlay_water, nullptr);
+    f("overlay_water_speed", s.overlay_water_speed, nullptr);
     f("water_flowing", s.water_flowing, nullptr);
     f("water_rain", s.water_rain, &kWaterRainRange);
     f("water_evaporation", s.water_evaporation, &kWaterEvaporationRange);

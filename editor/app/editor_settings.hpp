@@ -44,7 +44,8 @@ struct EditorSettings {
     bool overlay_active = false;
     bool overlay_thickness = false;
     bool overlay_slope = false;
-    bool overlay_water = false;  ///< water depth in false colour
+    bool overlay_water = false;        ///< water depth in false colour
+    bool overlay_water_speed = false;  ///< how fast the water flows, in false colour
     /// The Water panel (engine/water/live_water.hpp): the water flows (else it stands still),
     /// rain on the whole terrain and evaporation (mm/h), the sides water leaves by, and the
     /// Water tool's nozzle (m³ per second on the 1 m sandbox, scaled by the cube of the size on

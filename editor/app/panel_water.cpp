@@ -1,6 +1,6 @@
 // The Water panel: whether the water flows, the rain and evaporation over the whole terrain,
-// the sides it leaves by, the depth overlay, Clear, and how much water there is. The Water
-// tool (Tools panel, key 9) pours it; engine/water/live_water.hpp moves it.
+// the sides it leaves by, the depth and speed overlays, Clear, and how much water there is. The
+// Water tool (Tools panel, key 9) pours it; engine/water/live_water.hpp moves it.
 
 #include "app.hpp"
 
@@ -19,6 +19,11 @@ void App::panel_water() {
     ImGui::SameLine();
     ImGui::Checkbox("Depth##overlay", &settings_.overlay_water);
     ui("Depth##overlay", "Water depth in false colour: pale cyan shallow, deep blue 5 cm or more");
+    ImGui::SameLine();
+    ImGui::Checkbox("Speed##overlay", &settings_.overlay_water_speed);
+    ui("Speed##overlay",
+       "How fast the water flows, in false colour: still water dark blue, then cyan, yellow,\n"
+       "and red at 0.3 m/s or more");
     plain_slider("Rain", settings_.water_rain, kWaterRainRange, "%.0f mm/h");
     ui("Rain", "Rain on the whole terrain: 0 none, 10 steady rain, 50 a downpour, 500 a flood");
     plain_slider("Evaporation", settings_.water_evaporation, kWaterEvaporationRange, "%.0f mm/h");

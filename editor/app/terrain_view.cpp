@@ -150,6 +150,7 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
     if (!stale_ && changes.empty() && active_flipped_.empty() && !baking_normal_map()) return out;
     const auto t0 = Clock::now();
     mesh_->set_active(active_);
+    mesh_->set_water_speed(doc.water().speeds());
     const render::MeshUpdate update =
         stale_ ? mesh_->rebuild(doc.tin()) : mesh_->update(doc.tin(), changes, active_flipped_);
     active_flipped_.clear();

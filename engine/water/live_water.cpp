@@ -148,6 +148,7 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     }
     frame.left = pipes_->volume_left() - left_before;
     frame.ran = true;
+    measure_speeds(settings.flowing);
     // Phase 3: the depths into the terrain; at rest once they barely move with no source.
     double fastest = 0.0;
     write_back(settings, frame, fastest);
@@ -158,6 +159,21 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     if (resting_ && !was_resting) mark_near_water();
     frame.ms = spent_ms();
     return frame;
+}
+
+void LiveWater::measure_speeds(bool flowing) {
+    speed_.assign(pipes_->vertex_count(), 0.0f);
+    if (!flowing) return;
+    const std::vector<double> through = pipes_->discharges();
+    const WaterMesh& m = pipes_->mesh();
+    // A film at the wet front divides a trickle by almost no depth (metres a second on a
+    // pond at rest): films count as kFilmDepth deep, as the glTF export leaves them out.
+    for (std::size_t v = 0; v < speed_.size(); ++v) {
+        const double depth = pipes_->depth(v);
+        if (depth > 0.0)
+            speed_[v] = static_cast<float>(
+                pipe_flow_speed(through[v], std::max(depth, kFilmDepth), m.area[v]));
+    }
 }
 
 void LiveWater::write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame,
@@ -194,6 +210,7 @@ double LiveWater::clear() {
         for (std::size_t v = 0; v < pipes_->vertex_count(); ++v)
             if (pipes_->depth(v) > 0.0) pipes_->set_depth(v, 0.0);
     }
+    std::fill(speed_.begin(), speed_.end(), 0.0f);
     wet_ = false;
     resting_ = false;
     return volume;

@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "tin/change_reader.hpp"
@@ -32,6 +33,10 @@ namespace sandtin {
 /// m/s: water whose depths change more slowly than this, with no source, is at rest and stops
 /// stepping (0.36 mm an hour; the pipes' friction would take minutes more to still it fully).
 inline constexpr double kRestRate = 1e-7;
+
+/// m: water shallower than this is a film when its speed is estimated (speeds()): 0.1 mm, the
+/// depth the glTF export also leaves out (io/export_water_mesh.hpp).
+inline constexpr double kFilmDepth = 1e-4;
 
 struct LiveWaterSettings {
     bool flowing = true;                   ///< false: the water stands still (sources still add)
@@ -86,6 +91,10 @@ class LiveWater {
     double clear();
     /// O(vertices): the water the terrain holds now.
     WaterSummary measure() const;
+    /// Flow speed per vertex id (m/s, virtual_pipes.hpp pipe_flow_speed) as the last frame
+    /// that ran left it: 0 where dry, and everywhere while the water stands still. For the
+    /// editor's Speed overlay; shorter than the terrain's arrays before any water ran.
+    std::span<const float> speeds() const { return speed_; }
 
   private:
     /// Takes the journal's changes: notes a re-triangulation, water that appeared, and hands
@@ -95,6 +104,8 @@ class LiveWater {
     /// Marks the vertices under the water and their neighbours (near_water_).
     void mark_near_water();
     void rebuild(const LiveWaterSettings& settings);
+    /// speed_ from the pipes' fluxes (all 0 when the water does not flow).
+    void measure_speeds(bool flowing);
     /// Writes the depths that changed, and the moisture of the sand they wet, into the
     /// terrain; `fastest` becomes the largest depth change (m).
     void write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame, double& fastest);
@@ -112,6 +123,7 @@ class LiveWater {
     std::vector<std::uint8_t> near_water_;
     std::vector<Nozzle> nozzles_;
     std::vector<Rain> showers_;
+    std::vector<float> speed_;  ///< per vertex id, m/s
 };
 
 }  // namespace sandtin

@@ -115,7 +115,7 @@ void SedimentTransport::step(Water& water, double dt) {
     for (std::size_t v = 0; v < n; ++v) {
         const double area = m.area[v], depth = water.depth(v);
         if (!(area > 0.0)) continue;
-        double speed = depth > 0.0 ? discharge[v] / (depth * std::sqrt(area)) : 0.0;
+        double speed = pipe_flow_speed(discharge[v], depth, area);
         if constexpr (std::is_same_v<Water, ShallowWater>) speed = length(water.velocity(v));
         const double capacity =
             std::min(options_.capacity * speed * std::max(slope[v], options_.least_slope) * area,

@@ -127,6 +127,15 @@ double VirtualPipes::volume() const {
     return sum;
 }
 
+std::vector<double> VirtualPipes::discharges() const {
+    std::vector<double> through(depth_.size(), 0.0);
+    for (const Pipe& p : pipes_) {
+        through[p.a] += 0.5 * std::abs(p.flux);
+        through[p.b] += 0.5 * std::abs(p.flux);
+    }
+    return through;
+}
+
 double VirtualPipes::stable_time_step() const {
     // Each vertex's own limit, with the deepest water at either end of its pipes: a pipe's
     // flux grows with its upwind depth, which is one of its ends'. (The deepest water anywhere

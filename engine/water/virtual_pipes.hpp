@@ -26,6 +26,7 @@
 // sqrt(g h), and is counted (volume_left). Units: metres, seconds, m³.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -34,6 +35,13 @@
 #include "geom/vec2.hpp"
 
 namespace sandtin {
+
+/// The pipes' estimate of the flow speed at a vertex (m/s): its discharge (m³/s, see
+/// VirtualPipes::discharges) through a cross-section of its depth by the width of its cell,
+/// sqrt(area). The pipes carry no velocity of their own; 0 where the vertex is dry.
+inline double pipe_flow_speed(double discharge, double depth, double area) {
+    return depth > 0.0 && area > 0.0 ? discharge / (depth * std::sqrt(area)) : 0.0;
+}
 
 /// What the water flows over, CGAL-free: a triangulation with a bed height per vertex.
 struct WaterMesh {
@@ -104,6 +112,9 @@ class VirtualPipes {
         double flux = 0.0;         ///< m³/s, positive from a to b, as the last step left it
     };
     std::span<const Pipe> pipes() const { return pipes_; }
+    /// Per vertex: the water passing through it (m³/s), half the sum of |flux| over its pipes
+    /// (a flow through a vertex enters by some pipes and leaves by others: each counts once).
+    std::vector<double> discharges() const;
     /// Moves the bed under vertex v to `z` (m, finite; throws std::invalid_argument
     /// otherwise): sand the water carried away or dropped (sediment_transport.hpp).
     void set_bed(std::size_t v, double z);

@@ -18,6 +18,7 @@ layout(location = 2) in vec3 v_albedo;
 layout(location = 3) in vec3 v_overlay;  // x: tan(repose), y: sand thickness, z: active
 layout(location = 4) in vec2 v_slide;
 layout(location = 5) in float v_water;  // water depth (m), linear across the face
+layout(location = 6) in float v_speed;  // water flow speed (m/s), linear across the face
 
 layout(location = 0) out vec4 out_colour;
 
@@ -92,6 +93,14 @@ void main() {
         // Water depth overlay: 0 .. 5 cm from pale cyan to deep blue, dry ground untouched.
         float d = clamp(v_water / 0.05, 0.0, 1.0);
         if (v_water > 0.0) colour = mix(colour, mix(vec3(0.6, 0.95, 1.0), vec3(0.0, 0.1, 0.6), d), 0.7);
+    }
+    if ((int(pc.overlays.x + 0.5) & 4) != 0 && v_water > 0.0) {
+        // Water speed overlay: still water dark blue, then cyan, yellow and red at 0.3 m/s
+        // or more (a sandbox stream runs at centimetres to decimetres a second).
+        float s = clamp(v_speed / 0.3, 0.0, 1.0);
+        vec3 ramp = s < 0.5 ? mix(vec3(0.05, 0.1, 0.45), vec3(0.1, 0.85, 0.9), s * 2.0)
+                            : mix(vec3(0.95, 0.9, 0.1), vec3(0.9, 0.1, 0.05), s * 2.0 - 1.0);
+        colour = mix(colour, ramp, 0.75);
     }
     if (pc.overlays.y > 0.5 && v_overlay.z > 0.5) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
     if (pc.overlays.z > 0.5) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,42 @@ TEST_F(EditorXvfb, TheRainToolRainsOnTheDiscUnderTheCursorWhileHeld) {
             widest = std::max(widest, length(p - q));
     EXPECT_LE(widest, 0.2 + 1e-6) << "rain fell outside the disc";
     EXPECT_GE(widest, 0.16) << "the disc is smaller than the Size";
+}
+
+TEST_F(EditorXvfb, TheSpeedOverlayColoursTheRunningWaterAndNothingElse) {
+    // The same pour twice, with the Water panel's Speed overlay off and on: the water at the
+    // nozzle (the centre of the view) changes colour, the dry sand up the slope does not.
+    const auto shot_of = [&](const std::string& name, bool overlay) {
+        const fs::path shot = kWork / (name + ".png");
+        const std::string ops = R"([{"op": "set", "erosion": false, "water_nozzle": 2e-4,
+            "speed_overlay": )" +
+                                std::string(overlay ? "true" : "false") +
+                                R"(}, {"op": "tool", "name": "Water"},
+            {"op": "press", "at": [0.5, 0.5]}, {"op": "wait", "frames": 20}])";
+        const EditorRun r =
+            run_editor(name, ops, fresh_settings(name) + " --screenshot " + shot.string());
+        EXPECT_EQ(r.exit_code, 0) << r.log;
+        EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+        return read_png(shot);
+    };
+    const PngImage plain = shot_of("water-speed-off", false);
+    const PngImage speed = shot_of("water-speed-on", true);
+    // Summed over a 21 x 21 window: the overlay's colours vary from vertex to vertex.
+    const auto differ = [&](int x0, int y0) {
+        long sum = 0;
+        for (int y = y0 - 10; y <= y0 + 10; ++y) {
+            for (int x = x0 - 10; x <= x0 + 10; ++x) {
+                const Rgb a = pixel(plain, x, y), b = pixel(speed, x, y);
+                sum += std::abs(int(a.r) - int(b.r)) + std::abs(int(a.g) - int(b.g)) +
+                       std::abs(int(a.b) - int(b.b));
+            }
+        }
+        return static_cast<double>(sum) / (21.0 * 21.0);
+    };
+    EXPECT_GT(differ(plain.width / 2, plain.height / 2), 60.0)
+        << "the running water is drawn the same with the Speed overlay";
+    EXPECT_LE(differ(plain.width * 62 / 100, plain.height * 35 / 100), 6.0)
+        << "the overlay coloured dry sand";
 }
 
 TEST_F(EditorXvfb, RainAddsItsRateOverTheTerrainAndUndoTakesTheWaterAway) {

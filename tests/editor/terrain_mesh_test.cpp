@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "gpu/render/terrain_mesh.hpp"
@@ -39,6 +40,29 @@ TEST(TerrainMesh, PlaneAtTheAngleOfReposeCarriesItsTalusSlopeAndNormal) {
         EXPECT_NEAR(v.normal[0], -gx / std::sqrt(1.0 + t * t), 1e-6);
         EXPECT_NEAR(static_cast<double>(v.position[0]) + 1.0, tin.position(VertexId{i}).x, 1e-6);
     }
+}
+
+TEST(TerrainMesh, WaterSpeedsReachTheWetVerticesTheJournalNames) {
+    Tin tin = Tin::regular_grid({{0, 0}, {1, 1}}, 6, 6);
+    TerrainMesh mesh(MaterialTable::presets());
+    mesh.rebuild(tin);
+    tin.take_changes();
+    std::vector<float> speed(tin.vertex_capacity(), 0.25f);
+    mesh.set_water_speed(speed);
+    // Vertex 3 takes water: it and its ring are recomputed; only wet vertices show a speed.
+    tin.set_water_depth(VertexId{3}, 0.01);
+    mesh.update(tin, tin.take_changes());
+    EXPECT_EQ(mesh.vertices()[3].speed, 0.25f);
+    EXPECT_EQ(mesh.vertices()[3].water, 0.01f);
+    for (std::uint32_t v = 0; v < tin.vertex_capacity(); ++v)
+        if (v != 3) {
+            EXPECT_EQ(mesh.vertices()[v].speed, 0.0f) << "dry vertex " << v;
+        }
+    // Ids past the speeds' end (the water has not run since they were born) flow at 0.
+    mesh.set_water_speed(std::span<const float>(speed.data(), 2));
+    tin.set_water_depth(VertexId{3}, 0.02);
+    mesh.update(tin, tin.take_changes());
+    EXPECT_EQ(mesh.vertices()[3].speed, 0.0f);
 }
 
 TEST(TerrainMesh, ConstrainedEdgesAreTheTinsConstrainedEdges) {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -231,6 +232,36 @@ TEST(LiveWater, AShowerRainsItsRateOnItsDiscAlone) {
     EXPECT_THROW(water.add_shower({-1.0, centre, radius}), std::invalid_argument);
     EXPECT_THROW(water.add_shower({100.0, centre, 0.0}), std::invalid_argument);
     EXPECT_THROW(water.add_shower({100.0, {std::nan(""), 0.5}, radius}), std::invalid_argument);
+}
+
+TEST(LiveWater, SpeedsShowWhereTheWaterRunsAndFallAsItRests) {
+    Tin tin = bowl();
+    LiveWater water(tin);
+    frames(water, 60, 0.05);  // 0.05 L/s at the bowl's centre for a second
+    const VertexArrays& va = tin.vertices();
+    ASSERT_EQ(water.speeds().size(), va.size());
+    float running = 0.0f;
+    for (std::uint32_t v = 0; v < va.size(); ++v) {
+        if (!va.alive[v]) continue;
+        if (va.water_depth[v] == 0.0) {
+            EXPECT_EQ(water.speeds()[v], 0.0f) << "dry vertex " << v;
+        }
+        EXPECT_TRUE(std::isfinite(water.speeds()[v]) && water.speeds()[v] >= 0.0f);
+        running = std::max(running, water.speeds()[v]);
+    }
+    EXPECT_GT(running, 1e-3f) << "water poured into a bowl runs";
+    // Left alone the pond comes to rest; its speeds fall with its fluxes.
+    for (int i = 0; i < 600 && !water.resting(); ++i)
+        water.advance(1.0, {}, 1e9);
+    ASSERT_TRUE(water.resting());
+    const float still = *std::max_element(water.speeds().begin(), water.speeds().end());
+    EXPECT_LT(still, 1e-2f * running);
+    // Standing water (Flow off) shows no speed at all, even under a nozzle.
+    LiveWaterSettings standing;
+    standing.flowing = false;
+    water.add_nozzle({{0.5, 0.5}, 0.05});
+    water.advance(1.0 / 60.0, standing, 1e9);
+    EXPECT_EQ(*std::max_element(water.speeds().begin(), water.speeds().end()), 0.0f);
 }
 
 TEST(LiveWater, BadArgumentsAreRefused) {

@@ -27,8 +27,9 @@ struct RenderVertex {
     float overlay[3];
     float slide[2];  ///< texture-sliding offset, texture units
     float water;     ///< metres of water standing on the vertex (VertexArrays::water_depth)
+    float speed;     ///< m/s: how fast that water flows (set_water_speed), for the Speed overlay
 };
-static_assert(sizeof(RenderVertex) == 15 * sizeof(float));
+static_assert(sizeof(RenderVertex) == 16 * sizeof(float));
 
 /// What an update changed, as ranges into vertices() and (per slot) indices().
 struct MeshUpdate {
@@ -61,6 +62,9 @@ class TerrainMesh {
     MeshUpdate recolour(const Tin& tin, std::span<const std::uint16_t> changed);
     /// Active (eroding) flags by VertexId, read by update() for the vertices it recomputes.
     void set_active(std::span<const std::uint8_t> active) { active_ = active; }
+    /// Flow speeds (m/s) by VertexId (water/live_water.hpp speeds()), read by update() for
+    /// the vertices it recomputes; ids past its end flow at 0.
+    void set_water_speed(std::span<const float> speed) { speed_ = speed; }
 
     const std::vector<RenderVertex>& vertices() const { return vertices_; }
     const std::vector<std::uint32_t>& indices() const { return indices_; }
@@ -77,6 +81,7 @@ class TerrainMesh {
 
     MaterialTable materials_;
     std::span<const std::uint8_t> active_;
+    std::span<const float> speed_;
     std::vector<RenderVertex> vertices_;
     std::vector<std::uint32_t> indices_;
     std::vector<std::uint32_t> constrained_;
