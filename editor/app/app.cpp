@@ -339,7 +339,8 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
         s["water"] = {{"m3", w.volume},
                       {"wet_vertices", w.wet_vertices},
                       {"max_depth_m", w.max_depth},
-                      {"resting", doc_.water().resting()}};
+                      {"resting", doc_.water().resting()},
+                      {"sand_carried_m3", doc_.water().suspended()}};
     }
     s["submissions"] = window_->swapchain().submissions();
     s["bytes_uploaded"] = window_->renderer().bytes_uploaded();

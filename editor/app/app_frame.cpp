@@ -221,7 +221,8 @@ void App::draw_terrain(const Mat4& vp) {
     }
     push.overlays[0] = (settings_.overlay_wireframe ? render::kOverlayWireframe : 0.0f) +
                        (settings_.overlay_water ? render::kOverlayWaterDepth : 0.0f) +
-                       (settings_.overlay_water_speed ? render::kOverlayWaterSpeed : 0.0f);
+                       (settings_.overlay_water_speed ? render::kOverlayWaterSpeed : 0.0f) +
+                       (settings_.overlay_sediment ? render::kOverlaySediment : 0.0f);
     push.overlays[1] = settings_.overlay_active ? 1.0f : 0.0f;
     push.overlays[2] = settings_.overlay_thickness ? 1.0f : 0.0f;
     push.overlays[3] = settings_.overlay_slope ? 1.0f : 0.0f;

@@ -298,6 +298,10 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.overlay_water = v.get<bool>();
         else if (k2 == "speed_overlay")
             settings_.overlay_water_speed = v.get<bool>();
+        else if (k2 == "sediment_overlay")
+            settings_.overlay_sediment = v.get<bool>();
+        else if (k2 == "water_erode")
+            settings_.water_erode = v.get<bool>();
         else if (k2 == "water_flowing")
             settings_.water_flowing = v.get<bool>();
         else if (k2 == "rain")

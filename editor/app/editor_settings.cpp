@@ -51,7 +51,9 @@ void fields(EditorSettings& s, F&& f) {
     f("overlay_slope", s.overlay_slope, nullptr);
     f("overlay_water", s.overlay_water, nullptr);
     f("overlay_water_speed", s.overlay_water_speed, nullptr);
+    f("overlay_sediment", s.overlay_sediment, nullptr);
     f("water_flowing", s.water_flowing, nullptr);
+    f("water_erode", s.water_erode, nullptr);
     f("water_rain", s.water_rain, &kWaterRainRange);
     f("water_evaporation", s.water_evaporation, &kWaterEvaporationRange);
     f("water_open_west", s.water_open_west, nullptr);

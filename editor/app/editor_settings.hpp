@@ -46,11 +46,14 @@ struct EditorSettings {
     bool overlay_slope = false;
     bool overlay_water = false;        ///< water depth in false colour
     bool overlay_water_speed = false;  ///< how fast the water flows, in false colour
+    bool overlay_sediment = false;     ///< the sand the water carries, in false colour
     /// The Water panel (engine/water/live_water.hpp): the water flows (else it stands still),
     /// rain on the whole terrain and evaporation (mm/h), the sides water leaves by, and the
     /// Water tool's nozzle (m³ per second on the 1 m sandbox, scaled by the cube of the size on
     /// another terrain).
     bool water_flowing = true;
+    /// The flowing water carries sand: cuts channels and drops fans (LiveWaterSettings::erode).
+    bool water_erode = false;
     double water_rain = 0.0;
     double water_evaporation = 0.0;
     bool water_open_west = false;

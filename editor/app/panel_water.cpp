@@ -1,6 +1,7 @@
 // The Water panel: whether the water flows, the rain and evaporation over the whole terrain,
-// the sides it leaves by, the depth and speed overlays, Clear, and how much water there is. The
-// Water tool (Tools panel, key 9) pours it; engine/water/live_water.hpp moves it.
+// the sides it leaves by, whether it erodes, the depth, speed and sediment overlays, Clear, and how
+// much water there is. The Water tool (Tools panel, key 9) pours it; engine/water/live_water.hpp
+// moves it.
 
 #include "app.hpp"
 
@@ -24,6 +25,16 @@ void App::panel_water() {
     ui("Speed##overlay",
        "How fast the water flows, in false colour: still water dark blue, then cyan, yellow,\n"
        "and red at 0.3 m/s or more");
+    ImGui::SameLine();
+    ImGui::Checkbox("Sediment##overlay", &settings_.overlay_sediment);
+    ui("Sediment##overlay",
+       "The sand the water carries (with Erode on), in false colour: clear water pale blue,\n"
+       "muddy brown at 5 % sand by volume");
+    ImGui::Checkbox("Erode", &settings_.water_erode);
+    ui("Erode",
+       "The flowing water carries sand: it picks sand up where it runs fast down a slope and\n"
+       "drops it where it slows, cutting channels and laying fans (gravel it carries stays\n"
+       "gravel). Sand plus what the water holds is kept; rock is never eroded");
     plain_slider("Rain", settings_.water_rain, kWaterRainRange, "%.0f mm/h");
     ui("Rain", "Rain on the whole terrain: 0 none, 10 steady rain, 50 a downpour, 500 a flood");
     plain_slider("Evaporation", settings_.water_evaporation, kWaterEvaporationRange, "%.0f mm/h");

@@ -185,6 +185,7 @@ LiveWaterSettings water_settings(const EditorSettings& settings) {
     w.flowing = settings.water_flowing;
     w.rain_mm_per_hour = settings.water_rain;
     w.evaporation_mm_per_hour = settings.water_evaporation;
+    w.erode = settings.water_erode;
     w.open = {settings.water_open_west, settings.water_open_east, settings.water_open_south,
               settings.water_open_north};
     return w;
@@ -196,9 +197,10 @@ LiveWaterFrame Sculpting::flow_water(Document& doc, const EditorSettings& settin
     if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle});
     if (shower_) water.add_shower({settings.water_shower, *shower_, settings.tool_radius});
     const LiveWaterFrame frame = water.advance(seconds, water_settings(settings), budget_ms);
-    if (frame.written > 0 || frame.wetted > 0) {
+    if (frame.written > 0 || frame.wetted > 0 || frame.eroded > 0) {
         if (open_level_.empty()) open_level_ = "water";
-        kick_ = kick_ || frame.wetted > 0;  // wet sand stands at another angle
+        // Wet sand stands at another angle, and the banks a stream cut may be too steep.
+        kick_ = kick_ || frame.wetted > 0 || frame.eroded > 0;
     }
     // A level of water alone closes once the water rests (or has dried) and no gesture holds it.
     if (open_level_ == "water" && !pressed_ && water.idle(water_settings(settings)) &&

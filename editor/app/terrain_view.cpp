@@ -151,6 +151,7 @@ ViewUpdate TerrainView::update(Document& doc, const std::function<void()>& wait_
     const auto t0 = Clock::now();
     mesh_->set_active(active_);
     mesh_->set_water_speed(doc.water().speeds());
+    mesh_->set_water_sediment(doc.water().sediment());
     const render::MeshUpdate update =
         stale_ ? mesh_->rebuild(doc.tin()) : mesh_->update(doc.tin(), changes, active_flipped_);
     active_flipped_.clear();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "tin/vertex_arrays.hpp"
@@ -103,19 +104,26 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     LiveWaterFrame frame;
     // An edit under or beside the water, or a side opened, may start it flowing again.
     if (follow_terrain() || (pipes_ && !same_sides(pipes_open_, settings.open))) resting_ = false;
+    if (!settings.erode) settle_sediment();  // Erode off: what the water carried drops at once
     if (idle(settings) || seconds == 0.0) {
         nozzles_.clear();
         showers_.clear();
         return frame;
     }
-    // Phase 1: pipes that match the terrain and the settings.
+    check(std::isfinite(settings.label_depth) && settings.label_depth > 0.0,
+          "the labelling depth must be finite and > 0");
+    label_depth_ = settings.label_depth;
+    // Phase 1: pipes that match the terrain and the settings (the sand the water holds drops
+    // where it is before the pipes are built again: their vertices may be gone).
     if (!pipes_ || stale_ || pipes_friction_ != settings.friction) {
+        settle_sediment();
         rebuild(settings);
         frame.rebuilt = true;
     } else if (!same_sides(pipes_open_, settings.open)) {
         open_borders(*pipes_, tin_.domain(), settings.open);
         pipes_open_ = settings.open;
     }
+    follow_erode_setting(settings);
     // Phase 2: sources and steps within the budget.
     WaterSources sources;
     sources.nozzles = std::move(nozzles_);
@@ -135,6 +143,7 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
         frame.added += r.added;
         frame.evaporated += r.evaporated;
         if (settings.flowing) pipes_->step(dt);
+        if (settings.flowing && sediment_) sediment_->step(*pipes_, dt);
         frame.seconds += dt;
         ++frame.steps;
     }
@@ -156,13 +165,75 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     const bool was_resting = resting_;
     resting_ = sources.nozzles.empty() && sources.rain.empty() && settings.flowing &&
                fastest < kRestRate * frame.seconds;
-    if (resting_ && !was_resting) mark_near_water();
+    if (resting_ && !was_resting) {
+        // Still water carries nothing: what it held lies where it stopped.
+        settle_sediment();
+        mark_near_water();
+    }
     frame.ms = spent_ms();
     return frame;
 }
 
+void LiveWater::follow_erode_setting(const LiveWaterSettings& settings) {
+    if (settings.erode && !sediment_) {
+        std::vector<double> rock = tin_.vertices().bedrock;
+        rock.resize(pipes_->vertex_count(), kNoBedrock);
+        for (double& z : rock) {
+            if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
+        }
+        std::vector<std::uint16_t> material = tin_.vertices().material;
+        material.resize(pipes_->vertex_count(), 0);
+        sediment_.emplace(pipes_->mesh(), std::move(rock), SedimentOptions{}, std::move(material));
+        relabelled_.assign(pipes_->vertex_count(), 0);
+    } else if (!settings.erode && sediment_) {
+        settle_sediment();
+    }
+}
+
+void LiveWater::settle_sediment() {
+    if (!sediment_ || !pipes_) return;
+    sediment_->settle_all(*pipes_);
+    write_beds();
+    sediment_.reset();
+    sediment_share_.clear();
+    follow_terrain();  // its own writes come back through the journal
+}
+
+std::size_t LiveWater::write_beds() {
+    const VertexArrays& va = tin_.vertices();
+    const WaterMesh& m = pipes_->mesh();
+    const std::size_t n = std::min(va.size(), pipes_->vertex_count());
+    std::vector<VertexId> moved;
+    std::vector<double> heights;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!va.alive[v] || m.bed[v] == va.height[v]) continue;
+        moved.push_back(VertexId{static_cast<std::uint32_t>(v)});
+        heights.push_back(m.bed[v]);
+    }
+    tin_.set_heights(moved, heights);
+    // Sand laid down label_depth thick is of the material it came from.
+    for (const VertexId id : moved) {
+        const std::size_t v = id.index();
+        if (relabelled_[v] || !(m.area[v] > 0.0)) continue;
+        if (sediment_->dropped(v) / m.area[v] < label_depth_) continue;
+        const std::uint16_t laid = sediment_->deposited_material(v);
+        if (laid != va.material[v]) tin_.set_material(id, laid);
+        relabelled_[v] = 1;
+    }
+    return moved.size();
+}
+
 void LiveWater::measure_speeds(bool flowing) {
     speed_.assign(pipes_->vertex_count(), 0.0f);
+    if (sediment_) {
+        sediment_share_.assign(pipes_->vertex_count(), 0.0f);
+        const WaterMesh& m = pipes_->mesh();
+        for (std::size_t v = 0; v < sediment_share_.size(); ++v) {
+            const double water = std::max(pipes_->depth(v), kFilmDepth) * m.area[v];
+            if (pipes_->depth(v) > 0.0 && water > 0.0)
+                sediment_share_[v] = static_cast<float>(sediment_->suspended(v) / water);
+        }
+    }
     if (!flowing) return;
     const std::vector<double> through = pipes_->discharges();
     const WaterMesh& m = pipes_->mesh();
@@ -178,6 +249,7 @@ void LiveWater::measure_speeds(bool flowing) {
 
 void LiveWater::write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame,
                            double& fastest) {
+    if (sediment_) frame.eroded = write_beds();
     const VertexArrays& va = tin_.vertices();
     const std::size_t n = std::min(va.size(), pipes_->vertex_count());
     for (std::size_t v = 0; v < n; ++v) {
@@ -198,6 +270,7 @@ void LiveWater::write_back(const LiveWaterSettings& settings, LiveWaterFrame& fr
 }
 
 double LiveWater::clear() {
+    settle_sediment();  // the sand the water held stays on the terrain
     const VertexArrays& va = tin_.vertices();
     double volume = 0.0;
     for (std::size_t v = 0; v < va.size(); ++v) {

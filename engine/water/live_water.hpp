@@ -23,6 +23,7 @@
 
 #include "tin/change_reader.hpp"
 #include "tin/tin.hpp"
+#include "water/sediment_transport.hpp"
 #include "water/virtual_pipes.hpp"
 #include "water/water_borders.hpp"
 #include "water/water_sources.hpp"
@@ -48,6 +49,13 @@ struct LiveWaterSettings {
     /// script's water operation wets it: the relaxation then holds it at its wetter angle.
     double wet_depth = 1e-3;  ///< m, > 0
     float wet_moisture = 1.0f;
+    /// The flowing water carries sand (sediment_transport.hpp, its default law): it picks
+    /// sand up where it runs fast and steep and drops it where it slows, and the terrain's
+    /// heights follow. Sand plus what the water holds is conserved; the rock is never eroded.
+    bool erode = false;
+    /// m: a vertex the water built up by at least this much takes the material most of that
+    /// sand was (gravel washed onto sand is gravel), as the script's water operation does.
+    double label_depth = 1e-3;
 };
 
 /// What one frame of water did.
@@ -62,6 +70,7 @@ struct LiveWaterFrame {
     double added = 0.0, evaporated = 0.0, left = 0.0;  ///< m³ this frame
     std::size_t written = 0;                           ///< depths written back into the terrain
     std::size_t wetted = 0;                            ///< vertices whose moisture the water raised
+    std::size_t eroded = 0;  ///< vertices whose height the sand the water moved changed
     double ms = 0.0;
 };
 
@@ -95,6 +104,13 @@ class LiveWater {
     /// that ran left it: 0 where dry, and everywhere while the water stands still. For the
     /// editor's Speed overlay; shorter than the terrain's arrays before any water ran.
     std::span<const float> speeds() const { return speed_; }
+    /// Sand the water carries per vertex id, as a share of the water's volume (m³/m³, films
+    /// counted kFilmDepth deep), as the last frame left it; empty without erosion. For the
+    /// editor's Sediment overlay.
+    std::span<const float> sediment() const { return sediment_share_; }
+    /// m³ of sand the water holds now (0 without erosion): the terrain's volume plus this is
+    /// what erosion by water conserves.
+    double suspended() const { return sediment_ ? sediment_->suspended() : 0.0; }
 
   private:
     /// Takes the journal's changes: notes a re-triangulation, water that appeared, and hands
@@ -104,8 +120,16 @@ class LiveWater {
     /// Marks the vertices under the water and their neighbours (near_water_).
     void mark_near_water();
     void rebuild(const LiveWaterSettings& settings);
-    /// speed_ from the pipes' fluxes (all 0 when the water does not flow).
+    /// speed_ from the pipes' fluxes (all 0 when the water does not flow), and the sediment's
+    /// share of the water.
     void measure_speeds(bool flowing);
+    /// Starts or stops the sediment to match `settings.erode`; stopping drops what it holds.
+    void follow_erode_setting(const LiveWaterSettings& settings);
+    /// Drops every grain the water holds where it is and writes the beds into the terrain.
+    void settle_sediment();
+    /// Writes the beds the sediment moved into the terrain's heights, and relabels the vertices
+    /// built up by label_depth with the material laid on them. Returns the vertices written.
+    std::size_t write_beds();
     /// Writes the depths that changed, and the moisture of the sand they wet, into the
     /// terrain; `fastest` becomes the largest depth change (m).
     void write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame, double& fastest);
@@ -123,7 +147,11 @@ class LiveWater {
     std::vector<std::uint8_t> near_water_;
     std::vector<Nozzle> nozzles_;
     std::vector<Rain> showers_;
-    std::vector<float> speed_;  ///< per vertex id, m/s
+    std::vector<float> speed_;                   ///< per vertex id, m/s
+    std::optional<SedimentTransport> sediment_;  ///< while eroding, on pipes_'s mesh
+    std::vector<float> sediment_share_;          ///< per vertex id, m³ of sand per m³ of water
+    std::vector<std::uint8_t> relabelled_;       ///< per vertex id: took a laid material
+    double label_depth_ = LiveWaterSettings{}.label_depth;  ///< the last advance()'s
 };
 
 }  // namespace sandtin

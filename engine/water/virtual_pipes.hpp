@@ -39,8 +39,11 @@ namespace sandtin {
 /// The pipes' estimate of the flow speed at a vertex (m/s): its discharge (m³/s, see
 /// VirtualPipes::discharges) through a cross-section of its depth by the width of its cell,
 /// sqrt(area). The pipes carry no velocity of their own; 0 where the vertex is dry.
+/// (A depth of a few hundred zeptometres times the width underflows to 0: such a film has
+/// no speed either, where 0 / 0 would have made it NaN and the sediment's capacity with it.)
 inline double pipe_flow_speed(double discharge, double depth, double area) {
-    return depth > 0.0 && area > 0.0 ? discharge / (depth * std::sqrt(area)) : 0.0;
+    const double section = depth > 0.0 && area > 0.0 ? depth * std::sqrt(area) : 0.0;
+    return section > 0.0 ? discharge / section : 0.0;
 }
 
 /// What the water flows over, CGAL-free: a triangulation with a bed height per vertex.

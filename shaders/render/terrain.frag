@@ -19,6 +19,7 @@ layout(location = 3) in vec3 v_overlay;  // x: tan(repose), y: sand thickness, z
 layout(location = 4) in vec2 v_slide;
 layout(location = 5) in float v_water;  // water depth (m), linear across the face
 layout(location = 6) in float v_speed;  // water flow speed (m/s), linear across the face
+layout(location = 7) in float v_sediment;  // sand per volume of water, linear across the face
 
 layout(location = 0) out vec4 out_colour;
 
@@ -101,6 +102,12 @@ void main() {
         vec3 ramp = s < 0.5 ? mix(vec3(0.05, 0.1, 0.45), vec3(0.1, 0.85, 0.9), s * 2.0)
                             : mix(vec3(0.95, 0.9, 0.1), vec3(0.9, 0.1, 0.05), s * 2.0 - 1.0);
         colour = mix(colour, ramp, 0.75);
+    }
+    if ((int(pc.overlays.x + 0.5) & 8) != 0 && v_water > 0.0) {
+        // Sediment overlay: clear water pale blue, turning muddy brown as the sand it carries
+        // reaches 5 % of its volume (the law allows 30 %: a slurry, rarely reached).
+        float c = clamp(v_sediment / 0.05, 0.0, 1.0);
+        colour = mix(colour, mix(vec3(0.55, 0.8, 0.95), vec3(0.45, 0.25, 0.08), c), 0.75);
     }
     if (pc.overlays.y > 0.5 && v_overlay.z > 0.5) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
     if (pc.overlays.z > 0.5) {

@@ -142,6 +142,34 @@ TEST_F(EditorXvfb, TheSpeedOverlayColoursTheRunningWaterAndNothingElse) {
         << "the overlay coloured dry sand";
 }
 
+TEST_F(EditorXvfb, WithErodeOnTheStreamMovesSandAndKeepsItAll) {
+    // The Water panel's Erode on, the sand's own sliding off (so that only the water moves
+    // it): a stream poured on the sandbox moves sand; Erode off again drops what the water
+    // carried, and the sand on the terrain is then exactly the sand there was (the scene is
+    // saved before and after; heights are saved in double).
+    const fs::path before = kWork / "water-erode-before.sandtin";
+    const fs::path after = kWork / "water-erode-after.sandtin";
+    const std::string ops = R"([{"op": "set", "erosion": false, "water_erode": true,
+        "water_nozzle": 3e-4, "sediment_overlay": true}, )" +
+                            save_op(before) + R"(, {"op": "tool", "name": "Water"},
+        {"op": "press", "at": [0.5, 0.5]}, {"op": "wait", "frames": 40}, {"op": "release"},
+        {"op": "set", "water_erode": false}, {"op": "wait", "frames": 2}, )" +
+                            save_op(after) + "]";
+    const EditorRun r = run_editor("water-erode", ops, fresh_settings("water-erode"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    EXPECT_EQ(r.stats.at("water").at("sand_carried_m3").get<double>(), 0.0);
+    const Tin start = Tin::from_snapshot(load_session(before).terrain);
+    const Tin end = Tin::from_snapshot(load_session(after).terrain);
+    ASSERT_EQ(start.vertices().size(), end.vertices().size()) << "no re-triangulation expected";
+    double moved = 0.0;
+    for (std::size_t v = 0; v < start.vertices().size(); ++v)
+        moved = std::max(moved, std::abs(end.vertices().height[v] - start.vertices().height[v]));
+    EXPECT_GT(moved, 1e-5) << "the stream moved no sand";
+    EXPECT_NEAR(end.volume(), start.volume(), 1e-12 * start.volume())
+        << "sand appeared or vanished";
+}
+
 TEST_F(EditorXvfb, RainAddsItsRateOverTheTerrainAndUndoTakesTheWaterAway) {
     const fs::path undone = kWork / "water-rain-undone.sandtin";
     const fs::path rained = kWork / "water-rain.sandtin";

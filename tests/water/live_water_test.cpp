@@ -264,6 +264,60 @@ TEST(LiveWater, SpeedsShowWhereTheWaterRunsAndFallAsItRests) {
     EXPECT_EQ(*std::max_element(water.speeds().begin(), water.speeds().end()), 0.0f);
 }
 
+TEST(LiveWater, ErodingWaterCarvesTheSlopeDropsAFanAndKeepsTheSand) {
+    // A stream poured near the top of a sand slope with Erode on: the sand it picks up and
+    // drops moves the terrain's heights, and the terrain's volume plus the sand in the water
+    // stays what it was, frame after frame (sediment_transport.hpp's conservation, through
+    // the write-back into the terrain).
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 3000, 9,
+                                 [](Vec2 p) { return 0.3 * (1.0 - p.x); });
+    const std::vector<double> start(tin.vertices().height);
+    const double sand = tin.volume();
+    LiveWater water(tin);
+    LiveWaterSettings eroding;
+    eroding.erode = true;
+    eroding.friction = 4.0;  // the pond stills within seconds
+    std::size_t eroded = 0;
+    for (int i = 0; i < 120; ++i) {
+        water.add_nozzle({{0.15, 0.5}, 0.05});
+        eroded += water.advance(1.0 / 60.0, eroding, 1e9).eroded;
+        ASSERT_NEAR(tin.volume() + water.suspended(), sand, 1e-12 * sand) << "frame " << i;
+    }
+    EXPECT_GT(eroded, 0u);
+    EXPECT_GT(water.suspended(), 0.0) << "running water carries sand";
+    ASSERT_FALSE(water.sediment().empty());
+    EXPECT_GT(*std::max_element(water.sediment().begin(), water.sediment().end()), 0.0f);
+    const VertexArrays& va = tin.vertices();
+    const auto deepest_change = [&](double sign) {
+        double most = 0.0;
+        for (std::uint32_t v = 0; v < va.size(); ++v)
+            most = std::max(most, sign * (va.height[v] - start[v]));
+        return most;
+    };
+    EXPECT_GT(deepest_change(-1.0), 1e-4) << "the stream cut no channel";
+    // Left alone, the water comes to rest and what it carried lies on the terrain.
+    for (int i = 0; i < 600 && !water.resting(); ++i)
+        water.advance(1.0, eroding, 1e9);
+    ASSERT_TRUE(water.resting());
+    EXPECT_EQ(water.suspended(), 0.0);
+    EXPECT_NEAR(tin.volume(), sand, 1e-12 * sand);
+    EXPECT_GT(deepest_change(1.0), 1e-4) << "the stream dropped no sand";
+}
+
+TEST(LiveWater, WithoutErodeTheSandStaysPut) {
+    Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 3000, 9,
+                                 [](Vec2 p) { return 0.3 * (1.0 - p.x); });
+    const std::vector<double> start(tin.vertices().height);
+    LiveWater water(tin);
+    for (int i = 0; i < 60; ++i) {
+        water.add_nozzle({{0.15, 0.5}, 0.05});
+        EXPECT_EQ(water.advance(1.0 / 60.0, {}, 1e9).eroded, 0u);
+    }
+    EXPECT_EQ(tin.vertices().height, start);
+    EXPECT_TRUE(water.sediment().empty());
+    EXPECT_EQ(water.suspended(), 0.0);
+}
+
 TEST(LiveWater, BadArgumentsAreRefused) {
     Tin tin = bowl();
     LiveWater water(tin);

@@ -56,6 +56,7 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     out.slide[1] = va.slide[id].y;
     out.water = static_cast<float>(va.water_depth[id]);
     out.speed = id < speed_.size() && out.water > 0.0f ? speed_[id] : 0.0f;
+    out.sediment = id < sediment_.size() && out.water > 0.0f ? sediment_[id] : 0.0f;
 }
 
 namespace {

@@ -28,8 +28,9 @@ struct RenderVertex {
     float slide[2];  ///< texture-sliding offset, texture units
     float water;     ///< metres of water standing on the vertex (VertexArrays::water_depth)
     float speed;     ///< m/s: how fast that water flows (set_water_speed), for the Speed overlay
+    float sediment;  ///< m³ of sand per m³ of that water (set_water_sediment): Sediment overlay
 };
-static_assert(sizeof(RenderVertex) == 16 * sizeof(float));
+static_assert(sizeof(RenderVertex) == 17 * sizeof(float));
 
 /// What an update changed, as ranges into vertices() and (per slot) indices().
 struct MeshUpdate {
@@ -65,6 +66,9 @@ class TerrainMesh {
     /// Flow speeds (m/s) by VertexId (water/live_water.hpp speeds()), read by update() for
     /// the vertices it recomputes; ids past its end flow at 0.
     void set_water_speed(std::span<const float> speed) { speed_ = speed; }
+    /// Sand carried per volume of water by VertexId (water/live_water.hpp sediment()), read
+    /// as set_water_speed's speeds are.
+    void set_water_sediment(std::span<const float> sediment) { sediment_ = sediment; }
 
     const std::vector<RenderVertex>& vertices() const { return vertices_; }
     const std::vector<std::uint32_t>& indices() const { return indices_; }
@@ -82,6 +86,7 @@ class TerrainMesh {
     MaterialTable materials_;
     std::span<const std::uint8_t> active_;
     std::span<const float> speed_;
+    std::span<const float> sediment_;
     std::vector<RenderVertex> vertices_;
     std::vector<std::uint32_t> indices_;
     std::vector<std::uint32_t> constrained_;

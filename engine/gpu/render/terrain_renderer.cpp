@@ -73,6 +73,7 @@ gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipeline
         {4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(RenderVertex, slide)},
         {5, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, water)},
         {6, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, speed)},
+        {7, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, sediment)},
     };
     VkPipelineVertexInputStateCreateInfo input{};
     input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
@@ -174,7 +175,7 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     use_vertex_normals();  // until a baked map is set
     terrain_layout_ = make_layout(device, sizeof(TerrainPush), set_layout);
     terrain_pipeline_ = make_pipeline(device, render_pass, terrain_layout_.get(),
-                                      {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 7,
+                                      {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 8,
                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST});
     lines_layout_ = make_layout(device, sizeof(LinesPush));
     lines_pipeline_ = make_pipeline(
@@ -353,8 +354,8 @@ void TerrainRenderer::draw_outline(VkCommandBuffer cb, const float view_projecti
     for (std::size_t i = 0; i < loop.size(); ++i) {
         const auto& a = loop[i];
         const auto& b = loop[(i + 1) % loop.size()];
-        v[2 * i] = RenderVertex{{a[0], a[1], a[2]}, {}, {}, {}, {}, 0.0f, 0.0f};
-        v[2 * i + 1] = RenderVertex{{b[0], b[1], b[2]}, {}, {}, {}, {}, 0.0f, 0.0f};
+        v[2 * i] = RenderVertex{{a[0], a[1], a[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f};
+        v[2 * i + 1] = RenderVertex{{b[0], b[1], b[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f};
     }
     outline_.flush(context_);
     LinesPush lp{};

@@ -27,8 +27,8 @@ struct TerrainPush {
     float view_projection[16];  ///< column-major
     float light_dir[4];         ///< xyz towards the light; w contrast strength [0, 1]
     float cursor[4];            ///< xy centre (m, domain-centre relative), z radius (m), w shown
-    /// x: bits, 1 the wireframe, 2 the water-depth and 4 the water-speed overlay (128 bytes
-    /// hold no more);
+    /// x: bits, 1 the wireframe, 2 the water-depth, 4 the water-speed and 8 the sediment
+    /// overlay (128 bytes hold no more);
     /// y active, z sand thickness, w slope vs repose (0/1)
     float overlays[4];
     /// x low, y high height (m) of the stretch; z = 1 / domain width, w = 1 / domain height
@@ -39,7 +39,9 @@ static_assert(sizeof(TerrainPush) == 128);
 inline constexpr float kOverlayWireframe = 1.0f;
 inline constexpr float kOverlayWaterDepth = 2.0f;
 inline constexpr float kOverlayWaterSpeed = 4.0f;
-/// Whether overlays[0] has `bit` (kOverlayWireframe, kOverlayWaterDepth, kOverlayWaterSpeed).
+inline constexpr float kOverlaySediment = 8.0f;
+/// Whether overlays[0] has `bit` (kOverlayWireframe, kOverlayWaterDepth, kOverlayWaterSpeed,
+/// kOverlaySediment).
 inline bool has_overlay_bit(float bits, float bit) {
     return (static_cast<int>(bits + 0.5f) & static_cast<int>(bit)) != 0;
 }
