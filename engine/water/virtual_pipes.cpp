@@ -47,10 +47,9 @@ VirtualPipes::VirtualPipes(WaterMesh mesh, VirtualPipeOptions options)
     check(mesh_);
     if (!(options_.gravity > 0.0) || !std::isfinite(options_.gravity) ||
         !(options_.friction >= 0.0) || !std::isfinite(options_.friction) ||
-        !(options_.courant > 0.0) || !(options_.courant <= 1.0) || options_.threads < 1)
+        !(options_.courant > 0.0) || !(options_.courant <= 1.0))
         throw std::invalid_argument(
-            "water: gravity must be > 0, friction >= 0, courant in (0, 1] and threads >= 1");
-    if (options_.threads > 1) pool_ = std::make_unique<ThreadPool>(options_.threads);
+            "water: gravity must be > 0, friction >= 0 and courant in (0, 1]");
     depth_.assign(mesh_.area.size(), 0.0);
     border_width_.assign(mesh_.area.size(), 0.0);
     build_pipes();
@@ -84,28 +83,6 @@ void VirtualPipes::build_pipes() {
     }
     outflow_.assign(mesh_.area.size(), 0.0);
     inflow_.assign(mesh_.area.size(), 0.0);
-    // Incidence lists by counting sort: each vertex's pipes come in pipe order.
-    incident_offset_.assign(mesh_.area.size() + 1, 0);
-    for (const Pipe& p : pipes_) {
-        ++incident_offset_[p.a + 1];
-        ++incident_offset_[p.b + 1];
-    }
-    for (std::size_t v = 0; v < mesh_.area.size(); ++v)
-        incident_offset_[v + 1] += incident_offset_[v];
-    incident_.assign(2 * pipes_.size(), 0);
-    std::vector<std::uint32_t> next(incident_offset_.begin(), incident_offset_.end() - 1);
-    for (std::uint32_t i = 0; i < pipes_.size(); ++i) {
-        incident_[next[pipes_[i].a]++] = i;
-        incident_[next[pipes_[i].b]++] = i;
-    }
-}
-
-void VirtualPipes::for_chunks(std::size_t n,
-                              const std::function<void(std::size_t, std::size_t, int)>& body) {
-    if (pool_)
-        pool_->parallel_for(n, body);
-    else
-        body(0, n, 0);
 }
 
 void VirtualPipes::set_depth(std::size_t v, double depth) {
@@ -163,82 +140,19 @@ double VirtualPipes::stable_time_step() const {
     // Each vertex's own limit, with the deepest water at either end of its pipes: a pipe's
     // flux grows with its upwind depth, which is one of its ends'. (The deepest water anywhere
     // bounds that too, but made a column at a nozzle hold the whole terrain to its step.)
-    // Per vertex through its pipes, so that threads take vertices; the least of the limits
-    // does not depend on the order.
-    std::vector<double> least(static_cast<std::size_t>(options_.threads),
-                              std::numeric_limits<double>::infinity());
-    const auto body = [&](std::size_t begin, std::size_t end, int thread) {
-        double& limit = least[static_cast<std::size_t>(thread)];
-        for (std::size_t v = begin; v < end; ++v) {
-            if (!(conductance_sum_[v] > 0.0) || !(mesh_.area[v] > 0.0)) continue;
-            double h = 0.0;
-            for (std::uint32_t k = incident_offset_[v]; k < incident_offset_[v + 1]; ++k) {
-                const Pipe& p = pipes_[incident_[k]];
-                h = std::max({h, depth_[p.a], depth_[p.b]});
-            }
-            if (!(h > 0.0)) continue;
-            limit = std::min(
-                limit, std::sqrt(mesh_.area[v] / (options_.gravity * h * conductance_sum_[v])));
-        }
+    double limit = std::numeric_limits<double>::infinity();
+    const auto vertex_limit = [&](std::uint32_t v, double h) {
+        if (!(conductance_sum_[v] > 0.0) || !(mesh_.area[v] > 0.0)) return;
+        limit = std::min(limit,
+                         std::sqrt(mesh_.area[v] / (options_.gravity * h * conductance_sum_[v])));
     };
-    if (pool_)
-        pool_->parallel_for(depth_.size(), body);
-    else
-        body(0, depth_.size(), 0);
-    return options_.courant * *std::min_element(least.begin(), least.end());
-}
-
-void VirtualPipes::update_fluxes(std::size_t begin, std::size_t end, double dt, double damping) {
-    for (std::size_t i = begin; i < end; ++i) {
-        Pipe& p = pipes_[i];
-        // A dry pipe at rest stays so (its upwind depth is 0): most of a terrain, skipped.
-        if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
-        const double drop = surface(p.a) - surface(p.b);
-        const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
-        p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+    for (const Pipe& p : pipes_) {
+        const double h = std::max(depth_[p.a], depth_[p.b]);
+        if (!(h > 0.0)) continue;
+        vertex_limit(p.a, h);
+        vertex_limit(p.b, h);
     }
-}
-
-std::size_t VirtualPipes::scale_outflows(std::size_t begin, std::size_t end, double dt) {
-    std::size_t limited = 0;
-    for (std::size_t v = begin; v < end; ++v) {
-        double out = 0.0;
-        for (std::uint32_t k = incident_offset_[v]; k < incident_offset_[v + 1]; ++k) {
-            const Pipe& p = pipes_[incident_[k]];
-            if (p.a == v && p.flux > 0.0) out += p.flux;
-            if (p.b == v && p.flux < 0.0) out -= p.flux;
-        }
-        // ...and over the open border: a free overfall's critical discharge (m³/s).
-        const double h = depth_[v];
-        if (border_width_[v] > 0.0) out += border_width_[v] * h * std::sqrt(options_.gravity * h);
-        const double wanted = out * dt;
-        const double held = h * mesh_.area[v];
-        const bool over = wanted > held;
-        limited += over ? 1 : 0;
-        outflow_[v] = over ? held / wanted : 1.0;
-    }
-    return limited;
-}
-
-bool VirtualPipes::update_depths(std::size_t begin, std::size_t end, double dt) {
-    bool any_water = false;
-    for (std::size_t v = begin; v < end; ++v) {
-        double change = 0.0;  // m³ over this step
-        for (std::uint32_t k = incident_offset_[v]; k < incident_offset_[v + 1]; ++k) {
-            const Pipe& p = pipes_[incident_[k]];
-            if (p.flux == 0.0) continue;
-            const double moved = p.flux * dt;
-            change += p.a == v ? -moved : moved;
-        }
-        if (border_width_[v] > 0.0) {
-            const double h = depth_[v];
-            inflow_[v] = border_width_[v] * h * std::sqrt(options_.gravity * h) * outflow_[v] * dt;
-            change -= inflow_[v];
-        }
-        if (change != 0.0) depth_[v] = std::max(0.0, depth_[v] + change / mesh_.area[v]);
-        any_water = any_water || depth_[v] > 0.0;
-    }
-    return any_water;
+    return options_.courant * limit;
 }
 
 WaterStepReport VirtualPipes::step(double dt) {
@@ -247,40 +161,56 @@ WaterStepReport VirtualPipes::step(double dt) {
     WaterStepReport report;
     if (!moving_) return report;  // dry and still: nothing to do
     const double damping = 1.0 / (1.0 + dt * options_.friction);
-    const std::size_t threads = static_cast<std::size_t>(options_.threads);
     // Phase 1: fluxes from the surface difference, through the upwind depth.
-    for_chunks(pipes_.size(),
-               [&](std::size_t b, std::size_t e, int) { update_fluxes(b, e, dt, damping); });
-    // Phase 2: no vertex gives more than it holds (outflow_ becomes the scale K in [0, 1]).
-    std::vector<std::size_t> limited(threads, 0);
-    for_chunks(depth_.size(), [&](std::size_t b, std::size_t e, int t) {
-        limited[static_cast<std::size_t>(t)] = scale_outflows(b, e, dt);
-    });
-    for (const std::size_t n : limited)
-        report.outflows_limited += n;
-    // Phase 3: each pipe's flux scaled by its upwind end's K.
-    std::vector<std::uint8_t> any_flux(threads, 0);
-    for_chunks(pipes_.size(), [&](std::size_t b, std::size_t e, int t) {
-        bool flowing = false;
-        for (std::size_t i = b; i < e; ++i) {
-            Pipe& p = pipes_[i];
-            if (p.flux == 0.0) continue;
-            p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
-            flowing = flowing || p.flux != 0.0;
-        }
-        any_flux[static_cast<std::size_t>(t)] = flowing ? 1 : 0;
-    });
-    // Phase 4: each vertex gains its inflows and loses its outflows (in pipe order) and what
-    // went over the border (inflow_ keeps it for the count below).
-    std::vector<std::uint8_t> any_water(threads, 0);
-    for_chunks(depth_.size(), [&](std::size_t b, std::size_t e, int t) {
-        any_water[static_cast<std::size_t>(t)] = update_depths(b, e, dt) ? 1 : 0;
-    });
+    std::fill(outflow_.begin(), outflow_.end(), 0.0);
+    for (Pipe& p : pipes_) {
+        // A dry pipe at rest stays so (its upwind depth is 0): most of a terrain, skipped.
+        if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
+        const double drop = surface(p.a) - surface(p.b);
+        const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
+        p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+        if (p.flux > 0.0) outflow_[p.a] += p.flux;
+        if (p.flux < 0.0) outflow_[p.b] -= p.flux;
+    }
+    // ...and over the open border: a free overfall's critical discharge (m³/s).
+    const auto overfall = [&](std::uint32_t v) {
+        const double h = depth_[v];
+        return border_width_[v] * h * std::sqrt(options_.gravity * h);
+    };
     for (std::uint32_t v : border_vertices_)
-        volume_left_ += inflow_[v];
+        outflow_[v] += overfall(v);
+    // Phase 2: no vertex gives more than it holds (outflow_ becomes the scale K in [0, 1]).
+    for (std::size_t v = 0; v < depth_.size(); ++v) {
+        const double wanted = outflow_[v] * dt;
+        const double held = depth_[v] * mesh_.area[v];
+        const bool limited = wanted > held;
+        report.outflows_limited += limited ? 1 : 0;
+        outflow_[v] = limited ? held / wanted : 1.0;
+    }
+    // Phase 3: each pipe moves its (scaled) volume from one end to the other.
+    std::fill(inflow_.begin(), inflow_.end(), 0.0);
+    std::vector<double>& change = inflow_;  // m³ over this step, per vertex
+    bool any_flux = false;
+    for (Pipe& p : pipes_) {
+        if (p.flux == 0.0) continue;
+        p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
+        const double moved = p.flux * dt;
+        change[p.a] -= moved;
+        change[p.b] += moved;
+        any_flux = any_flux || p.flux != 0.0;
+    }
+    for (std::uint32_t v : border_vertices_) {
+        const double left = overfall(v) * outflow_[v] * dt;
+        change[v] -= left;
+        volume_left_ += left;
+    }
+    bool any_water = false;
+    for (std::size_t v = 0; v < depth_.size(); ++v) {
+        if (change[v] != 0.0) depth_[v] = std::max(0.0, depth_[v] + change[v] / mesh_.area[v]);
+        any_water = any_water || depth_[v] > 0.0;
+    }
     report.pipes_updated = pipes_.size();
-    moving_ = std::find(any_water.begin(), any_water.end(), 1) != any_water.end() ||
-              std::find(any_flux.begin(), any_flux.end(), 1) != any_flux.end();
+    moving_ = any_water || any_flux;
     return report;
 }
 

@@ -29,13 +29,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <functional>
-#include <memory>
 #include <span>
 #include <vector>
 
 #include "geom/vec2.hpp"
-#include "util/thread_pool.hpp"
 
 namespace sandtin {
 
@@ -64,9 +61,6 @@ struct VirtualPipeOptions {
     double friction = 0.5;
     /// stable_time_step's fraction of the pipe network's stability limit, in (0, 1].
     double courant = 0.5;
-    /// Threads a step runs on (>= 1). Every phase is a gather over fixed lists (each vertex
-    /// sums its pipes in pipe order), so the results are bitwise the same for any count.
-    int threads = 1;
 };
 
 struct WaterStepReport {
@@ -130,27 +124,13 @@ class VirtualPipes {
 
   private:
     void build_pipes();
-    /// body(begin, end, thread) over [0, n) in the pool's chunks, or at once without a pool.
-    void for_chunks(std::size_t n, const std::function<void(std::size_t, std::size_t, int)>& body);
-    /// Phase 1 of step(): each pipe's flux from the surface difference (pipes [begin, end)).
-    void update_fluxes(std::size_t begin, std::size_t end, double dt, double damping);
-    /// Phase 2: per vertex, the scale K in [0, 1] of its outflows (into outflow_); returns
-    /// how many were scaled down.
-    std::size_t scale_outflows(std::size_t begin, std::size_t end, double dt);
-    /// Phase 4: per vertex, its depth after the scaled fluxes and border outflow; returns
-    /// whether any of them holds water.
-    bool update_depths(std::size_t begin, std::size_t end, double dt);
 
     WaterMesh mesh_;
     VirtualPipeOptions options_;
     std::vector<Pipe> pipes_;
     std::vector<double> depth_;
-    std::vector<double> conductance_sum_;   ///< per vertex: sum of its pipes' w / L
-    std::vector<double> outflow_, inflow_;  ///< per vertex, scratch of step()
-    /// Per vertex, the pipes it is an end of, in pipe order: [incident_offset_[v],
-    /// incident_offset_[v + 1]) in incident_. Each phase gathers through it, never scatters.
-    std::vector<std::uint32_t> incident_offset_, incident_;
-    std::unique_ptr<ThreadPool> pool_;            ///< with threads > 1
+    std::vector<double> conductance_sum_;         ///< per vertex: sum of its pipes' w / L
+    std::vector<double> outflow_, inflow_;        ///< per vertex, scratch of step()
     std::vector<double> border_width_;            ///< per vertex: open border (m), mostly 0
     std::vector<std::uint32_t> border_vertices_;  ///< those with an open border
     double volume_left_ = 0.0;

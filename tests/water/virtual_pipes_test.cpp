@@ -9,13 +9,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <utility>
-#include <vector>
 
 #include "tin/tin.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
-#include "water/water_borders.hpp"
 
 namespace sandtin {
 namespace {
@@ -160,39 +157,6 @@ TEST(VirtualPipes, ADamBreakFrontTravelsNoFasterThanRitter) {
     // ...and at the order of the wave speed sqrt(g h0): measured 0.39 m, against 0.405 m for
     // a linear wave and 0.51 m for Ritter's front.
     EXPECT_GT(front, dam + 0.5 * std::sqrt(g * h0) * until) << "the water hardly left the dam";
-}
-
-TEST(VirtualPipes, TwoThreadsStepBitForBitAsOne) {
-    // Each phase gathers per vertex in pipe order, so the threads' chunks change nothing: a
-    // sloshing mound draining over an open side, its outflows scaled at the drying front,
-    // gives the same bits on one thread and on two.
-    const Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 60, 60, bumpy_bed);
-    const auto run_on = [&](int threads) {
-        VirtualPipeOptions options;
-        options.threads = threads;
-        VirtualPipes w(water_mesh_of(tin), options);
-        const WaterMesh& m = w.mesh();
-        for (std::size_t v = 0; v < w.vertex_count(); ++v) {
-            const double r = length(m.position[v] - Vec2{0.85, 0.5});
-            if (m.area[v] > 0.0 && r < 0.25) w.set_depth(v, 0.04 * (1.0 - r / 0.25));
-        }
-        OpenSides east;
-        east.east = true;
-        open_borders(w, tin.domain(), east);
-        std::size_t limited = 0;
-        for (int k = 0; k < 300; ++k)
-            limited += w.step(w.stable_time_step()).outflows_limited;
-        EXPECT_GT(limited, 0u);
-        return std::make_pair(std::vector<double>(w.depths().begin(), w.depths().end()),
-                              w.volume_left());
-    };
-    const auto one = run_on(1), two = run_on(2);
-    EXPECT_TRUE(one.first == two.first) << "depths differ between one and two threads";
-    EXPECT_EQ(one.second, two.second);
-    EXPECT_GT(one.second, 0.0) << "the open side must have let water out";
-    VirtualPipeOptions none;
-    none.threads = 0;
-    EXPECT_THROW(VirtualPipes(water_mesh_of(tin), none), std::invalid_argument);
 }
 
 TEST(VirtualPipes, DryTerrainCostsNothingAndBadInputIsRefused) {
