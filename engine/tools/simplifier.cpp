@@ -26,6 +26,14 @@ double planarity_residual(const Tin& tin, VertexId v) {
     const Tin::VertexStar star = tin.star(v, ring);  // one walk for all three questions
     if (star.boundary || star.constrained) return std::numeric_limits<double>::infinity();
     const VertexArrays& va = tin.vertices();
+    // Water stays where it needs its vertices: removing one under the water, or beside it
+    // (whose removal changes the wet neighbours' areas), would change the water's volume.
+    // Dry, planar ground is simplified as before (issue 40: detail goes once the terrain is
+    // dry and planar).
+    if (va.water_depth[v.value] > 0.0) return std::numeric_limits<double>::infinity();
+    for (VertexId w : ring) {
+        if (va.water_depth[w.value] > 0.0) return std::numeric_limits<double>::infinity();
+    }
     const Vec2 origin = va.position[v.value];
     const double z0 = va.height[v.value];
     // Fast path: a level neighbourhood (the floor of a flat stamp) needs no fit.

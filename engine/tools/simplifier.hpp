@@ -1,7 +1,8 @@
 #pragma once
 // Automatic simplification (seed 000 §7.1.1, seed 003 §4 step 3): vertices whose height changed
 // are queued, and at the end of an iteration each queued vertex is removed when it and all its
-// neighbours lie within d_m of a common plane. Border vertices and vertices on constraints stay.
+// neighbours lie within d_m of a common plane. Border vertices, vertices on constraints, and
+// vertices under or beside water stay.
 //
 // The plane is the least-squares fit z = a x + b y + c through the vertex and its neighbours
 // (vertical residuals, which is what decides the volume a removal changes); the seeds' plane
@@ -35,7 +36,8 @@ struct SimplifyReport {
 };
 
 /// Max vertical distance of v and its neighbours from their least-squares plane (m), or
-/// +infinity when v is on the border or on a constraint.
+/// +infinity when v is on the border, on a constraint, or holds water or borders a vertex
+/// that does (its removal would change the water's volume).
 double planarity_residual(const Tin& tin, VertexId v);
 
 class Simplifier {

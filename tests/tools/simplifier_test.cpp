@@ -290,6 +290,41 @@ TEST(Simplifier, NeverRemovesBorderOrConstrainedVertices) {
     EXPECT_NEAR(r.volume_change, 0.0, 1e-12);
 }
 
+TEST(Simplifier, KeepsTheVerticesUnderAndBesideWaterAndTheWatersVolume) {
+    // Flat sand, a puddle on its west half: the dry east half is simplified as before; no
+    // vertex under the water or beside it goes, so the water's volume (sum of lumped area x
+    // depth) is what it was, to the last bit of the vertices it stands on.
+    Tin tin = test::smooth_terrain(
+        test::kUnitSquare, 3000, 321, [](Vec2) { return 0.1; }, 0.05);
+    std::vector<VertexId> wet;
+    for (VertexId v : live_ids(tin)) {
+        if (tin.position(v).x < 0.45 && !on_domain_border(tin.domain(), tin.position(v))) {
+            tin.set_water_depth(v, 0.01);
+            wet.push_back(v);
+        }
+    }
+    ASSERT_GT(wet.size(), 500u);
+    const double water = test::water_volume(tin);
+    Simplifier s;
+    for (VertexId v : live_ids(tin))
+        s.enqueue(v);
+    SimplifySettings settings;
+    settings.tolerance = 1e-3;
+    const SimplifyReport r = s.run(tin, settings);
+    EXPECT_TRUE(mesh_is_sound(tin));
+    for (VertexId v : wet)
+        EXPECT_TRUE(tin.is_alive(v)) << "a vertex under the water was removed";
+    EXPECT_EQ(test::water_volume(tin), water);
+    // The dry half went (it was all flat), but for the ring beside the water and the border.
+    EXPECT_GT(r.removed, 1000u);
+    for (VertexId v : live_ids(tin)) {
+        if (tin.position(v).x > 0.6) {
+            EXPECT_TRUE(on_domain_border(tin.domain(), tin.position(v)))
+                << tin.position(v).x << ", " << tin.position(v).y;
+        }
+    }
+}
+
 TEST(Simplifier, RemovalsStayWithinToleranceOnCurvedSand) {
     // On curved sand only vertices within d_m of their ring's plane go, so the surface moves
     // by little: check it on a grid against the analytic sand.
