@@ -302,6 +302,8 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.overlay_sediment = v.get<bool>();
         else if (k2 == "water_erode")
             settings_.water_erode = v.get<bool>();
+        else if (k2 == "water_detail")
+            settings_.water_detail = kWaterDetailRange.clamp(v.get<double>(), size);
         else if (k2 == "water_flowing")
             settings_.water_flowing = v.get<bool>();
         else if (k2 == "rain")

@@ -54,6 +54,7 @@ void fields(EditorSettings& s, F&& f) {
     f("overlay_sediment", s.overlay_sediment, nullptr);
     f("water_flowing", s.water_flowing, nullptr);
     f("water_erode", s.water_erode, nullptr);
+    f("water_detail", s.water_detail, &kWaterDetailRange);
     f("water_rain", s.water_rain, &kWaterRainRange);
     f("water_evaporation", s.water_evaporation, &kWaterEvaporationRange);
     f("water_open_west", s.water_open_west, nullptr);

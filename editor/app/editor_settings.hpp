@@ -54,6 +54,9 @@ struct EditorSettings {
     bool water_flowing = true;
     /// The flowing water carries sand: cuts channels and drops fans (LiveWaterSettings::erode).
     bool water_erode = false;
+    /// Metres (0: off): edges under the water longer than this are split (LiveWaterSettings::
+    /// detail), so the water on a coarse terrain gets the triangles it flows through.
+    double water_detail = 0.0;
     double water_rain = 0.0;
     double water_evaporation = 0.0;
     bool water_open_west = false;
@@ -128,6 +131,8 @@ inline constexpr SettingRange kWaterRainRange{0.0, 500.0};         ///< mm/h
 inline constexpr SettingRange kWaterEvaporationRange{0.0, 500.0};  ///< mm/h
 /// m³/s: a trickle (1 mL/s) to a garden hose's flow (0.5 L/s) on the sandbox.
 inline constexpr SettingRange kWaterNozzleRange{1e-6, 5e-4, Scaling::Volume};
+/// m: the water's detail, 0 (off) to 5 cm on the sandbox.
+inline constexpr SettingRange kWaterDetailRange{0.0, 0.05, Scaling::Length};
 /// mm/h: heavy rain (10) to a hose's spray (50 000) on the Rain tool's disc.
 inline constexpr SettingRange kWaterShowerRange{10.0, 50000.0};
 

@@ -35,6 +35,13 @@ void App::panel_water() {
        "The flowing water carries sand: it picks sand up where it runs fast down a slope and\n"
        "drops it where it slows, cutting channels and laying fans (gravel it carries stays\n"
        "gravel). Sand plus what the water holds is kept; rock is never eroded");
+    range_slider("Detail", "", settings_.water_detail, kWaterDetailRange, settings_.scene_size,
+                 "%.1f");
+    ui("Detail",
+       "Edges under the water longer than this are split, so that water on a coarse terrain\n"
+       "(an imported elevation model) gets the triangles it flows through; 0 is off. The\n"
+       "water's and the sand's volumes are kept, and the simplifier takes the vertices\n"
+       "again once the ground is dry and planar");
     plain_slider("Rain", settings_.water_rain, kWaterRainRange, "%.0f mm/h");
     ui("Rain", "Rain on the whole terrain: 0 none, 10 steady rain, 50 a downpour, 500 a flood");
     plain_slider("Evaporation", settings_.water_evaporation, kWaterEvaporationRange, "%.0f mm/h");

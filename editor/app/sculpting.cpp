@@ -186,6 +186,7 @@ LiveWaterSettings water_settings(const EditorSettings& settings) {
     w.rain_mm_per_hour = settings.water_rain;
     w.evaporation_mm_per_hour = settings.water_evaporation;
     w.erode = settings.water_erode;
+    w.detail = settings.water_detail;
     w.open = {settings.water_open_west, settings.water_open_east, settings.water_open_south,
               settings.water_open_north};
     return w;

@@ -112,6 +112,8 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     }
     check(std::isfinite(settings.label_depth) && settings.label_depth > 0.0,
           "the labelling depth must be finite and > 0");
+    check(std::isfinite(settings.detail) && settings.detail >= 0.0,
+          "the water's detail length must be finite and >= 0");
     label_depth_ = settings.label_depth;
     // Phase 1: pipes that match the terrain and the settings (the sand the water holds drops
     // where it is before the pipes are built again: their vertices may be gone).
@@ -165,6 +167,9 @@ LiveWaterFrame LiveWater::advance(double seconds, const LiveWaterSettings& setti
     const bool was_resting = resting_;
     resting_ = sources.nozzles.empty() && sources.rain.empty() && settings.flowing &&
                fastest < kRestRate * frame.seconds;
+    // Phase 4: detail where the water is (the pipes are built again next frame).
+    if (settings.detail > 0.0 && settings.flowing)
+        frame.refined = refine_wet_edges(settings.detail);
     if (resting_ && !was_resting) {
         // Still water carries nothing: what it held lies where it stopped.
         settle_sediment();
@@ -221,6 +226,40 @@ std::size_t LiveWater::write_beds() {
         relabelled_[v] = 1;
     }
     return moved.size();
+}
+
+std::size_t LiveWater::refine_wet_edges(double max_length) {
+    const VertexArrays& va = tin_.vertices();
+    std::vector<EdgeSplit> splits;
+    for (const VirtualPipes::Pipe& p : pipes_->pipes()) {
+        if (pipes_->depth(p.a) < kFilmDepth || pipes_->depth(p.b) < kFilmDepth) continue;
+        if (length(va.position[p.a] - va.position[p.b]) <= max_length) continue;
+        splits.push_back({VertexId{p.a}, VertexId{p.b}, 0.5});
+        if (splits.size() == kMaxWaterSplits) break;
+    }
+    if (splits.empty()) return 0;
+    const auto water_volume = [&] {
+        double sum = 0.0;
+        for (std::size_t v = 0; v < va.size(); ++v)
+            if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
+        return sum;
+    };
+    // The new vertices' depths are interpolated along their edges, which keeps the water's
+    // volume until the triangulation around them flips; what the flips changed goes onto the
+    // new vertices in proportion to their areas.
+    const double before = water_volume();
+    std::vector<VertexId> born = tin_.split_edges(splits, VolumePolicy::Conserve);
+    std::erase_if(born, [](VertexId v) { return !v.valid(); });
+    double area = 0.0;
+    for (const VertexId v : born)
+        area += va.lumped_area[v.index()];
+    const double missing = before - water_volume();
+    if (area > 0.0 && missing != 0.0) {
+        for (const VertexId v : born)
+            tin_.set_water_depth(v, std::max(0.0, va.water_depth[v.index()] + missing / area));
+    }
+    stale_ = true;  // the pipes are built again from the refined terrain
+    return born.size();
 }
 
 void LiveWater::measure_speeds(bool flowing) {

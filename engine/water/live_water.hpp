@@ -38,6 +38,9 @@ inline constexpr double kRestRate = 1e-7;
 /// m: water shallower than this is a film when its speed is estimated (speeds()): 0.1 mm, the
 /// depth the glTF export also leaves out (io/export_water_mesh.hpp).
 inline constexpr double kFilmDepth = 1e-4;
+/// Edges LiveWaterSettings::detail splits in one frame at most: an elevation model's lake
+/// refines over a few frames instead of stalling one.
+inline constexpr std::size_t kMaxWaterSplits = 2000;
 
 struct LiveWaterSettings {
     bool flowing = true;                   ///< false: the water stands still (sources still add)
@@ -56,6 +59,13 @@ struct LiveWaterSettings {
     /// m: a vertex the water built up by at least this much takes the material most of that
     /// sand was (gravel washed onto sand is gravel), as the script's water operation does.
     double label_depth = 1e-3;
+    /// m, >= 0 (0: off): r_S for the water. After a frame, every edge longer than this with
+    /// water at both ends (kFilmDepth or more) is split at its midpoint, so the water gets the
+    /// detail it flows through (an imported elevation model's flats are metres across). The
+    /// sand's volume is kept by the split, the water's by adding what the new triangulation
+    /// changed to the new vertices. The simplifier leaves wet vertices alone and takes them
+    /// once the ground is dry and planar again.
+    double detail = 0.0;
 };
 
 /// What one frame of water did.
@@ -70,7 +80,8 @@ struct LiveWaterFrame {
     double added = 0.0, evaporated = 0.0, left = 0.0;  ///< m³ this frame
     std::size_t written = 0;                           ///< depths written back into the terrain
     std::size_t wetted = 0;                            ///< vertices whose moisture the water raised
-    std::size_t eroded = 0;  ///< vertices whose height the sand the water moved changed
+    std::size_t eroded = 0;   ///< vertices whose height the sand the water moved changed
+    std::size_t refined = 0;  ///< vertices the detail setting added under the water
     double ms = 0.0;
 };
 
@@ -130,6 +141,9 @@ class LiveWater {
     /// Writes the beds the sediment moved into the terrain's heights, and relabels the vertices
     /// built up by label_depth with the material laid on them. Returns the vertices written.
     std::size_t write_beds();
+    /// Splits the wet edges longer than `max_length` (at most kMaxWaterSplits a frame) and
+    /// keeps the water's volume; returns the vertices added.
+    std::size_t refine_wet_edges(double max_length);
     /// Writes the depths that changed, and the moisture of the sand they wet, into the
     /// terrain; `fastest` becomes the largest depth change (m).
     void write_back(const LiveWaterSettings& settings, LiveWaterFrame& frame, double& fastest);

@@ -318,6 +318,52 @@ TEST(LiveWater, WithoutErodeTheSandStaysPut) {
     EXPECT_EQ(water.suspended(), 0.0);
 }
 
+TEST(LiveWater, DetailSplitsTheLongWetEdgesAndKeepsTheWaterAndTheSand) {
+    // A coarse terrain (12.5 cm triangles, as an elevation model's flats are to its water)
+    // with a pond in a hollow: with a detail of 4 cm the edges under the water are split over
+    // a few frames until none with water at both ends is longer; the water and the sand
+    // keep their volumes through every split; the dry slopes keep their triangles.
+    Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 8, 8, [](Vec2 p) {
+        return 0.2 * ((p.x - 0.5) * (p.x - 0.5) + (p.y - 0.5) * (p.y - 0.5));
+    });
+    const VertexArrays& va = tin.vertices();
+    for (std::uint32_t v = 0; v < va.size(); ++v)
+        if (va.height[v] < 0.004) tin.set_water_depth(VertexId{v}, 0.006 - va.height[v]);
+    const double water0 = test::water_volume(tin), sand0 = tin.volume();
+    const std::size_t vertices0 = tin.vertex_count();
+    LiveWater water(tin);
+    LiveWaterSettings detailed;
+    detailed.detail = 0.04;
+    std::size_t refined = 0;
+    for (int i = 0; i < 20; ++i) {
+        refined += water.advance(1.0 / 60.0, detailed, 1e9).refined;
+        ASSERT_NEAR(test::water_volume(tin), water0, 1e-12 * water0) << "frame " << i;
+        ASSERT_NEAR(tin.volume(), sand0, 1e-12 * sand0) << "frame " << i;
+    }
+    EXPECT_GT(refined, 10u);
+    EXPECT_EQ(tin.vertex_count(), vertices0 + refined);
+    EXPECT_TRUE(tin.check_valid().ok());
+    std::size_t long_wet = 0;
+    for (const auto& t : tin.triangles()) {
+        for (int k = 0; k < 3; ++k) {
+            const VertexId a = t[k], b = t[(k + 1) % 3];
+            if (va.water_depth[a.index()] >= kFilmDepth &&
+                va.water_depth[b.index()] >= kFilmDepth &&
+                length(va.position[a.index()] - va.position[b.index()]) > 0.04)
+                ++long_wet;
+        }
+    }
+    EXPECT_EQ(long_wet, 0u) << "wet edges longer than the detail are left";
+    // Without detail nothing is split.
+    Tin plain = Tin::regular_grid(Rect::from_size(1.0, 1.0), 8, 8);
+    plain.set_water_depth(VertexId{40}, 0.01);
+    LiveWater still(plain);
+    const std::size_t before = plain.vertex_count();
+    for (int i = 0; i < 5; ++i)
+        EXPECT_EQ(still.advance(1.0 / 60.0, {}, 1e9).refined, 0u);
+    EXPECT_EQ(plain.vertex_count(), before);
+}
+
 TEST(LiveWater, BadArgumentsAreRefused) {
     Tin tin = bowl();
     LiveWater water(tin);
