@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 settings="$work/editor.json"  # defaults: the pictures do not depend on your own settings
 # progress: an import held mid-way by the script (its "jobs" op), so the bar shows on any machine.
-for name in sculpt wireframe slope help file-browser progress; do
+for name in sculpt wireframe slope help file-browser progress water-stream water-sediment water-rain; do
   xvfb-run -a -s '-screen 0 1280x720x24' "$editor" assets/scenes/default.sandtin \
     --settings "$settings" --script "docs/scripts/$name.json" --frames 3 \
     --screenshot "docs/editor-$name.png"

@@ -23,8 +23,8 @@ void App::panel_water() {
     ImGui::SameLine();
     ImGui::Checkbox("Speed##overlay", &settings_.overlay_water_speed);
     ui("Speed##overlay",
-       "How fast the water flows, in false colour: still water dark blue, then cyan, yellow,\n"
-       "and red at 0.3 m/s or more");
+       "How fast the water flows, in false colour on a log scale: 1 mm/s or less dark blue,\n"
+       "then cyan (3 cm/s), yellow, and red at 1 m/s or more");
     ImGui::SameLine();
     ImGui::Checkbox("Sediment##overlay", &settings_.overlay_sediment);
     ui("Sediment##overlay",

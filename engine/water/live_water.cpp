@@ -274,15 +274,18 @@ void LiveWater::measure_speeds(bool flowing) {
         }
     }
     if (!flowing) return;
-    const std::vector<double> through = pipes_->discharges();
-    const WaterMesh& m = pipes_->mesh();
+    // The flow vector, not the sum of |flux|: the pipes' fluxes slosh back and forth in a
+    // pond being filled (metres a second by |flux|, where the water spreads at centimetres),
+    // and those cancel. A flow through a vertex counts twice in it (in and out), hence half.
     // A film at the wet front divides a trickle by almost no depth (metres a second on a
     // pond at rest): films count as kFilmDepth deep, as the glTF export leaves them out.
+    const std::vector<Vec2> flow = pipes_->flow_vectors();
+    const WaterMesh& m = pipes_->mesh();
     for (std::size_t v = 0; v < speed_.size(); ++v) {
         const double depth = pipes_->depth(v);
         if (depth > 0.0)
             speed_[v] = static_cast<float>(
-                pipe_flow_speed(through[v], std::max(depth, kFilmDepth), m.area[v]));
+                pipe_flow_speed(0.5 * length(flow[v]), std::max(depth, kFilmDepth), m.area[v]));
     }
 }
 

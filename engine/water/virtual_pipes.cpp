@@ -127,13 +127,18 @@ double VirtualPipes::volume() const {
     return sum;
 }
 
-std::vector<double> VirtualPipes::discharges() const {
-    std::vector<double> through(depth_.size(), 0.0);
+std::vector<Vec2> VirtualPipes::flow_vectors() const {
+    std::vector<Vec2> flow(depth_.size(), Vec2{0.0, 0.0});
     for (const Pipe& p : pipes_) {
-        through[p.a] += 0.5 * std::abs(p.flux);
-        through[p.b] += 0.5 * std::abs(p.flux);
+        if (p.flux == 0.0) continue;
+        const Vec2 d = mesh_.position[p.b] - mesh_.position[p.a];
+        const double l = length(d);
+        if (!(l > 0.0)) continue;
+        const Vec2 along = (p.flux / l) * d;  // flux out of a towards b, and out of b towards a
+        flow[p.a] = flow[p.a] + along;
+        flow[p.b] = flow[p.b] + along;
     }
-    return through;
+    return flow;
 }
 
 double VirtualPipes::stable_time_step() const {

@@ -36,11 +36,13 @@
 
 namespace sandtin {
 
-/// The pipes' estimate of the flow speed at a vertex (m/s): its discharge (m³/s, see
-/// VirtualPipes::discharges) through a cross-section of its depth by the width of its cell,
-/// sqrt(area). The pipes carry no velocity of their own; 0 where the vertex is dry.
-/// (A depth of a few hundred zeptometres times the width underflows to 0: such a film has
-/// no speed either, where 0 / 0 would have made it NaN and the sediment's capacity with it.)
+/// The pipes' estimate of the flow speed at a vertex (m/s): its discharge (m³/s: half the sum
+/// of |flux| over its pipes for the sediment's capacity, half the length of
+/// VirtualPipes::flow_vectors for the editor's overlay) through a cross-section of its depth
+/// by the width of its cell, sqrt(area). The pipes carry no velocity of their own; 0 where the
+/// vertex is dry. (A depth of a few hundred zeptometres times the width underflows to 0: such a
+/// film has no speed either, where 0 / 0 would have made it NaN and the sediment's capacity with
+/// it.)
 inline double pipe_flow_speed(double discharge, double depth, double area) {
     const double section = depth > 0.0 && area > 0.0 ? depth * std::sqrt(area) : 0.0;
     return section > 0.0 ? discharge / section : 0.0;
@@ -115,9 +117,11 @@ class VirtualPipes {
         double flux = 0.0;         ///< m³/s, positive from a to b, as the last step left it
     };
     std::span<const Pipe> pipes() const { return pipes_; }
-    /// Per vertex: the water passing through it (m³/s), half the sum of |flux| over its pipes
-    /// (a flow through a vertex enters by some pipes and leaves by others: each counts once).
-    std::vector<double> discharges() const;
+    /// Per vertex: the sum over its pipes of the flux out of it along the pipe's unit
+    /// direction (m³/s, a vector). A flow through a vertex counts twice (in from one side,
+    /// out to the other, both pointing downstream); fluxes that slosh back and forth around
+    /// it cancel, which |discharges| would count.
+    std::vector<Vec2> flow_vectors() const;
     /// Moves the bed under vertex v to `z` (m, finite; throws std::invalid_argument
     /// otherwise): sand the water carried away or dropped (sediment_transport.hpp).
     void set_bed(std::size_t v, double z);

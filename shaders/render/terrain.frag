@@ -96,9 +96,9 @@ void main() {
         if (v_water > 0.0) colour = mix(colour, mix(vec3(0.6, 0.95, 1.0), vec3(0.0, 0.1, 0.6), d), 0.7);
     }
     if ((int(pc.overlays.x + 0.5) & 4) != 0 && v_water > 0.0) {
-        // Water speed overlay: still water dark blue, then cyan, yellow and red at 0.3 m/s
-        // or more (a sandbox stream runs at centimetres to decimetres a second).
-        float s = clamp(v_speed / 0.3, 0.0, 1.0);
+        // Water speed overlay on a log scale, as speeds span orders of magnitude: 1 mm/s or
+        // less dark blue, then cyan (3 cm/s), yellow, and red at 1 m/s or more.
+        float s = clamp(log(max(v_speed, 1e-4) / 0.001) / log(1000.0), 0.0, 1.0);
         vec3 ramp = s < 0.5 ? mix(vec3(0.05, 0.1, 0.45), vec3(0.1, 0.85, 0.9), s * 2.0)
                             : mix(vec3(0.95, 0.9, 0.1), vec3(0.9, 0.1, 0.05), s * 2.0 - 1.0);
         colour = mix(colour, ramp, 0.75);

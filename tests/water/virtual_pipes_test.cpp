@@ -159,6 +159,43 @@ TEST(VirtualPipes, ADamBreakFrontTravelsNoFasterThanRitter) {
     EXPECT_GT(front, dam + 0.5 * std::sqrt(g * h0) * until) << "the water hardly left the dam";
 }
 
+TEST(VirtualPipes, FlowVectorsCancelWhereTheFlowIsSymmetricAndPointDownstream) {
+    // A mound of water centred on the middle vertex of a regular grid (centrally symmetric,
+    // as is the grid's triangulation) on a flat bed: the middle vertex sends as much one way
+    // as the opposite way, so its flow vector vanishes while its pipes carry water; away from
+    // it the water spreads outwards, and the vector points away from the middle.
+    const Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 20, 20);
+    VirtualPipes w(water_mesh_of(tin));
+    const WaterMesh& m = w.mesh();
+    const Vec2 middle{0.5, 0.5};
+    std::size_t centre = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        const double r = length(m.position[v] - middle);
+        if (r < length(m.position[centre] - middle)) centre = v;
+        if (r < 0.3) w.set_depth(v, 0.02 * (1.0 - r / 0.3));
+    }
+    // Five steps: the mound is slumping (after about 17 its middle runs dry as the water
+    // rings outwards).
+    for (int k = 0; k < 5; ++k)
+        w.step(w.stable_time_step());
+    const std::vector<Vec2> flow = w.flow_vectors();
+    double through_centre = 0.0;
+    for (const VirtualPipes::Pipe& p : w.pipes())
+        if (p.a == centre || p.b == centre) through_centre += std::abs(p.flux);
+    ASSERT_LT(length(m.position[centre] - middle), 1e-9);
+    ASSERT_GT(through_centre, 1e-6);
+    EXPECT_LE(length(flow[centre]), 1e-9 * through_centre);
+    std::size_t outward = 0, checked = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        const double r = length(m.position[v] - middle);
+        if (r < 0.1 || r > 0.25 || length(flow[v]) == 0.0) continue;
+        ++checked;
+        outward += dot(flow[v], m.position[v] - middle) > 0.0 ? 1 : 0;
+    }
+    ASSERT_GT(checked, 20u);
+    EXPECT_EQ(outward, checked) << "a spreading mound's flow points away from its middle";
+}
+
 TEST(VirtualPipes, DryTerrainCostsNothingAndBadInputIsRefused) {
     const Tin tin =
         Tin::regular_grid(Rect::from_size(1.0, 1.0), 10, 10, bumpy_bed, TinOptions{false});
