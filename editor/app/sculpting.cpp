@@ -198,6 +198,13 @@ LiveWaterFrame Sculpting::flow_water(Document& doc, const EditorSettings& settin
     if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle});
     if (shower_) water.add_shower({settings.water_shower, *shower_, settings.tool_radius});
     const LiveWaterFrame frame = water.advance(seconds, water_settings(settings), budget_ms);
+    // Ground the water left is simplified as an edit's is (the simplifier leaves wet ground
+    // alone): the detail added under the water goes once it is dry and planar again.
+    const std::vector<VertexId> dried = water.take_dried();
+    if (!dried.empty()) {
+        doc.context().simplifier.enqueue(dried);
+        kick_ = true;  // the erosion's settle runs the simplifier
+    }
     if (frame.written > 0 || frame.wetted > 0 || frame.eroded > 0) {
         if (open_level_.empty()) open_level_ = "water";
         // Wet sand stands at another angle, and the banks a stream cut may be too steep.

@@ -52,6 +52,12 @@ bool LiveWater::follow_terrain() {
     return touched;
 }
 
+std::vector<VertexId> LiveWater::take_dried() {
+    std::vector<VertexId> out;
+    out.swap(dried_);
+    return out;
+}
+
 void LiveWater::add_shower(const Rain& shower) {
     check(std::isfinite(shower.mm_per_hour) && shower.mm_per_hour >= 0.0,
           "a shower's rate must be finite and >= 0");
@@ -83,7 +89,9 @@ void LiveWater::rebuild(const LiveWaterSettings& settings) {
 }
 
 bool LiveWater::idle(const LiveWaterSettings& settings) const {
-    return (!wet_ || resting_ || !settings.flowing) && nozzles_.empty() && showers_.empty() &&
+    // Evaporation takes water at rest or standing still too (and a terrain it dried is dry).
+    const bool still = (resting_ || !settings.flowing) && settings.evaporation_mm_per_hour == 0.0;
+    return (!wet_ || still) && nozzles_.empty() && showers_.empty() &&
            settings.rain_mm_per_hour == 0.0;
 }
 
@@ -303,6 +311,7 @@ void LiveWater::write_back(const LiveWaterSettings& settings, LiveWaterFrame& fr
             ++frame.wetted;
         }
         if (va.water_depth[v] == depth) continue;
+        if (depth == 0.0) dried_.push_back(id);
         fastest = std::max(fastest, std::abs(va.water_depth[v] - depth));
         tin_.set_water_depth(id, depth);
         ++frame.written;
@@ -319,6 +328,7 @@ double LiveWater::clear() {
         if (!va.alive[v] || va.water_depth[v] == 0.0) continue;
         volume += va.lumped_area[v] * va.water_depth[v];
         tin_.set_water_depth(VertexId{static_cast<std::uint32_t>(v)}, 0.0);
+        dried_.push_back(VertexId{static_cast<std::uint32_t>(v)});
     }
     follow_terrain();
     if (pipes_) {

@@ -102,7 +102,8 @@ class LiveWater {
     /// settings.
     LiveWaterFrame advance(double seconds, const LiveWaterSettings& settings, double budget_ms);
     /// Whether advance() would do nothing, as of the last advance() (an edit since is seen by
-    /// the next one): no source, and the terrain dry, its water at rest or not flowing.
+    /// the next one): no source, and the terrain dry, or its water at rest or not flowing with
+    /// no evaporation.
     bool idle(const LiveWaterSettings& settings) const;
     /// The water has come to rest (and stays so until a source or an edit disturbs it).
     bool resting() const { return resting_; }
@@ -122,6 +123,10 @@ class LiveWater {
     /// m³ of sand the water holds now (0 without erosion): the terrain's volume plus this is
     /// what erosion by water conserves.
     double suspended() const { return sediment_ ? sediment_->suspended() : 0.0; }
+    /// The vertices the water left since the last call (held water, now dry): for the
+    /// simplifier, which leaves wet ground alone, so that the detail added under the water
+    /// goes once the ground is dry and planar again.
+    std::vector<VertexId> take_dried();
 
   private:
     /// Takes the journal's changes: notes a re-triangulation, water that appeared, and hands
@@ -165,6 +170,7 @@ class LiveWater {
     std::optional<SedimentTransport> sediment_;  ///< while eroding, on pipes_'s mesh
     std::vector<float> sediment_share_;          ///< per vertex id, m³ of sand per m³ of water
     std::vector<std::uint8_t> relabelled_;       ///< per vertex id: took a laid material
+    std::vector<VertexId> dried_;                ///< since the last take_dried()
     double label_depth_ = LiveWaterSettings{}.label_depth;  ///< the last advance()'s
 };
 

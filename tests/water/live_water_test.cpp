@@ -14,6 +14,7 @@
 #include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "tin/vertex_arrays.hpp"
+#include "tools/simplifier.hpp"
 #include "water/live_water.hpp"
 
 namespace sandtin {
@@ -362,6 +363,49 @@ TEST(LiveWater, DetailSplitsTheLongWetEdgesAndKeepsTheWaterAndTheSand) {
     for (int i = 0; i < 5; ++i)
         EXPECT_EQ(still.advance(1.0 / 60.0, {}, 1e9).refined, 0u);
     EXPECT_EQ(plain.vertex_count(), before);
+}
+
+TEST(LiveWater, DetailGoesOnceTheGroundIsDryAgain) {
+    // Flat ground under a sheet of water, refined by the detail; the water evaporates; the
+    // vertices it left are handed to the simplifier (take_dried), which now takes the
+    // interior ones it refused while they were wet. Border vertices stay, as they always do.
+    Tin tin = Tin::regular_grid(Rect::from_size(1.0, 1.0), 8, 8);
+    const std::size_t vertices0 = tin.vertex_count();
+    const VertexArrays& va = tin.vertices();
+    for (std::uint32_t v = 0; v < va.size(); ++v)
+        tin.set_water_depth(VertexId{v}, 0.002);
+    LiveWater water(tin);
+    LiveWaterSettings detailed;
+    detailed.detail = 0.06;
+    for (int i = 0; i < 10; ++i)
+        water.advance(1.0 / 60.0, detailed, 1e9);
+    const std::size_t refined = tin.vertex_count() - vertices0;
+    ASSERT_GT(refined, 50u);
+    // While wet, the simplifier leaves the refined ground alone.
+    Simplifier simplifier;
+    for (const VertexId v : test::live_ids(tin))
+        simplifier.enqueue(v);
+    EXPECT_EQ(simplifier.run(tin, {}).removed, 0u);
+    // A hot wind dries it within seconds.
+    LiveWaterSettings drying = detailed;
+    drying.evaporation_mm_per_hour = 20000.0;
+    for (int i = 0; i < 120 && test::water_volume(tin) > 0.0; ++i)
+        water.advance(0.1, drying, 1e9);
+    ASSERT_EQ(test::water_volume(tin), 0.0);
+    const std::vector<VertexId> dried = water.take_dried();
+    EXPECT_GE(dried.size(), tin.vertex_count()) << "every vertex held water and dried";
+    EXPECT_TRUE(water.take_dried().empty());
+    simplifier.enqueue(dried);
+    const SimplifyReport r = simplifier.run(tin, {});
+    EXPECT_GT(r.removed, 0u);
+    std::size_t interior_left = 0;
+    for (const VertexId v : test::live_ids(tin)) {
+        const Vec2 p = tin.position(v);
+        const bool border = p.x == 0.0 || p.x == 1.0 || p.y == 0.0 || p.y == 1.0;
+        interior_left += border ? 0 : 1;
+    }
+    EXPECT_EQ(interior_left, 0u) << "flat dry ground keeps interior vertices";
+    EXPECT_TRUE(tin.check_valid().ok());
 }
 
 TEST(LiveWater, BadArgumentsAreRefused) {
