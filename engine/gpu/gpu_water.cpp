@@ -16,7 +16,6 @@ namespace sandtin::gpu {
 namespace {
 
 // Must match shaders/water_common.glsl.
-constexpr uint32_t kWaterControlWords = 8;
 constexpr uint32_t kLimitWord = 0, kWetWord = 1, kFlowingWord = 2, kLimitedWord = 3,
                    kDeepestWord = 4;
 constexpr uint32_t kWaterBindings = 15;
@@ -52,9 +51,9 @@ GpuWater::GpuWater(TinMirror& mirror, GpuWaterSettings settings)
         !(settings_.friction >= 0.0) || !std::isfinite(settings_.friction) ||
         !(settings_.courant > 0.0) || !(settings_.courant <= 1.0))
         throw GpuError("GpuWater: gravity must be > 0, friction >= 0 and courant in (0, 1]");
-    control_ = Buffer(context_, kWaterControlWords * 4, kWaterStorage, MemoryUse::Device);
-    control_host_ = Buffer(context_, kWaterControlWords * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                           MemoryUse::Readback);
+    control_ = Buffer(context_, kControlWords * 4, kWaterStorage, MemoryUse::Device);
+    control_host_ =
+        Buffer(context_, kControlWords * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback);
     follow_mirror();  // the buffers exist from here on: read_depths() and volume() work at once
 }
 
@@ -186,19 +185,20 @@ void GpuWater::record_measure(VkCommandBuffer cb, const Push& pc) {
     ++dispatches_total_;
     memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    const VkBufferCopy all{0, 0, kWaterControlWords * 4};
+    const VkBufferCopy all{0, 0, kControlWords * 4};
     vkCmdCopyBuffer(cb, control_.get(), control_host_.get(), 1, &all);
     host_read_barrier(cb);
 }
 
-void GpuWater::take_measure() {
+std::array<uint32_t, GpuWater::kControlWords> GpuWater::take_measure() {
     control_host_.invalidate(context_);
-    std::array<uint32_t, kWaterControlWords> words{};
+    std::array<uint32_t, kControlWords> words{};
     std::memcpy(words.data(), control_host_.mapped(), sizeof(words));
     limit_ = static_cast<double>(std::bit_cast<float>(words[kLimitWord]));
     deepest_ = static_cast<double>(std::bit_cast<float>(words[kDeepestWord]));
     active_ = words[kWetWord] > 0 || words[kFlowingWord] > 0;
     measured_ = true;
+    return words;
 }
 
 double GpuWater::stable_time_step() {
@@ -238,9 +238,7 @@ GpuWaterRun GpuWater::run(int steps, double dt) {
         record_measure(cb, push(dt));
     });
     dispatches_total_ += 2 * static_cast<uint64_t>(steps);
-    take_measure();
-    std::array<uint32_t, kWaterControlWords> words{};
-    std::memcpy(words.data(), control_host_.mapped(), sizeof(words));
+    const std::array<uint32_t, kControlWords> words = take_measure();
     run.steps = steps;
     run.dispatches = 2 * static_cast<uint64_t>(steps) + 1;
     run.wet = words[kWetWord];

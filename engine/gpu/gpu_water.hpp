@@ -21,6 +21,7 @@
 // the CPU put down wakes a dry GPU water.
 // Units: metres, seconds, m³.
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -101,7 +102,10 @@ class GpuWater {
     void follow_mirror();
     void ensure_buffers();
     void record_measure(VkCommandBuffer cb, const Push& push);
-    void take_measure();
+    static constexpr uint32_t kControlWords = 8;  ///< shaders/water_common.glsl's C_* words
+    /// Reads the control words the last submission copied back and takes the limit, the
+    /// deepest water and whether anything is wet or flowing from them.
+    std::array<uint32_t, kControlWords> take_measure();
     Push push(double dt) const;
 
     VulkanContext& context_;

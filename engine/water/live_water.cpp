@@ -246,22 +246,16 @@ std::size_t LiveWater::refine_wet_edges(double max_length) {
         if (splits.size() == kMaxWaterSplits) break;
     }
     if (splits.empty()) return 0;
-    const auto water_volume = [&] {
-        double sum = 0.0;
-        for (std::size_t v = 0; v < va.size(); ++v)
-            if (va.alive[v]) sum += va.lumped_area[v] * va.water_depth[v];
-        return sum;
-    };
     // The new vertices' depths are interpolated along their edges, which keeps the water's
     // volume until the triangulation around them flips; what the flips changed goes onto the
     // new vertices in proportion to their areas.
-    const double before = water_volume();
+    const double before = measure_water(tin_).volume;
     std::vector<VertexId> born = tin_.split_edges(splits, VolumePolicy::Conserve);
     std::erase_if(born, [](VertexId v) { return !v.valid(); });
     double area = 0.0;
     for (const VertexId v : born)
         area += va.lumped_area[v.index()];
-    const double missing = before - water_volume();
+    const double missing = before - measure_water(tin_).volume;
     if (area > 0.0 && missing != 0.0) {
         for (const VertexId v : born)
             tin_.set_water_depth(v, std::max(0.0, va.water_depth[v.index()] + missing / area));
