@@ -340,7 +340,9 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
                       {"wet_vertices", w.wet_vertices},
                       {"max_depth_m", w.max_depth},
                       {"resting", doc_.water().resting()},
-                      {"sand_carried_m3", doc_.water().suspended()}};
+                      {"sand_carried_m3", doc_.water().suspended()},
+                      // What the last frame drew the water's surface on (0: no water pass).
+                      {"surface_triangles", window_->renderer().water_triangles_drawn()}};
     }
     s["submissions"] = window_->swapchain().submissions();
     s["bytes_uploaded"] = window_->renderer().bytes_uploaded();

@@ -230,7 +230,10 @@ void App::draw_terrain(const Mat4& vp) {
     push.contrast[1] = static_cast<float>(view_->contrast_high());
     push.contrast[2] = static_cast<float>(1.0 / domain.width());
     push.contrast[3] = static_cast<float>(1.0 / domain.height());
-    renderer.draw(swapchain.command_buffer(), push, swapchain.extent(), view_->mesh());
+    const Vec3 e = camera_.eye();
+    const float eye[3] = {static_cast<float>(e.x), static_cast<float>(e.y),
+                          static_cast<float>(e.z)};
+    renderer.draw(swapchain.command_buffer(), push, eye, swapchain.extent(), view_->mesh());
     if (cursor_ && kTools[settings_.tool].kind == ToolKind::Stamp) {
         // Stamp tools: the footprint's inner contour on the terrain, turned as the next stamp
         // will be.

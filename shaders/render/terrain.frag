@@ -2,7 +2,8 @@
 // Terrain shading: the baked normal map (smooth normals of the TIN, sampled by world xy, so
 // long edges show no facets) perturbed by a procedural sand-grain detail normal whose texture coordinates slide with the material (texture-sliding offsets), the
 // material albedo, a contrast curve (histogram stretch of the height range, seed 004 §5.2.4),
-// optional overlays and the tool cursor ring. The wireframe is a separate line pass.
+// optional overlays and the tool cursor ring. The wireframe is a separate line pass, and
+// the water a surface drawn over this one (water.vert, water.frag).
 
 layout(push_constant) uniform Push {
     mat4 view_projection;
@@ -17,9 +18,6 @@ layout(location = 1) in vec3 v_normal;
 layout(location = 2) in vec3 v_albedo;
 layout(location = 3) in vec3 v_overlay;  // x: tan(repose), y: sand thickness, z: active
 layout(location = 4) in vec2 v_slide;
-layout(location = 5) in float v_water;  // water depth (m), linear across the face
-layout(location = 6) in float v_speed;  // water flow speed (m/s), linear across the face
-layout(location = 7) in float v_sediment;  // sand per volume of water, linear across the face
 
 layout(location = 0) out vec4 out_colour;
 
@@ -81,34 +79,6 @@ void main() {
     float curve = t * t * (3.0 - 2.0 * t);
     colour *= mix(1.0, 0.6 + 0.6 * curve, pc.light_dir.w);
 
-    // Water standing on the sand, seen from above: the bed through the water, dimmed and
-    // tinted as light is absorbed on its way down and back (Beer-Lambert, e-folding at 2 cm
-    // for blue-green light in sandy water), under a faint sky reflection. A face's dry corner
-    // has depth 0, so the shore fades out along the faces that reach it.
-    if (v_water > 0.0) {
-        float absorbed = 1.0 - exp(-v_water / 0.02);
-        vec3 through = colour * vec3(0.62, 0.78, 0.84);
-        colour = mix(through, vec3(0.03, 0.16, 0.24), absorbed) + vec3(0.03, 0.05, 0.07);
-    }
-    if ((int(pc.overlays.x + 0.5) & 2) != 0) {
-        // Water depth overlay: 0 .. 5 cm from pale cyan to deep blue, dry ground untouched.
-        float d = clamp(v_water / 0.05, 0.0, 1.0);
-        if (v_water > 0.0) colour = mix(colour, mix(vec3(0.6, 0.95, 1.0), vec3(0.0, 0.1, 0.6), d), 0.7);
-    }
-    if ((int(pc.overlays.x + 0.5) & 4) != 0 && v_water > 0.0) {
-        // Water speed overlay on a log scale, as speeds span orders of magnitude: 1 mm/s or
-        // less dark blue, then cyan (3 cm/s), yellow, and red at 1 m/s or more.
-        float s = clamp(log(max(v_speed, 1e-4) / 0.001) / log(1000.0), 0.0, 1.0);
-        vec3 ramp = s < 0.5 ? mix(vec3(0.05, 0.1, 0.45), vec3(0.1, 0.85, 0.9), s * 2.0)
-                            : mix(vec3(0.95, 0.9, 0.1), vec3(0.9, 0.1, 0.05), s * 2.0 - 1.0);
-        colour = mix(colour, ramp, 0.75);
-    }
-    if ((int(pc.overlays.x + 0.5) & 8) != 0 && v_water > 0.0) {
-        // Sediment overlay: clear water pale blue, turning muddy brown as the sand it carries
-        // reaches 5 % of its volume (the law allows 30 %: a slurry, rarely reached).
-        float c = clamp(v_sediment / 0.05, 0.0, 1.0);
-        colour = mix(colour, mix(vec3(0.55, 0.8, 0.95), vec3(0.45, 0.25, 0.08), c), 0.75);
-    }
     if (pc.overlays.y > 0.5 && v_overlay.z > 0.5) colour = mix(colour, vec3(1.0, 0.2, 0.1), 0.6);
     if (pc.overlays.z > 0.5) {
         float s = clamp(v_overlay.y / 0.05, 0.0, 1.0);  // 0 .. 5 cm of sand

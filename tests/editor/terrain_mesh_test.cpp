@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -189,6 +190,130 @@ TEST(TerrainMesh, AStampOnALargeTerrainUploadsATinyFraction) {
     const MeshUpdate u = mesh.update(tin, tin.take_changes());
     EXPECT_GT(u.bytes(), 0u);
     EXPECT_LT(u.bytes(), all.bytes() / 100) << u.bytes() << " of " << all.bytes();
+}
+
+TEST(TerrainMesh, ALakesSurfaceIsLevelIntoItsBanksWhichHideItAboveTheWaterline) {
+    // A bowl z = |p - c|^2 holding a lake whose surface is at 0.04 m: wet where the bed is
+    // below it. Every vertex a water triangle touches must carry the lake's level where the
+    // bank rises above it (the bank, drawn first, then hides the surface), and the bed plus its
+    // water where it is wet: the level again. Away from the water the surface is the height.
+    const double level = 0.04;
+    Tin tin = Tin::regular_grid(Rect::from_size(1, 1), 30, 30, [](Vec2 p) {
+        return length_squared(p - Vec2{0.5, 0.5});
+    });
+    for (std::uint32_t v = 0; v < tin.vertex_capacity(); ++v) {
+        const double h = tin.vertices().height[v];
+        if (h < level) tin.set_water_depth(VertexId{v}, level - h);
+    }
+    TerrainMesh mesh(MaterialTable::presets());
+    mesh.rebuild(tin);
+    std::vector<std::uint8_t> on_water(tin.vertex_capacity(), 0);
+    for (std::uint32_t i : mesh.water_indices())
+        on_water[i] = 1;
+    int banks = 0;
+    for (std::uint32_t v = 0; v < tin.vertex_capacity(); ++v) {
+        const RenderVertex& r = mesh.vertices()[v];
+        const double h = tin.vertices().height[v];
+        if (on_water[v]) {
+            EXPECT_NEAR(r.surface, level, 1e-6) << "vertex " << v;
+            banks += h > level ? 1 : 0;
+        } else {
+            EXPECT_EQ(r.surface, static_cast<float>(h)) << "vertex " << v;
+        }
+    }
+    EXPECT_GT(banks, 20);  // the lake's rim of dry vertices
+}
+
+/// The oracle for the water surface's triangles: every live slot with a wet corner, as sorted
+/// corner triples.
+std::vector<std::array<std::uint32_t, 3>> wet_slots(const Tin& tin) {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    const VertexArrays& va = tin.vertices();
+    for (TriangleSlot s = 0; s < tin.slot_capacity(); ++s) {
+        const auto c = tin.slot_triangle(s);
+        if (!c[0].valid()) continue;
+        bool wet = false;
+        for (VertexId v : c)
+            wet = wet || va.water_depth[v.index()] > 0.0;
+        if (!wet) continue;
+        std::array<std::uint32_t, 3> t{c[0].value, c[1].value, c[2].value};
+        std::sort(t.begin(), t.end());
+        out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+/// What the mesh draws the water on, as sorted triples (duplicates kept: each must be once).
+std::vector<std::array<std::uint32_t, 3>> drawn_wet(const TerrainMesh& mesh) {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    const auto& w = mesh.water_indices();
+    EXPECT_EQ(w.size() % 3, 0u);
+    for (std::size_t k = 0; k + 2 < w.size(); k += 3) {
+        std::array<std::uint32_t, 3> t{w[k], w[k + 1], w[k + 2]};
+        std::sort(t.begin(), t.end());
+        out.push_back(t);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(TerrainMesh, TheWaterSurfaceIsEveryTriangleWithAWetCornerOnceThroughEveryKindOfEdit) {
+    std::mt19937 rng(40);
+    std::uniform_real_distribution<double> u(0.02, 0.98);
+    Tin tin =
+        Tin::random_points(Rect::from_size(1, 1), 400, 40, [](Vec2 p) { return 0.01 * p.x * p.y; });
+    TerrainMesh mesh(MaterialTable::presets());
+    mesh.rebuild(tin);
+    tin.take_changes();
+    EXPECT_TRUE(mesh.water_indices().empty());  // a dry terrain has no water surface
+    std::vector<VertexId> live;
+    auto refresh_live = [&] {
+        live.clear();
+        for (std::uint32_t v = 0; v < tin.vertex_capacity(); ++v)
+            if (tin.is_alive(VertexId{v})) live.push_back(VertexId{v});
+    };
+    refresh_live();
+    // A pond on a disc, then random flips wet <-> dry, then insertions and removals under the
+    // water, each checked against the slots.
+    for (VertexId v : live) {
+        const Vec2 p = tin.position(v);
+        if (length(p - Vec2{0.4, 0.5}) < 0.2) tin.set_water_depth(v, 0.01);
+    }
+    MeshUpdate up = mesh.update(tin, tin.take_changes());
+    EXPECT_TRUE(up.water_changed);
+    ASSERT_FALSE(wet_slots(tin).empty());
+    EXPECT_EQ(drawn_wet(mesh), wet_slots(tin));
+    for (int round = 0; round < 30; ++round) {
+        refresh_live();
+        for (int k = 0; k < 15; ++k) {
+            const VertexId v = live[rng() % live.size()];
+            tin.set_water_depth(v, tin.vertices().water_depth[v.index()] > 0.0 ? 0.0 : 0.003);
+        }
+        if (round % 3 == 1) {
+            for (int k = 0; k < 5; ++k)
+                tin.insert_point({u(rng), u(rng)}, 0.005);
+        }
+        if (round % 3 == 2) {
+            for (int k = 0; k < 5; ++k)
+                tin.remove_vertex(live[rng() % live.size()]);
+        }
+        mesh.update(tin, tin.take_changes());
+        EXPECT_EQ(drawn_wet(mesh), wet_slots(tin)) << "round " << round;
+    }
+    // Dried out: nothing left to draw, and a rebuild agrees with the updates.
+    refresh_live();
+    for (VertexId v : live)
+        tin.set_water_depth(v, 0.0);
+    up = mesh.update(tin, tin.take_changes());
+    EXPECT_TRUE(up.water_changed);
+    EXPECT_TRUE(mesh.water_indices().empty());
+    tin.set_water_depth(live[7], 0.02);
+    mesh.update(tin, tin.take_changes());
+    const auto updated = drawn_wet(mesh);
+    mesh.rebuild(tin);
+    EXPECT_EQ(drawn_wet(mesh), updated);
+    EXPECT_EQ(updated, wet_slots(tin));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace sandtin::render {
@@ -17,7 +18,10 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     RenderVertex& out = vertices_[id];
     out = RenderVertex{};
     const VertexArrays& va = tin.vertices();
-    if (!va.alive[id]) return;
+    if (!va.alive[id]) {
+        wet_.forget(id);
+        return;
+    }
     const Vec2 origin = tin.domain().centre();
     const Vec2 p = va.position[id];
     const double h = va.height[id];
@@ -57,6 +61,17 @@ void TerrainMesh::compute_vertex(const Tin& tin, std::uint32_t id, std::vector<V
     out.water = static_cast<float>(va.water_depth[id]);
     out.speed = id < speed_.size() && out.water > 0.0f ? speed_[id] : 0.0f;
     out.sediment = id < sediment_.size() && out.water > 0.0f ? sediment_[id] : 0.0f;
+    double surface = h + va.water_depth[id];
+    if (!(va.water_depth[id] > 0.0)) {
+        double level = -std::numeric_limits<double>::infinity();
+        for (VertexId w : ring)
+            if (va.water_depth[w.index()] > 0.0)
+                level = std::max(level, va.height[w.index()] + va.water_depth[w.index()]);
+        surface = std::min(h, level);
+        if (level == -std::numeric_limits<double>::infinity()) surface = h;
+    }
+    out.surface = static_cast<float>(surface);
+    wet_.refan(tin, id, ring);
 }
 
 namespace {
@@ -156,15 +171,18 @@ void TerrainMesh::collect_constrained(const Tin& tin) {
 MeshUpdate TerrainMesh::rebuild(const Tin& tin) {
     vertices_.assign(tin.vertex_capacity(), RenderVertex{});
     indices_.assign(std::size_t{tin.slot_capacity()} * 3, 0u);
+    wet_.clear();
     std::vector<VertexId> ring;
     for (std::uint32_t i = 0; i < tin.vertex_capacity(); ++i)
         compute_vertex(tin, i, ring);
     for (TriangleSlot s = 0; s < tin.slot_capacity(); ++s)
         write_slot(tin, s);
     collect_constrained(tin);
+    wet_.settle();
     MeshUpdate u;
     u.resized = true;
     u.edges_changed = true;
+    u.water_changed = true;
     if (!vertices_.empty()) u.vertices.push_back({0, static_cast<std::uint32_t>(vertices_.size())});
     if (tin.slot_capacity() > 0) u.slots.push_back({0, tin.slot_capacity()});
     return u;
@@ -223,10 +241,13 @@ MeshUpdate TerrainMesh::update(const Tin& tin, const ChangeSet& changes,
                 add(n.value);
         }
     }
+    const std::uint64_t water_before = wet_.version();
     for (std::uint32_t id : dirty) {
         compute_vertex(tin, id, ring);
         mark_[id] = 0;
     }
+    wet_.settle();
+    u.water_changed = wet_.version() != water_before;
     u.vertices = merge_into_ranges(std::move(dirty));
     u.slots = changes.triangles;
     if (!changes.triangles.empty()) {

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "gpu/render/wet_triangles.hpp"
 #include "physics/material.hpp"
 #include "tin/tin.hpp"
 
@@ -29,8 +30,14 @@ struct RenderVertex {
     float water;     ///< metres of water standing on the vertex (VertexArrays::water_depth)
     float speed;     ///< m/s: how fast that water flows (set_water_speed), for the Speed overlay
     float sediment;  ///< m³ of sand per m³ of that water (set_water_sediment): Sediment overlay
+    /// Metres: the water's surface here, for the surface drawn over the terrain. A wet vertex:
+    /// its height plus its water. A dry one: the highest surface of its wet neighbours, but
+    /// never above its own height, so a shore face's surface runs level into the bank and the
+    /// bank, drawn first, hides what lies under it: the waterline is where the water's plane
+    /// meets the sand. (On dry ground with no wet neighbour: its height.)
+    float surface;
 };
-static_assert(sizeof(RenderVertex) == 17 * sizeof(float));
+static_assert(sizeof(RenderVertex) == 18 * sizeof(float));
 
 /// What an update changed, as ranges into vertices() and (per slot) indices().
 struct MeshUpdate {
@@ -40,6 +47,7 @@ struct MeshUpdate {
     /// what was recomputed, not the new tail).
     bool resized = false;
     bool edges_changed = false;   ///< constrained_edges() changed
+    bool water_changed = false;   ///< water_indices() changed
     std::uint64_t bytes() const;  ///< bytes to upload for these ranges
 };
 
@@ -74,6 +82,11 @@ class TerrainMesh {
     const std::vector<std::uint32_t>& indices() const { return indices_; }
     /// Constrained edges as a line list (pairs of VertexIds).
     const std::vector<std::uint32_t>& constrained_edges() const { return constrained_; }
+    /// The triangles with a wet corner, each once (three VertexIds each): what the water
+    /// surface is drawn on. Empty on a dry terrain.
+    const std::vector<std::uint32_t>& water_indices() const { return wet_.indices(); }
+    /// Changes whenever water_indices() does.
+    std::uint64_t water_version() const { return wet_.version(); }
     /// Every triangle edge once, as a line list (for the wireframe overlay; built on demand).
     std::vector<std::uint32_t> all_edges() const;
 
@@ -91,6 +104,7 @@ class TerrainMesh {
     std::vector<std::uint32_t> indices_;
     std::vector<std::uint32_t> constrained_;
     std::vector<std::uint8_t> mark_;
+    WetTriangles wet_;
 };
 
 }  // namespace sandtin::render

@@ -9,6 +9,8 @@
 #include "lines_vert.spv.h"
 #include "terrain_frag.spv.h"
 #include "terrain_vert.spv.h"
+#include "water_frag.spv.h"
+#include "water_vert.spv.h"
 
 namespace sandtin::render {
 
@@ -18,6 +20,19 @@ struct LinesPush {
     float view_projection[16];
     float colour[4];
 };
+
+/// Push constants of water.vert / water.frag.
+struct WaterPush {
+    float view_projection[16];
+    float light_dir[4];  ///< xyz towards the light
+    float eye[4];        ///< xyz the camera, metres, domain-centre relative
+    float overlays[4];   ///< x: TerrainPush::overlays' bits
+    float unused[4];
+};
+static_assert(sizeof(WaterPush) == 128);
+
+/// RenderVertex attributes by shader location.
+constexpr std::uint32_t kPosition = 1u << 0, kTerrainAttributes = 0x1f, kWaterAttributes = 0x1e1;
 
 gpu::UniqueShaderModule make_module(VkDevice device, const std::uint32_t* code, std::size_t bytes) {
     VkShaderModuleCreateInfo info{};
@@ -47,10 +62,12 @@ gpu::UniquePipelineLayout make_layout(VkDevice device, std::uint32_t push_bytes,
 struct PipelineDesc {
     std::span<const std::uint32_t> vert;
     std::span<const std::uint32_t> frag;
-    std::uint32_t attribute_count;  ///< leading attributes of RenderVertex the shader reads
+    std::uint32_t attribute_mask;  ///< RenderVertex attributes the shader reads, by location
     VkPrimitiveTopology topology;
     /// LINE draws the edges of triangles (the wireframe from the triangles' own index buffer).
     VkPolygonMode polygon_mode = VK_POLYGON_MODE_FILL;
+    /// Blended over what is drawn (premultiplied alpha), without writing depth.
+    bool translucent = false;
 };
 
 gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipelineLayout layout,
@@ -65,7 +82,7 @@ gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipeline
         stages[i].pName = "main";
     }
     VkVertexInputBindingDescription binding{0, sizeof(RenderVertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    const VkVertexInputAttributeDescription attributes[] = {
+    const VkVertexInputAttributeDescription all_attributes[] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, position)},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, normal)},
         {2, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(RenderVertex, albedo)},
@@ -74,13 +91,17 @@ gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipeline
         {5, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, water)},
         {6, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, speed)},
         {7, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, sediment)},
+        {8, 0, VK_FORMAT_R32_SFLOAT, offsetof(RenderVertex, surface)},
     };
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    for (const VkVertexInputAttributeDescription& a : all_attributes)
+        if (d.attribute_mask & (1u << a.location)) attributes.push_back(a);
     VkPipelineVertexInputStateCreateInfo input{};
     input.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO;
     input.vertexBindingDescriptionCount = 1;
     input.pVertexBindingDescriptions = &binding;
-    input.vertexAttributeDescriptionCount = d.attribute_count;
-    input.pVertexAttributeDescriptions = attributes;
+    input.vertexAttributeDescriptionCount = static_cast<std::uint32_t>(attributes.size());
+    input.pVertexAttributeDescriptions = attributes.data();
     VkPipelineInputAssemblyStateCreateInfo assembly{};
     assembly.sType = VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO;
     assembly.topology = d.topology;
@@ -100,12 +121,21 @@ gpu::UniquePipeline make_pipeline(VkDevice device, VkRenderPass pass, VkPipeline
     VkPipelineDepthStencilStateCreateInfo depth{};
     depth.sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO;
     depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable =
-        d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST && d.polygon_mode == VK_POLYGON_MODE_FILL;
+    depth.depthWriteEnable = d.topology == VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST &&
+                             d.polygon_mode == VK_POLYGON_MODE_FILL && !d.translucent;
     depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
     VkPipelineColorBlendAttachmentState blend_attachment{};
     blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                       VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (d.translucent) {
+        blend_attachment.blendEnable = VK_TRUE;
+        blend_attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend_attachment.colorBlendOp = VK_BLEND_OP_ADD;
+        blend_attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+        blend_attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        blend_attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
     VkPipelineColorBlendStateCreateInfo blend{};
     blend.sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO;
     blend.attachmentCount = 1;
@@ -175,18 +205,23 @@ TerrainRenderer::TerrainRenderer(const gpu::VulkanContext& context, VkRenderPass
     use_vertex_normals();  // until a baked map is set
     terrain_layout_ = make_layout(device, sizeof(TerrainPush), set_layout);
     terrain_pipeline_ = make_pipeline(device, render_pass, terrain_layout_.get(),
-                                      {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag), 8,
-                                       VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST});
+                                      {spirv(kSpv_terrain_vert), spirv(kSpv_terrain_frag),
+                                       kTerrainAttributes, VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST});
+    water_layout_ = make_layout(device, sizeof(WaterPush));
+    water_pipeline_ =
+        make_pipeline(device, render_pass, water_layout_.get(),
+                      {spirv(kSpv_water_vert), spirv(kSpv_water_frag), kWaterAttributes,
+                       VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_FILL, true});
     lines_layout_ = make_layout(device, sizeof(LinesPush));
-    lines_pipeline_ = make_pipeline(
-        device, render_pass, lines_layout_.get(),
-        {spirv(kSpv_lines_vert), spirv(kSpv_lines_frag), 1, VK_PRIMITIVE_TOPOLOGY_LINE_LIST});
+    lines_pipeline_ = make_pipeline(device, render_pass, lines_layout_.get(),
+                                    {spirv(kSpv_lines_vert), spirv(kSpv_lines_frag), kPosition,
+                                     VK_PRIMITIVE_TOPOLOGY_LINE_LIST});
     // The wireframe as the triangles' outlines, from the index buffer the surface is drawn
     // from: nothing to build on the CPU (a list of every edge took 0.9 s at 10^6 vertices, each
     // time the triangles changed). Each inner edge is drawn twice, on the same pixels.
     if (context.features().fill_mode_non_solid) {
         wire_pipeline_ = make_pipeline(device, render_pass, lines_layout_.get(),
-                                       {spirv(kSpv_lines_vert), spirv(kSpv_lines_frag), 1,
+                                       {spirv(kSpv_lines_vert), spirv(kSpv_lines_frag), kPosition,
                                         VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_POLYGON_MODE_LINE});
     }
 }
@@ -203,6 +238,9 @@ void TerrainRenderer::upload(const TerrainMesh& mesh, const MeshUpdate& update) 
     const VkDeviceSize ibytes = idx.size() * sizeof(std::uint32_t);
     const bool fits = mesh_.vertices && mesh_.vertices.size() >= vbytes && mesh_.indices &&
                       mesh_.indices.size() >= ibytes;
+    // A rebuilt mesh may be another object whose versions restarted: the water list is
+    // copied again at the next draw.
+    if (update.resized || update.water_changed) water_version_ = ~std::uint64_t{0};
     if (!fits || update.resized) {
         bytes_uploaded_ += write_whole_mesh(context_, mesh, mesh_);
         wire_stale_ = true;
@@ -238,6 +276,7 @@ void TerrainRenderer::adopt(MeshBuffers buffers, const TerrainMesh& mesh) {
     wire_ = gpu::Buffer();
     wire_count_ = 0;
     wire_stale_ = true;
+    water_version_ = ~std::uint64_t{0};  // another mesh: its versions say nothing of ours
 }
 
 void TerrainRenderer::set_normal_map(VkImageView view, VkSampler sampler) {
@@ -258,6 +297,9 @@ void TerrainRenderer::use_vertex_normals() {
 
 void TerrainRenderer::drop_mesh() {
     mesh_ = MeshBuffers{};
+    water_ = gpu::Buffer();
+    water_count_ = 0;
+    water_version_ = ~std::uint64_t{0};
     wire_ = gpu::Buffer();
     wire_count_ = 0;
     wire_stale_ = true;
@@ -274,8 +316,9 @@ std::span<const std::byte> TerrainRenderer::drawn_index_bytes() const {
             std::size_t{mesh_.index_count} * sizeof(std::uint32_t)};
 }
 
-void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
-                           const TerrainMesh& mesh) {
+void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, const float eye[3],
+                           VkExtent2D extent, const TerrainMesh& mesh) {
+    water_drawn_ = 0;
     if (mesh_.index_count == 0) return;
     VkViewport viewport{
         0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
@@ -294,6 +337,7 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
                        sizeof(TerrainPush), &push);
     vkCmdBindIndexBuffer(cb, mesh_.indices.get(), 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cb, mesh_.index_count, 1, 0, 0, 0);
+    draw_water(cb, push, eye, mesh);
 
     // The wireframe passes cost nothing when off.
     if (!has_overlay_bit(push.overlays[0], kOverlayWireframe)) return;
@@ -344,6 +388,37 @@ void TerrainRenderer::draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent
     }
 }
 
+void TerrainRenderer::draw_water(VkCommandBuffer cb, const TerrainPush& push, const float eye[3],
+                                 const TerrainMesh& mesh) {
+    if (water_version_ != mesh.water_version()) {
+        // Copied between frames, as the wireframe's edges are: the caller waited for the
+        // previous frame in upload(). O(wet triangles), and only when the wet set changed.
+        const std::vector<std::uint32_t>& wet = mesh.water_indices();
+        water_count_ = static_cast<std::uint32_t>(wet.size());
+        if (!wet.empty()) {
+            ensure(water_, wet.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+            std::memcpy(water_.mapped(), wet.data(), wet.size() * sizeof(std::uint32_t));
+            water_.flush(context_);
+            bytes_uploaded_ += wet.size() * sizeof(std::uint32_t);
+        }
+        water_version_ = mesh.water_version();
+    }
+    if (water_count_ == 0) return;  // a dry terrain records no water pass
+    WaterPush wp{};
+    std::memcpy(wp.view_projection, push.view_projection, sizeof(wp.view_projection));
+    std::memcpy(wp.light_dir, push.light_dir, sizeof(wp.light_dir));
+    for (int k = 0; k < 3; ++k)
+        wp.eye[k] = eye[k];
+    wp.overlays[0] = push.overlays[0];
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, water_pipeline_.get());
+    vkCmdPushConstants(cb, water_layout_.get(),
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof(WaterPush), &wp);
+    vkCmdBindIndexBuffer(cb, water_.get(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cb, water_count_, 1, 0, 0, 0);
+    water_drawn_ = water_count_ / 3;
+}
+
 void TerrainRenderer::draw_outline(VkCommandBuffer cb, const float view_projection[16],
                                    std::span<const std::array<float, 3>> loop,
                                    const float colour[4]) {
@@ -354,8 +429,8 @@ void TerrainRenderer::draw_outline(VkCommandBuffer cb, const float view_projecti
     for (std::size_t i = 0; i < loop.size(); ++i) {
         const auto& a = loop[i];
         const auto& b = loop[(i + 1) % loop.size()];
-        v[2 * i] = RenderVertex{{a[0], a[1], a[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f};
-        v[2 * i + 1] = RenderVertex{{b[0], b[1], b[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f};
+        v[2 * i] = RenderVertex{{a[0], a[1], a[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f, a[2]};
+        v[2 * i + 1] = RenderVertex{{b[0], b[1], b[2]}, {}, {}, {}, {}, 0.0f, 0.0f, 0.0f, b[2]};
     }
     outline_.flush(context_);
     LinesPush lp{};

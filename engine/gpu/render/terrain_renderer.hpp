@@ -1,11 +1,11 @@
 #pragma once
 // Draws the terrain inside a render pass the caller owns (so it serves a swapchain and an
 // offscreen target alike): one indexed draw of the lit surface (baked normal map sampled by
-// world xy, detail normal, material albedo,
-// contrast curve, overlays and tool cursor, all in terrain.frag), then, only when the wireframe
+// world xy, detail normal, material albedo, contrast curve, overlays and tool cursor, all in
+// terrain.frag); then, where water stands, its surface, blended over it (water.frag, on the
+// triangles with a wet corner only: nothing on a dry terrain); then, only when the wireframe
 // overlay is on, a line pass over every edge (the triangles' outlines) and one over the
-// constrained edges. Buffers mirror
-// TerrainMesh and receive only the ranges an update names.
+// constrained edges. Buffers mirror TerrainMesh and receive only the ranges an update names.
 
 #include <vulkan/vulkan.h>
 
@@ -28,7 +28,7 @@ struct TerrainPush {
     float light_dir[4];         ///< xyz towards the light; w contrast strength [0, 1]
     float cursor[4];            ///< xy centre (m, domain-centre relative), z radius (m), w shown
     /// x: bits, 1 the wireframe, 2 the water-depth, 4 the water-speed and 8 the sediment
-    /// overlay (128 bytes hold no more);
+    /// overlay (the last three drawn on the water's surface; 128 bytes hold no more);
     /// y active, z sand thickness, w slope vs repose (0/1)
     float overlays[4];
     /// x low, y high height (m) of the stretch; z = 1 / domain width, w = 1 / domain height
@@ -67,7 +67,9 @@ class TerrainRenderer {
     void use_vertex_normals();
     /// Records the draws (viewport and scissor are dynamic). With the wireframe overlay on,
     /// the edge list is rebuilt from `mesh` when its triangles changed since the last call.
-    void draw(VkCommandBuffer cb, const TerrainPush& push, VkExtent2D extent,
+    /// `eye` is the camera's position (metres, domain-centre relative): the water's surface
+    /// reflects more of the sky the more obliquely it is seen.
+    void draw(VkCommandBuffer cb, const TerrainPush& push, const float eye[3], VkExtent2D extent,
               const TerrainMesh& mesh);
 
     /// Records a closed outline (metres, domain-centre relative, already at the terrain's
@@ -77,6 +79,8 @@ class TerrainRenderer {
                       std::span<const std::array<float, 3>> loop, const float colour[4]);
 
     std::uint64_t bytes_uploaded() const { return bytes_uploaded_; }
+    /// Triangles the last draw() drew the water's surface on (0: no water pass recorded).
+    std::uint32_t water_triangles_drawn() const { return water_drawn_; }
 
     /// Forgets the mesh: its buffers go, and the next upload (which must be a rebuild's)
     /// allocates them again, so nothing of a replaced terrain stays in memory the renderer
@@ -90,6 +94,8 @@ class TerrainRenderer {
 
   private:
     void ensure(gpu::Buffer& buffer, VkDeviceSize bytes, VkBufferUsageFlags usage);
+    void draw_water(VkCommandBuffer cb, const TerrainPush& push, const float eye[3],
+                    const TerrainMesh& mesh);
 
     const gpu::VulkanContext& context_;
     gpu::UniqueDescriptorSetLayout set_layout_;
@@ -103,9 +109,15 @@ class TerrainRenderer {
     /// The wireframe drawn from the triangles with line polygons (null without the device's
     /// fillModeNonSolid: then an edge list, wire_, is built on the CPU).
     gpu::UniquePipeline wire_pipeline_;
+    gpu::UniquePipelineLayout water_layout_;
+    gpu::UniquePipeline water_pipeline_;
     MeshBuffers mesh_;
     gpu::Buffer wire_;
     gpu::Buffer outline_;
+    gpu::Buffer water_;  ///< TerrainMesh::water_indices(), as of water_version_
+    std::uint32_t water_count_ = 0;
+    std::uint64_t water_version_ = ~std::uint64_t{0};
+    std::uint32_t water_drawn_ = 0;
     std::uint32_t wire_count_ = 0;
     bool wire_stale_ = true;
     std::uint64_t bytes_uploaded_ = 0;
