@@ -5,6 +5,10 @@ namespace sandtin::gpu::shaders {
 namespace {
 #include "bake_maps_comp.spv.h"
 #include "corner_normals_comp.spv.h"
+#include "moisture_finish_comp.spv.h"
+#include "moisture_spread_comp.spv.h"
+#include "moisture_weights_comp.spv.h"
+#include "moisture_wet_comp.spv.h"
 #include "talus_activate_comp.spv.h"
 #include "talus_age_comp.spv.h"
 #include "talus_control_comp.spv.h"
@@ -57,6 +61,18 @@ std::span<const uint32_t> water_depth() {
 }
 std::span<const uint32_t> water_measure() {
     return kSpv_water_measure_comp;
+}
+std::span<const uint32_t> moisture_weights() {
+    return kSpv_moisture_weights_comp;
+}
+std::span<const uint32_t> moisture_wet() {
+    return kSpv_moisture_wet_comp;
+}
+std::span<const uint32_t> moisture_spread() {
+    return kSpv_moisture_spread_comp;
+}
+std::span<const uint32_t> moisture_finish() {
+    return kSpv_moisture_finish_comp;
 }
 
 }  // namespace sandtin::gpu::shaders

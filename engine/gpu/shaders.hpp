@@ -19,5 +19,9 @@ std::span<const uint32_t> bake_maps();
 std::span<const uint32_t> water_flux();  // gpu_water.hpp
 std::span<const uint32_t> water_depth();
 std::span<const uint32_t> water_measure();
+std::span<const uint32_t> moisture_weights();  // gpu_moisture.hpp
+std::span<const uint32_t> moisture_wet();
+std::span<const uint32_t> moisture_spread();
+std::span<const uint32_t> moisture_finish();
 
 }  // namespace sandtin::gpu::shaders
