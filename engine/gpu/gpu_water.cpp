@@ -216,13 +216,14 @@ double GpuWater::stable_time_step() {
     return settings_.courant * limit_;
 }
 
-GpuWaterRun GpuWater::run(int steps, double dt) {
+GpuWaterRun GpuWater::run(int steps, double dt, WaterStepHook* hook) {
     if (steps < 0) throw GpuError("GpuWater: the number of steps must be >= 0");
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw GpuError("GpuWater: a time step must be finite and > 0");
     follow_mirror();
     GpuWaterRun run;
     if (!active_ || steps == 0) return run;  // dry and still: the GPU is not touched
+    if (hook) hook->prepare();
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         vkCmdFillBuffer(cb, control_.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cb, control_.get(), kLimitWord * 4, 4, kPositiveInfinityBits);
@@ -234,6 +235,10 @@ GpuWaterRun GpuWater::run(int steps, double dt) {
             water_barrier(cb);
             depth_.dispatch(cb, pc.vertex_count, &pc);
             water_barrier(cb);
+            if (hook) {
+                hook->record_step(cb, parity_, dt);
+                water_barrier(cb);
+            }
         }
         record_measure(cb, push(dt));
     });

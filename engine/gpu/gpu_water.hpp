@@ -47,6 +47,17 @@ struct GpuWaterRun {
     uint64_t outflows_limited = 0;  ///< vertex-steps whose outflows were scaled down
 };
 
+/// Work recorded after each water step, in the same submission (the sediment the water
+/// carries: gpu_sediment.hpp).
+class WaterStepHook {
+  public:
+    virtual ~WaterStepHook() = default;
+    /// Before the run's submission is recorded (sync buffers, bind).
+    virtual void prepare() = 0;
+    /// After the step that wrote the `parity` half of the fluxes, with the new depths.
+    virtual void record_step(VkCommandBuffer cb, uint32_t parity, double dt) = 0;
+};
+
 class GpuWater {
   public:
     /// Syncs the mirror (the water on the terrain now is the GPU's). Throws GpuError for
@@ -64,7 +75,7 @@ class GpuWater {
     /// Syncs the mirror, then advances the water `steps` steps of `dt` seconds (finite, > 0;
     /// GpuError otherwise) in one submission, and waits. Stable for dt up to
     /// stable_time_step() / courant. Dry, still water records nothing.
-    GpuWaterRun run(int steps, double dt);
+    GpuWaterRun run(int steps, double dt, WaterStepHook* hook = nullptr);
     /// The longest stable step (s) for the water now, times the courant setting; infinite
     /// when there is no water. Measures on the GPU when the water changed since the last run.
     double stable_time_step();
@@ -86,6 +97,11 @@ class GpuWater {
     std::size_t copy_depths_into(Tin& tin) const;
 
     uint64_t dispatches_recorded() const { return dispatches_total_; }
+    /// The outflows, two halves of edge_capacity() floats (m³/s): q[half x capacity + k] is
+    /// what the row's vertex sends along directed edge k.
+    VkBuffer flux_buffer() const { return q_.get(); }
+    uint32_t edge_capacity() const { return edge_capacity_; }
+    TinMirror& mirror() const { return mirror_; }
 
   private:
     struct Push {

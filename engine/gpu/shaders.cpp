@@ -9,6 +9,10 @@ namespace {
 #include "moisture_spread_comp.spv.h"
 #include "moisture_weights_comp.spv.h"
 #include "moisture_wet_comp.spv.h"
+#include "sediment_capacity_comp.spv.h"
+#include "sediment_carry_comp.spv.h"
+#include "sediment_exchange_comp.spv.h"
+#include "sediment_settle_comp.spv.h"
 #include "talus_activate_comp.spv.h"
 #include "talus_age_comp.spv.h"
 #include "talus_control_comp.spv.h"
@@ -73,6 +77,18 @@ std::span<const uint32_t> moisture_spread() {
 }
 std::span<const uint32_t> moisture_finish() {
     return kSpv_moisture_finish_comp;
+}
+std::span<const uint32_t> sediment_capacity() {
+    return kSpv_sediment_capacity_comp;
+}
+std::span<const uint32_t> sediment_exchange() {
+    return kSpv_sediment_exchange_comp;
+}
+std::span<const uint32_t> sediment_carry() {
+    return kSpv_sediment_carry_comp;
+}
+std::span<const uint32_t> sediment_settle() {
+    return kSpv_sediment_settle_comp;
 }
 
 }  // namespace sandtin::gpu::shaders

@@ -23,5 +23,9 @@ std::span<const uint32_t> moisture_weights();  // gpu_moisture.hpp
 std::span<const uint32_t> moisture_wet();
 std::span<const uint32_t> moisture_spread();
 std::span<const uint32_t> moisture_finish();
+std::span<const uint32_t> sediment_capacity();  // gpu_sediment.hpp
+std::span<const uint32_t> sediment_exchange();
+std::span<const uint32_t> sediment_carry();
+std::span<const uint32_t> sediment_settle();
 
 }  // namespace sandtin::gpu::shaders
