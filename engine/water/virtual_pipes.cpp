@@ -1,5 +1,7 @@
 #include "water/virtual_pipes.hpp"
 
+#include "util/thread_pool.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -216,6 +218,107 @@ WaterStepReport VirtualPipes::step(double dt) {
     }
     report.pipes_updated = pipes_.size();
     moving_ = any_water || any_flux;
+    return report;
+}
+
+WaterStepReport VirtualPipes::step(double dt, ThreadPool& pool) {
+    const int threads = pool.threads();
+    if (threads <= 1) return step(dt);
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw std::invalid_argument("water: a time step must be finite and > 0");
+    WaterStepReport report;
+    if (!moving_) return report;
+    const std::size_t n = depth_.size();
+    scatter_.resize(static_cast<std::size_t>(threads - 1));
+    for (std::vector<double>& s : scatter_)
+        s.resize(n, 0.0);
+    const auto into = [&](int thread) -> std::vector<double>& {
+        return thread == 0 ? outflow_ : scatter_[static_cast<std::size_t>(thread - 1)];
+    };
+    const double damping = 1.0 / (1.0 + dt * options_.friction);
+    const auto overfall = [&](std::uint32_t v) {
+        const double h = depth_[v];
+        return border_width_[v] * h * std::sqrt(options_.gravity * h);
+    };
+    // Phase 1: fluxes, each thread scattering its pipes' outflows into its own array.
+    std::fill(outflow_.begin(), outflow_.end(), 0.0);
+    pool.parallel_for(pipes_.size(), [&](std::size_t begin, std::size_t end, int thread) {
+        std::vector<double>& out = into(thread);
+        for (std::size_t i = begin; i < end; ++i) {
+            Pipe& p = pipes_[i];
+            if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
+            const double drop = surface(p.a) - surface(p.b);
+            const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
+            p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+            if (p.flux > 0.0) out[p.a] += p.flux;
+            if (p.flux < 0.0) out[p.b] -= p.flux;
+        }
+    });
+    // Phase 2, per vertex: the outflows added up (the other threads' arrays left at 0), the
+    // border's overfall, and the scale K.
+    std::vector<std::size_t> limited(static_cast<std::size_t>(threads), 0);
+    pool.parallel_for(n, [&](std::size_t begin, std::size_t end, int thread) {
+        std::size_t count = 0;
+        for (std::size_t v = begin; v < end; ++v) {
+            double total = outflow_[v];
+            for (std::vector<double>& s : scatter_) {
+                total += s[v];
+                s[v] = 0.0;
+            }
+            if (border_width_[v] > 0.0) total += overfall(static_cast<std::uint32_t>(v));
+            const double wanted = total * dt;
+            const double held = depth_[v] * mesh_.area[v];
+            const bool is_limited = wanted > held;
+            count += is_limited ? 1 : 0;
+            outflow_[v] = is_limited ? held / wanted : 1.0;
+        }
+        limited[static_cast<std::size_t>(thread)] = count;
+    });
+    for (const std::size_t c : limited)
+        report.outflows_limited += c;
+    // Phase 3: each pipe's scaled volume leaves one end and enters the other, scattered per
+    // thread as in phase 1.
+    std::fill(inflow_.begin(), inflow_.end(), 0.0);
+    const auto change_of = [&](int thread) -> std::vector<double>& {
+        return thread == 0 ? inflow_ : scatter_[static_cast<std::size_t>(thread - 1)];
+    };
+    std::vector<std::uint8_t> fluxes(static_cast<std::size_t>(threads), 0);
+    pool.parallel_for(pipes_.size(), [&](std::size_t begin, std::size_t end, int thread) {
+        std::vector<double>& change = change_of(thread);
+        bool any = false;
+        for (std::size_t i = begin; i < end; ++i) {
+            Pipe& p = pipes_[i];
+            if (p.flux == 0.0) continue;
+            p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
+            const double moved = p.flux * dt;
+            change[p.a] -= moved;
+            change[p.b] += moved;
+            any = any || p.flux != 0.0;
+        }
+        fluxes[static_cast<std::size_t>(thread)] = any ? 1 : 0;
+    });
+    for (std::uint32_t v : border_vertices_) {
+        const double left = overfall(v) * outflow_[v] * dt;
+        inflow_[v] -= left;
+        volume_left_ += left;
+    }
+    std::vector<std::uint8_t> wet(static_cast<std::size_t>(threads), 0);
+    pool.parallel_for(n, [&](std::size_t begin, std::size_t end, int thread) {
+        bool any = false;
+        for (std::size_t v = begin; v < end; ++v) {
+            double change = inflow_[v];
+            for (std::vector<double>& s : scatter_) {
+                change += s[v];
+                s[v] = 0.0;
+            }
+            if (change != 0.0) depth_[v] = std::max(0.0, depth_[v] + change / mesh_.area[v]);
+            any = any || depth_[v] > 0.0;
+        }
+        wet[static_cast<std::size_t>(thread)] = any ? 1 : 0;
+    });
+    report.pipes_updated = pipes_.size();
+    moving_ = std::find(wet.begin(), wet.end(), 1) != wet.end() ||
+              std::find(fluxes.begin(), fluxes.end(), 1) != fluxes.end();
     return report;
 }
 

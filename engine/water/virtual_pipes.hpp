@@ -36,6 +36,8 @@
 
 namespace sandtin {
 
+class ThreadPool;
+
 /// The pipes' estimate of the flow speed at a vertex (m/s): its discharge (m³/s: half the sum
 /// of |flux| over its pipes for the sediment's capacity, half the length of
 /// VirtualPipes::flow_vectors for the editor's overlay) through a cross-section of its depth
@@ -110,6 +112,12 @@ class VirtualPipes {
     /// Advances the water by `dt` seconds (finite, > 0; throws otherwise). Stable for
     /// dt <= stable_time_step() / courant.
     WaterStepReport step(double dt);
+    /// The same step on `pool`'s threads: pipes and vertices in equal contiguous chunks, each
+    /// extra thread scattering into an array of its own that is added into the first's per
+    /// vertex, in thread order. Deterministic for a thread count; its sums differ from one
+    /// thread's by rounding only (a vertex's pipes are added in another grouping), and volume
+    /// is kept as exactly. One thread: step(dt) itself.
+    WaterStepReport step(double dt, ThreadPool& pool);
 
     struct Pipe {
         std::uint32_t a = 0, b = 0;
@@ -133,8 +141,10 @@ class VirtualPipes {
     VirtualPipeOptions options_;
     std::vector<Pipe> pipes_;
     std::vector<double> depth_;
-    std::vector<double> conductance_sum_;         ///< per vertex: sum of its pipes' w / L
-    std::vector<double> outflow_, inflow_;        ///< per vertex, scratch of step()
+    std::vector<double> conductance_sum_;   ///< per vertex: sum of its pipes' w / L
+    std::vector<double> outflow_, inflow_;  ///< per vertex, scratch of step()
+    /// Per extra thread of step(dt, pool): its scatter array, all zeros between steps.
+    std::vector<std::vector<double>> scatter_;
     std::vector<double> border_width_;            ///< per vertex: open border (m), mostly 0
     std::vector<std::uint32_t> border_vertices_;  ///< those with an open border
     double volume_left_ = 0.0;

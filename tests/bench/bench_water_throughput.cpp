@@ -10,6 +10,7 @@
 #include "gpu/tin_mirror.hpp"
 #include "gpu/vulkan_context.hpp"
 #include "tin/tin.hpp"
+#include "util/thread_pool.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
 
@@ -40,19 +41,23 @@ nlohmann::json rate(const std::vector<double>& step_ms, std::size_t vertices) {
             {"vertex_steps_per_s", static_cast<double>(vertices) / (ms * 1e-3)}};
 }
 
-nlohmann::json cpu_rate(const Tin& tin, int steps) {
+/// CPU steps of the pipes on `threads` threads, timed on the wall clock (the threads'
+/// CPU time would add up): the 1- and 2-thread rows run side by side on the same lake.
+nlohmann::json cpu_rate(const Tin& tin, int steps, int threads) {
     VirtualPipes pipes(water_mesh_of(tin));
     load_water_depths(pipes, tin);
+    ThreadPool pool(threads);
     const double dt = pipes.stable_time_step();
-    pipes.step(dt);  // the scratch arrays warm
+    pipes.step(dt, pool);  // the scratch arrays warm
     std::vector<double> ms;
     for (int i = 0; i < steps; ++i) {
-        const CpuStopwatch clock;
-        pipes.step(dt);
+        const Stopwatch clock;
+        pipes.step(dt, pool);
         ms.push_back(clock.ms());
     }
     nlohmann::json j = rate(ms, tin.vertex_count());
-    j["threads"] = 1;
+    j["threads"] = threads;
+    j["clock"] = "wall";
     return j;
 }
 
@@ -88,7 +93,10 @@ nlohmann::json water_throughput(const std::vector<std::size_t>& vertices, int st
     nlohmann::json rows = nlohmann::json::array();
     for (const std::size_t n : vertices) {
         Tin tin = wet_terrain(n);
-        nlohmann::json row{{"vertices", tin.vertex_count()}, {"cpu", cpu_rate(tin, steps)}};
+        nlohmann::json row{{"vertices", tin.vertex_count()}, {"cpu", cpu_rate(tin, steps, 1)}};
+        row["cpu_2_threads"] = cpu_rate(tin, steps, 2);
+        row["cpu_2_threads"]["speedup"] = row["cpu"]["step_ms_median"].get<double>() /
+                                          row["cpu_2_threads"]["step_ms_median"].get<double>();
         row["gpu"] =
             context ? gpu_rate(*context, tin, steps) : nlohmann::json{{"unavailable", unavailable}};
         rows.push_back(row);

@@ -345,6 +345,9 @@ scenario_bench_water() {
     holds "bench water CPU throughput" "a > 0 && b >= 20000" \
         "$(json bench_water.out /throughput/0/cpu/vertex_steps_per_s)" \
         "$(json bench_water.out /throughput/0/vertices)"
+    holds "bench water 2-thread CPU throughput" "a > 0 && b == 2" \
+        "$(json bench_water.out /throughput/0/cpu_2_threads/vertex_steps_per_s)" \
+        "$(json bench_water.out /throughput/0/cpu_2_threads/threads)"
 }
 
 scenario_demo() {
