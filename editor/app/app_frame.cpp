@@ -208,15 +208,17 @@ void App::draw_terrain(const Mat4& vp) {
     push.light_dir[3] = static_cast<float>(settings_.contrast);
     const Rect domain = doc_.tin().domain();
     const Vec2 c = domain.centre();
-    // Stamps show their outline (below) and the nozzle is a point: both only the centre dot.
-    const bool dot_only = kTools[settings_.tool].kind == ToolKind::Stamp ||
-                          kTools[settings_.tool].kind == ToolKind::Water;
+    // Stamps show their outline (below): only the centre dot; the nozzle its jet's ring.
+    const ToolKind kind = kTools[settings_.tool].kind;
+    const double ring = kind == ToolKind::Stamp   ? 0.0
+                        : kind == ToolKind::Water ? settings_.water_jet
+                                                  : settings_.tool_radius;
     if (cursor_) {
         push.cursor[0] = static_cast<float>(cursor_->x - c.x);
         push.cursor[1] = static_cast<float>(cursor_->y - c.y);
         // Round tools show a ring of their radius; stamp tools their outline (below), plus the
         // centre dot (radius 0 draws no ring).
-        push.cursor[2] = dot_only ? 0.0f : static_cast<float>(settings_.tool_radius);
+        push.cursor[2] = static_cast<float>(ring);
         push.cursor[3] = 1.0f;
     }
     push.overlays[0] = (settings_.overlay_wireframe ? render::kOverlayWireframe : 0.0f) +

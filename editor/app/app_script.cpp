@@ -312,6 +312,8 @@ void App::run_setting_op(const nlohmann::json& op) {
             settings_.water_evaporation = kWaterEvaporationRange.clamp(v.get<double>(), size);
         else if (k2 == "water_nozzle")
             settings_.water_nozzle = kWaterNozzleRange.clamp(v.get<double>(), size);
+        else if (k2 == "water_jet")
+            settings_.water_jet = kWaterJetRange.clamp(v.get<double>(), size);
         else if (k2 == "water_shower")
             settings_.water_shower = kWaterShowerRange.clamp(v.get<double>(), size);
         else if (k2 == "pour_volume")

@@ -62,6 +62,7 @@ void fields(EditorSettings& s, F&& f) {
     f("water_open_south", s.water_open_south, nullptr);
     f("water_open_north", s.water_open_north, nullptr);
     f("water_nozzle", s.water_nozzle, &kWaterNozzleRange);
+    f("water_jet", s.water_jet, &kWaterJetRange);
     f("water_shower", s.water_shower, &kWaterShowerRange);
     f("contrast", s.contrast, &kContrastRange);
     f("vsync", s.vsync, nullptr);

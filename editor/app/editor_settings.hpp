@@ -64,6 +64,9 @@ struct EditorSettings {
     bool water_open_south = false;
     bool water_open_north = false;
     double water_nozzle = 2e-5;  ///< m³/s: 0.02 L/s
+    /// m: the Water tool's jet radius (Nozzle::radius): the water lands on the vertices
+    /// within it.
+    double water_jet = 0.01;
     /// The Rain tool's rate (mm/h) on its disc (the Size): a cloudburst, so that a held
     /// shower shows within seconds on the sandbox.
     double water_shower = 2000.0;
@@ -131,6 +134,8 @@ inline constexpr SettingRange kWaterRainRange{0.0, 500.0};         ///< mm/h
 inline constexpr SettingRange kWaterEvaporationRange{0.0, 500.0};  ///< mm/h
 /// m³/s: a trickle (1 mL/s) to a garden hose's flow (0.5 L/s) on the sandbox.
 inline constexpr SettingRange kWaterNozzleRange{1e-6, 5e-4, Scaling::Volume};
+/// m: the Water tool's jet, a point (0: the nearest vertex) to 5 cm across on the sandbox.
+inline constexpr SettingRange kWaterJetRange{0.0, 0.05, Scaling::Length};
 /// m: the water's detail, 0 (off) to 5 cm on the sandbox.
 inline constexpr SettingRange kWaterDetailRange{0.0, 0.05, Scaling::Length};
 /// mm/h: heavy rain (10) to a hose's spray (50 000) on the Rain tool's disc.

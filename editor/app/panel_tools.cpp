@@ -104,6 +104,10 @@ void App::tool_sliders() {
             ui("Flow",
                "Water the nozzle gives per second while the button is held (1 L = 1000 cm3).\n"
                "The water then runs as the Water panel says");
+            range_slider("Jet", "", settings_.water_jet, kWaterJetRange, size, "%.1f");
+            ui("Jet",
+               "Radius of the jet: the water lands on the terrain within it, the same depth\n"
+               "everywhere. 0 pours it all on the nearest vertex");
             break;
         }
         case ToolKind::Rain: {

@@ -195,7 +195,7 @@ LiveWaterSettings water_settings(const EditorSettings& settings) {
 LiveWaterFrame Sculpting::flow_water(Document& doc, const EditorSettings& settings, double seconds,
                                      double budget_ms) {
     LiveWater& water = doc.water();
-    if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle});
+    if (nozzle_) water.add_nozzle({*nozzle_, 1000.0 * settings.water_nozzle, settings.water_jet});
     if (shower_) water.add_shower({settings.water_shower, *shower_, settings.tool_radius});
     const LiveWaterFrame frame = water.advance(seconds, water_settings(settings), budget_ms);
     // Ground the water left is simplified as an edit's is (the simplifier leaves wet ground

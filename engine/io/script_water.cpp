@@ -36,6 +36,7 @@ Nozzle parse_nozzle(const nlohmann::json& object, const std::string& context) {
     Nozzle nozzle;
     nozzle.at = n.point("at");
     nozzle.litres_per_second = n.in_range("litres_per_second", 0.0, 0.0, 1e4);
+    nozzle.radius = n.in_range("radius", 0.0, 0.0, 1e3);
     n.reject_unknown();
     return nozzle;
 }

@@ -26,6 +26,8 @@ void check(const WaterSources& s, double dt) {
         if (!rate(n.litres_per_second) || !std::isfinite(n.at.x) || !std::isfinite(n.at.y))
             throw std::invalid_argument(
                 "water sources: a nozzle needs a finite position and a rate >= 0");
+        if (!rate(n.radius))
+            throw std::invalid_argument("water sources: a nozzle's radius must be finite and >= 0");
     }
     if (!rate(s.evaporation_mm_per_hour))
         throw std::invalid_argument("water sources: evaporation must be finite and >= 0");
@@ -67,12 +69,31 @@ SourceReport apply_sources(Water& water, const WaterSources& sources, double dt)
             report.added += m.area[v] * rise;
         }
     }
+    std::vector<std::size_t> under_jet;
     for (const Nozzle& n : sources.nozzles) {
         const double volume = n.litres_per_second * 1e-3 * dt;
-        const std::size_t v = nearest_wet_capable(m, n.at);
-        if (!(volume > 0.0) || v == m.area.size()) continue;
-        water.add_water(v, volume);
-        report.added += volume;
+        if (!(volume > 0.0)) continue;
+        under_jet.clear();
+        double jet_area = 0.0;
+        if (n.radius > 0.0) {
+            for (std::size_t v = 0; v < m.area.size(); ++v) {
+                if (!(m.area[v] > 0.0) || length(m.position[v] - n.at) > n.radius) continue;
+                under_jet.push_back(v);
+                jet_area += m.area[v];
+            }
+        }
+        if (under_jet.empty()) {
+            const std::size_t v = nearest_wet_capable(m, n.at);
+            if (v == m.area.size()) continue;
+            water.add_water(v, volume);
+            report.added += volume;
+            continue;
+        }
+        const double rise = volume / jet_area;
+        for (const std::size_t v : under_jet) {
+            water.add_water(v, m.area[v] * rise);
+            report.added += m.area[v] * rise;
+        }
     }
     const double fall = sources.evaporation_mm_per_hour * kMmPerHourToMetresPerSecond * dt;
     if (fall > 0.0) {

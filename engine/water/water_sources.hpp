@@ -26,8 +26,13 @@ struct Rain {
 };
 
 struct Nozzle {
-    Vec2 at;                         ///< m: the water enters at the vertex nearest to it
+    Vec2 at;                         ///< m: where the jet lands
     double litres_per_second = 0.0;  ///< >= 0
+    /// m, >= 0: the jet's radius. The water enters the vertices within it, each rising by the
+    /// same depth (the volume over their lumped areas), as a jet that wide lands; 0, or no
+    /// vertex within it, the vertex nearest to `at` takes it all (a column of water rising at
+    /// one vertex while the pipes drain it, on a fine mesh).
+    double radius = 0.0;
 };
 
 struct WaterSources {

@@ -261,6 +261,11 @@ TEST(ScriptWater, BadFieldsAreNamed) {
                               "nozzles": [{"at": [0.5, 0.5], "litres_per_second": -1}]})")
                   .find("litres_per_second"),
               std::string::npos);
+    EXPECT_NE(water_error(R"({"op": "water", "seconds": 1,
+                              "nozzles": [{"at": [0.5, 0.5], "litres_per_second": 1,
+                                           "radius": -0.01}]})")
+                  .find("radius"),
+              std::string::npos);
     EXPECT_NE(water_error(R"({"op": "water", "seconds": 1, "rain": {"mm_per_hour": 5},
                               "colour": "blue"})")
                   .find("colour"),

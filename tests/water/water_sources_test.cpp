@@ -62,6 +62,43 @@ TEST(WaterSources, RainAndANozzleAddWhatTheirRatesSay) {
     }
 }
 
+TEST(WaterSources, AJetLandsOnTheVerticesWithinItsRadiusAtOneDepth) {
+    // 0.2 L/s for 0.05 s through a jet of 8 cm over a 30 x 30 grid (3.3 cm spacing): every
+    // vertex within 8 cm rises by the same depth, none outside, and the volume is the rate's.
+    const Tin tin = gentle_bowl();
+    VirtualPipes w(water_mesh_of(tin));
+    WaterSources s;
+    const Vec2 at{0.41, 0.57};
+    s.nozzles.push_back({at, 0.2, 0.08});
+    const SourceReport r = apply_sources(w, s, 0.05);
+    EXPECT_NEAR(r.added, 1e-5, 1e-17);
+    EXPECT_NEAR(w.volume(), 1e-5, 1e-17);
+    double rise = 0.0;
+    int under = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        const bool inside = length(w.mesh().position[v] - at) <= 0.08;
+        EXPECT_EQ(w.depth(v) > 0.0, inside) << v;
+        if (!inside) continue;
+        if (under++ == 0) rise = w.depth(v);
+        EXPECT_NEAR(w.depth(v), rise, 1e-15) << v;
+    }
+    EXPECT_GT(under, 15);
+    // A jet narrower than the mesh (no vertex within 1 mm of a point between vertices) lands
+    // on the vertex nearest to it, as a radius of 0 does.
+    VirtualPipes narrow(water_mesh_of(tin)), point(water_mesh_of(tin));
+    WaterSources thin, exact;
+    thin.nozzles.push_back({{0.41, 0.57}, 0.2, 0.001});
+    exact.nozzles.push_back({{0.41, 0.57}, 0.2});
+    apply_sources(narrow, thin, 0.05);
+    apply_sources(point, exact, 0.05);
+    int wet = 0;
+    for (std::size_t v = 0; v < w.vertex_count(); ++v) {
+        EXPECT_EQ(narrow.depth(v), point.depth(v)) << v;
+        wet += narrow.depth(v) > 0.0 ? 1 : 0;
+    }
+    EXPECT_EQ(wet, 1);
+}
+
 TEST(WaterSources, EvaporationTakesAtMostWhatIsThereAndTheBalanceIsExact) {
     const Tin tin = gentle_bowl();
     VirtualPipes w(water_mesh_of(tin));
@@ -123,6 +160,10 @@ TEST(WaterSources, BadRatesAreRefusedAndChangeNothing) {
     EXPECT_THROW(apply_sources(w, s, 1.0), std::invalid_argument);
     s.rain.clear();
     s.nozzles.push_back({{0.5, 0.5}, -0.1});
+    EXPECT_THROW(apply_sources(w, s, 1.0), std::invalid_argument);
+    s.nozzles = {{{0.5, 0.5}, 0.1, -0.01}};  // a negative jet radius
+    EXPECT_THROW(apply_sources(w, s, 1.0), std::invalid_argument);
+    s.nozzles = {{{0.5, 0.5}, 0.1, std::nan("")}};
     EXPECT_THROW(apply_sources(w, s, 1.0), std::invalid_argument);
     s.nozzles.clear();
     s.evaporation_mm_per_hour = std::nan("");
