@@ -653,7 +653,17 @@ nlohmann::json ScriptRunner::run_op(const SaveOp& op) {
 }
 
 nlohmann::json ScriptRunner::run_op(const WaterOp& op) {
-    return run_water_op(op, tin_);
+    std::vector<VertexId> reached;
+    nlohmann::json report = run_water_op(op, tin_, &reached);
+    // The ground the water left dry is simplified as after any edit: the detail added under
+    // it goes where it is dry and planar again (the simplifier leaves wet ground alone).
+    SculptContext& context = context_;
+    if (op.detail > 0.0 && context.settings.simplify_after_edit) {
+        context.simplifier.enqueue(reached);
+        report["simplified_vertices"] =
+            context.simplifier.run(tin_, context.settings.simplify).removed;
+    }
+    return report;
 }
 
 // Moisture changes reach the physics through the TIN's vertex feed, as the water's do: its

@@ -10,10 +10,12 @@
 #include <vector>
 
 #include "tin/vertex_arrays.hpp"
+#include "water/live_water.hpp"
 #include "water/sediment_transport.hpp"
 #include "water/shallow_water.hpp"
 #include "water/tin_water_mesh.hpp"
 #include "water/virtual_pipes.hpp"
+#include "water/wet_edge_split.hpp"
 
 namespace sandtin {
 
@@ -160,6 +162,7 @@ WaterOp parse_water_op(JsonFields& f, WaterOpKind kind) {
     if (!op.erode && f.has("label_depth"))
         f.fail_field("label_depth", "applies with \"erode\": true");
     op.label_depth = f.positive("label_depth", op.label_depth);
+    op.detail = f.in_range("detail", 0.0, 0.0, 1e4);
     op.moisture = parse_moisture_settings(f);
     f.reject_unknown();
     return op;
@@ -177,6 +180,7 @@ struct Flow {
     std::vector<double> deepest;  ///< per vertex, m
     double left = 0.0, water = 0.0, sand_moved = 0.0, volume_change = 0.0;
     std::size_t relabelled = 0;  ///< vertices that took the material of the sand laid on them
+    std::size_t refined = 0;     ///< vertices the detail added under the water
 };
 
 /// No vertex holds `depth` of water or more.
@@ -208,106 +212,145 @@ double clear_films(Water& water) {
     return volume;
 }
 
+/// Settles what the water still carries and writes the beds into the terrain (journaled, so
+/// the GPU mirror and undo see it), counting the sand moved; sand laid at least label_depth
+/// thick takes the material it came from.
 template <class Water>
-Flow run_flow(Water& water, const WaterOp& op, Tin& tin) {
-    Flow flow;
-    open_borders(water, tin.domain(), op.open);
-    std::optional<SedimentTransport> sediment;
-    if (op.erode) {
-        std::vector<double> rock = tin.vertices().bedrock;
-        for (double& z : rock) {
-            if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
-        }
-        sediment.emplace(water.mesh(), std::move(rock), SedimentOptions{}, tin.vertices().material);
+void write_sand(Water& water, SedimentTransport& sediment, const WaterOp& op, Tin& tin,
+                Flow& flow) {
+    sediment.settle_all(water);
+    std::vector<VertexId> moved;
+    std::vector<double> heights;
+    const VertexArrays& va = tin.vertices();
+    std::vector<std::pair<VertexId, std::uint16_t>> relabelled;
+    for (std::size_t v = 0; v < water.vertex_count(); ++v) {
+        const double z = water.mesh().bed[v];
+        if (!va.alive[v] || z == va.height[v]) continue;
+        const double change = va.lumped_area[v] * (z - va.height[v]);
+        flow.sand_moved += std::max(0.0, -change);
+        flow.volume_change += change;
+        moved.push_back(VertexId{static_cast<std::uint32_t>(v)});
+        heights.push_back(z);
+        // Sand laid down at least label_depth thick is of the material it came from:
+        // gravel washed onto sand shows, and slides, as gravel.
+        const std::uint16_t laid = sediment.deposited_material(v);
+        if (z - va.height[v] >= op.label_depth && laid != va.material[v])
+            relabelled.emplace_back(moved.back(), laid);
     }
-    // The water the terrain holds from earlier operations, from rest.
-    load_water_depths(water, tin);
-    flow.start = water.volume();
-    std::vector<double>& deepest = flow.deepest;
-    deepest.assign(water.depths().begin(), water.depths().end());
-    std::vector<double> before;
-    double t = 0.0;
-    while (t < op.seconds) {
-        if (op.until == WaterStop::Dry && is_dry(water, op.rest_depth)) {
-            flow.stopped = "dry";
-            break;
-        }
-        const double dt = std::min({water.stable_time_step(), kLongestSourceStep, op.seconds - t});
-        const SourceReport r = apply_sources(water, op.sources, dt);
-        flow.sources.added += r.added;
-        flow.sources.evaporated += r.evaporated;
-        if (op.until == WaterStop::Rest)
-            before.assign(water.depths().begin(), water.depths().end());
-        water.step(dt);
-        if (sediment) sediment->step(water, dt);
-        for (std::size_t v = 0; v < deepest.size(); ++v)
-            deepest[v] = std::max(deepest[v], water.depth(v));
-        t += dt;
-        ++flow.steps;
-        if (op.until == WaterStop::Rest && fastest_change(water, before) < op.rest_rate * dt) {
-            flow.stopped = "rest";
-            break;
-        }
-    }
-    if (op.until == WaterStop::Dry && flow.stopped == std::string_view("seconds") &&
-        is_dry(water, op.rest_depth))
-        flow.stopped = "dry";
-    if (flow.stopped == std::string_view("dry")) flow.sources.evaporated += clear_films(water);
-    flow.seconds = t;
-    // The sand the water moved, into the terrain (journaled, so the GPU mirror and undo see
-    // it): what is still suspended settles where it is.
-    double& sand_moved = flow.sand_moved;
-    double& volume_change = flow.volume_change;
-    if (sediment) {
-        sediment->settle_all(water);
-        std::vector<VertexId> moved;
-        std::vector<double> heights;
-        const VertexArrays& va = tin.vertices();
-        std::vector<std::pair<VertexId, std::uint16_t>> relabelled;
-        for (std::size_t v = 0; v < va.size(); ++v) {
-            const double z = water.mesh().bed[v];
-            if (!va.alive[v] || z == va.height[v]) continue;
-            const double change = va.lumped_area[v] * (z - va.height[v]);
-            sand_moved += std::max(0.0, -change);
-            volume_change += change;
-            moved.push_back(VertexId{static_cast<std::uint32_t>(v)});
-            heights.push_back(z);
-            // Sand laid down at least label_depth thick is of the material it came from:
-            // gravel washed onto sand shows, and slides, as gravel.
-            const std::uint16_t laid = sediment->deposited_material(v);
-            if (z - va.height[v] >= op.label_depth && laid != va.material[v])
-                relabelled.emplace_back(moved.back(), laid);
-        }
-        tin.set_heights(moved, heights);
-        for (const auto& [id, material] : relabelled)
-            tin.set_material(id, material);
-        flow.relabelled = relabelled.size();
-    }
-    flow.left = water.volume_left();
-    flow.water = water.volume();
-    // The water stays on the terrain for the next operation (journaled: saved, undone).
+    tin.set_heights(moved, heights);
+    for (const auto& [id, material] : relabelled)
+        tin.set_material(id, material);
+    flow.relabelled += relabelled.size();
+}
+
+/// The water's depths into the terrain (journaled: saved, undone), where they differ.
+template <class Water>
+void write_depths(const Water& water, Tin& tin) {
     const VertexArrays& va = tin.vertices();
     for (std::size_t v = 0; v < water.vertex_count(); ++v) {
         if (va.alive[v] && va.water_depth[v] != water.depth(v))
             tin.set_water_depth(VertexId{static_cast<std::uint32_t>(v)}, water.depth(v));
     }
+}
+
+/// Steps between two looks for long edges under the water (with a detail length).
+constexpr std::size_t kDetailEvery = 16;
+/// Edges split at one look at most, as in the editor (live_water.hpp's kMaxWaterSplits).
+constexpr std::size_t kDetailSplits = 2000;
+
+/// Runs the operation on water built by make_water() from the terrain (again after the detail
+/// refined it: the water restarts from rest there, as each operation does).
+template <class Water, class Make>
+Flow run_flow(Make make_water, const WaterOp& op, Tin& tin) {
+    Flow flow;
+    std::optional<Water> water;
+    std::optional<SedimentTransport> sediment;
+    double left_before = 0.0;  // m³ out through open sides by the water built before
+    const auto build = [&] {
+        water.emplace(make_water());
+        open_borders(*water, tin.domain(), op.open);
+        // The water the terrain holds (from earlier operations, or from before a refinement).
+        load_water_depths(*water, tin);
+        if (op.erode) {
+            std::vector<double> rock = tin.vertices().bedrock;
+            for (double& z : rock) {
+                if (!(z > 0.5 * kNoBedrock)) z = -std::numeric_limits<double>::infinity();
+            }
+            sediment.emplace(water->mesh(), std::move(rock), SedimentOptions{},
+                             tin.vertices().material);
+        }
+    };
+    build();
+    flow.start = water->volume();
+    std::vector<double>& deepest = flow.deepest;
+    deepest.assign(water->depths().begin(), water->depths().end());
+    std::vector<double> before;
+    double t = 0.0;
+    while (t < op.seconds) {
+        if (op.until == WaterStop::Dry && is_dry(*water, op.rest_depth)) {
+            flow.stopped = "dry";
+            break;
+        }
+        if (op.detail > 0.0 && flow.steps % kDetailEvery == 0) {
+            // Detail where the water is: its long edges split, the water built again on the
+            // refined terrain (what it carried settled first: the new water starts from rest).
+            write_depths(*water, tin);
+            if (has_long_wet_edge(tin, op.detail, kFilmDepth)) {
+                if (sediment) write_sand(*water, *sediment, op, tin, flow);
+                const std::vector<VertexId> born =
+                    split_wet_edges(tin, op.detail, kDetailSplits, kFilmDepth);
+                flow.refined += born.size();
+                left_before += water->volume_left();
+                build();
+                deepest.resize(water->vertex_count(), 0.0);
+                for (std::size_t v = 0; v < deepest.size(); ++v)
+                    deepest[v] = std::max(deepest[v], water->depth(v));
+            }
+        }
+        const double dt = std::min({water->stable_time_step(), kLongestSourceStep, op.seconds - t});
+        const SourceReport r = apply_sources(*water, op.sources, dt);
+        flow.sources.added += r.added;
+        flow.sources.evaporated += r.evaporated;
+        if (op.until == WaterStop::Rest)
+            before.assign(water->depths().begin(), water->depths().end());
+        water->step(dt);
+        if (sediment) sediment->step(*water, dt);
+        for (std::size_t v = 0; v < deepest.size(); ++v)
+            deepest[v] = std::max(deepest[v], water->depth(v));
+        t += dt;
+        ++flow.steps;
+        if (op.until == WaterStop::Rest && fastest_change(*water, before) < op.rest_rate * dt) {
+            flow.stopped = "rest";
+            break;
+        }
+    }
+    if (op.until == WaterStop::Dry && flow.stopped == std::string_view("seconds") &&
+        is_dry(*water, op.rest_depth))
+        flow.stopped = "dry";
+    if (flow.stopped == std::string_view("dry")) flow.sources.evaporated += clear_films(*water);
+    flow.seconds = t;
+    if (sediment) write_sand(*water, *sediment, op, tin, flow);
+    flow.left = left_before + water->volume_left();
+    flow.water = water->volume();
+    // The water stays on the terrain for the next operation (journaled: saved, undone).
+    write_depths(*water, tin);
     return flow;
 }
 
 }  // namespace
 
-nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
+nlohmann::json run_water_op(const WaterOp& op, Tin& tin, std::vector<VertexId>* reached) {
     Flow flow;
     if (op.scheme == WaterScheme::Pipes) {
         VirtualPipeOptions options;
         options.friction = op.friction;
-        VirtualPipes water(water_mesh_of(tin), options);
-        flow = run_flow(water, op, tin);
+        flow = run_flow<VirtualPipes>([&] { return VirtualPipes(water_mesh_of(tin), options); }, op,
+                                      tin);
     } else {
         ShallowWaterOptions options;
         options.manning = op.manning;
-        ShallowWater water(water_mesh_of(tin), options);
-        flow = run_flow(water, op, tin);
+        flow = run_flow<ShallowWater>([&] { return ShallowWater(water_mesh_of(tin), options); }, op,
+                                      tin);
     }
     const std::vector<double>& deepest = flow.deepest;
     std::size_t wetted = 0;
@@ -315,8 +358,9 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
     const auto moisture = static_cast<float>(op.wet_moisture);
     for (std::size_t v = 0; v < deepest.size(); ++v) {
         max_depth = std::max(max_depth, deepest[v]);
-        if (deepest[v] < op.wet_depth) continue;
         const VertexId id{static_cast<std::uint32_t>(v)};
+        if (reached && deepest[v] > 0.0 && tin.is_alive(id)) reached->push_back(id);
+        if (deepest[v] < op.wet_depth) continue;
         if (!tin.is_alive(id)) continue;
         ++wetted;
         if (tin.vertices().moisture[v] < moisture) tin.set_moisture(id, moisture);
@@ -336,6 +380,7 @@ nlohmann::json run_water_op(const WaterOp& op, Tin& tin) {
             {"max_depth_m", max_depth},
             {"sand_moved_m3", flow.sand_moved},
             {"material_changed_vertices", flow.relabelled},
+            {"refined_vertices", flow.refined},
             {"moisture", moisture_report(spread, tin)},
             {"volume_change", flow.volume_change}};
 }

@@ -70,6 +70,12 @@ struct WaterOp {
     /// of the sand it laid there (water/sediment_transport.hpp): gravel washed onto sand
     /// shows, and slides, as gravel. A vertex has one material; a thinner film leaves it.
     double label_depth = 1e-3;
+    /// m, >= 0 (0: off): edges under the water (at least kFilmDepth at both ends) longer than
+    /// this are split as the water runs (water/wet_edge_split.hpp), so water on a coarse
+    /// terrain gets the triangles it flows through. Each refinement rebuilds the water on the
+    /// new triangles from rest, what it carried settled first. The ground it left dry is
+    /// simplified after the operation, as after any edit.
+    double detail = 0.0;
     /// How the moisture spreads and dries over the same seconds, after the wetting: the sand
     /// the water reached is wetted with what it reached by the end, then that moisture (and
     /// any already in the sand) spreads and dries for `seconds`. (Sand wetted late in the
@@ -95,7 +101,9 @@ WaterOp parse_water_op(JsonFields& f, WaterOpKind kind = WaterOpKind::Water);
 /// start, added, evaporated, left through the open sides and on the terrain at the end; the
 /// seconds run and why it stopped; the wetted vertices; the deepest water), and under
 /// "moisture" what the moisture did afterwards (as run_dry_op reports it).
-nlohmann::json run_water_op(const WaterOp& op, Tin& tin);
+/// `reached`, when given, receives the live vertices the water covered at some time in the
+/// operation (those the detail added included), for the simplifier.
+nlohmann::json run_water_op(const WaterOp& op, Tin& tin, std::vector<VertexId>* reached = nullptr);
 
 /// Parses the fields of a "dry" operation (seconds, required; diffusivity, drying_half_life).
 /// Throws JsonInputError naming the field.

@@ -9,6 +9,7 @@
 #include "tin/vertex_arrays.hpp"
 #include "util/elapsed_ms.hpp"
 #include "water/tin_water_mesh.hpp"
+#include "water/wet_edge_split.hpp"
 
 namespace sandtin {
 
@@ -237,30 +238,10 @@ std::size_t LiveWater::write_beds() {
 }
 
 std::size_t LiveWater::refine_wet_edges(double max_length) {
-    const VertexArrays& va = tin_.vertices();
-    std::vector<EdgeSplit> splits;
-    for (const VirtualPipes::Pipe& p : pipes_->pipes()) {
-        if (pipes_->depth(p.a) < kFilmDepth || pipes_->depth(p.b) < kFilmDepth) continue;
-        if (length(va.position[p.a] - va.position[p.b]) <= max_length) continue;
-        splits.push_back({VertexId{p.a}, VertexId{p.b}, 0.5});
-        if (splits.size() == kMaxWaterSplits) break;
-    }
-    if (splits.empty()) return 0;
-    // The new vertices' depths are interpolated along their edges, which keeps the water's
-    // volume until the triangulation around them flips; what the flips changed goes onto the
-    // new vertices in proportion to their areas.
-    const double before = measure_water(tin_).volume;
-    std::vector<VertexId> born = tin_.split_edges(splits, VolumePolicy::Conserve);
-    std::erase_if(born, [](VertexId v) { return !v.valid(); });
-    double area = 0.0;
-    for (const VertexId v : born)
-        area += va.lumped_area[v.index()];
-    const double missing = before - measure_water(tin_).volume;
-    if (area > 0.0 && missing != 0.0) {
-        for (const VertexId v : born)
-            tin_.set_water_depth(v, std::max(0.0, va.water_depth[v.index()] + missing / area));
-    }
-    stale_ = true;  // the pipes are built again from the refined terrain
+    // The terrain holds the pipes' depths: write_back ran just before.
+    const std::vector<VertexId> born =
+        split_wet_edges(tin_, max_length, kMaxWaterSplits, kFilmDepth);
+    if (!born.empty()) stale_ = true;  // the pipes are built again from the refined terrain
     return born.size();
 }
 

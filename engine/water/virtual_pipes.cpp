@@ -1,7 +1,5 @@
 #include "water/virtual_pipes.hpp"
 
-#include "util/thread_pool.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "util/thread_pool.hpp"
 
 namespace sandtin {
 

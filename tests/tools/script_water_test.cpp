@@ -244,6 +244,44 @@ TEST(ScriptWater, SandTheWaterLaysDownTakesTheMaterialItCameFrom) {
     EXPECT_GT(gravel_outside, 0u);
 }
 
+TEST(ScriptWater, DetailRefinesUnderTheWaterKeepingBothVolumesAndGoesOnceItIsDry) {
+    // A coarse flat sandbox (60 random points: edges of 10 to 20 cm) rained on in its middle
+    // with a 4 cm detail: the edges under the water are split as it stands there, the water's
+    // balance and the sand's volume exact. Then the water evaporates away, and the ground it
+    // left, flat and dry, is simplified: the detail goes again.
+    const Script s = parse_water_script(R"({"version": 1,
+        "terrain": {"size": [1, 1], "points": 60, "seed": 7, "sand_depth": 0.05},
+        "operations": [
+          {"op": "water", "seconds": 3, "detail": 0.04,
+           "rain": {"mm_per_hour": 3600, "centre": [0.5, 0.5], "radius": 0.25}},
+          {"op": "flow", "seconds": 600, "until": "dry", "detail": 0.04,
+           "evaporation_mm_per_hour": 10000}]})");
+    EXPECT_EQ(std::get<WaterOp>(s.steps.at(0).operation).detail, 0.04);
+    Tin tin = make_script_terrain(*s.terrain);
+    const std::size_t coarse = tin.vertex_count();
+    const double sand = tin.volume();
+    SculptContext context(tin.domain());
+    const nlohmann::json reports = run_script(s, tin, context);
+    const nlohmann::json& rain = reports.at(0);
+    const std::size_t refined = rain.at("refined_vertices").get<std::size_t>();
+    EXPECT_GT(refined, 20u);
+    const double added = rain.at("added_m3").get<double>();
+    EXPECT_NEAR(rain.at("water_m3").get<double>(),
+                rain.at("water_at_start_m3").get<double>() + added -
+                    rain.at("evaporated_m3").get<double>() - rain.at("left_m3").get<double>(),
+                1e-12 * added);
+    // The water was there while the refinement ran: what stood 1 mm deep has its 4 cm edges.
+    const nlohmann::json& dried = reports.at(1);
+    EXPECT_EQ(dried.at("stopped").get<std::string>(), "dry");
+    EXPECT_NEAR(dried.at("evaporated_m3").get<double>(), rain.at("water_m3").get<double>(),
+                1e-12 * added);
+    // Dry and flat: the simplifier took the detail away again (and flat ground the water
+    // covered besides), with the sand's volume unchanged throughout.
+    EXPECT_GE(dried.at("simplified_vertices").get<std::size_t>(), refined);
+    EXPECT_LE(tin.vertex_count(), coarse);
+    EXPECT_NEAR(tin.volume(), sand, 1e-12 * sand);
+}
+
 TEST(ScriptWater, BadFieldsAreNamed) {
     EXPECT_NE(water_error(R"({"op": "water", "seconds": 1})").find("source"), std::string::npos);
     EXPECT_NE(
@@ -260,6 +298,10 @@ TEST(ScriptWater, BadFieldsAreNamed) {
     EXPECT_NE(water_error(R"({"op": "water", "seconds": 1,
                               "nozzles": [{"at": [0.5, 0.5], "litres_per_second": -1}]})")
                   .find("litres_per_second"),
+              std::string::npos);
+    EXPECT_NE(water_error(R"({"op": "water", "seconds": 1, "rain": {"mm_per_hour": 5},
+                              "detail": -0.01})")
+                  .find("detail"),
               std::string::npos);
     EXPECT_NE(water_error(R"({"op": "water", "seconds": 1,
                               "nozzles": [{"at": [0.5, 0.5], "litres_per_second": 1,
