@@ -79,14 +79,14 @@ if has_pass tsan; then
     sandtin_io_tests
   export TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
   # The haptics core (label tsan), then the multithreaded Jacobi (its one-thread comparisons
-  # have nothing to race and took TSan 70 s) and the autosave writer, each test in its own
-  # process so that both cores are busy (run one after another in a single process, they left
-  # a core idle for about a minute). The determinism sessions (tests/stress) run the same
+  # have nothing to race and took TSan 70 s), the thread pool and the autosave writer, each
+  # test in its own process so that both cores are busy (run one after another in a single
+  # process, they left a core idle for about a minute). The determinism sessions (tests/stress) run the same
   # thread pool through a whole session; they run in the release and ASan passes, and are not
   # built here (their binary alone cost the TSan pass about half a minute).
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
   ctest --test-dir build-tsan --output-on-failure -j"$jobs" \
-    -R '^(Jacobi|Randomisation)\.|^JacobiSchedule\.TwoThreads|^Autosave\.Writer' \
+    -R '^(Jacobi|Randomisation|ThreadPool)\.|^JacobiSchedule\.TwoThreads|^Autosave\.Writer' \
     -E '^Jacobi\.OneAndTwoThreadsAreBitwiseIdentical$'
   unset TSAN_OPTIONS
 fi
