@@ -17,10 +17,6 @@ namespace {
 // Must match shaders/moisture_common.glsl.
 constexpr uint32_t kWetWord = 0, kWettestWord = 1, kSlowedWord = 2;
 constexpr uint32_t kMoistureBindings = 12;
-// As water/moisture_diffusion.cpp: the share of the stiffest vertices the sub-step may exceed,
-// and the shortest sub-step as a share of the median vertex's bound.
-constexpr double kStiffShare = 0.01;
-constexpr double kShortestStepOfMedian = 1.0 / 64.0;
 
 constexpr VkBufferUsageFlags kMoistureStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -141,16 +137,7 @@ void GpuMoisture::measure_weights() {
     finite.reserve(ratios.size());
     for (std::size_t v = 0; v < ratios.size(); ++v)
         if (va.alive[v] && std::isfinite(ratios[v])) finite.push_back(ratios[v]);
-    bound_ratio_ = std::numeric_limits<double>::infinity();
-    if (!finite.empty()) {
-        const auto at = [&](double share) {
-            const auto k = static_cast<std::ptrdiff_t>(share * static_cast<double>(finite.size()));
-            std::nth_element(finite.begin(), finite.begin() + k, finite.end());
-            return finite[static_cast<std::size_t>(k)];
-        };
-        const double median = at(0.5);
-        bound_ratio_ = std::max(at(kStiffShare), kShortestStepOfMedian * median);
-    }
+    bound_ratio_ = moisture_step_ratio(finite);
     weights_stale_ = false;
 }
 

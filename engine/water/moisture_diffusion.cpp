@@ -120,13 +120,7 @@ double MoistureSet::step_bound(double diffusivity) {
             if (weight_sum_[l] > 0.0) ratios_.push_back(area_[l] / weight_sum_[l]);
         }
         if (ratios_.empty()) return std::numeric_limits<double>::infinity();
-        const auto at = [&](double share) {
-            const auto k = static_cast<std::ptrdiff_t>(share * static_cast<double>(ratios_.size()));
-            std::nth_element(ratios_.begin(), ratios_.begin() + k, ratios_.end());
-            return ratios_[static_cast<std::size_t>(k)];
-        };
-        const double median = at(0.5);
-        bound_ratio_ = std::max(at(kStiffShare), kShortestStepOfMedian * median);
+        bound_ratio_ = moisture_step_ratio(ratios_);
     }
     return 0.5 * bound_ratio_ / diffusivity;
 }
@@ -221,6 +215,17 @@ void write_back(Tin& tin, const MoistureSet& set, bool drying, MoistureReport& r
 }
 
 }  // namespace
+
+double moisture_step_ratio(std::vector<double>& ratios) {
+    if (ratios.empty()) return std::numeric_limits<double>::infinity();
+    const auto at = [&](double share) {
+        const auto k = static_cast<std::ptrdiff_t>(share * static_cast<double>(ratios.size()));
+        std::nth_element(ratios.begin(), ratios.begin() + k, ratios.end());
+        return ratios[static_cast<std::size_t>(k)];
+    };
+    const double median = at(0.5);
+    return std::max(at(kStiffShare), kShortestStepOfMedian * median);
+}
 
 MoistureReport spread_and_dry_moisture(Tin& tin, double seconds, const MoistureSettings& settings) {
     check_settings(seconds, settings);

@@ -56,6 +56,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <vector>
 
 #include "tin/ids.hpp"
 
@@ -104,6 +105,12 @@ struct MoistureReport {
     VertexId wettest;
     float wettest_moisture = 0.0f;
 };
+
+/// The sub-step's rule (above), from the ratios A_i / sum_j w_ij of the vertices with edges:
+/// the ratio at 1 % from the stiffest, but at least 1/64 of the median's (the sub-step is
+/// 0.5 ratio / D); +inf when there are none. Reorders `ratios`. Shared with the GPU's
+/// moisture (gpu/gpu_moisture.hpp).
+double moisture_step_ratio(std::vector<double>& ratios);
 
 /// Lets `seconds` of time pass over the terrain's moisture with no water on it: moisture
 /// spreads into drier sand and dries, as above. Throws std::invalid_argument naming the value

@@ -162,6 +162,11 @@ double VirtualPipes::stable_time_step() const {
     return options_.courant * limit;
 }
 
+double VirtualPipes::overfall(std::uint32_t v) const {
+    const double h = depth_[v];
+    return border_width_[v] * h * std::sqrt(options_.gravity * h);
+}
+
 WaterStepReport VirtualPipes::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw std::invalid_argument("water: a time step must be finite and > 0");
@@ -171,19 +176,12 @@ WaterStepReport VirtualPipes::step(double dt) {
     // Phase 1: fluxes from the surface difference, through the upwind depth.
     std::fill(outflow_.begin(), outflow_.end(), 0.0);
     for (Pipe& p : pipes_) {
-        // A dry pipe at rest stays so (its upwind depth is 0): most of a terrain, skipped.
-        if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
-        const double drop = surface(p.a) - surface(p.b);
-        const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
-        p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+        if (at_rest(p)) continue;
+        p.flux = next_flux(p, dt, damping);
         if (p.flux > 0.0) outflow_[p.a] += p.flux;
         if (p.flux < 0.0) outflow_[p.b] -= p.flux;
     }
     // ...and over the open border: a free overfall's critical discharge (m³/s).
-    const auto overfall = [&](std::uint32_t v) {
-        const double h = depth_[v];
-        return border_width_[v] * h * std::sqrt(options_.gravity * h);
-    };
     for (std::uint32_t v : border_vertices_)
         outflow_[v] += overfall(v);
     // Phase 2: no vertex gives more than it holds (outflow_ becomes the scale K in [0, 1]).
@@ -236,20 +234,14 @@ WaterStepReport VirtualPipes::step(double dt, ThreadPool& pool) {
         return thread == 0 ? outflow_ : scatter_[static_cast<std::size_t>(thread - 1)];
     };
     const double damping = 1.0 / (1.0 + dt * options_.friction);
-    const auto overfall = [&](std::uint32_t v) {
-        const double h = depth_[v];
-        return border_width_[v] * h * std::sqrt(options_.gravity * h);
-    };
     // Phase 1: fluxes, each thread scattering its pipes' outflows into its own array.
     std::fill(outflow_.begin(), outflow_.end(), 0.0);
     pool.parallel_for(pipes_.size(), [&](std::size_t begin, std::size_t end, int thread) {
         std::vector<double>& out = into(thread);
         for (std::size_t i = begin; i < end; ++i) {
             Pipe& p = pipes_[i];
-            if (p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0) continue;
-            const double drop = surface(p.a) - surface(p.b);
-            const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
-            p.flux = (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+            if (at_rest(p)) continue;
+            p.flux = next_flux(p, dt, damping);
             if (p.flux > 0.0) out[p.a] += p.flux;
             if (p.flux < 0.0) out[p.b] -= p.flux;
         }

@@ -136,6 +136,19 @@ class VirtualPipes {
 
   private:
     void build_pipes();
+    /// A dry pipe at rest stays so (its upwind depth is 0): most of a terrain, skipped.
+    bool at_rest(const Pipe& p) const {
+        return p.flux == 0.0 && depth_[p.a] == 0.0 && depth_[p.b] == 0.0;
+    }
+    /// Phase 1 of a step for one pipe: its flux from the surface difference through the
+    /// upwind depth, damped by friction (`damping` = 1 / (1 + dt friction)).
+    double next_flux(const Pipe& p, double dt, double damping) const {
+        const double drop = surface(p.a) - surface(p.b);
+        const double upwind = drop >= 0.0 ? depth_[p.a] : depth_[p.b];
+        return (p.flux + dt * options_.gravity * upwind * p.conductance * drop) * damping;
+    }
+    /// m³/s over the open border at v: a free overfall's critical discharge, width h sqrt(g h).
+    double overfall(std::uint32_t v) const;
 
     WaterMesh mesh_;
     VirtualPipeOptions options_;
