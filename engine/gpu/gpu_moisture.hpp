@@ -108,7 +108,6 @@ class GpuMoisture {
     Buffer scratch_, weight_sum_, ratio_;  ///< per vertex id
     uint32_t vertex_capacity_ = 0;
     uint64_t bound_generation_ = UINT64_MAX;
-    uint64_t weights_generation_ = UINT64_MAX;
     bool weights_stale_ = true;
     double bound_ratio_ = 0.0;  ///< A / sum w of the vertex the sub-step follows (m²/(m²/m²))
     bool active_ = false;
