@@ -176,9 +176,16 @@ void GpuSediment::ensure_buffers() {
     }
     ring.flush();
     if (changes.vertices.empty()) return;
-    // Suspension at a vertex that died is lost: counted, and cleared with the residuals.
+    // Suspension at a vertex that died is lost: counted, and cleared with the residuals. (Read
+    // back only when a vertex died.)
+    bool died = false;
+    for (const IdRange r : changes.vertices) {
+        for (uint32_t v = r.begin; v < std::min(r.end, vertex_capacity_) && !died; ++v)
+            died = v >= va.size() || !va.alive[v];
+    }
     const std::vector<float> held =
-        read(held_, vertex_capacity_, VkDeviceSize{half_} * vertex_capacity_);
+        died ? read(held_, vertex_capacity_, VkDeviceSize{half_} * vertex_capacity_)
+             : std::vector<float>(vertex_capacity_, 0.0f);
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         for (const IdRange r : changes.vertices) {
             const uint32_t end = std::min(r.end, vertex_capacity_);
@@ -251,11 +258,19 @@ double GpuSediment::sand_volume() const {
 }
 
 std::vector<double> GpuSediment::read_beds() const {
-    const std::vector<float> height = read_buffer_floats(
-        context_, mirror_.vertex_buffer(VertexBuffer::Height), VkDeviceSize{vertex_capacity_} * 4);
+    const VkDeviceSize n = vertex_capacity_;
+    const std::vector<float> height =
+        read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Height), n * 4);
+    const std::vector<float> area =
+        read_buffer_floats(context_, mirror_.vertex_buffer(VertexBuffer::Area), n * 4);
+    const std::vector<float> residual = read(bed_residual_, n);
     std::vector<double> beds(height.size());
-    for (std::size_t v = 0; v < height.size(); ++v)
-        beds[v] = static_cast<double>(height[v]) + mirror_.height_origin();
+    for (std::size_t v = 0; v < height.size(); ++v) {
+        // The residual is sand the float height could not take: in double it can.
+        const double rest =
+            area[v] > 0.0f ? static_cast<double>(residual[v]) / static_cast<double>(area[v]) : 0.0;
+        beds[v] = static_cast<double>(height[v]) + mirror_.height_origin() + rest;
+    }
     return beds;
 }
 

@@ -14,9 +14,11 @@
 // of the palette (the materials on the terrain when the sediment starts, at most 8), and
 // each vertex counts what it received of each; deposited_materials() says what lies on top.
 //
-// copy_beds_into() hands the beds back to the terrain (journaled). Settle (settle_all) and
-// copy before the terrain is re-triangulated elsewhere: suspension at a vertex that dies is
-// lost (suspended_lost() counts it).
+// copy_beds_into() hands the beds back to the terrain (journaled). Do so before the terrain
+// is edited elsewhere or the water's depths are copied back (GpuWater::copy_depths_into): the
+// next sync puts the terrain's heights back on every vertex it uploads. Settle (settle_all)
+// and copy before the terrain is re-triangulated: suspension at a vertex that dies is lost
+// (suspended_lost() counts it).
 // Units: metres, seconds, m³.
 
 #include <cstdint>
@@ -52,7 +54,8 @@ class GpuSediment final : public WaterStepHook {
     /// sum(area x height + bed residual) over the live vertices (m³, heights from the mirror's
     /// origin) plus the suspension: what the sediment keeps.
     double sand_volume() const;
-    /// The beds (m, the terrain's own heights), mirror vertex capacity long.
+    /// The beds (m, the terrain's own heights: the float height plus, in double, the bed
+    /// residual over the vertex's area), mirror vertex capacity long.
     std::vector<double> read_beds() const;
     /// Writes the GPU's beds into the terrain (Tin::set_height, journaled) where they differ;
     /// returns how many were written.

@@ -48,7 +48,13 @@ void StagingRing::upload(VkBuffer dst, VkDeviceSize dst_offset, const void* data
     total_bytes_ += bytes;
     frame_bytes_ += bytes;
     while (bytes > 0) {
-        if (in_flight_.empty() && pending_.empty()) tail_ = head_;  // the whole ring is free
+        if (in_flight_.empty() && pending_.empty()) {
+            // The whole ring is free: start again at its physical beginning, where the most
+            // contiguous room is. (Kept where it was, an unaligned head near the end of the ring
+            // left the ring 15 bytes short of free, with a small contiguous piece before the
+            // wrap and nothing in flight to reclaim: the branch below threw.)
+            head_ = tail_ = (head_ + capacity_ - 1) / capacity_ * capacity_;
+        }
         // Regions start 16-byte aligned (copy offsets need 4; 16 keeps vec4 data aligned).
         head_ = (head_ + 15) & ~uint64_t{15};
         uint64_t phys = head_ % capacity_;

@@ -164,6 +164,32 @@ TEST_F(GpuSedimentTest, GravelWashedDownStaysGravelAsOnTheCpu) {
     EXPECT_GE(agreeing, compared * 98 / 100);
 }
 
+TEST_F(GpuSedimentTest, BedsHandedBackBeforeTheWaterKeepTheSandAcrossRuns) {
+    // The editor's round: run, hand the beds then the water back to the terrain (journaled:
+    // the mirror uploads those vertices again), run again. The terrain's own sand plus what
+    // the GPU still carries is the sand the terrain started with.
+    Tin tin = stream_terrain();
+    const double start = tin.volume();
+    TinMirror mirror(ctx(), tin);
+    GpuWater water(mirror);
+    GpuSediment sediment(water);
+    const double dt = water.stable_time_step();
+    for (int round = 0; round < 4; ++round) {
+        water.run(100, dt, &sediment);
+        EXPECT_GT(sediment.copy_beds_into(tin), 0u) << round;
+        water.copy_depths_into(tin);
+    }
+    sediment.settle_all();
+    sediment.copy_beds_into(tin);
+    EXPECT_EQ(sediment.suspended(), 0.0);
+    EXPECT_EQ(sediment.suspended_lost(), 0.0);
+    // Beds handed back with their residuals; each round's upload rounds the terrain's doubles
+    // to the mirror's floats again (measured 7.7e-11 m3 on 0.05 m3; without the residuals
+    // 4.6e-9).
+    std::printf("terrain %.15g -> %.15g m3\n", start, tin.volume());
+    EXPECT_NEAR(tin.volume(), start, 1e-9);
+}
+
 TEST_F(GpuSedimentTest, RefusesBadConstants) {
     Tin tin = stream_terrain();
     TinMirror mirror(ctx(), tin);
