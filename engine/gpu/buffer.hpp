@@ -55,6 +55,11 @@ void buffer_barrier(VkCommandBuffer cb, VkBuffer buffer, VkPipelineStageFlags sr
 void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src_stage, VkAccessFlags src_access,
                     VkPipelineStageFlags dst_stage, VkAccessFlags dst_access);
 
+// Compute and transfer writes -> compute and transfer reads and writes: between the dispatches
+// and copies of one submission that read what the previous ones wrote (the water, sediment,
+// moisture and surface-map kernels).
+void compute_transfer_barrier(VkCommandBuffer cb);
+
 // Transfer writes -> host reads: recorded after the last copy into a host-visible buffer that
 // the host reads once the submission's fence has signalled. Waiting on the fence alone does not
 // make device writes visible to the host (Vulkan spec, "Host Write Ordering Guarantees" and the

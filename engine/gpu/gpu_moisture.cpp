@@ -22,14 +22,6 @@ constexpr VkBufferUsageFlags kMoistureStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_B
                                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-void moisture_barrier(VkCommandBuffer cb) {
-    memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                       VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-}
-
 }  // namespace
 
 GpuMoisture::GpuMoisture(TinMirror& mirror, MoistureSettings settings)
@@ -178,16 +170,16 @@ GpuMoistureRun GpuMoisture::run(double seconds, const WettingByWater* wetting) {
     }
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         vkCmdFillBuffer(cb, control_.get(), 0, VK_WHOLE_SIZE, 0);
-        moisture_barrier(cb);
+        compute_transfer_barrier(cb);
         if (wetting) {
             wet_.dispatch(cb, pc.vertex_count, &pc);
-            moisture_barrier(cb);
+            compute_transfer_barrier(cb);
             ++run.dispatches;
         }
         for (std::size_t i = 0; i < run.sub_steps; ++i) {
             pc.parity = static_cast<uint32_t>(i % 2);
             spread_.dispatch(cb, pc.vertex_count, &pc);
-            moisture_barrier(cb);
+            compute_transfer_barrier(cb);
             ++run.dispatches;
         }
         if (run.sub_steps % 2 == 1) {
@@ -195,7 +187,7 @@ GpuMoistureRun GpuMoisture::run(double seconds, const WettingByWater* wetting) {
             const VkBufferCopy all{0, 0, VkDeviceSize{pc.vertex_count} * 4};
             vkCmdCopyBuffer(cb, scratch_.get(), mirror_.vertex_buffer(VertexBuffer::Moisture), 1,
                             &all);
-            moisture_barrier(cb);
+            compute_transfer_barrier(cb);
         }
         finish_.dispatch(cb, pc.vertex_count, &pc);
         ++run.dispatches;

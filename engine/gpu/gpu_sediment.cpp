@@ -17,14 +17,6 @@ constexpr VkBufferUsageFlags kSedimentStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_B
                                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-void sediment_barrier(VkCommandBuffer cb) {
-    memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                       VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-}
-
 bool rate(double r) {
     return r >= 0.0 && std::isfinite(r);
 }
@@ -185,14 +177,14 @@ void GpuSediment::ensure_buffers() {
     }
     const std::vector<float> held =
         died ? read(held_, vertex_capacity_, VkDeviceSize{half_} * vertex_capacity_)
-             : std::vector<float>(vertex_capacity_, 0.0f);
+             : std::vector<float>();
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         for (const IdRange r : changes.vertices) {
             const uint32_t end = std::min(r.end, vertex_capacity_);
             if (end <= r.begin) continue;
             vkCmdFillBuffer(cb, bed_residual_.get(), VkDeviceSize{r.begin} * 4,
                             VkDeviceSize{end - r.begin} * 4, 0);
-            for (uint32_t v = r.begin; v < end; ++v) {
+            for (uint32_t v = r.begin; v < end && died; ++v) {
                 if ((v < va.size() && va.alive[v]) || !(held[v] > 0.0f)) continue;
                 lost_ += static_cast<double>(held[v]);
                 vkCmdFillBuffer(cb, held_.get(), (VkDeviceSize{half_} * vertex_capacity_ + v) * 4,
@@ -209,9 +201,9 @@ void GpuSediment::prepare() {
 void GpuSediment::record_step(VkCommandBuffer cb, uint32_t parity, double dt) {
     const Push pc = push(parity, dt);
     capacity_.dispatch(cb, pc.vertex_count, &pc);
-    sediment_barrier(cb);
+    compute_transfer_barrier(cb);
     exchange_.dispatch(cb, pc.vertex_count, &pc);
-    sediment_barrier(cb);
+    compute_transfer_barrier(cb);
     carry_.dispatch(cb, pc.vertex_count, &pc);
     half_ = 1 - half_;  // carry wrote the other half: it is the current one now
 }

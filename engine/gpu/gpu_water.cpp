@@ -25,14 +25,6 @@ constexpr VkBufferUsageFlags kWaterStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT 
                                              VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                              VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-void water_barrier(VkCommandBuffer cb) {
-    memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                       VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-}
-
 std::vector<float> read_floats(const VulkanContext& context, VkBuffer buffer, uint32_t count) {
     return read_buffer_floats(context, buffer, VkDeviceSize{count} * 4);
 }
@@ -208,7 +200,7 @@ double GpuWater::stable_time_step() {
         context_.submit_and_wait([&](VkCommandBuffer cb) {
             vkCmdFillBuffer(cb, control_.get(), 0, VK_WHOLE_SIZE, 0);
             vkCmdFillBuffer(cb, control_.get(), kLimitWord * 4, 4, kPositiveInfinityBits);
-            water_barrier(cb);
+            compute_transfer_barrier(cb);
             record_measure(cb, pc);
         });
         take_measure();
@@ -227,17 +219,17 @@ GpuWaterRun GpuWater::run(int steps, double dt, WaterStepHook* hook) {
     context_.submit_and_wait([&](VkCommandBuffer cb) {
         vkCmdFillBuffer(cb, control_.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cb, control_.get(), kLimitWord * 4, 4, kPositiveInfinityBits);
-        water_barrier(cb);
+        compute_transfer_barrier(cb);
         for (int i = 0; i < steps; ++i) {
             parity_ = 1 - parity_;
             const Push pc = push(dt);
             flux_.dispatch(cb, pc.vertex_count, &pc);
-            water_barrier(cb);
+            compute_transfer_barrier(cb);
             depth_.dispatch(cb, pc.vertex_count, &pc);
-            water_barrier(cb);
+            compute_transfer_barrier(cb);
             if (hook) {
                 hook->record_step(cb, parity_, dt);
-                water_barrier(cb);
+                compute_transfer_barrier(cb);
             }
         }
         record_measure(cb, push(dt));

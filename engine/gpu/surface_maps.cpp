@@ -16,14 +16,6 @@ constexpr VkBufferUsageFlags kMapStorage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
 
-void shader_barrier(VkCommandBuffer cb) {
-    memory_barrier(
-        cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
-}
-
 std::vector<Vec3> to_vec3(const std::vector<float>& f) {
     std::vector<Vec3> out(f.size() / 4);
     for (size_t i = 0; i < out.size(); ++i) {
@@ -101,7 +93,7 @@ void SurfaceMaps::record_normals(VkCommandBuffer cb, const Push& base, bool corn
     pv.z_scale = z_scale_;
     Push ps = pv;
     ps.count = slot_capacity_;
-    shader_barrier(cb);  // mirror uploads and relaxation -> normals
+    compute_transfer_barrier(cb);  // mirror uploads and relaxation -> normals
     vertex_kernel_.dispatch(cb, pv.count, &pv);
     ++dispatches_;
     if (corners) {
@@ -184,7 +176,7 @@ void SurfaceMaps::bake_region(const MapGrid& grid, const Rect& region, TexelRect
     const bool any_normals = whole || !region.empty();
     mirror_.context().submit_and_wait([&](VkCommandBuffer cb) {
         if (any_normals) record_normals(cb, n, creased);
-        shader_barrier(cb);
+        compute_transfer_barrier(cb);
         bake_kernel_.dispatch(cb, p.count, &p);
         if (then) then(cb);
     });
@@ -201,7 +193,7 @@ BakedMaps SurfaceMaps::bake(const MapGrid& grid, BakeNormals normals) {
     ctx.submit_and_wait([&](VkCommandBuffer cb) {
         vkCmdFillBuffer(cb, height_map_.get(), 0, VK_WHOLE_SIZE, 0);
         vkCmdFillBuffer(cb, normal_map_.get(), 0, VK_WHOLE_SIZE, 0);
-        shader_barrier(cb);
+        compute_transfer_barrier(cb);
         bake_kernel_.dispatch(cb, p.count, &p);
     });
     ++dispatches_;

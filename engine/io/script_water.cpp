@@ -294,8 +294,9 @@ Flow run_flow(Make make_water, const WaterOp& op, Tin& tin) {
         if (op.detail > 0.0 && flow.steps % kDetailEvery == 0) {
             // Detail where the water is: its long edges split, the water built again on the
             // refined terrain (what it carried settled first: the new water starts from rest).
-            write_depths(*water, tin);
-            if (has_long_wet_edge(tin, op.detail, kFilmDepth)) {
+            // Looked for in the water's own depths: the terrain's are written only to split.
+            if (has_long_wet_edge(tin, water->depths(), op.detail, kFilmDepth)) {
+                write_depths(*water, tin);
                 if (sediment) write_sand(*water, *sediment, op, tin, flow);
                 const std::vector<VertexId> born =
                     split_wet_edges(tin, op.detail, kDetailSplits, kFilmDepth);

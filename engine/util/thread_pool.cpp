@@ -28,8 +28,8 @@ void relax_cpu() {
 /// Spins until done() or kSpinMicroseconds pass; returns done().
 template <class Done>
 bool spin_until(Done done) {
-    const auto until = std::chrono::steady_clock::now() +
-                       std::chrono::microseconds(ThreadPool::kSpinMicroseconds);
+    const auto until =
+        std::chrono::steady_clock::now() + std::chrono::microseconds(ThreadPool::kSpinMicroseconds);
     for (int i = 0;; ++i) {
         if (done()) return true;
         relax_cpu();
@@ -90,9 +90,8 @@ void ThreadPool::worker(int index) {
         spin_until([&] { return generation_.load(std::memory_order_acquire) != seen; });
         {
             std::unique_lock<std::mutex> lock(mutex_);
-            wake_.wait(lock, [&] {
-                return stop_ || generation_.load(std::memory_order_relaxed) != seen;
-            });
+            wake_.wait(
+                lock, [&] { return stop_ || generation_.load(std::memory_order_relaxed) != seen; });
             if (stop_) return;
             seen = generation_.load(std::memory_order_relaxed);
             job = job_;

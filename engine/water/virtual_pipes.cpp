@@ -167,6 +167,23 @@ double VirtualPipes::overfall(std::uint32_t v) const {
     return border_width_[v] * h * std::sqrt(options_.gravity * h);
 }
 
+bool VirtualPipes::move_volume(Pipe& p, double dt, std::vector<double>& change) const {
+    if (p.flux == 0.0) return false;
+    p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
+    const double moved = p.flux * dt;
+    change[p.a] -= moved;
+    change[p.b] += moved;
+    return p.flux != 0.0;
+}
+
+void VirtualPipes::drain_borders(double dt) {
+    for (std::uint32_t v : border_vertices_) {
+        const double left = overfall(v) * outflow_[v] * dt;
+        inflow_[v] -= left;
+        volume_left_ += left;
+    }
+}
+
 WaterStepReport VirtualPipes::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw std::invalid_argument("water: a time step must be finite and > 0");
@@ -196,19 +213,9 @@ WaterStepReport VirtualPipes::step(double dt) {
     std::fill(inflow_.begin(), inflow_.end(), 0.0);
     std::vector<double>& change = inflow_;  // m³ over this step, per vertex
     bool any_flux = false;
-    for (Pipe& p : pipes_) {
-        if (p.flux == 0.0) continue;
-        p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
-        const double moved = p.flux * dt;
-        change[p.a] -= moved;
-        change[p.b] += moved;
-        any_flux = any_flux || p.flux != 0.0;
-    }
-    for (std::uint32_t v : border_vertices_) {
-        const double left = overfall(v) * outflow_[v] * dt;
-        change[v] -= left;
-        volume_left_ += left;
-    }
+    for (Pipe& p : pipes_)
+        any_flux = move_volume(p, dt, change) || any_flux;
+    drain_borders(dt);
     bool any_water = false;
     for (std::size_t v = 0; v < depth_.size(); ++v) {
         if (change[v] != 0.0) depth_[v] = std::max(0.0, depth_[v] + change[v] / mesh_.area[v]);
@@ -278,22 +285,11 @@ WaterStepReport VirtualPipes::step(double dt, ThreadPool& pool) {
     pool.parallel_for(pipes_.size(), [&](std::size_t begin, std::size_t end, int thread) {
         std::vector<double>& change = change_of(thread);
         bool any = false;
-        for (std::size_t i = begin; i < end; ++i) {
-            Pipe& p = pipes_[i];
-            if (p.flux == 0.0) continue;
-            p.flux *= outflow_[p.flux > 0.0 ? p.a : p.b];
-            const double moved = p.flux * dt;
-            change[p.a] -= moved;
-            change[p.b] += moved;
-            any = any || p.flux != 0.0;
-        }
+        for (std::size_t i = begin; i < end; ++i)
+            any = move_volume(pipes_[i], dt, change) || any;
         fluxes[static_cast<std::size_t>(thread)] = any ? 1 : 0;
     });
-    for (std::uint32_t v : border_vertices_) {
-        const double left = overfall(v) * outflow_[v] * dt;
-        inflow_[v] -= left;
-        volume_left_ += left;
-    }
+    drain_borders(dt);
     std::vector<std::uint8_t> wet(static_cast<std::size_t>(threads), 0);
     pool.parallel_for(n, [&](std::size_t begin, std::size_t end, int thread) {
         bool any = false;

@@ -149,6 +149,12 @@ class VirtualPipes {
     }
     /// m³/s over the open border at v: a free overfall's critical discharge, width h sqrt(g h).
     double overfall(std::uint32_t v) const;
+    /// Phase 3 for one pipe: its flux scaled by its sending end's K (outflow_), and the volume
+    /// it moves over dt taken from one end of `change` and added to the other. Returns
+    /// whether it still flows.
+    bool move_volume(Pipe& p, double dt, std::vector<double>& change) const;
+    /// Phase 3 at the open border: what went over it leaves inflow_ and counts as left.
+    void drain_borders(double dt);
 
     WaterMesh mesh_;
     VirtualPipeOptions options_;

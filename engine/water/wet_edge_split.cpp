@@ -10,15 +10,18 @@ namespace {
 
 /// Calls visit(a, b) for each edge a < b longer than max_length with `film` of water at both
 /// ends, in order of a, until visit returns false.
+/// With `depth` per vertex id (m).
 template <class Visit>
-void for_long_wet_edges(const Tin& tin, double max_length, double film, Visit visit) {
+void for_long_wet_edges(const Tin& tin, std::span<const double> depth, double max_length,
+                        double film, Visit visit) {
     const VertexArrays& va = tin.vertices();
     std::vector<VertexId> ring;
-    for (std::uint32_t a = 0; a < va.size(); ++a) {
-        if (!va.alive[a] || va.water_depth[a] < film) continue;
+    const auto n = static_cast<std::uint32_t>(std::min(va.size(), depth.size()));
+    for (std::uint32_t a = 0; a < n; ++a) {
+        if (!va.alive[a] || depth[a] < film) continue;
         tin.neighbours(VertexId{a}, ring);
         for (const VertexId b : ring) {
-            if (b.value < a || va.water_depth[b.index()] < film) continue;
+            if (b.value < a || b.value >= n || depth[b.index()] < film) continue;
             if (length(va.position[a] - va.position[b.index()]) <= max_length) continue;
             if (!visit(VertexId{a}, b)) return;
         }
@@ -27,9 +30,10 @@ void for_long_wet_edges(const Tin& tin, double max_length, double film, Visit vi
 
 }  // namespace
 
-bool has_long_wet_edge(const Tin& tin, double max_length, double film) {
+bool has_long_wet_edge(const Tin& tin, std::span<const double> depth, double max_length,
+                       double film) {
     bool found = false;
-    for_long_wet_edges(tin, max_length, film, [&](VertexId, VertexId) {
+    for_long_wet_edges(tin, depth, max_length, film, [&](VertexId, VertexId) {
         found = true;
         return false;
     });
@@ -39,10 +43,11 @@ bool has_long_wet_edge(const Tin& tin, double max_length, double film) {
 std::vector<VertexId> split_wet_edges(Tin& tin, double max_length, std::size_t max_splits,
                                       double film) {
     std::vector<EdgeSplit> splits;
-    for_long_wet_edges(tin, max_length, film, [&](VertexId a, VertexId b) {
-        splits.push_back({a, b, 0.5});
-        return splits.size() < max_splits;
-    });
+    for_long_wet_edges(tin, tin.vertices().water_depth, max_length, film,
+                       [&](VertexId a, VertexId b) {
+                           splits.push_back({a, b, 0.5});
+                           return splits.size() < max_splits;
+                       });
     if (splits.empty()) return {};
     const double before = measure_water(tin).volume;
     std::vector<VertexId> born = tin.split_edges(splits, VolumePolicy::Conserve);

@@ -9,14 +9,17 @@
 // Used by the editor's water (live_water.hpp) and the scripts' water operations.
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "tin/tin.hpp"
 
 namespace sandtin {
 
-/// Whether an edge longer than `max_length` (m) has at least `film` m of water at both ends.
-bool has_long_wet_edge(const Tin& tin, double max_length, double film);
+/// Whether an edge longer than `max_length` (m) has at least `film` m of water at both ends,
+/// by `depth` (m per vertex id: a water scheme's depths, which may be ahead of the terrain's).
+bool has_long_wet_edge(const Tin& tin, std::span<const double> depth, double max_length,
+                       double film);
 
 /// Splits at most `max_splits` edges longer than `max_length` (m) with at least `film` m of
 /// water at both ends (by the terrain's water depths), lowest vertex ids first; returns the

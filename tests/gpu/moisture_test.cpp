@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -79,8 +80,10 @@ TEST_F(GpuMoistureTest, SpreadsAndDriesAsTheCpuReferenceDoes) {
         worst = std::max(worst, std::abs(static_cast<double>(m[v] - va.moisture[v])));
         moved = std::max(moved, std::abs(static_cast<double>(va.moisture[v] - start[v])));
     }
+    std::printf("moisture moved up to %.3g; GPU - CPU at most %.3g\n", moved, worst);
     EXPECT_GT(moved, 0.05);  // the moisture did move: the comparison means something
-    EXPECT_LE(worst, 2e-6) << "largest GPU - CPU moisture difference";
+    // Measured 1.8e-6: floats (an ulp of 6e-8 at 1) over 60 sub-steps.
+    EXPECT_LE(worst, 5e-6) << "largest GPU - CPU moisture difference";
     // The GPU's moisture handed back to its terrain: the same totals as the CPU's.
     EXPECT_GT(gpu.copy_moisture_into(gpu_tin), 0u);
     EXPECT_NEAR(cpu_total(gpu_tin), cpu_total(cpu), 1e-6 * cpu_total(cpu));

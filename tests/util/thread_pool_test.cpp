@@ -63,8 +63,7 @@ TEST(ThreadPool, AJobAfterTheWorkersFellAsleepStillRuns) {
     std::atomic<int> ran{0};
     for (int round = 0; round < 5; ++round) {
         // Well past the spin: the worker sleeps on the condition variable.
-        std::this_thread::sleep_for(
-            std::chrono::microseconds(20 * ThreadPool::kSpinMicroseconds));
+        std::this_thread::sleep_for(std::chrono::microseconds(20 * ThreadPool::kSpinMicroseconds));
         pool.parallel_for(2, [&](std::size_t begin, std::size_t end, int) {
             ran += static_cast<int>(end - begin);
         });
@@ -72,14 +71,26 @@ TEST(ThreadPool, AJobAfterTheWorkersFellAsleepStillRuns) {
     }
 }
 
-TEST(ThreadPool, IsDestroyedWhileItsWorkersSpinOrSleep) {
+TEST(ThreadPool, IsDestroyedWhileItsWorkersSpinOrSleepWithEveryJobDone) {
+    // Each pool runs one job and is destroyed at once, its workers still spinning for the
+    // next; the last one after its workers fell asleep. Every job's indices were all run
+    // before parallel_for returned, and destruction returns (a hang fails on ctest's timeout).
+    std::atomic<int> ran{0};
     for (int k = 0; k < 200; ++k) {
         ThreadPool spinning(2);
-        spinning.parallel_for(10, [](std::size_t, std::size_t, int) {});
-    }  // destroyed within the workers' spin
-    ThreadPool sleeping(3);
-    sleeping.parallel_for(10, [](std::size_t, std::size_t, int) {});
-    std::this_thread::sleep_for(std::chrono::microseconds(20 * ThreadPool::kSpinMicroseconds));
+        spinning.parallel_for(10, [&](std::size_t begin, std::size_t end, int) {
+            ran += static_cast<int>(end - begin);
+        });
+        EXPECT_EQ(ran.load(), 10 * (k + 1));
+    }
+    {
+        ThreadPool sleeping(3);
+        sleeping.parallel_for(10, [&](std::size_t begin, std::size_t end, int) {
+            ran += static_cast<int>(end - begin);
+        });
+        std::this_thread::sleep_for(std::chrono::microseconds(20 * ThreadPool::kSpinMicroseconds));
+    }
+    EXPECT_EQ(ran.load(), 2010);
 }
 
 }  // namespace
