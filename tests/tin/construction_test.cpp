@@ -555,6 +555,40 @@ TEST(Construction, FreshRandomBuildsAreSoundAndEditable) {
     }
 }
 
+TEST(Construction, FreshBuildLaysItsTrianglesOutInVertexOrderAndReportsEverythingOnce) {
+    // A bulk build rewrites its triangles in place in the order of their lowest corner id
+    // (tin_build.cpp) and hands out slots in that order: the finite triangles' slots come by
+    // non-decreasing lowest corner (the faces on the vertex at infinity, which slot_triangle
+    // does not show, are keyed by their lowest finite corner among them). The first take
+    // reports every vertex and slot (as whole ranges) and the second nothing.
+    for (const auto& [count, seed] :
+         {std::pair<std::size_t, std::uint64_t>{3, 811}, {500, 812}, {30000, 813}}) {
+        SCOPED_TRACE(count);
+        Tin tin = Tin::random_points(Rect::from_size(2.0, 1.0), count, seed,
+                                     [](Vec2 p) { return 0.2 * p.x * p.y; });
+        const ValidationReport report = tin.check_valid();
+        ASSERT_TRUE(report.ok()) << report.summary();
+        std::uint32_t previous = 0;
+        std::size_t finite = 0;
+        for (std::uint32_t s = 0; s < tin.slot_capacity(); ++s) {
+            const std::array<VertexId, 3> t = tin.slot_triangle(s);
+            if (!t[0].valid()) continue;  // a face on the vertex at infinity
+            const std::uint32_t lowest = std::min({t[0].value, t[1].value, t[2].value});
+            EXPECT_GE(lowest, previous) << "slot " << s;
+            previous = lowest;
+            ++finite;
+        }
+        EXPECT_EQ(finite, tin.triangle_count());
+        const ChangeSet first = tin.take_changes();
+        ASSERT_EQ(first.vertices.size(), 1u);
+        EXPECT_EQ(first.vertices[0], (IdRange{0, tin.vertex_capacity()}));
+        EXPECT_EQ(tin.vertex_capacity(), count + 4);
+        ASSERT_EQ(first.triangles.size(), 1u);
+        EXPECT_EQ(first.triangles[0], (IdRange{0, tin.slot_capacity()}));
+        EXPECT_TRUE(tin.take_changes().empty());
+    }
+}
+
 TEST(Construction, FreshBuildsFromPointsWithDuplicatesAndBorderPoints) {
     const Rect d{{0.0, 0.0}, {8.0, 5.0}};
     for (const auto& [count, seed] :

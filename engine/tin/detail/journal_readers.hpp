@@ -68,6 +68,16 @@ class JournalReaders {
         for (VertexFeed& f : feeds_)
             if (f.open) f.topology.mark(id);
     }
+    /// Every vertex and slot is new (a terrain just built or restored): each open range reader
+    /// reports everything at its next take, without an id-by-id list. False, noting nothing,
+    /// while a vertex feed is open (feeds have no such state): then note each id.
+    bool note_everything() {
+        for (const VertexFeed& f : feeds_)
+            if (f.open) return false;
+        for (RangeReader& r : range_readers_)
+            if (r.open) r.full = true;
+        return true;
+    }
     /// A triangle slot was born, died, re-pointed or re-flagged.
     void note_slot(std::uint32_t slot) {
         for (RangeReader& r : range_readers_)
