@@ -4,6 +4,8 @@
 #include <span>
 #include <vector>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 namespace {
@@ -94,9 +96,9 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
     static thread_local Candidates c;
     const std::size_t capacity = tin.vertices().size();
     if (c.in.size() < capacity) {
-        c.in.resize(capacity, 0);
-        c.slot_of.resize(capacity, 0);
-        c.verdict.resize(capacity, 0);
+        grow_zero_filled(c.in, capacity);
+        grow_zero_filled(c.slot_of, capacity);
+        grow_zero_filled(c.verdict, capacity);
     }
     c.ids.clear();
     c.first.assign(1, 0);

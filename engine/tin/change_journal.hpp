@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 /// Half-open range [begin, end) of ids or slots.
@@ -64,7 +66,7 @@ class DirtySet {
   private:
     /// Out of line, so that mark() stays small enough to inline in the walks.
     [[gnu::noinline]] void grow(std::uint32_t id) {
-        flags_.resize(static_cast<std::size_t>(id) + 1 + flags_.size() / 2, 0);
+        grow_zero_filled(flags_, static_cast<std::size_t>(id) + 1 + flags_.size() / 2);
     }
 
     std::vector<std::uint8_t> flags_;

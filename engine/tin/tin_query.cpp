@@ -11,6 +11,7 @@
 #include "tin/detail/impl_helpers.hpp"
 #include "tin/detail/walks.hpp"
 #include "util/compensated_sum.hpp"
+#include "util/prepare_for_writing.hpp"
 #include "util/visit_marks.hpp"
 
 namespace sandtin {
@@ -340,7 +341,7 @@ std::vector<VertexId> Tin::vertices_in_polygon(const PolygonInclusion& region,
     static thread_local std::vector<std::uint8_t> inside;
     decided.clear();
     decided.reserve_ids(m.events.vertex_of_id.size());
-    if (inside.size() < m.events.vertex_of_id.size()) inside.resize(m.events.vertex_of_id.size());
+    grow_zero_filled(inside, m.events.vertex_of_id.size());
     const auto is_inside = [&](std::uint32_t id) {
         if (!decided.contains(id)) {
             decided.mark(id);

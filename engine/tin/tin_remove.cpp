@@ -12,6 +12,7 @@
 #include "tin/detail/edit_finisher.hpp"
 #include "tin/detail/hole_triangulation.hpp"
 #include "tin/detail/impl_helpers.hpp"
+#include "util/prepare_for_writing.hpp"
 #include "util/visit_marks.hpp"
 
 namespace sandtin {
@@ -141,8 +142,8 @@ thread_local VisitMarks PatchRegion::face_in_region_;
 
 PatchRegion::PatchRegion(const Tin::Impl& m, std::span<const VertexId> vertices)
     : m_(m), vertices_(vertices) {
-    if (in_set_.size() < m.va.size()) in_set_.resize(m.va.size(), 0);
-    if (edge_from_.size() < m.va.size()) edge_from_.resize(m.va.size(), 0);
+    grow_zero_filled(in_set_, m.va.size());
+    grow_zero_filled(edge_from_, m.va.size());
     face_in_region_.clear();  // O(1): marks of earlier calls no longer count
     face_in_region_.reserve_ids(m.events.face_of_slot.size());
 }

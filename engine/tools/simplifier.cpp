@@ -2,6 +2,7 @@
 
 #include "geom/plane_fit.hpp"
 #include "tools/slivers.hpp"
+#include "util/prepare_for_writing.hpp"
 #include "util/visit_marks.hpp"
 
 #include <algorithm>
@@ -55,7 +56,8 @@ double planarity_residual(const Tin& tin, VertexId v) {
 void Simplifier::enqueue(VertexId v) {
     if (!v.valid()) return;
     if (v.value >= queued_flag_.size())
-        queued_flag_.resize(static_cast<std::size_t>(v.value) + 1 + queued_flag_.size() / 2, 0);
+        grow_zero_filled(queued_flag_,
+                         static_cast<std::size_t>(v.value) + 1 + queued_flag_.size() / 2);
     if (queued_flag_[v.value]) return;
     queued_flag_[v.value] = 1;
     queue_.push_back(v);
@@ -120,7 +122,8 @@ SimplifyReport Simplifier::run(Tin& tin, const SimplifySettings& settings) {
     std::vector<std::uint8_t>& is_candidate = candidate_flag_;
     for (VertexId v : candidates) {
         if (v.value >= is_candidate.size())
-            is_candidate.resize(static_cast<std::size_t>(v.value) + 1 + is_candidate.size() / 2, 0);
+            grow_zero_filled(is_candidate,
+                             static_cast<std::size_t>(v.value) + 1 + is_candidate.size() / 2);
         is_candidate[v.value] = 1;
     }
     std::vector<VertexId> group, ring, stack;

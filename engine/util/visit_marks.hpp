@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "util/prepare_for_writing.hpp"
+
 namespace sandtin {
 
 class VisitMarks {
@@ -27,9 +29,7 @@ class VisitMarks {
     }
     /// Room for ids below `count` at once (a walk that knows its id range calls this first,
     /// instead of growing step by step as it meets larger ids).
-    void reserve_ids(std::size_t count) {
-        if (marks_.size() < count) marks_.resize(count, 0u);
-    }
+    void reserve_ids(std::size_t count) { grow_zero_filled(marks_, count); }
     /// Marks `id`; true when it was not marked yet.
     bool insert(std::uint32_t id) {
         if (contains(id)) return false;
@@ -39,7 +39,7 @@ class VisitMarks {
 
   private:
     [[gnu::noinline]] void grow(std::uint32_t id) {
-        marks_.resize(static_cast<std::size_t>(id) + 1 + marks_.size() / 2, 0u);
+        grow_zero_filled(marks_, static_cast<std::size_t>(id) + 1 + marks_.size() / 2);
     }
 
     std::vector<std::uint32_t> marks_;

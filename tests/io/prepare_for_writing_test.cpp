@@ -1,9 +1,10 @@
-// util/prepare_for_writing.hpp: a hint that must never change the bytes it is given, and a
-// reserve that keeps growth amortised.
+// util/prepare_for_writing.hpp: a hint that must never change the bytes it is given, a reserve
+// that keeps growth amortised, and zero-filled growth.
 
 #include "util/prepare_for_writing.hpp"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <cstdint>
 #include <vector>
@@ -66,6 +67,37 @@ TEST(ReserveForWriting, GrowingOneStepAtATimeReallocatesLogarithmically) {
     EXPECT_LE(reallocations, 20);  // log2(200 000) = 17.6
     for (std::uint32_t i = 0; i < v.size(); ++i)
         ASSERT_EQ(v[i], i);
+}
+
+TEST(GrowZeroFilled, GrowsToZerosKeepingWhatWasThereAndNeverShrinks) {
+    // The walks' scratch arrays: a few marks set, then sized to a 3·10⁶-slot terrain at once
+    // (12 MB, past the size where the storage is prepared), then asked for less.
+    std::vector<std::uint32_t> marks(10);
+    for (std::uint32_t i = 0; i < marks.size(); ++i)
+        marks[i] = 7 * i + 1;
+    grow_zero_filled(marks, 3'000'000);
+    ASSERT_EQ(marks.size(), 3'000'000u);
+    for (std::uint32_t i = 0; i < 10; ++i)
+        EXPECT_EQ(marks[i], 7 * i + 1);
+    EXPECT_EQ(std::count(marks.begin() + 10, marks.end(), 0u), 3'000'000 - 10);
+    grow_zero_filled(marks, 5);
+    EXPECT_EQ(marks.size(), 3'000'000u);
+    EXPECT_EQ(marks[9], 64u);
+    // Growing step by step reallocates logarithmically, as push_back does.
+    std::vector<std::uint8_t> flags;
+    int reallocations = 0;
+    const std::uint8_t* data = nullptr;
+    for (std::size_t n = 1; n <= 100'000; ++n) {
+        grow_zero_filled(flags, n);
+        flags[n - 1] = static_cast<std::uint8_t>(n & 0x7F);
+        if (flags.data() != data) {
+            ++reallocations;
+            data = flags.data();
+        }
+    }
+    EXPECT_LE(reallocations, 20);
+    for (std::size_t n = 1; n <= flags.size(); ++n)
+        ASSERT_EQ(flags[n - 1], static_cast<std::uint8_t>(n & 0x7F));
 }
 
 }  // namespace
