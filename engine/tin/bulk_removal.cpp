@@ -95,11 +95,9 @@ BulkRemoval remove_in_patches(Tin& tin, std::span<const VertexId> vertices, Edit
     // the flag array must not cost O(terrain) per stamp (it is cleared entry by entry below).
     static thread_local Candidates c;
     const std::size_t capacity = tin.vertices().size();
-    if (c.in.size() < capacity) {
-        grow_zero_filled(c.in, capacity);
-        grow_zero_filled(c.slot_of, capacity);
-        grow_zero_filled(c.verdict, capacity);
-    }
+    grow_zero_filled(c.in, capacity);
+    grow_zero_filled(c.slot_of, capacity);
+    grow_zero_filled(c.verdict, capacity);
     c.ids.clear();
     c.first.assign(1, 0);
     c.ring.clear();

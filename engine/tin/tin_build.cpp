@@ -274,7 +274,7 @@ void Tin::Impl::lay_out_faces_by_vertex() {
     // freed their whole storage and mapped it again page by page: the layout took 225 ms of a
     // 1.4 s build of 10^6 points that way, and the build takes 1.29 s with this one.
     std::vector<Fh> storage;
-    reserve_for_writing(storage, tds.number_of_faces() + 1);
+    reserve_for_writing(storage, tds.faces().size());
     for (auto f = tds.faces().begin(); f != tds.faces().end(); ++f) {
         storage.push_back(f);
         ++first[key(*f) + 1];
@@ -349,13 +349,7 @@ void Tin::Impl::finish_bulk_build() {
         r.corners = {a->id, b->id, c->id};
         slot_cache.push_back(r);
     }
-    // Every id and slot is new; marking them one by one took 3 % of a 10^6-point build.
-    if (!journal.has_range_readers() || journal.note_everything()) return;
-    for (std::uint32_t id = 0; id < va.size(); ++id) {
-        if (va.alive[id]) journal.note_vertex(id);
-    }
-    for (std::uint32_t s = 0; s < slot_cache.size(); ++s)
-        journal.note_slot(s);
+    note_all_new();
 }
 
 }  // namespace sandtin

@@ -383,15 +383,7 @@ void fill_caches(Tin::Impl& m, const std::vector<Fh>& faces, ThreadPool& pool) {
     });
     for (std::uint32_t c : finite)
         m.live_triangles += c;
-    if (!m.journal.has_range_readers()) return;  // nobody to tell
-    // Every live id is reported by itself: a restored terrain may hold dead ids (a reader that
-    // is told everything would report them too).
-    const auto vertex_capacity = static_cast<std::uint32_t>(m.va.size());
-    for (std::uint32_t i = 0; i < vertex_capacity; ++i) {
-        if (m.va.alive[i]) m.journal.note_vertex(i);
-    }
-    for (std::uint32_t t = 0; t < m.slot_cache.size(); ++t)
-        m.journal.note_slot(t);
+    m.note_all_new();
 }
 
 int restore_threads() {

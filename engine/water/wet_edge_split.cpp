@@ -9,8 +9,7 @@ namespace sandtin {
 namespace {
 
 /// Calls visit(a, b) for each edge a < b longer than max_length with `film` of water at both
-/// ends, in order of a, until visit returns false.
-/// With `depth` per vertex id (m).
+/// ends by `depth` (m per vertex id), in order of a, until visit returns false.
 template <class Visit>
 void for_long_wet_edges(const Tin& tin, std::span<const double> depth, double max_length,
                         double film, Visit visit) {

@@ -82,6 +82,11 @@ TEST(Journal, FirstTakeChangesAfterRestoreReportsEverything) {
         }
     }
     expect_counts(tin, cs);
+    // Reported as a whole, holes included, as a reader opened on a terrain with holes is told
+    // (the restore marks no id by id): one range each.
+    EXPECT_EQ(cs.vertices, (std::vector<IdRange>{{0, tin.vertex_capacity()}}));
+    EXPECT_EQ(cs.triangles, (std::vector<IdRange>{{0, tin.slot_capacity()}}));
+    EXPECT_LT(tin.vertex_count(), tin.vertex_capacity());  // the removals left holes
     EXPECT_TRUE(tin.take_changes().empty());
 }
 

@@ -360,6 +360,18 @@ struct Tin::Impl {
     void note_attribute(std::uint32_t id) { journal.note_vertex(id); }
     /// A vertex's star (its triangles or neighbours) changed.
     void note_topology(std::uint32_t id) { journal.note_topology(id); }
+    /// Every vertex and slot is new (a terrain just built or restored): each range reader
+    /// reports them all at its next take, dead ids and free slots too, as a reader opened on a
+    /// terrain with holes does. Id by id only while a vertex feed is open, which a terrain
+    /// being built or restored has not (marking 3·10⁶ ids one by one took 3-5 % of a build).
+    void note_all_new() {
+        if (!journal.has_range_readers() || journal.note_everything()) return;
+        for (std::uint32_t id = 0; id < va.size(); ++id) {
+            if (va.alive[id]) journal.note_vertex(id);
+        }
+        for (std::uint32_t s = 0; s < slot_cache.size(); ++s)
+            journal.note_slot(s);
+    }
 
     std::vector<detail::ConstraintEntry> constraints;  ///< indexed by ConstraintId value
     IdAllocator constraint_ids{false};
@@ -423,9 +435,10 @@ struct Tin::Impl {
     /// After a build without events: gives every face a slot, every vertex its lumped area,
     /// and marks everything dirty for the first take_changes().
     void finish_bulk_build();
-    /// Re-creates the faces of a freshly built triangulation in the order of their lowest
-    /// corner id, with their neighbours and constraint flags (vertices, and so constraints, are
-    /// untouched). Only without events and before slots are handed out: it uses the slot field.
+    /// Rewrites the faces of a freshly built triangulation in place, in memory order, so that
+    /// they follow the order of their lowest corner id, with their neighbours and constraint
+    /// flags (vertices, and so constraints, are untouched). Only without events and before
+    /// slots are handed out: it uses the slot field.
     void lay_out_faces_by_vertex();
 };
 
