@@ -111,6 +111,7 @@ nlohmann::json to_json(const ErosionRun& r) {
             {"max_face_ratio", r.max_face_ratio},
             {"skipped_faces", r.skipped_faces},
             {"toe_error", measured(r.toe_error)},
+            {"toe_bias", std::isfinite(r.toe_bias) ? nlohmann::json(r.toe_bias) : nlohmann::json()},
             {"pile_mean_error_m", measured(r.pile_error)},
             {"pile_height_m", measured(r.pile_height)}};
 }
@@ -134,7 +135,7 @@ void write_erosion_csv(const std::filesystem::path& path, const std::vector<Eros
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
     out << "scene,method,level,vertices,spacing_m,iterations,cpu_ms,wall_ms,mean_error_m,"
            "max_error_m,at_rest,settle_margin,steep_share_of_slopes,max_face_ratio,"
-           "skipped_faces,toe_error,pile_mean_error_m,pile_height_m\n";
+           "skipped_faces,toe_error,pile_mean_error_m,pile_height_m,toe_bias\n";
     for (const ErosionRun& r : runs) {
         out << r.scene << ',' << r.method << ',' << r.level << ',' << r.vertices << ',' << r.spacing
             << ',' << r.iterations << ',' << r.cpu_ms << ',' << r.wall_ms << ',' << r.mean_error
@@ -145,6 +146,8 @@ void write_erosion_csv(const std::filesystem::path& path, const std::vector<Eros
             out << ',';
             if (v >= 0.0) out << v;
         }
+        out << ',';
+        if (std::isfinite(r.toe_bias)) out << r.toe_bias;
         out << '\n';
     }
     if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");

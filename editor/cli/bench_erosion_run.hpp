@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct ErosionRun {
     /// Cones only (else negative): the largest |toe radius / R - 1| over 32 directions, the
     /// mean |z - z_ref| inside 1.2 R (m) and the cone's height H (m).
     double toe_error = -1.0, pile_error = -1.0, pile_height = -1.0;
+    /// Cones only (else NaN): the mean of toe radius / R - 1 over the same directions. Set
+    /// beside toe_error it tells a toe systematically too far out (or in) from a ragged one.
+    double toe_bias = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// tan(alpha) of the scenes' sand: the first preset material, dry.

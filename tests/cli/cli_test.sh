@@ -254,12 +254,18 @@ scenario_bench() {
     # The projected cones, whole, half and quarter (runs 16-21): within 2 % of the analytic
     # cone's height on average inside 1.2 R, their toes within 20 % of its radius at this
     # coarse level (r_S 4 cm, 32² cells; measured about 1 % and 13 %).
+    # Their toe bias is a mean of the offsets whose largest magnitude is toe_error, so it
+    # cannot exceed it; the step (runs 22, 23) has no toe.
     for k in 16 17 18 19 20 21; do
         holds "bench erosion projected cone $k" "a < 0.02 * c && b < 0.2" \
             "$(json bench_erosion.out /runs/$k/pile_mean_error_m)" \
             "$(json bench_erosion.out /runs/$k/toe_error)" \
             "$(json bench_erosion.out /runs/$k/pile_height_m)"
+        holds "bench erosion projected cone $k toe bias" "a == a + 0 && a <= b && -a <= b" \
+            "$(json bench_erosion.out /runs/$k/toe_bias)" \
+            "$(json bench_erosion.out /runs/$k/toe_error)"
     done
+    check_eq "bench erosion step toe bias" "$(json bench_erosion.out /runs/22/toe_bias)" null
     # A subset of the table: one scene, one rule, no throughput tables.
     expect_ok bench_erosion_cone bench erosion --quick --scenes cone --rules face --no-throughput ||
         return
