@@ -33,6 +33,8 @@ struct ProjectionSettleReport {
     /// regions around them (project_out_of_repose.hpp; 0: nothing was out of repose).
     std::size_t steep_faces = 0;
     int rounds = 0;
+    /// settle_fitted_to_kinks: vertices put on the rest surface's bends (0 elsewhere).
+    std::size_t fitted_vertices = 0;
 };
 
 /// What a projection of a TIN's sand reads, copied out of it (settle_by_projection's first
