@@ -15,6 +15,7 @@
 #include "io/session_file.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/settle_by_projection.hpp"
+#include "physics/settle_fitted_to_kinks.hpp"
 #include "tin/flat_bedrock.hpp"
 #include "tools/falloff.hpp"
 #include "tools/stamp.hpp"
@@ -261,6 +262,9 @@ ScriptOperation parse_operation(const std::string& op, JsonFields& f, const nloh
         e.iterations = static_cast<int>(f.integer("iterations", 0, 1, 100'000'000));
         e.max_iterations = static_cast<int>(f.integer("max_iterations", 100000, 1, 100'000'000));
         e.project = f.boolean("project", false);
+        if (!e.project && f.has("fit_bends"))
+            f.fail_field("fit_bends", "applies with \"project\": true");
+        e.fit_bends = static_cast<int>(f.integer("fit_bends", 0, 0, 8));
         TalusSettings t = physics;
         if (parse_physics_fields(f, t)) e.settings = t;
         if (e.project && !f.has("settle_margin")) {
@@ -556,11 +560,13 @@ nlohmann::json ScriptRunner::run_op(const ErodeOp& op) {
     nlohmann::json projection;
     double projection_drift = 0.0;
     if (op.project) {
-        const ProjectionSettleReport p = settle_by_projection(tin_, materials_);
-        projection = {{"iterations", p.iterations},        {"converged", p.converged},
-                      {"steep_faces", p.steep_faces},      {"rounds", p.rounds},
-                      {"free_vertices", p.free_vertices},  {"moved_vertices", p.moved_vertices},
-                      {"steepest_ratio", p.steepest_ratio}};
+        const ProjectionSettleReport p =
+            op.fit_bends > 0 ? settle_fitted_to_kinks(tin_, materials_, op.fit_bends)
+                             : settle_by_projection(tin_, materials_);
+        projection = {{"iterations", p.iterations},         {"converged", p.converged},
+                      {"steep_faces", p.steep_faces},       {"rounds", p.rounds},
+                      {"free_vertices", p.free_vertices},   {"moved_vertices", p.moved_vertices},
+                      {"steepest_ratio", p.steepest_ratio}, {"fitted_vertices", p.fitted_vertices}};
         // Each solver follows the TIN's changes: the vertices the projection moved are active.
         projection_drift = p.volume_change;
     }

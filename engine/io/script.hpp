@@ -86,6 +86,9 @@ struct ErodeOp {
     /// First settle by projection onto the repose set (physics/settle_by_projection.hpp), then
     /// relax as asked.
     bool project = false;
+    /// With project: rounds of vertices put on the rest surface's bends, the toe and the crest,
+    /// each followed by a projection (physics/settle_fitted_to_kinks.hpp); 0: none.
+    int fit_bends = 0;
 };
 
 struct SimplifyOp {

@@ -405,6 +405,40 @@ TEST(Script, AnErodeThatProjectsFirstTurnsAPourIntoTheAnalyticCone) {
     EXPECT_LT(sum / count, 0.007 * cone.height);
 }
 
+TEST(Script, AnErodeThatProjectsCanFitTheRestSurfacesBends) {
+    // The pour above on a coarser terrain, projected with one round of vertices on the pile's
+    // toe: the op reports them, the volume stays exact, and the fields are checked.
+    const Script s = parse(R"({"version": 1,
+        "terrain": {"size": [1, 1], "points": 3000, "seed": 3, "sand_depth": 0.05},
+        "operations": [{"op": "pour", "at": [0.5, 0.5], "volume": 0.004, "radius": 0.02},
+                       {"op": "erode", "until_rest": true, "relocation_radius": 0.01,
+                        "project": true, "fit_bends": 1}]})");
+    EXPECT_EQ(std::get<ErodeOp>(s.steps.at(1).operation).fit_bends, 1);
+    EXPECT_EQ(
+        std::get<ErodeOp>(
+            parse(R"([{"op": "erode", "iterations": 1, "project": true}])").steps.at(0).operation)
+            .fit_bends,
+        0);
+    EXPECT_THROW(parse(R"([{"op": "erode", "iterations": 1, "fit_bends": 1}])"), JsonInputError);
+    EXPECT_THROW(parse(R"([{"op": "erode", "iterations": 1, "project": true, "fit_bends": -1}])"),
+                 JsonInputError);
+    EXPECT_THROW(parse(R"([{"op": "erode", "iterations": 1, "project": true, "fit_bends": 9}])"),
+                 JsonInputError);
+    Tin tin = make_script_terrain(*s.terrain);
+    const double before = tin.volume();
+    const std::size_t vertices_before = tin.vertex_count();
+    SculptContext context(tin.domain());
+    const nlohmann::json reports = run_script(s, tin, context);
+    const nlohmann::json& projection = reports.at(1).at("projection");
+    EXPECT_TRUE(projection.at("converged").get<bool>());
+    const auto fitted = projection.at("fitted_vertices").get<std::size_t>();
+    EXPECT_GT(fitted, 20u) << projection;
+    EXPECT_GE(tin.vertex_count(), vertices_before + fitted);
+    EXPECT_NEAR(tin.volume(), before + 0.004, 1e-12);
+    EXPECT_TRUE(reports.at(1).at("at_rest").get<bool>());
+    EXPECT_TRUE(tin.check_valid().ok()) << tin.check_valid().summary();
+}
+
 TEST(Script, PaintedMoistSandHoldsTheSlopeItsMoistureGives) {
     const MaterialTable presets = MaterialTable::presets();
     const double tan40 = std::tan(40.0 * std::numbers::pi / 180.0);
