@@ -15,7 +15,9 @@
 // "tin-proj" and "grid-proj" (--rules projection) settle by projection onto the repose set
 // (physics/repose_projection.hpp), the face rule finishing. On the TIN a scout (the face rule
 // at margin 0.25) first finds where the sand goes and refines it to r_S; the surface before any
-// relaxation is then put back on that mesh and projected; the cone is poured all at once.
+// relaxation is then put back on that mesh and projected, with the rest surface's bends (the
+// toe, the crest) fitted by one round of vertices on them and a second projection
+// (physics/settle_fitted_to_kinks.hpp); the cone is poured all at once.
 // Scenes, with their references:
 //  - cone: V = 0.01 m³ poured at the centre of a flat 1 m square (dry sand, 32°). The TIN
 //    starts from two triangles and refines through r_S; the grid pours into its centre cell.
@@ -58,6 +60,7 @@
 #include "physics/grid_erosion.hpp"
 #include "physics/sand_physics.hpp"
 #include "physics/settle_by_projection.hpp"
+#include "physics/settle_fitted_to_kinks.hpp"
 #include "progress_line.hpp"
 #include "tin/tin.hpp"
 
@@ -191,13 +194,14 @@ std::string method_name(bool grid, const Method& m) {
 constexpr double kScoutMargin = 0.25;
 
 /// A projected TIN run: the scout relaxes and refines, `restore` puts back the surface before
-/// any relaxation on the refined mesh, the projection settles it and the face rule finishes.
+/// any relaxation on the refined mesh, the projection settles it (one round fitting its bends)
+/// and the face rule finishes.
 PhysicsStepReport project_then_finish(Tin& tin, SandPhysics& physics, const Method& m,
                                       const std::function<void()>& restore) {
     physics.settings().parameters.settle_margin = kScoutMargin;
     PhysicsStepReport r = physics.run_to_rest(kMaxIterations);
     restore();
-    settle_by_projection(tin, MaterialTable::presets());
+    settle_fitted_to_kinks(tin, MaterialTable::presets());
     physics.settings().parameters.settle_margin = m.settings().parameters.settle_margin;
     physics.activate_all();
     r.accumulate(physics.run_to_rest(kMaxIterations));
@@ -363,7 +367,7 @@ ErosionRun tin_dunes(std::size_t points, const HeightAt& reference, Method metho
     Stopwatch wall;
     SandPhysics physics(tin, MaterialTable::presets(), method.settings());
     // Uniform detail from the start: no scout, the projection settles the dunes as they are.
-    if (method.projection) settle_by_projection(tin, MaterialTable::presets());
+    if (method.projection) settle_fitted_to_kinks(tin, MaterialTable::presets());
     physics.activate_all();
     const PhysicsStepReport r = physics.run_to_rest(kMaxIterations);
     finish_tin(row, tin, r, cpu, wall);
