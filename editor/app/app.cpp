@@ -387,6 +387,7 @@ void App::write_stats(std::uint64_t idle_submissions, std::uint64_t idle_gpu_wor
                      {"relocation_radius", settings_.relocation_radius},
                      {"settle_margin", settings_.settle_margin},
                      {"slope_rule", settings_.slope_rule},
+                     {"settle_fit_bends", settings_.settle_fit_bends},
                      {"simplify_tolerance", settings_.simplify_tolerance},
                      {"contrast", settings_.contrast},
                      {"tool_angle", settings_.tool_angle}};

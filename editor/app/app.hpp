@@ -226,8 +226,13 @@ class App {
     /// The Erosion panel's Settle exactly: the sand projected onto its angle of repose on a
     /// worker under the bar (physics/settle_by_projection.hpp), the terrain copied here first
     /// and the heights written here once it is done, as one undo level. Cancel leaves the
-    /// terrain as it was.
+    /// terrain as it was. With Fit toe and crest, the projection's bends get vertices on the
+    /// surface as it was and a second projection follows (start_settle_projection).
     void settle_exactly();
+    /// One projection of Settle exactly on a worker. `fit_rounds` rounds of fitting the
+    /// settled surface's bends follow it before a projection is applied
+    /// (physics/settle_fitted_to_kinks.hpp); `fitted` vertices were put on bends already.
+    void start_settle_projection(int fit_rounds, std::size_t fitted);
     /// Where Save and Ctrl+S write: the scene's file, or the Scene field for an untitled one.
     std::filesystem::path save_path() const {
         return doc_.untitled() ? std::filesystem::path(path_buf_) : doc_.path();

@@ -12,7 +12,9 @@
 #include <utility>
 
 #include "physics/project_out_of_repose.hpp"
+#include "physics/repose_kinks.hpp"
 #include "physics/settle_by_projection.hpp"
+#include "physics/settle_fitted_to_kinks.hpp"
 #include "recent_files.hpp"
 
 namespace sandtin::editor {
@@ -123,7 +125,7 @@ void App::poll_job() {
         initial_scene_failed(cancelled ? "cancelled" : error);
     } else if (cancelled) {
         report(last.title + " cancelled: " +
-               (job_kind_ == "settle" ? "the terrain is as it was"
+               (job_kind_ == "settle" ? "the sand is as it was"
                 : read_only           ? "the scene open before is as it was"
                                       : "no file was written"));
     } else if (outcome == JobOutcome::Failed) {
@@ -286,6 +288,10 @@ void App::update_settle(const ErosionFrame& e) {
 void App::settle_exactly() {
     if (refuse_while_busy("settle exactly")) return;
     sculpting_.close_level(doc_);  // what slid before is its own level
+    start_settle_projection(settings_.settle_fit_bends ? 1 : 0, 0);
+}
+
+void App::start_settle_projection(int fit_rounds, std::size_t fitted) {
     // The worker reads the terrain and projects it: nothing edits the terrain while the job
     // runs (the erosion and the tools wait for it, and the frames' takes recycle no ids,
     // start_job), so the copy is the worker's too (it was 0.4 s of a 10^6-vertex frame).
@@ -295,9 +301,14 @@ void App::settle_exactly() {
     auto region = std::make_shared<OutOfReposeReport>();
     const Tin* tin = &doc_.tin();
     auto materials = std::make_shared<const MaterialTable>(doc_.materials());
+    // Fitting wants the bends converged: the projection's smaller penalty for every round.
+    const bool fitting = fit_rounds > 0 || fitted > 0;
+    const OutOfReposeOptions region_options =
+        fitting ? kink_fitting_region_options() : OutOfReposeOptions{};
     start_job(
-        "settle", "Settling the sand exactly",
-        [input, result, region, tin, materials](const ProgressCallback& progress) {
+        "settle",
+        fitted > 0 ? "Settling the sand exactly on its bends" : "Settling the sand exactly",
+        [input, result, region, tin, materials, region_options](const ProgressCallback& progress) {
             if (progress) progress({0.0, "reading the terrain"});
             *input = gather_projection_input(*tin, *materials);
             ReposeProjectionOptions options;
@@ -308,12 +319,24 @@ void App::settle_exactly() {
             }
             // Where the sand is out of repose: a pour on a large terrain settles at the
             // cost of its neighbourhood (project_out_of_repose.hpp).
-            *result = project_out_of_repose(*input, options, {}, region.get());
+            *result = project_out_of_repose(*input, options, region_options, region.get());
         },
-        [this, input, result, region] {
-            if (region->rounds == 0) {
+        [this, input, result, region, fit_rounds, fitted] {
+            if (region->rounds == 0 && fitted == 0) {
                 report("settle exactly: nothing is steeper than its angle of repose");
                 return;
+            }
+            if (fit_rounds > 0) {
+                const std::vector<Vec2> bends = find_repose_kinks(
+                    input->position, input->faces, input->face_tan_alpha, result->height);
+                if (!bends.empty()) {
+                    // On the surface as it was: the next projection settles the same sand.
+                    const std::size_t before = doc_.tin().vertex_count();
+                    doc_.tin().insert_points_on_surface(bends);
+                    start_settle_projection(fit_rounds - 1,
+                                            fitted + doc_.tin().vertex_count() - before);
+                    return;
+                }
             }
             const ProjectionSettleReport r = apply_projection(doc_.tin(), *input, *result);
             doc_.record_level("settle exactly");
@@ -324,6 +347,8 @@ void App::settle_exactly() {
                    " faces were steeper than repose; " + std::to_string(region->free_vertices) +
                    " vertices around them settled, the steepest face now at " + steepest +
                    " % of repose" +
+                   (fitted > 0 ? "; " + std::to_string(fitted) + " vertices put on its bends"
+                               : std::string()) +
                    (r.converged ? "" : " (stopped at the iteration limit: Run finishes it)"));
         });
 }

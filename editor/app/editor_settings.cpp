@@ -45,6 +45,7 @@ void fields(EditorSettings& s, F&& f) {
     f("relocation_radius", s.relocation_radius, &kRelocationRadiusRange);
     f("settle_margin", s.settle_margin, &kSettleMarginRange);
     f("slope_rule", s.slope_rule, nullptr);
+    f("settle_fit_bends", s.settle_fit_bends, nullptr);
     f("overlay_wireframe", s.overlay_wireframe, nullptr);
     f("overlay_active", s.overlay_active, nullptr);
     f("overlay_thickness", s.overlay_thickness, nullptr);

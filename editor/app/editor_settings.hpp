@@ -40,6 +40,10 @@ struct EditorSettings {
     /// What the relaxation holds at repose (SlopeRule): "face", every triangle's gradient (the
     /// default), or "edge", every edge's slope (the seeds' rule, for comparison).
     std::string slope_rule = "face";
+    /// Settle exactly fits the rest surface's bends, the toe and the crest, with one round of
+    /// vertices on them and a second projection (physics/settle_fitted_to_kinks.hpp): sharper
+    /// toes for three to four times the time.
+    bool settle_fit_bends = false;
     bool overlay_wireframe = false;
     bool overlay_active = false;
     bool overlay_thickness = false;

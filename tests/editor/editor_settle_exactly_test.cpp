@@ -130,6 +130,56 @@ TEST_F(EditorXvfb, SettleExactlyBringsAConeToReposeHoldingItsVolumeAndUndoesAsOn
     EXPECT_EQ(s2.terrain.vertices.position, s0.terrain.vertices.position);
 }
 
+TEST_F(EditorXvfb, SettleExactlyWithFitToeAndCrestPutsVerticesOnTheBendsAsOneLevel) {
+    // With Fit toe and crest, a second projection follows one round of vertices on the first
+    // one's bends (physics/settle_fitted_to_kinks.hpp): two settle jobs, the vertices and the
+    // heights one undo level, the sand the same and at repose.
+    const fs::path scene = steep_cone_scene("settle-fit-cone");
+    const fs::path before = kWork / "settle-fit-before.sandtin",
+                   settled = kWork / "settle-fit-after.sandtin",
+                   undone = kWork / "settle-fit-undone.sandtin";
+    const EditorRun r =
+        run_editor("settle-fit",
+                   "[" + save_op(before) + R"(, {"op": "click", "widget": "Fit toe and crest"},
+            {"op": "click", "widget": "Settle exactly"},
+            {"op": "job", "until": "done", "frames": 6000}, )" +
+                       save_op(settled) + R"(, {"op": "key", "key": "z", "ctrl": true},
+            {"op": "wait", "frames": 2}, )" +
+                       save_op(undone) + "]",
+                   scene.string() + fresh_settings("settle-fit"));
+    ASSERT_EQ(r.exit_code, 0) << r.log;
+    EXPECT_EQ(r.stats.at("validation_messages").get<int>(), 0);
+    int settles = 0;
+    for (const nlohmann::json& job : r.stats.at("jobs")) {
+        if (job.at("kind") != "settle") continue;
+        ++settles;
+        EXPECT_EQ(job.at("outcome"), "done") << job;
+    }
+    EXPECT_EQ(settles, 2) << r.stats.at("jobs");
+    bool fitted_said = false;
+    for (const auto& m : r.stats.at("messages"))
+        fitted_said = fitted_said ||
+                      m.get<std::string>().find("vertices put on its bends") != std::string::npos;
+    EXPECT_TRUE(fitted_said) << r.stats.at("messages");
+
+    const Session s0 = load_session(before), s1 = load_session(settled), s2 = load_session(undone);
+    const Tin t0 = Tin::from_snapshot(s0.terrain), t1 = Tin::from_snapshot(s1.terrain),
+              t2 = Tin::from_snapshot(s2.terrain);
+    ASSERT_TRUE(t1.check_valid().ok()) << t1.check_valid().summary();
+    EXPECT_GT(t1.vertex_count(), t0.vertex_count() + 20);  // the toe's ring, at least
+    EXPECT_NEAR(t1.volume(), t0.volume(), 1e-12 * t0.volume());
+    EXPECT_LE(steepest_face_ratio(s1), 1.0 + 1e-4);
+    // One undo level takes both away: the fitted vertices and the heights.
+    EXPECT_EQ(t2.vertex_count(), t0.vertex_count());
+    for (std::size_t v = 0; v < t0.vertices().size(); ++v) {
+        if (!t0.vertices().alive[v]) continue;
+        const VertexId id{static_cast<std::uint32_t>(v)};
+        ASSERT_TRUE(t2.is_alive(id)) << v;
+        EXPECT_EQ(t2.height(id), t0.height(id)) << v;
+        EXPECT_EQ(t2.position(id), t0.position(id)) << v;
+    }
+}
+
 TEST_F(EditorXvfb, ACancelledSettleShowedItsBarAndLeftTheTerrainAsItWas) {
     const fs::path scene = steep_cone_scene("settle-cancel-cone");
     const fs::path before = kWork / "settle-cancel-before.sandtin",
