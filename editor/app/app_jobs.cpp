@@ -12,7 +12,6 @@
 #include <utility>
 
 #include "physics/project_out_of_repose.hpp"
-#include "physics/repose_kinks.hpp"
 #include "physics/settle_by_projection.hpp"
 #include "physics/settle_fitted_to_kinks.hpp"
 #include "recent_files.hpp"
@@ -326,17 +325,11 @@ void App::start_settle_projection(int fit_rounds, std::size_t fitted) {
                 report("settle exactly: nothing is steeper than its angle of repose");
                 return;
             }
-            if (fit_rounds > 0) {
-                const std::vector<Vec2> bends = find_repose_kinks(
-                    input->position, input->faces, input->face_tan_alpha, result->height);
-                if (!bends.empty()) {
-                    // On the surface as it was: the next projection settles the same sand.
-                    const std::size_t before = doc_.tin().vertex_count();
-                    doc_.tin().insert_points_on_surface(bends);
-                    start_settle_projection(fit_rounds - 1,
-                                            fitted + doc_.tin().vertex_count() - before);
-                    return;
-                }
+            const std::size_t added =
+                fit_rounds > 0 ? fit_projection_bends(doc_.tin(), *input, *result) : 0;
+            if (added > 0) {  // the next projection settles the same sand over them
+                start_settle_projection(fit_rounds - 1, fitted + added);
+                return;
             }
             const ProjectionSettleReport r = apply_projection(doc_.tin(), *input, *result);
             doc_.record_level("settle exactly");

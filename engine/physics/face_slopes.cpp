@@ -2,20 +2,17 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include "geom/plane_gradient.hpp"
 
 namespace sandtin {
 
 double face_gradient(const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double e1x = b.x - a.x, e1y = b.y - a.y, dz1 = b.z - a.z;
-    const double e2x = c.x - a.x, e2y = c.y - a.y, dz2 = c.z - a.z;
-    const double det = e1x * e2y - e1y * e2x;
-    if (det == 0.0) return std::numeric_limits<double>::infinity();
-    // The plane's gradient g solves g . e1 = dz1, g . e2 = dz2 (Cramer's rule).
-    const double gx = (dz1 * e2y - dz2 * e1y) / det;
-    const double gy = (e1x * dz2 - e2x * dz1) / det;
-    return std::hypot(gx, gy);
+    const std::optional<Vec2> g = plane_gradient(a, b, c);
+    return g ? length(*g) : std::numeric_limits<double>::infinity();
 }
 
 namespace {

@@ -2,27 +2,19 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
+
+#include "geom/plane_gradient.hpp"
+#include "geom/vec3.hpp"
 
 namespace sandtin {
 
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-
-/// The gradient of the linear interpolant of `h` over the triangle (a, b, c); (0, 0) for a
-/// triangle of zero area, which `valid` reports.
-Vec2 triangle_gradient(Vec2 a, Vec2 b, Vec2 c, double ha, double hb, double hc, bool& valid) {
-    const Vec2 e1 = b - a, e2 = c - a;
-    const double det = cross(e1, e2);
-    const double scale = std::max(dot(e1, e1), dot(e2, e2));
-    valid = std::abs(det) > 1e-12 * scale;
-    if (!valid) return {};
-    const double d1 = hb - ha, d2 = hc - ha;
-    return Vec2{(d1 * e2.y - d2 * e1.y) / det, (e1.x * d2 - e2.x * d1) / det};
-}
 
 }  // namespace
 
@@ -42,15 +34,19 @@ std::vector<Vec2> find_repose_kinks(std::span<const Vec2> position,
     }
     // Phase 1: each face's gradient; each vertex's steepest face at repose and gentlest gentle
     // face.
+    const auto corner = [&](std::uint32_t v) {
+        return Vec3{position[v].x, position[v].y, height[v]};
+    };
     std::vector<Vec2> gradient(faces.size());
     std::vector<std::uint32_t> slope_face(n, kNone), gentle_face(n, kNone);
     std::vector<double> slope_ratio(n, 0.0), gentle_ratio(n, 0.0);
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const auto& c = faces[f];
-        bool valid = false;
-        gradient[f] = triangle_gradient(position[c[0]], position[c[1]], position[c[2]],
-                                        height[c[0]], height[c[1]], height[c[2]], valid);
-        if (!valid) continue;
+        // Slivers left out: their gradient is rounding noise.
+        const std::optional<Vec2> g =
+            plane_gradient(corner(c[0]), corner(c[1]), corner(c[2]), 1e-12);
+        if (!g) continue;
+        gradient[f] = *g;
         const double ratio = length(gradient[f]) / face_tan_alpha[f];
         const auto face = static_cast<std::uint32_t>(f);
         for (std::uint32_t v : c) {

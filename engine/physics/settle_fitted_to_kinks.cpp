@@ -7,6 +7,16 @@
 
 namespace sandtin {
 
+std::size_t fit_projection_bends(Tin& tin, const ProjectionInput& input,
+                                 const ReposeProjection& projected) {
+    const std::vector<Vec2> bends =
+        find_repose_kinks(input.position, input.faces, input.face_tan_alpha, projected.height);
+    if (bends.empty()) return 0;
+    const std::size_t before = tin.vertex_count();
+    tin.insert_points_on_surface(bends);
+    return tin.vertex_count() - before;
+}
+
 ProjectionSettleReport settle_fitted_to_kinks(Tin& tin, const MaterialTable& materials, int rounds,
                                               const ReposeProjectionOptions& options,
                                               const OutOfReposeOptions& region_options) {
@@ -21,11 +31,9 @@ ProjectionSettleReport settle_fitted_to_kinks(Tin& tin, const MaterialTable& mat
             project_out_of_repose(input, options, region_options, &local);
         iterations += projected.iterations;
         projections += local.rounds;
-        std::vector<Vec2> kinks;
-        if (round < rounds && local.rounds > 0)
-            kinks = find_repose_kinks(input.position, input.faces, input.face_tan_alpha,
-                                      projected.height);
-        if (kinks.empty()) {
+        const std::size_t added =
+            round < rounds && local.rounds > 0 ? fit_projection_bends(tin, input, projected) : 0;
+        if (added == 0) {
             ProjectionSettleReport report = apply_projection(tin, input, projected);
             report.steep_faces = local.steep_faces;
             report.iterations = iterations;
@@ -33,10 +41,7 @@ ProjectionSettleReport settle_fitted_to_kinks(Tin& tin, const MaterialTable& mat
             report.fitted_vertices = fitted;
             return report;
         }
-        // On the surface before the projection: the next one settles the same sand.
-        const std::size_t before = tin.vertex_count();
-        tin.insert_points_on_surface(kinks);
-        fitted += tin.vertex_count() - before;
+        fitted += added;  // the next round projects the same sand over them
     }
 }
 

@@ -66,8 +66,8 @@ PileResult pour_and_settle(Tin& tin, double relocation_radius, Schedule schedule
         "  vertices %zu, iterations %d, refined %zu, apex %.5f (cone %.5f), toe %.5f "
         "(cone %.5f, spread %.5f), steepest %.6f, volume error %.3g, lowest %.3g\n",
         out.vertices, r.iterations, r.refined, out.shape.apex, out.cone.height,
-        out.shape.toe_radius, out.cone.radius, out.shape.toe_spread, out.steepest, out.volume_error,
-        out.lowest);
+        out.shape.toe_radius, out.cone.radius, out.shape.toe_spread(), out.steepest,
+        out.volume_error, out.lowest);
     return out;
 }
 

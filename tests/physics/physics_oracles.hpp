@@ -54,10 +54,12 @@ inline double steepest_edge_ratio(const Tin& tin, double tan_alpha) {
 }
 
 struct PileShape {
-    double apex = 0.0;        ///< highest vertex (m)
-    double toe_radius = 0.0;  ///< mean distance from the centre at which the surface drops to
-                              ///< `toe_level` along 32 rays (m)
-    double toe_spread = 0.0;  ///< largest minus smallest of those distances (m)
+    double apex = 0.0;          ///< highest vertex (m)
+    double toe_radius = 0.0;    ///< mean distance from the centre at which the surface drops to
+                                ///< `toe_level` along 32 rays (m)
+    double toe_nearest = 0.0;   ///< the smallest of those distances (m)
+    double toe_farthest = 0.0;  ///< the largest (m)
+    double toe_spread() const { return toe_farthest - toe_nearest; }
 };
 
 /// The pile around `centre`: apex height, and where the surface falls to `toe_level` along
@@ -98,7 +100,8 @@ inline PileShape measure_pile(const Tin& tin, Vec2 centre, double reach, double 
         sum += r;
     }
     s.toe_radius = sum / kRays;
-    s.toe_spread = hi - lo;
+    s.toe_nearest = lo;
+    s.toe_farthest = hi;
     return s;
 }
 
