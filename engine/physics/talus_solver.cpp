@@ -39,11 +39,14 @@ inline void widen_to_row(const RowWords* row_words, std::uint32_t v, std::size_t
 // neighbour's id is often far from the vertex's own (the TIN's multiscale Hilbert numbering
 // puts about a third of the neighbours more than 10⁵ ids away), so without prefetching each
 // iteration waits on those cache misses one after another.
+// The prefetching helpers below are always inlined: GCC 12 at -O2 and above finds an
+// out-of-line function that only prefetches to have no side effects, and deletes its calls
+// (the Jacobi schedule's prefetching was not in the binary until this was found).
 constexpr std::size_t kPrefetchDistance = 12;
 
 /// `longest` is null without a relocation radius: the kernel never reads it then.
-inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const TalusArrays& a,
-                             const double* longest) {
+[[gnu::always_inline]] inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g,
+                                                    const TalusArrays& a, const double* longest) {
     if (v >= g.degrees().size()) return;
     const std::uint32_t* target = g.targets().data();
     const std::uint32_t row = g.offsets()[v];
@@ -53,6 +56,36 @@ inline void prefetch_outflow(std::uint32_t v, const AdjacencyGraph& g, const Tal
         __builtin_prefetch(a.area + t);
         if (longest != nullptr) __builtin_prefetch(longest + t);
     }
+}
+
+/// The sequential schedule visits vertices in the order they became active: after a stamp that
+/// order is scattered over the vertex arrays and over the graph's pool (rows a stamp rewrote
+/// move to its end), and each visit waited on its row, then on its neighbours' heights, one
+/// cache miss after another. It prefetches in three stages, each reading only what the stage
+/// before brought in: the row's place (3 d ahead), the row's slots and the vertex's own data
+/// (2 d ahead), the neighbours' heights and areas (d ahead, prefetch_outflow).
+[[gnu::always_inline]] inline void prefetch_row_place(std::uint32_t v, const AdjacencyGraph& g) {
+    if (v >= g.degrees().size()) return;
+    __builtin_prefetch(g.offsets().data() + v);
+    __builtin_prefetch(g.degrees().data() + v);
+}
+
+[[gnu::always_inline]] inline void prefetch_row(std::uint32_t v, const AdjacencyGraph& g,
+                                                const TalusArrays& a, FaceRows faces) {
+    if (v >= g.degrees().size()) return;
+    const std::uint32_t row = g.offsets()[v];
+    __builtin_prefetch(g.targets().data() + row);
+    __builtin_prefetch(g.lengths().data() + row);
+    if (faces.across != nullptr) __builtin_prefetch(faces.across + row);
+    if (faces.corner != nullptr) {
+        // 16 bytes a slot: a row of six spans two lines.
+        __builtin_prefetch(faces.corner + row);
+        __builtin_prefetch(faces.corner + row + 4);
+    }
+    __builtin_prefetch(a.height + v);
+    __builtin_prefetch(a.area + v);
+    __builtin_prefetch(a.bedrock + v);
+    __builtin_prefetch(a.tan_alpha + v);
 }
 
 /// Rows of up to this many slots keep their outflow on the stack of the thread computing it (a
@@ -125,10 +158,6 @@ void TalusSolver::prepare(const AdjacencyGraph& g, std::size_t vertices) {
     // end of the pool then need no growth here (sized to the pool's size, it doubled at the
     // second stamp at 10⁶ vertices).
     const std::size_t slots = std::max(g.slot_count(), g.slot_capacity());
-    if (settings_.schedule == Schedule::Sequential && q_.size() < slots) {
-        reserve_for_writing(q_, slots);
-        q_.resize(slots, 0.0);
-    }
     // Slots move when the graph rewrites or compacts rows, but every one is zero here.
     if (settings_.schedule == Schedule::Jacobi && inflow_.size() < slots) {
         reserve_for_writing(inflow_, slots);
@@ -216,21 +245,39 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
     const double* longest = g.longest_edges().data();
     const FaceRows faces = g.face_rows();
     const bool face_rule = settings_.parameters.rule == SlopeRule::Face;
-    double* q = q_.data();
-    for (std::uint32_t i : active.list()) {
-        const std::uint32_t begin = g.offset(i);
+    // A row's outflow lives on the stack (kStackRowSlots), not in an array over the graph's
+    // slots: the rows a stamp rewrote sit scattered over the pool, and each visit missed the
+    // cache on that array as on the rows themselves.
+    std::array<double, kStackRowSlots> stack_q;
+    std::vector<double>& heap_q = scratch_[0].row_q;
+    const FaceRows prefetched_faces = face_rule ? faces : FaceRows{};
+    const double* prefetch_longest =
+        settings_.parameters.relocation_radius > 0.0 ? longest : nullptr;
+    const std::vector<std::uint32_t>& list = active.list();
+    const std::size_t end = list.size();
+    for (std::size_t idx = 0; idx < end; ++idx) {
+        const std::uint32_t i = list[idx];
+        if (idx + 3 * kPrefetchDistance < end)
+            prefetch_row_place(list[idx + 3 * kPrefetchDistance], g);
+        if (idx + 2 * kPrefetchDistance < end)
+            prefetch_row(list[idx + 2 * kPrefetchDistance], g, a, prefetched_faces);
+        if (idx + kPrefetchDistance < end)
+            prefetch_outflow(list[idx + kPrefetchDistance], g, a, prefetch_longest);
         const std::uint32_t degree = g.degree(i);
         if (degree == 0) continue;
+        const std::uint32_t row = g.offset(i);
+        const std::uint32_t* row_target = target + row;
         ++stats.processed;
         auto split = [&](std::uint32_t v) {
             if (split_around != nullptr) split_around->push_back(v);
         };
+        double* q = row_buffer(stack_q, heap_q, degree);
         const double sent =
-            face_rule ? face_outflow(i, begin, degree, target, length, faces, longest, a.height,
-                                     a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                     random_factor(a, i), q, split)
-                      : talus_outflow(i, begin, degree, target, length, longest, a.height, a.area,
-                                      a.bedrock, a.tan_alpha[i], settings_.parameters,
+            face_rule ? face_outflow(i, 0, degree, row_target, length + row, faces.from(row),
+                                     longest, a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                     settings_.parameters, random_factor(a, i), q, split)
+                      : talus_outflow(i, 0, degree, row_target, length + row, longest, a.height,
+                                      a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
                                       random_factor(a, i), q, split);
         if (sent <= 0.0) continue;
         // Gauss-Seidel: apply at once, so the next vertex sees the new heights.
@@ -245,10 +292,10 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
             }
         };
         mark(i);
-        for (std::uint32_t k = begin; k < begin + degree; ++k) {
+        for (std::uint32_t k = 0; k < degree; ++k) {
             if (q[k] > 0.0) {
-                a.height[target[k]] += q[k] / a.area[target[k]];
-                mark(target[k]);
+                a.height[row_target[k]] += q[k] / a.area[row_target[k]];
+                mark(row_target[k]);
             }
         }
         stats.volume_moved += sent;

@@ -143,7 +143,7 @@ class TalusSolver {
         std::vector<std::uint32_t> splits;   ///< phase 1, in list order
         std::vector<std::uint32_t> changed;  ///< phase 2, in id order
         std::vector<std::uint32_t> kept;     ///< phase 3: the next active list, in id order
-        std::vector<double> row_q;  ///< phase 1: the outflow of a row too long for the stack
+        std::vector<double> row_q;           ///< the outflow of a row too long for the stack
     };
     /// What the Jacobi phases read, so the pool's task captures `this` only (no allocation).
     struct JacobiPass {
@@ -175,7 +175,6 @@ class TalusSolver {
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;
-    std::vector<double> q_;  ///< per slot: volume sent along the directed edge
     /// Jacobi: per slot k of v's row, the volume target(k) sends to v this iteration. Phase 1
     /// scatters each sender's outflow into its receivers' rows (through the reverse slots), so
     /// phase 2 reads its own row in order and zeroes it: all zero between iterations.
