@@ -21,7 +21,7 @@
 #include "physics/talus_kernel_avx512.hpp"
 #include "physics/talus_solver.hpp"
 #include "physics_oracles.hpp"
-#include "reference_talus_kernel.hpp"
+#include "reference_schedule.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -45,22 +45,9 @@ class ReferenceJacobi {
         for (std::uint32_t i : list) {
             source[i] = 1;
             if (g.degree(i) == 0) continue;
-            const double jitter =
-                settings_.randomness > 0.0
-                    ? 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, i, iteration_)
-                    : 1.0;
-            auto split = [&](std::uint32_t v) { splits.push_back(v); };
-            // The face rule has no second kernel: its own (face_outflow) is used from the old
-            // heights, so the schedule's bookkeeping is what is checked for it.
-            out[i] = settings_.parameters.rule == SlopeRule::Face
-                         ? face_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
-                                        g.lengths().data(), g.face_rows(), g.longest_edges().data(),
-                                        a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                        settings_.parameters, jitter, q.data(), split)
-                         : test::reference_talus_outflow(
-                               i, g.offset(i), g.degree(i), g.targets().data(), g.lengths().data(),
-                               g.longest_edges().data(), a.height, a.area, a.bedrock,
-                               a.tan_alpha[i], settings_.parameters, jitter, q.data(), split);
+            out[i] = test::reference_outflow(settings_, g, a, i,
+                                             test::reference_jitter(settings_, i, iteration_),
+                                             q.data(), splits);
             st.volume_moved += out[i];
             if (out[i] > 0.0) {
                 receiver[i] = 1;
@@ -83,12 +70,7 @@ class ReferenceJacobi {
             }
         }
         std::copy(next.begin(), next.end(), a.height);
-        active.age(changed_flag, settings_.quiet_iterations);
-        for (std::uint32_t v : changed) {
-            active.activate(v);
-            for (std::uint32_t k = g.offset(v); k < g.offset(v) + g.degree(v); ++k)
-                active.activate(g.targets()[k]);
-        }
+        test::age_and_wake(g, active, changed_flag, changed, settings_.quiet_iterations);
         st.changed = changed.size();
         ++iteration_;
         return st;
@@ -126,14 +108,12 @@ void compare(const Case& c) {
     const VertexArrays& va = tin.vertices();
     const std::size_t n = va.size();
     std::mt19937_64 rng(3);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<double> h(n), b(n, -1e9), tan(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        const Vec2 p = va.position[v];
-        h[v] = 0.05 * std::sin(37.0 * p.x) * std::cos(29.0 * p.y) + 0.06 * u(rng);
-        if (c.bedrock) b[v] = h[v] - (u(rng) < 0.3 ? 0.0 : 0.01 * u(rng));
-        tan[v] = 0.5 + 0.3 * u(rng);
-    }
+    test::ScheduleScene scene = test::schedule_scene(
+        va, [](Vec2 p) { return 0.05 * std::sin(37.0 * p.x) * std::cos(29.0 * p.y); }, 0.06,
+        c.bedrock, rng);
+    std::vector<double>& h = scene.height;
+    const std::vector<double>& b = scene.bedrock;
+    const std::vector<double>& tan = scene.tan_alpha;
     std::vector<double> h_ref = h;
     // The seeds' rule keeps enough of the scene moving for the comparison to mean something.
     TalusSettings settings = seeds_rule();

@@ -15,10 +15,9 @@
 #include <cstring>
 #include <random>
 
-#include "physics/face_kernel.hpp"
 #include "physics/talus_solver.hpp"
 #include "physics_oracles.hpp"
-#include "reference_talus_kernel.hpp"
+#include "reference_schedule.hpp"
 #include "tin/tin.hpp"
 
 namespace sandtin {
@@ -46,21 +45,9 @@ class ReferenceSequential {
             const std::uint32_t begin = g.offset(i), degree = g.degree(i);
             if (degree == 0) continue;
             ++st.processed;
-            const double jitter =
-                settings_.randomness > 0.0
-                    ? 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, i, iteration_)
-                    : 1.0;
-            auto split = [&](std::uint32_t v) { splits.push_back(v); };
-            const double sent =
-                settings_.parameters.rule == SlopeRule::Face
-                    ? face_outflow(i, begin, degree, g.targets().data(), g.lengths().data(),
-                                   g.face_rows(), g.longest_edges().data(), a.height, a.area,
-                                   a.bedrock, a.tan_alpha[i], settings_.parameters, jitter,
-                                   q.data(), split)
-                    : test::reference_talus_outflow(i, begin, degree, g.targets().data(),
-                                                    g.lengths().data(), g.longest_edges().data(),
-                                                    a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                                    settings_.parameters, jitter, q.data(), split);
+            const double sent = test::reference_outflow(
+                settings_, g, a, i, test::reference_jitter(settings_, i, iteration_), q.data(),
+                splits);
             if (!(sent > 0.0)) continue;
             a.height[i] = std::max(a.height[i] - sent / a.area[i], a.bedrock[i]);
             mark(i);
@@ -73,12 +60,7 @@ class ReferenceSequential {
             }
             st.volume_moved += sent;
         }
-        active.age(changed_flag, settings_.quiet_iterations);
-        for (std::uint32_t v : changed) {
-            active.activate(v);
-            for (std::uint32_t k = g.offset(v); k < g.offset(v) + g.degree(v); ++k)
-                active.activate(g.targets()[k]);
-        }
+        test::age_and_wake(g, active, changed_flag, changed, settings_.quiet_iterations);
         st.changed = changed.size();
         ++iteration_;
         return st;
@@ -121,13 +103,10 @@ void compare(const Case& c) {
     const VertexArrays& va = tin.vertices();
     const std::size_t n = va.size();
     std::mt19937_64 rng(17);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<double> h(n), b(n, -1e9), tan(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        h[v] = test::rough_sand(va.position[v]) + 0.03 * u(rng);
-        if (c.bedrock) b[v] = h[v] - (u(rng) < 0.3 ? 0.0 : 0.01 * u(rng));
-        tan[v] = 0.5 + 0.3 * u(rng);
-    }
+    test::ScheduleScene scene = test::schedule_scene(va, test::rough_sand, 0.03, c.bedrock, rng);
+    std::vector<double>& h = scene.height;
+    const std::vector<double>& b = scene.bedrock;
+    const std::vector<double>& tan = scene.tan_alpha;
     std::vector<double> h_ref = h;
     TalusSettings settings;
     settings.schedule = Schedule::Sequential;
