@@ -39,6 +39,8 @@ struct GrooveRun {
     double erosion_simplify_per_stamp_median_ms = 0.0;
     double erosion_relax_ms = 0.0;  ///< the relaxation's share of erosion_ms
     std::size_t erosion_vertex_updates = 0;
+    /// Over the same iterations, the heights that changed (PhysicsStepReport::changed).
+    std::size_t erosion_heights_changed = 0;
     /// Erosion to rest after the stroke (Erosion::ToRestAfter): the relaxation and the
     /// simplification of what it moved.
     double rest_ms = 0.0;
@@ -115,7 +117,9 @@ GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validat
         after_stamp = [&](const StampReport&) {
             Stopwatch e;
             moved.clear();
-            run.erosion_vertex_updates += physics->step(kErosionIterations, &moved).vertex_updates;
+            const PhysicsStepReport r = physics->step(kErosionIterations, &moved);
+            run.erosion_vertex_updates += r.vertex_updates;
+            run.erosion_heights_changed += r.changed;
             relax_ms.push_back(e.ms());
             Stopwatch simplify;
             context.simplifier.enqueue(moved);
@@ -210,6 +214,13 @@ nlohmann::json erosion_json(const GrooveRun& r) {
             ? static_cast<double>(r.erosion_vertex_updates) / (r.erosion_relax_ms * 1e-3)
             : 0.0;
     j["erosion_vertex_updates"] = r.erosion_vertex_updates;
+    // What the active set holds (issue 41 asks what makes small active sets slow): near 1, the
+    // relaxation visits sand that moves; near 0, vertices counting quiet iterations down.
+    // Receivers count too, so it may exceed 1.
+    j["relax_heights_changed_per_update"] = r.erosion_vertex_updates > 0
+                                                ? static_cast<double>(r.erosion_heights_changed) /
+                                                      static_cast<double>(r.erosion_vertex_updates)
+                                                : 0.0;
     return j;
 }
 

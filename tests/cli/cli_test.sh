@@ -288,9 +288,12 @@ scenario_bench() {
     # The same groove eroding after every stamp: its walls stand steeper than the angle of
     # repose, so the relaxation must move sand, and the terrain must stay valid.
     check_eq "bench groove λ eroded valid" "$(json bench_lambda.out /by_size/1/with_erosion/valid)" true
-    holds "bench groove λ erosion" "a > 0 && b > 0" \
+    # It visits sand that moves: heights change (the share of visits that change one is what
+    # the groove's active set holds).
+    holds "bench groove λ erosion" "a > 0 && b > 0 && c > 0" \
         "$(json bench_lambda.out /by_size/1/with_erosion/erosion_vertex_updates)" \
-        "$(json bench_lambda.out /by_size/1/with_erosion/erosion_ms)"
+        "$(json bench_lambda.out /by_size/1/with_erosion/erosion_ms)" \
+        "$(json bench_lambda.out /by_size/1/with_erosion/relax_heights_changed_per_update)"
     # Locality: the 10⁴-point groove's density on a tenth of the area (side sqrt(0.1) m, a
     # stroke of 0.8 of its diagonal, 0.358 m: 36 stamps 1 cm apart), and the 10³-point
     # groove's on a 10 m square (10⁵ points, 11.3 m: 1 132 stamps). Both valid.
