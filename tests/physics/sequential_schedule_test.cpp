@@ -85,8 +85,8 @@ void compare(const Case& c) {
     Tin tin = Tin::random_points(Rect::from_size(1.0, 1.0), 4000, 11);
     AdjacencyGraph graph;
     graph.rebuild(tin);
-    // Points inserted in a band move the rows of the vertices around them to the end of the
-    // graph's pool, away from their neighbours' rows.
+    // Points inserted in a band put their rows, and those of neighbours whose rows grew, at the
+    // end of the graph's pool, away from the rows of the vertices around them.
     std::vector<Vec2> band;
     for (int k = 0; k < 300; ++k)
         band.push_back({0.2 + 0.6 * (k + 0.5) / 300.0, 0.5 + 0.02 * std::sin(0.3 * k)});
@@ -97,8 +97,23 @@ void compare(const Case& c) {
         tin.neighbours(v, ring);
         stars.insert(stars.end(), ring.begin(), ring.end());
     }
+    std::sort(stars.begin(), stars.end());
+    stars.erase(std::unique(stars.begin(), stars.end()), stars.end());
+    const std::size_t pool_before = graph.slot_count();
     graph.update(tin, stars);
     ASSERT_TRUE(graph.matches(tin));
+    // The scattering the test is about really happened: every born vertex's row, and the rows
+    // of some older neighbours that grew (12 of 177; the rest had room), lie past the old pool's
+    // end, away from the rows of the vertices around them.
+    std::size_t born_rows = 0, moved_rows = 0;
+    for (VertexId v : stars) {
+        const bool is_born = std::find(born.begin(), born.end(), v) != born.end();
+        const bool past_end = graph.offset(v.value) >= pool_before;
+        born_rows += is_born && past_end ? 1 : 0;
+        moved_rows += !is_born && past_end ? 1 : 0;
+    }
+    ASSERT_EQ(born_rows, born.size());
+    ASSERT_GT(moved_rows, 0u);
 
     const VertexArrays& va = tin.vertices();
     const std::size_t n = va.size();
