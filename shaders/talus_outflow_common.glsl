@@ -45,14 +45,16 @@ float signed_unit_hash(uvec2 seed, uint vertex, uvec2 iteration) {
     return float(z.y) * (2.0 / 2097152.0) + float(z.x) * (2.0 / 9007199254740992.0) - 1.0;
 }
 
-// The factor the row's levelling volumes (m³, summed in row order) are scaled by: damping and
-// jitter, the cap on i's drop (damping times the largest excess, m), the sand above the bedrock.
+// The factor the row's levelling volumes (m³, summed in row order) are scaled by: the Jacobi
+// schedule's levelling share (damping) and jitter, at most 1 (no edge carries more than levels
+// it), the cap on i's drop (damping times the largest excess, m), the sand above the bedrock.
 float row_scale(uint i, float hi, float largest, float levelling) {
     float scale = pc.damping;
     if (pc.randomness > 0.0) {
         uvec2 it = uvec2(ctl[C_WORK_ITER_LO], ctl[C_WORK_ITER_HI]);
         scale *= 1.0 + pc.randomness * signed_unit_hash(uvec2(pc.seed_lo, pc.seed_hi), i, it);
     }
+    scale = min(scale, 1.0);
     float cap = pc.damping * largest * area[i];
     if (scale * levelling > cap) scale = cap / levelling;
     float available = area[i] * (hi - bedrock[i]);

@@ -19,8 +19,8 @@
 // is itself steeper than repose (|g_t| >= T) no plane through j and l is at repose, and the
 // face falls back to the edge rule towards its lower far corner.
 //
-// Everything else is the edge rule's (talus_kernel.hpp): volume form, damping and the cap on
-// i's drop, the sand above the bedrock, the settle margin (faces trigger above T and level
+// Everything else is the edge rule's (talus_kernel.hpp): volume form, the levelling share and the
+// cap on i's drop, the sand above the bedrock, the settle margin (faces trigger above T and level
 // towards (1 - m) T), the rest tolerance (relative to each face's altitude, so slivers are
 // judged on their own scale), degenerate receivers, the relocation radius, the jitter. The
 // shares of the faces that send to one neighbour add up in its slot, so both schedules apply
@@ -141,7 +141,7 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
                              const std::uint32_t* target, const double* length, FaceRows faces,
                              const double* longest, const double* height, const double* area,
                              const double* bedrock, double tan_alpha, const TalusParameters& p,
-                             double random_factor, double* q, NeedsSplit&& needs_split) {
+                             double share, double* q, NeedsSplit&& needs_split) {
     const std::uint32_t end = begin + degree;
     const double hi = height[i];
     const double floor = detail::excess_floor(hi);
@@ -194,7 +194,7 @@ inline double face_row_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t
         excess.largest = std::max(excess.largest, f.excess);
     }
     if (!(excess.largest > 0.0)) return 0.0;
-    const double scale = detail::outflow_scale(excess, hi, area[i], bedrock[i], p, random_factor);
+    const double scale = detail::outflow_scale(excess, hi, area[i], bedrock[i], p, share);
     // A drop of i within the noise floor is rounding, not sand: sand left a few ulps above
     // the bedrock on rock steeper than repose (every face of i stays steep however little sand
     // it holds) would otherwise trickle on for ever (measured on thin sand over 56° rock: 43
@@ -214,12 +214,12 @@ inline double face_scale(std::uint32_t i, std::uint32_t begin, std::uint32_t deg
                          const std::uint32_t* target, const double* length, FaceRows faces,
                          const double* longest, const double* height, const double* area,
                          const double* bedrock, double tan_alpha, const TalusParameters& p,
-                         double random_factor, double* q, NeedsSplit&& needs_split) {
+                         double share, double* q, NeedsSplit&& needs_split) {
     if (p.relocation_radius > 0.0)
         return face_row_scale<true>(i, begin, degree, target, length, faces, longest, height, area,
-                                    bedrock, tan_alpha, p, random_factor, q, needs_split);
+                                    bedrock, tan_alpha, p, share, q, needs_split);
     return face_row_scale<false>(i, begin, degree, target, length, faces, longest, height, area,
-                                 bedrock, tan_alpha, p, random_factor, q, needs_split);
+                                 bedrock, tan_alpha, p, share, q, needs_split);
 }
 
 /// talus_outflow under the face rule: q[k] (m³) for every slot, and their total.
@@ -228,9 +228,9 @@ inline double face_outflow(std::uint32_t i, std::uint32_t begin, std::uint32_t d
                            const std::uint32_t* target, const double* length, FaceRows faces,
                            const double* longest, const double* height, const double* area,
                            const double* bedrock, double tan_alpha, const TalusParameters& p,
-                           double random_factor, double* q, NeedsSplit&& needs_split) {
+                           double share, double* q, NeedsSplit&& needs_split) {
     const double scale = face_scale(i, begin, degree, target, length, faces, longest, height, area,
-                                    bedrock, tan_alpha, p, random_factor, q, needs_split);
+                                    bedrock, tan_alpha, p, share, q, needs_split);
     if (scale == 0.0) return 0.0;
     double sent = 0.0;
     for (std::uint32_t k = begin; k < begin + degree; ++k) {

@@ -158,13 +158,13 @@ SANDTIN_AVX512_TARGET inline double avx512_talus_outflow(std::uint32_t i, std::u
                                                          const double* length, const double* height,
                                                          const double* area, const double* bedrock,
                                                          double tan_alpha, const TalusParameters& p,
-                                                         double random_factor, double* q) {
+                                                         double share, double* q) {
     const double hi = height[i];
     const Avx512Row row = avx512_flowing_volumes(i, degree, target, length, height, area, tan_alpha,
                                                  p, excess_floor(hi));
     double scale = 0.0;
     if (row.excess.largest > 0.0)
-        scale = outflow_scale(row.excess, hi, area[i], bedrock[i], p, random_factor);
+        scale = outflow_scale(row.excess, hi, area[i], bedrock[i], p, share);
     if (!(scale > 0.0)) scale = 0.0;  // +0.0 * every volume: q is +0.0 throughout
     const __m512d sent = _mm512_mul_pd(row.volume, _mm512_set1_pd(scale));
     _mm512_mask_storeu_pd(q, avx512_lanes(degree), sent);

@@ -146,10 +146,14 @@ TalusSolver::TalusSolver(TalusSettings settings) : settings_(settings) {
     pool_ = std::make_unique<ThreadPool>(std::max(1, settings_.threads));
 }
 
-double TalusSolver::random_factor(const TalusArrays& a, std::uint32_t v) const {
-    if (settings_.randomness <= 0.0) return 1.0;
+double TalusSolver::levelling_share(const TalusArrays& a, std::uint32_t v) const {
+    // Gauss-Seidel levels each edge whole: the receiver's height is current for the next
+    // vertex. Jacobi receivers take from every sender at once, so each sends damping of it.
+    const double sigma =
+        settings_.schedule == Schedule::Sequential ? 1.0 : settings_.parameters.damping;
+    if (settings_.randomness <= 0.0) return sigma;
     const std::uint32_t id = a.id != nullptr ? a.id[v] : v;
-    return 1.0 + settings_.randomness * signed_unit_hash(settings_.seed, id, iteration_);
+    return sigma * (1.0 + settings_.randomness * signed_unit_hash(settings_.seed, id, iteration_));
 }
 
 void TalusSolver::prepare(const AdjacencyGraph& g, std::size_t vertices) {
@@ -275,10 +279,10 @@ IterationStats TalusSolver::sequential(const AdjacencyGraph& g, const TalusArray
         const double sent =
             face_rule ? face_outflow(i, 0, degree, row_target, length + row, faces.from(row),
                                      longest, a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                     settings_.parameters, random_factor(a, i), q, split)
+                                     settings_.parameters, levelling_share(a, i), q, split)
                       : talus_outflow(i, 0, degree, row_target, length + row, longest, a.height,
                                       a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                      random_factor(a, i), q, split);
+                                      levelling_share(a, i), q, split);
         if (sent <= 0.0) continue;
         // Gauss-Seidel: apply at once, so the next vertex sees the new heights.
         a.height[i] -= sent / a.area[i];
@@ -504,17 +508,17 @@ void TalusSolver::jacobi_outflow(std::size_t begin, std::size_t end, ThreadScrat
         double scale = 0.0;
         if constexpr (kPasses == RowPasses::Branching) {
             // The face rule, from the same old heights (its rows always branch; see jacobi()).
-            scale = face_rule
-                        ? face_scale(i, 0, deg, target + row, length + row, faces.from(row),
-                                     longest, a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                     settings_.parameters, random_factor(a, i), q, split)
-                        : talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
-                                               a.height, a.area, a.bedrock, a.tan_alpha[i],
-                                               settings_.parameters, random_factor(a, i), q, split);
+            scale = face_rule ? face_scale(i, 0, deg, target + row, length + row, faces.from(row),
+                                           longest, a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                           settings_.parameters, levelling_share(a, i), q, split)
+                              : talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest,
+                                                     a.height, a.area, a.bedrock, a.tan_alpha[i],
+                                                     settings_.parameters, levelling_share(a, i), q,
+                                                     split);
         } else {
             scale = talus_scale<kPasses>(i, 0, deg, target + row, length + row, longest, a.height,
                                          a.area, a.bedrock, a.tan_alpha[i], settings_.parameters,
-                                         random_factor(a, i), q, split);
+                                         levelling_share(a, i), q, split);
         }
         // Scaled as they are sent, in row order (see send_branch_free); only neighbours that
         // receive something are marked.
@@ -596,7 +600,7 @@ SANDTIN_AVX512_TARGET void TalusSolver::jacobi_outflow_avx512(std::size_t begin,
                                                a.tan_alpha[i], p, detail::excess_floor(hi_i));
             if (!(volumes.excess.largest > 0.0)) continue;
             const double scale = detail::outflow_scale(volumes.excess, hi_i, a.area[i],
-                                                       a.bedrock[i], p, random_factor(a, i));
+                                                       a.bedrock[i], p, levelling_share(a, i));
             if (scale > 0.0)
                 sent = detail::avx512_send(volumes.volume, deg, scale, target + row, reverse + row,
                                            inflow, receive, census.flowing);
@@ -604,7 +608,7 @@ SANDTIN_AVX512_TARGET void TalusSolver::jacobi_outflow_avx512(std::size_t begin,
             double* q = row_buffer(stack_q, s.row_q, deg);
             const double scale = talus_scale<RowPasses::BranchFree>(
                 i, 0, deg, target + row, length + row, longest, a.height, a.area, a.bedrock,
-                a.tan_alpha[i], p, random_factor(a, i), q, [](std::uint32_t) {});
+                a.tan_alpha[i], p, levelling_share(a, i), q, [](std::uint32_t) {});
             if (scale > 0.0)
                 sent = send_branch_free(q, deg, scale, target + row, reverse + row, inflow, receive,
                                         census.flowing);

@@ -170,8 +170,10 @@ class TalusSolver {
     /// Phase 1 of the first kRowKernelSampleRows rows of the active list, a chunk at a time,
     /// alternating the AVX-512 and SSE2 rows; records the faster (row_kernel_measured_).
     void measure_row_kernels(bool threaded);
-    /// The jitter of vertex v (an index into the arrays).
-    double random_factor(const TalusArrays& a, std::uint32_t v) const;
+    /// The share of each of vertex v's levelling volumes it sends this step (v an index into
+    /// the arrays): the schedule's sigma (physics/talus_kernel.hpp; 1 sequential, damping
+    /// Jacobi) times v's jitter.
+    double levelling_share(const TalusArrays& a, std::uint32_t v) const;
     TalusSettings settings_;
     std::uint64_t iteration_ = 0;
     std::unique_ptr<ThreadPool> pool_;

@@ -113,7 +113,9 @@ DriftResult run_drift(Scene& s, Schedule schedule, int iterations, int phase_len
 
 void expect_conserved(Schedule schedule) {
     Scene s = make_scene(32);
-    const DriftResult r = run_drift(s, schedule, 100000, 10);
+    // Re-roughened every 5 iterations: the sequential schedule levels an edge whole in one step
+    // (physics/talus_kernel.hpp), so 10 let most of the scene come to rest between roughenings.
+    const DriftResult r = run_drift(s, schedule, 100000, 5);
     std::printf("  drift %.3g, processed/iteration %.0f, changed/iteration %.0f of %zu\n", r.drift,
                 r.mean_processed, r.mean_changed, s.tin.vertex_count());
     EXPECT_LE(r.drift, 1e-12);
@@ -171,7 +173,7 @@ PatchDrift run_patch_drift(Schedule schedule, int iterations) {
     PatchDrift r;
     double processed = 0.0, changed = 0.0;
     for (int it = 0; it < iterations; ++it) {
-        if (it % 10 == 0) {
+        if (it % 5 == 0) {  // often enough that the patch never settles (see expect_conserved)
             for (std::uint32_t v : patch) {
                 const double old = va.lumped_area[v] * s.height[v];
                 s.bedrock[v] = 1.0 + u(rng);

@@ -46,7 +46,7 @@ class ReferenceJacobi {
             source[i] = 1;
             if (g.degree(i) == 0) continue;
             out[i] = test::reference_outflow(settings_, g, a, i,
-                                             test::reference_jitter(settings_, i, iteration_),
+                                             test::reference_share(settings_, i, iteration_),
                                              q.data(), splits);
             st.volume_moved += out[i];
             if (out[i] > 0.0) {

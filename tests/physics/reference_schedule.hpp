@@ -1,7 +1,7 @@
 #pragma once
 // What the two schedules' references (jacobi_schedule_test, sequential_schedule_test) define
-// alike, from the definitions and not from TalusSolver: a vertex's jitter, its outflow into
-// one array over all the graph's slots (the plain edge kernel, or the face rule's own kernel,
+// alike, from the definitions and not from TalusSolver: a vertex's levelling share, its outflow
+// into one array over all the graph's slots (the plain edge kernel, or the face rule's own kernel,
 // which has no second implementation), the active set's update after an iteration, and the
 // scene they relax.
 
@@ -18,24 +18,29 @@
 
 namespace sandtin::test {
 
-/// The factor vertex i's outflow is scaled by in `iteration` (1 without randomness).
-inline double reference_jitter(const TalusSettings& s, std::uint32_t i, std::uint64_t iteration) {
-    return s.randomness > 0.0 ? 1.0 + s.randomness * signed_unit_hash(s.seed, i, iteration) : 1.0;
+/// The share of its levelling volumes vertex i sends in `iteration`: the schedule's (each
+/// edge levelled whole in the sequential schedule, damping of it in the Jacobi schedule,
+/// physics/talus_kernel.hpp) times the jitter (1 without randomness).
+inline double reference_share(const TalusSettings& s, std::uint32_t i, std::uint64_t iteration) {
+    const double sigma = s.schedule == Schedule::Sequential ? 1.0 : s.parameters.damping;
+    return s.randomness > 0.0
+               ? sigma * (1.0 + s.randomness * signed_unit_hash(s.seed, i, iteration))
+               : sigma;
 }
 
 /// Vertex i's outflow under the settings' rule: q[k] (m³) for every slot k of its row, in an
 /// array over all the graph's slots, and their total; split requests go to `splits`.
 inline double reference_outflow(const TalusSettings& s, const AdjacencyGraph& g,
-                                const TalusArrays& a, std::uint32_t i, double jitter, double* q,
+                                const TalusArrays& a, std::uint32_t i, double share, double* q,
                                 std::vector<std::uint32_t>& splits) {
     auto split = [&](std::uint32_t v) { splits.push_back(v); };
     if (s.parameters.rule == SlopeRule::Face)
         return face_outflow(i, g.offset(i), g.degree(i), g.targets().data(), g.lengths().data(),
                             g.face_rows(), g.longest_edges().data(), a.height, a.area, a.bedrock,
-                            a.tan_alpha[i], s.parameters, jitter, q, split);
+                            a.tan_alpha[i], s.parameters, share, q, split);
     return reference_talus_outflow(i, g.offset(i), g.degree(i), g.targets().data(),
                                    g.lengths().data(), g.longest_edges().data(), a.height, a.area,
-                                   a.bedrock, a.tan_alpha[i], s.parameters, jitter, q, split);
+                                   a.bedrock, a.tan_alpha[i], s.parameters, share, q, split);
 }
 
 /// After an iteration: vertices that did not change count a quiet iteration (ActiveSet::age),

@@ -23,7 +23,7 @@ inline double reference_talus_outflow(std::uint32_t i, std::uint32_t begin, std:
                                       const std::uint32_t* target, const double* length,
                                       const double* longest, const double* height,
                                       const double* area, const double* bedrock, double tan_alpha,
-                                      const TalusParameters& p, double random_factor, double* q,
+                                      const TalusParameters& p, double share, double* q,
                                       NeedsSplit&& needs_split) {
     const double hi = height[i];
     double largest = 0.0;
@@ -64,7 +64,7 @@ inline double reference_talus_outflow(std::uint32_t i, std::uint32_t begin, std:
             levelling += q[k];
         }
     }
-    double scale = p.damping * random_factor;
+    double scale = std::min(share, 1.0);  // the schedule's levelling share, at most whole
     const double cap = p.damping * largest * area[i];
     if (scale * levelling > cap) scale = cap / levelling;
     const double available = area[i] * (hi - bedrock[i]);

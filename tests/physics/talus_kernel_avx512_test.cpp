@@ -1,8 +1,8 @@
 // The AVX-512 rows of the talus kernel (engine/physics/talus_kernel_avx512.hpp) against the
 // plain kernel written from the definition (reference_talus_kernel.hpp): the same volumes and
 // the same total bit for bit, on random rows of every width they take (1 to 8 slots), with
-// bedrock, jitter, settle margins, exact ties, tiny and degenerate receivers. Skipped, saying
-// so, on a CPU without AVX-512 (the SSE2 rows are tested in talus_kernel_test.cpp).
+// bedrock, levelling shares, settle margins, exact ties, tiny and degenerate receivers. Skipped,
+// saying so, on a CPU without AVX-512 (the SSE2 rows are tested in talus_kernel_test.cpp).
 
 #include <gtest/gtest.h>
 
@@ -44,17 +44,20 @@ TEST(TalusKernelAvx512, MatchesThePlainKernelBitForBit) {
         p.rest_tolerance = trial % 5 == 0 ? 0.0 : 1e-4;
         p.damping = trial % 7 == 0 ? 1.0 : 0.5;
         const double tan_alpha = 0.3 + 0.5 * u(rng);
-        const double jitter = trial % 2 == 0 ? 1.0 : 0.7 + 0.6 * u(rng);
+        // The levelling share: the Jacobi schedule's (damping, jittered), or the sequential
+        // schedule's whole levelling, jittered past 1 (taken as 1) in some trials.
+        const double share =
+            trial % 3 == 0 ? 1.0 : (trial % 3 == 1 ? 0.5 : 1.0) * (0.7 + 0.6 * u(rng));
         // Lanes past the row must be left alone: sentinels on both sides.
         std::vector<double> q_ref(degree, -2.0);
         std::vector<double> q(degree + 2, -1.0);
         const std::vector<double> longest(kVertices, 0.0);  // read only with a relocation radius
         const double sent_ref = test::reference_talus_outflow(
             0, 0, degree, target.data(), length.data(), longest.data(), height.data(), area.data(),
-            bedrock.data(), tan_alpha, p, jitter, q_ref.data(), [](std::uint32_t) {});
+            bedrock.data(), tan_alpha, p, share, q_ref.data(), [](std::uint32_t) {});
         const double sent = detail::avx512_talus_outflow(0, degree, target.data(), length.data(),
                                                          height.data(), area.data(), bedrock.data(),
-                                                         tan_alpha, p, jitter, q.data() + 1);
+                                                         tan_alpha, p, share, q.data() + 1);
         SCOPED_TRACE(::testing::Message() << "trial " << trial << ", " << degree << " slots");
         EXPECT_EQ(std::memcmp(&sent, &sent_ref, sizeof(double)), 0)
             << sent << " against " << sent_ref;

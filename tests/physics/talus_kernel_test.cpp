@@ -3,7 +3,7 @@
 // plain one written from the definition (reference_talus_kernel.hpp): the same volumes bit for
 // bit, the same total and the same split requests in the same order, on random rows of 1 to
 // 40 slots (odd and even, for the two-lane passes), with and without a relocation radius,
-// bedrock, jitter and a settle margin.
+// bedrock, levelling shares (jittered, some past 1) and a settle margin.
 
 #include <gtest/gtest.h>
 
@@ -50,12 +50,15 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
         p.settle_margin = trial % 4 == 0 ? 0.05 : 0.0;
         p.rest_tolerance = trial % 5 == 0 ? 0.0 : 1e-4;
         const double tan_alpha = 0.3 + 0.5 * u(rng);
-        const double jitter = trial % 2 == 0 ? 1.0 : 0.7 + 0.6 * u(rng);
+        // The levelling share: the Jacobi schedule's (damping, jittered), or the sequential
+        // schedule's whole levelling, jittered past 1 (taken as 1) in some trials.
+        const double share =
+            trial % 3 == 0 ? 1.0 : (trial % 3 == 1 ? 0.5 : 1.0) * (0.7 + 0.6 * u(rng));
         std::vector<double> q_ref(degree, -2.0);
         std::vector<std::uint32_t> splits_ref;
         const double sent_ref = test::reference_talus_outflow(
             0, 0, degree, target.data(), length.data(), longest.data(), height.data(), area.data(),
-            bedrock.data(), tan_alpha, p, jitter, q_ref.data(),
+            bedrock.data(), tan_alpha, p, share, q_ref.data(),
             [&](std::uint32_t v) { splits_ref.push_back(v); });
         // Both of the kernel's passes against the reference.
         auto expect_reference = [&]<RowPasses kPasses>() {
@@ -63,7 +66,7 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
             std::vector<std::uint32_t> splits;
             const double sent = talus_outflow<kPasses>(
                 0, 0, degree, target.data(), length.data(), longest.data(), height.data(),
-                area.data(), bedrock.data(), tan_alpha, p, jitter, q.data(),
+                area.data(), bedrock.data(), tan_alpha, p, share, q.data(),
                 [&](std::uint32_t v) { splits.push_back(v); });
             EXPECT_EQ(std::memcmp(&sent, &sent_ref, sizeof(double)), 0);
             EXPECT_EQ(std::memcmp(q.data(), q_ref.data(), degree * sizeof(double)), 0);
@@ -81,6 +84,70 @@ TEST(TalusKernel, MatchesThePlainKernelBitForBit) {
     EXPECT_GT(flowing_rows, 5000u);
     EXPECT_GT(split_rows, 1000u);
     EXPECT_GT(long_rows, 100u);
+}
+
+// The levelling share (physics/talus_kernel.hpp): with share 1 (the sequential schedule) a
+// lone steep edge is levelled in one step, to (1 - m) r tan(alpha) exactly; with share 1/2
+// (Jacobi, damping 1/2) half its excess goes; where several edges flow, the cap holds the
+// sender's drop to damping times its largest excess whatever the share; a jittered share past 1
+// moves no more than share 1. Worked out by hand from the definitions, for both passes.
+template <RowPasses kPasses>
+void expect_levelling_share_and_cap() {
+    const TalusParameters p;  // damping 1/2, settle margin 0.03
+    const double tan_alpha = 0.6, r = 0.1;
+    const std::vector<double> length = {r, r, r};
+    const std::vector<double> longest(4, r);
+    const std::vector<double> bedrock(4, -10.0);
+    auto step = [&](std::uint32_t degree, const std::vector<double>& area, double share,
+                    std::vector<double> height) {
+        const std::vector<std::uint32_t> target = {1, 2, 3};
+        std::vector<double> q(degree, -1.0);
+        const double sent = talus_outflow<kPasses>(
+            0, 0, degree, target.data(), length.data(), longest.data(), height.data(), area.data(),
+            bedrock.data(), tan_alpha, p, share, q.data(), [](std::uint32_t) {});
+        height[0] -= sent / area[0];
+        for (std::uint32_t k = 0; k < degree; ++k)
+            height[target[k]] += q[k] / area[target[k]];
+        return height;
+    };
+    const double level = (1.0 - p.settle_margin) * r * tan_alpha;  // what a flowing edge levels to
+    // A lone edge 0.2 m steeper than repose between equal areas.
+    const std::vector<double> steep = {0.2 + r * tan_alpha, 0.0, 5.0, 5.0};
+    const std::vector<double> equal(4, 0.01);
+    std::vector<double> h = step(1, equal, 1.0, steep);
+    EXPECT_NEAR(h[0] - h[1], level, 1e-15);
+    const double excess = steep[0] - steep[1] - level;  // at the settle margin
+    h = step(1, equal, 0.5, steep);
+    EXPECT_NEAR(h[0] - h[1], level + 0.5 * excess, 1e-15);
+    // Past 1: the same as 1 (never more than levels the edge).
+    const std::vector<double> whole = step(1, equal, 1.0, steep);
+    h = step(1, equal, 1.3, steep);
+    EXPECT_EQ(h, whole);
+    // Three equally steep edges: levelling each alone would drop the sender by 3/2 of the
+    // excess; the cap holds it to damping times the excess, shared equally, at either share.
+    const std::vector<double> three = {0.2 + r * tan_alpha, 0.0, 0.0, 0.0};
+    for (const double share : {1.0, 0.5}) {
+        h = step(3, equal, share, three);
+        EXPECT_NEAR(three[0] - h[0], p.damping * excess, 1e-15) << "share " << share;
+        for (int k = 1; k <= 3; ++k)
+            EXPECT_NEAR(h[k], p.damping * excess / 3.0, 1e-15) << "share " << share;
+    }
+    // A receiver 100 times smaller: share 1 levels the edge (the receiver rises by nearly the
+    // whole excess, the sender barely drops), within the cap.
+    h = step(1, {1.0, 0.01, 0.01, 0.01}, 1.0, steep);
+    EXPECT_NEAR(h[0] - h[1], level, 1e-14);
+    EXPECT_LT(steep[0] - h[0], 0.01 * excess);
+}
+
+TEST(TalusKernel, LevellingShareAndTheCapOnTheDrop) {
+    {
+        SCOPED_TRACE("branching passes");
+        expect_levelling_share_and_cap<RowPasses::Branching>();
+    }
+    {
+        SCOPED_TRACE("branch-free passes");
+        expect_levelling_share_and_cap<RowPasses::BranchFree>();
+    }
 }
 
 /// Settings out of range are refused by the solver with a message naming the setting.
