@@ -19,8 +19,9 @@
 // overshoot of an edge (i dropping by damping E for an edge whose own excess was small) is
 // too: sigma = 1 only lets an edge whose vertex has room under the cap level in one step
 // instead of halving. Measured on the 10^4 groove to rest (sequential, face rule): 625 -> 476
-// iterations, 1 018 298 -> 725 730 vertex updates. Damping 1 instead (the cap doubled) had
-// rested in 225 iterations, but overshot: piles 4-5 % low and unstable runs. A small
+// iterations, 1 018 298 -> 725 730 vertex updates. Raising the cap instead overshot: damping 1
+// rested that groove in 225 iterations but left runs that never rested, damping 0.75 rested
+// piles 4-5 % low. A small
 // neighbour only limits its own edge: a per-vertex budget shared by excess would let one
 // sliver vertex throttle the whole neighbourhood. The outflow is capped by the sand above the
 // bedrock, A_i (h_i - b_i). Edges longer than the relocation radius carry nothing; they are
@@ -32,8 +33,9 @@
 // is 1-3 degrees below the angle of maximum stability; Jaeger, Nagel & Behringer, Rev. Mod.
 // Phys. 68 (1996) §II). Without it, an avalanche leaves its whole slope exactly at the
 // threshold, and every later grain that arrives re-triggers the slope below it: measured
-// after a dig into a slope 3 % under repose, a creep of tens of vertices trading 1e-11 m³ for
-// 32 000 (sequential) and 42 000 (Jacobi) iterations; m = 0.03 rests in 3 000 and 4 300.
+// after a dig into a slope 3 % under repose (edge rule), a creep of tens of vertices trading
+// 1e-11 m³ for 16 174 (sequential) and 42 140 (Jacobi) iterations; m = 0.03 rests in 1 443 and
+// 4 232 (the face rule: 1 288 and 2 156 without the margin, 805 and 1 369 with it).
 // Neither the trigger nor the bound "no edge steeper than (1 + tol) tan(alpha)" changes.
 //
 // Degenerate receivers: an edge into a vertex whose lumped area is below kDegenerateAreaRatio

@@ -114,13 +114,12 @@ void expect_levelling_share_and_cap() {
     // A lone edge 0.2 m steeper than repose between equal areas.
     const std::vector<double> steep = {0.2 + r * tan_alpha, 0.0, 5.0, 5.0};
     const std::vector<double> equal(4, 0.01);
-    std::vector<double> h = step(1, equal, 1.0, steep);
-    EXPECT_NEAR(h[0] - h[1], level, 1e-15);
+    const std::vector<double> whole = step(1, equal, 1.0, steep);
+    EXPECT_NEAR(whole[0] - whole[1], level, 1e-15);
     const double excess = steep[0] - steep[1] - level;  // at the settle margin
-    h = step(1, equal, 0.5, steep);
+    std::vector<double> h = step(1, equal, 0.5, steep);
     EXPECT_NEAR(h[0] - h[1], level + 0.5 * excess, 1e-15);
     // Past 1: the same as 1 (never more than levels the edge).
-    const std::vector<double> whole = step(1, equal, 1.0, steep);
     h = step(1, equal, 1.3, steep);
     EXPECT_EQ(h, whole);
     // Three equally steep edges: levelling each alone would drop the sender by 3/2 of the
