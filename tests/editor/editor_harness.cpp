@@ -54,6 +54,22 @@ Rgb pixel(const PngImage& im, std::uint32_t x, std::uint32_t y) {
             static_cast<double>(im.sample(x, y, 2))};
 }
 
+Rgb mean_pixel(const PngImage& im, int x, int y, int half) {
+    Rgb sum{0.0, 0.0, 0.0};
+    int n = 0;
+    for (int py = std::max(0, y - half); py <= std::min(int(im.height) - 1, y + half); ++py) {
+        for (int px = std::max(0, x - half); px <= std::min(int(im.width) - 1, x + half); ++px) {
+            const Rgb c = pixel(im, static_cast<std::uint32_t>(px), static_cast<std::uint32_t>(py));
+            sum.r += c.r;
+            sum.g += c.g;
+            sum.b += c.b;
+            ++n;
+        }
+    }
+    if (n == 0) return sum;
+    return {sum.r / n, sum.g / n, sum.b / n};
+}
+
 double luminance(Rgb c) {
     return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
 }

@@ -44,6 +44,9 @@ struct Rgb {
     double r, g, b;
 };
 Rgb pixel(const PngImage& im, std::uint32_t x, std::uint32_t y);
+/// Mean colour of the (2 half + 1)² pixels around (x, y), clipped to the image: a colour that
+/// one glint, cursor pixel or grain of the sand's texture cannot decide.
+Rgb mean_pixel(const PngImage& im, int x, int y, int half);
 double luminance(Rgb c);
 /// Mean absolute difference of two images over a rectangle (all channels).
 double mean_diff(const PngImage& a, const PngImage& b, int x0, int y0, int x1, int y1);
