@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_folder.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin {
@@ -18,16 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFile : public ::testing::Test {
+class AtomicFile : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-atomic-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    AtomicFile() : ScratchFolderTest("atomic") {}
 
     static std::vector<std::uint8_t> pattern(std::size_t n, std::uint8_t seed) {
         std::vector<std::uint8_t> v(n);
@@ -35,8 +28,6 @@ class AtomicFile : public ::testing::Test {
             v[i] = static_cast<std::uint8_t>(seed + i * 31 + (i >> 8));
         return v;
     }
-
-    fs::path dir_;
 };
 
 TEST_F(AtomicFile, WriteThenReadBack) {

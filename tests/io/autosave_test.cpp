@@ -3,7 +3,6 @@
 // scene, and an explicit save retires the autosave.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -15,6 +14,7 @@
 #include "io/autosave.hpp"
 #include "io/autosave_writer.hpp"
 #include "io/session_keeper.hpp"
+#include "support/scratch_folder.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
 
@@ -32,24 +32,19 @@ Session session_with(std::size_t points, double height) {
     return s;
 }
 
-class Autosave : public ::testing::Test {
+class Autosave : public test::ScratchFolderTest {
   protected:
+    Autosave() : ScratchFolderTest("autosave") {}
     void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-autosave-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        ScratchFolderTest::SetUp();
         scene_ = dir_ / "beach.sandtin";
     }
-    void TearDown() override { fs::remove_all(dir_); }
 
     /// File times have coarse resolution on some file systems: make "later" unambiguous.
     static void age(const fs::path& p, int seconds) {
         fs::last_write_time(p, fs::last_write_time(p) - std::chrono::seconds(seconds));
     }
 
-    fs::path dir_;
     fs::path scene_;
 };
 

@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -14,6 +12,7 @@
 #include <vector>
 
 #include "io/export_terrain.hpp"
+#include "support/scratch_folder.hpp"
 #include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
@@ -38,16 +37,9 @@ inline Tin test_tin() {
     return tin;
 }
 
-class Export : public ::testing::Test {
+class Export : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-export-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    Export() : ScratchFolderTest("export") {}
 
     std::vector<std::uint8_t> run(const Tin& tin, const std::string& name, ExportOptions o = {},
                                   const std::string& map = "") {
@@ -57,7 +49,6 @@ class Export : public ::testing::Test {
     }
     static std::string text(const std::vector<std::uint8_t>& b) { return {b.begin(), b.end()}; }
 
-    fs::path dir_;
     ExportReport report_;
 };
 

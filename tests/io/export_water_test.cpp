@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,7 @@
 
 #include "io/export_terrain.hpp"
 #include "io/heightmap_import.hpp"
+#include "support/scratch_folder.hpp"
 #include "support/tin_oracles.hpp"
 #include "util/atomic_file.hpp"
 
@@ -41,23 +41,15 @@ Tin wet_tin() {
     return tin;
 }
 
-class ExportWater : public ::testing::Test {
+class ExportWater : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("sandtin-export-water-" + std::string(info->name()) +
-                                            "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    ExportWater() : ScratchFolderTest("export-water") {}
     fs::path run(const Tin& tin, const std::string& name, ExportOptions o = {},
                  const std::string& map = "") {
         const fs::path p = dir_ / name;
         report_ = export_terrain(tin, p, export_format_for(p, map), o);
         return p;
     }
-    fs::path dir_;
     ExportReport report_;
 };
 

@@ -7,8 +7,6 @@
 #include <gdal.h>
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -16,23 +14,16 @@
 #include <string>
 #include <vector>
 
+#include "support/scratch_folder.hpp"
 #include "util/atomic_file.hpp"
 
 namespace sandtin::heightmap_test {
 
 namespace fs = std::filesystem;
 
-class HeightmapFiles : public ::testing::Test {
+class HeightmapFiles : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-import-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
+    HeightmapFiles() : ScratchFolderTest("import") {}
 };
 
 /// A GeoTIFF of float samples written through GDAL itself.

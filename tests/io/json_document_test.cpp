@@ -2,13 +2,13 @@
 // nlohmann would accept silently (a key given twice) is refused.
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "physics/material.hpp"
+#include "support/scratch_folder.hpp"
 #include "tools/tool_json.hpp"
 #include "util/json_document.hpp"
 #include "util/json_fields.hpp"
@@ -63,22 +63,14 @@ TEST(JsonDocument, AKeyGivenTwiceInOneObjectIsRefusedWithItsLine) {
     EXPECT_TRUE(contains(error_of("[{\"a\": {\"b\": 1,\n\"b\": 1}}]"), "doc.json:2: the key 'b'"));
 }
 
-class JsonFiles : public ::testing::Test {
+class JsonFiles : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-json-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    JsonFiles() : ScratchFolderTest("json") {}
     fs::path write(const std::string& name, const std::string& text) {
         const fs::path p = dir_ / name;
         std::ofstream(p) << text;
         return p;
     }
-    fs::path dir_;
 };
 
 // Tool and material files go through the same reader: the error names the file and the line.

@@ -16,6 +16,7 @@
 
 #include "io/session_file.hpp"
 #include "io/session_terrain.hpp"
+#include "support/scratch_folder.hpp"
 #include "support/tin_oracles.hpp"
 #include "tin/tin.hpp"
 #include "util/atomic_file.hpp"
@@ -32,16 +33,9 @@ double swell(Vec2 p) {
     return 0.5 + 0.1 * std::sin(p.x) * std::cos(p.y);
 }
 
-class SessionFile : public ::testing::Test {
+class SessionFile : public test::ScratchFolderTest {
   protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() /
-               ("sandtin-io-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
+    SessionFile() : ScratchFolderTest("io") {}
 
     static Session make_session(std::size_t points = 300, std::uint64_t seed = 1) {
         Tin tin = Tin::random_points(Rect::from_size(6.0, 4.0), points, seed, swell);
@@ -88,8 +82,6 @@ class SessionFile : public ::testing::Test {
             ADD_FAILURE() << what << ": wrong exception type: " << e.what();
         }
     }
-
-    fs::path dir_;
 };
 
 /// Sets the payload CRC and the header CRC to match the (modified) file, as a crafted file
