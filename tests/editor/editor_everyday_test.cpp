@@ -205,12 +205,8 @@ TEST_F(EditorXvfb, TheStatsWindowFitsASlowMachinesTimings) {
 
 TEST_F(EditorXvfb, TheRecoveryPromptSaysHowOldTheAutosaveIs) {
     const fs::path scene = kWork / "age.sandtin";
-    Session edited = save_flat_scene(scene, 1.0, unit_square_points(200, 6));
-    std::size_t raised = 0;
-    while (!edited.terrain.vertices.alive[raised])
-        ++raised;
-    edited.terrain.vertices.height[raised] += 0.01;
-    write_autosave(scene, edited);
+    save_flat_scene(scene, 1.0, unit_square_points(200, 6));
+    write_autosave_raising_a_vertex(scene, 0.01);
     // The scene saved ten minutes ago, its autosave three minutes and ten seconds ago.
     const auto now = fs::file_time_type::clock::now();
     fs::last_write_time(scene, now - std::chrono::minutes(10));

@@ -9,6 +9,7 @@
 
 #include <sys/wait.h>
 
+#include "io/autosave.hpp"
 #include "tin/tin.hpp"
 #include "tin/tin_snapshot.hpp"
 
@@ -68,6 +69,16 @@ Rgb mean_pixel(const PngImage& im, int x, int y, int half) {
     }
     if (n == 0) return sum;
     return {sum.r / n, sum.g / n, sum.b / n};
+}
+
+EditedAutosave write_autosave_raising_a_vertex(const fs::path& scene, double metres) {
+    EditedAutosave out{load_session(scene)};
+    const std::vector<std::uint8_t>& alive = out.session.terrain.vertices.alive;
+    while (out.raised < alive.size() && !alive[out.raised])
+        ++out.raised;
+    out.session.terrain.vertices.height.at(out.raised) += metres;
+    write_autosave(scene, out.session);
+    return out;
 }
 
 double luminance(Rgb c) {

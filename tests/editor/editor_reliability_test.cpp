@@ -132,12 +132,7 @@ TEST_F(EditorXvfb, RecoverThroughItsButtonOnTheSandboxAndOnAnElevationModel) {
 TEST_F(EditorXvfb, OpeningASceneFromThePanelOffersItsAutosave) {
     const fs::path scene = kWork / "recover-open.sandtin";
     save_flat_scene(scene, 1.0, unit_square_points(2000, 91), 0.05);
-    Session edited = load_session(scene);
-    std::size_t raised = 0;
-    while (!edited.terrain.vertices.alive[raised])
-        ++raised;
-    edited.terrain.vertices.height[raised] += 0.02;
-    write_autosave(scene, edited);
+    const auto [edited, raised] = write_autosave_raising_a_vertex(scene, 0.02);
     ASSERT_TRUE(find_autosave(scene)->offer_recovery());
     const fs::path after = kWork / "recover-open-after.sandtin";
     const EditorRun r = run_editor(

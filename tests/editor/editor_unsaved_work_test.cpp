@@ -25,12 +25,7 @@ TEST_F(EditorXvfb, AutosaveNewerThanTheSceneIsOfferedAndCanBeRecoveredOrDiscarde
     const fs::path scene = kWork / "recover.sandtin";
     ASSERT_EQ(run_editor("recover-base", kFlat, "--save-after " + scene.string()).exit_code, 0);
     // An autosave with one vertex raised by 3 cm, written after the scene.
-    Session edited = load_session(scene);
-    std::size_t raised = 0;
-    while (!edited.terrain.vertices.alive[raised])
-        ++raised;
-    edited.terrain.vertices.height[raised] += 0.03;
-    write_autosave(scene, edited);
+    const Session edited = write_autosave_raising_a_vertex(scene, 0.03).session;
     ASSERT_TRUE(find_autosave(scene).has_value());
     ASSERT_TRUE(find_autosave(scene)->offer_recovery());
 

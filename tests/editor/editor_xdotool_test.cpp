@@ -286,12 +286,7 @@ TEST_F(EditorXdotool, TheThreePromptsAnsweredWithTheMouse) {
         LiveEditor s("recover");
         const fs::path scene = s.dir() / "scene.sandtin";
         fs::copy_file(base, scene);
-        Session edited = load_session(scene);
-        std::size_t raised = 0;
-        while (!edited.terrain.vertices.alive[raised])
-            ++raised;
-        edited.terrain.vertices.height[raised] += 0.03;
-        write_autosave(scene, edited);
+        const auto [edited, raised] = write_autosave_raising_a_vertex(scene, 0.03);
         s.start({scene.string()});
         s.click("recovery/Recover");
         s.wait_for_job();
