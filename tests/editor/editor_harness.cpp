@@ -67,7 +67,11 @@ Rgb mean_pixel(const PngImage& im, int x, int y, int half) {
             ++n;
         }
     }
-    if (n == 0) return sum;
+    if (n == 0) {
+        ADD_FAILURE() << "mean_pixel: the window around (" << x << ", " << y
+                      << ") lies outside the image";
+        return sum;
+    }
     return {sum.r / n, sum.g / n, sum.b / n};
 }
 

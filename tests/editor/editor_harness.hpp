@@ -51,12 +51,14 @@ double luminance(Rgb c);
 /// Mean absolute difference of two images over a rectangle (all channels).
 double mean_diff(const PngImage& a, const PngImage& b, int x0, int y0, int x1, int y1);
 
-/// Writes the autosave of the scene saved at `scene`: that session with its first live vertex
-/// raised by `metres`. Returns the edited session and the vertex's index.
+/// An autosave written by write_autosave_raising_a_vertex: the session it holds and the index
+/// of the vertex it raised.
 struct EditedAutosave {
     Session session;
     std::size_t raised = 0;
 };
+/// Writes the autosave of the scene saved at `scene`: that session with its first live vertex
+/// raised by `metres`.
 EditedAutosave write_autosave_raising_a_vertex(const fs::path& scene, double metres);
 
 /// A flat sandbox script: erosion off, two frames.
