@@ -84,6 +84,15 @@ TEST(BenchProgress, GrooveReportsSizesLocalityAndTraces) {
     EXPECT_TRUE(any_stage_contains(r, "locality"));
     EXPECT_TRUE(any_stage_contains(r, "trace length 8 of 8"));
     EXPECT_EQ(j["by_trace"].size(), 8u);
+    // The groove to rest under the face rule (the default) and, side by side, the edge rule
+    // at the same margin: both rest, and both moved sand to get there.
+    const nlohmann::json& rest = j.at("by_size").at(0).at("to_rest");
+    EXPECT_EQ(rest.at("rule"), "face");
+    for (const nlohmann::json* run : {&rest, &rest.at("edge_rule"), &rest.at("seeds_rule")}) {
+        EXPECT_TRUE(run->at("at_rest").get<bool>()) << run->dump();
+        EXPECT_GT(run->at("vertex_updates").get<std::size_t>(), 0u) << run->dump();
+    }
+    EXPECT_EQ(rest.at("edge_rule").at("settle_margin"), rest.at("settle_margin"));
 }
 
 TEST(BenchProgress, ImportReportsEachErrorLevelAndDelatin) {
