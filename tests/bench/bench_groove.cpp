@@ -176,11 +176,24 @@ GrooveRun run_groove(const Tool& tool, std::size_t n, double trace, bool validat
     return run;
 }
 
-/// The run with the median whole-stroke time (the upper middle of an even count).
-GrooveRun median_by_total(std::vector<GrooveRun> runs) {
+/// The stroke's whole time, and with the rest after it (Erosion::ToRestAfter).
+double stroke_ms(const GrooveRun& r) {
+    return r.total_ms;
+}
+double stroke_and_rest_ms(const GrooveRun& r) {
+    return r.total_ms + r.rest_ms;
+}
+
+/// The run with the median `time` (the upper middle of an even count).
+GrooveRun median_by(std::vector<GrooveRun> runs, double (*time)(const GrooveRun&)) {
     std::sort(runs.begin(), runs.end(),
-              [](const GrooveRun& a, const GrooveRun& b) { return a.total_ms < b.total_ms; });
+              [&](const GrooveRun& a, const GrooveRun& b) { return time(a) < time(b); });
     return runs[runs.size() / 2];
+}
+
+/// The run with the median whole-stroke time.
+GrooveRun median_by_total(std::vector<GrooveRun> runs) {
+    return median_by(std::move(runs), stroke_ms);
 }
 
 nlohmann::json to_json(const GrooveRun& r) {
@@ -225,16 +238,13 @@ nlohmann::json erosion_json(const GrooveRun& r) {
 }
 
 /// The groove cut, then eroded to rest under `physics`: the run with the median whole time
-/// (stroke and rest) of `reps`, the first of them validated.
+/// (stroke and rest) of `reps`, valid when the first of them, the one validated, is.
 GrooveRun median_to_rest(const Tool& tool, std::size_t n, int reps, const TalusSettings& physics) {
-    auto whole = [](const GrooveRun& r) { return r.total_ms + r.rest_ms; };
     std::vector<GrooveRun> runs;
     for (int r = 0; r < reps; ++r)
         runs.push_back(run_groove(tool, n, 0.8, r == 0, true, Erosion::ToRestAfter, physics));
     const bool valid = runs.front().valid;
-    std::sort(runs.begin(), runs.end(),
-              [&](const GrooveRun& a, const GrooveRun& b) { return whole(a) < whole(b); });
-    GrooveRun mid = runs[runs.size() / 2];
+    GrooveRun mid = median_by(std::move(runs), stroke_and_rest_ms);
     mid.valid = valid;
     return mid;
 }
@@ -247,35 +257,35 @@ GrooveRun median_to_rest(const Tool& tool, std::size_t n, int reps, const TalusS
 /// settle margin) for comparison.
 nlohmann::json to_rest_json(const Tool& tool, std::size_t n, int reps) {
     constexpr double kTargetMs = 100.0;  // at 10^4 points
-    auto whole = [](const GrooveRun& r) { return r.total_ms + r.rest_ms; };
     const TalusSettings defaults;
-    const GrooveRun mid = median_to_rest(tool, n, reps, defaults);
     TalusSettings edge = defaults;
     edge.parameters.rule = SlopeRule::Edge;
+    const TalusSettings seeds = seeds_rule();
+    const GrooveRun mid = median_to_rest(tool, n, reps, defaults);
     const GrooveRun edge_run = median_to_rest(tool, n, reps, edge);
-    const GrooveRun seeds_run =
-        run_groove(tool, n, 0.8, false, true, Erosion::ToRestAfter, seeds_rule());
-    auto summary = [&](const GrooveRun& r, double margin) {
-        return nlohmann::json{{"settle_margin", margin},
-                              {"stroke_ms", r.total_ms},
-                              {"rest_ms", r.rest_ms},
-                              {"total_ms", whole(r)},
-                              {"iterations", r.rest_iterations},
-                              {"vertex_updates", r.rest_vertex_updates},
-                              {"at_rest", r.at_rest}};
+    const GrooveRun seeds_run = run_groove(tool, n, 0.8, false, true, Erosion::ToRestAfter, seeds);
+    auto summary = [](const GrooveRun& r, const TalusSettings& physics) {
+        return nlohmann::json{
+            {"rule", physics.parameters.rule == SlopeRule::Face ? "face" : "edge"},
+            {"settle_margin", physics.parameters.settle_margin},
+            {"stroke_ms", r.total_ms},
+            {"rest_ms", r.rest_ms},
+            {"total_ms", stroke_and_rest_ms(r)},
+            {"iterations", r.rest_iterations},
+            {"vertex_updates", r.rest_vertex_updates},
+            {"at_rest", r.at_rest}};
     };
-    nlohmann::json j = summary(mid, defaults.parameters.settle_margin);
-    j["rule"] = "face";
+    nlohmann::json j = summary(mid, defaults);
     j["vertices_after"] = mid.vertices_after;
     j["valid"] = mid.valid && edge_run.valid;
     j["repetitions"] = reps;
-    j["edge_rule"] = summary(edge_run, edge.parameters.settle_margin);
+    j["edge_rule"] = summary(edge_run, edge);
     j["edge_rule"]["repetitions"] = reps;
-    j["seeds_rule"] = summary(seeds_run, 0.0);
+    j["seeds_rule"] = summary(seeds_run, seeds);
     if (n == 10000) {
         j["target_ms"] = kTargetMs;
-        j["met"] = whole(mid) <= kTargetMs;
-        j["edge_rule"]["met"] = whole(edge_run) <= kTargetMs;
+        j["met"] = stroke_and_rest_ms(mid) <= kTargetMs;
+        j["edge_rule"]["met"] = stroke_and_rest_ms(edge_run) <= kTargetMs;
     }
     return j;
 }

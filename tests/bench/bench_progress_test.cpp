@@ -84,15 +84,22 @@ TEST(BenchProgress, GrooveReportsSizesLocalityAndTraces) {
     EXPECT_TRUE(any_stage_contains(r, "locality"));
     EXPECT_TRUE(any_stage_contains(r, "trace length 8 of 8"));
     EXPECT_EQ(j["by_trace"].size(), 8u);
-    // The groove to rest under the face rule (the default) and, side by side, the edge rule
-    // at the same margin: both rest, and both moved sand to get there.
+    // The groove to rest under the physics' default (the face rule, issue 39) and, side by
+    // side, the edge rule at the same margin and the seeds' rule (the edge rule, no margin):
+    // each rests, and each moved sand to get there.
     const nlohmann::json& rest = j.at("by_size").at(0).at("to_rest");
-    EXPECT_EQ(rest.at("rule"), "face");
-    for (const nlohmann::json* run : {&rest, &rest.at("edge_rule"), &rest.at("seeds_rule")}) {
+    const nlohmann::json& edge = rest.at("edge_rule");
+    const nlohmann::json& seeds = rest.at("seeds_rule");
+    for (const nlohmann::json* run : {&rest, &edge, &seeds}) {
         EXPECT_TRUE(run->at("at_rest").get<bool>()) << run->dump();
         EXPECT_GT(run->at("vertex_updates").get<std::size_t>(), 0u) << run->dump();
     }
-    EXPECT_EQ(rest.at("edge_rule").at("settle_margin"), rest.at("settle_margin"));
+    EXPECT_EQ(rest.at("rule"), "face");
+    EXPECT_EQ(edge.at("rule"), "edge");
+    EXPECT_EQ(seeds.at("rule"), "edge");
+    EXPECT_EQ(edge.at("settle_margin"), rest.at("settle_margin"));
+    EXPECT_GT(rest.at("settle_margin").get<double>(), 0.0);
+    EXPECT_EQ(seeds.at("settle_margin").get<double>(), 0.0);
 }
 
 TEST(BenchProgress, ImportReportsEachErrorLevelAndDelatin) {
